@@ -123,7 +123,7 @@ def test_streamed_track_drops_the_crank(ride):
 
 def test_a_ride_alone_is_no_strides_error():
     """Only a crank, no walk: both tracks stop with B318's NoStridesError naming L611's span (streamed: no empty
-    track)."""
+    track) and B268's --units waist."""
     from pdrlearn.errors import NoStridesError
 
     s = quiet_walk("stand:3, sit:40, stand:3", 12021, 12021, rate_hz=20.0)
@@ -132,7 +132,9 @@ def test_a_ride_alone_is_no_strides_error():
     logging.disable(logging.WARNING)
     try:
         for kw in ({"ignore_force": True}, {"streaming": True}):
-            with pytest.raises(NoStridesError, match="no walking strides: .*cycling\\? decision L611"):
+            # decision B268's fix for a session with a lower-back unit (review R2 finding 5: one helper)
+            with pytest.raises(NoStridesError, match="no walking strides: .*cycling\\? decision L611\\) -- .*"
+                                                     "track it with --units waist \\(decision B268\\)$"):
                 track_plasys(s, **kw)
     finally:
         logging.disable(logging.NOTSET)
