@@ -153,3 +153,19 @@ def test_a_stile_of_two_step_rises_is_walking(streaming):
         logging.disable(logging.NOTSET)
     assert not any("cycling?" in w for w in res.info["warnings"])
     assert len(res.steps) == len(s.steps)
+
+
+@pytest.mark.parametrize("streaming", [False, True])
+def test_a_mis_scaled_foot_accelerometer_is_not_pedalling(streaming):
+    """Decision L621 (second part): a foot accelerometer reading 1.2 g at rest (B201: warned, then tracked) had made
+    every stride unrested (| 1.2 g - g | = 1.96 m/s^2), so L611 removed the whole walk; a rest is judged against the
+    foot's own rest reading."""
+    s = quiet_walk("stand:3, straight:10, stand:3", 12123, 12123, rate_hz=100.0)
+    s.streams["fAccelerometer"].values[:] = s.streams["fAccelerometer"].values * 1.2
+    logging.disable(logging.WARNING)
+    try:
+        res = track_plasys(s, streaming=streaming)
+    finally:
+        logging.disable(logging.NOTSET)
+    assert not any("cycling?" in w for w in res.info["warnings"])
+    assert len(res.steps) == len(s.steps)

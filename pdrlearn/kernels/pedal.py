@@ -41,12 +41,14 @@ MIN_UNRESTED = 3
 MERGE_SPANS_S = 10.0
 
 
-def unrested_strides(t: np.ndarray, acc: np.ndarray, start_s: np.ndarray, end_s: np.ndarray) -> np.ndarray:
+def unrested_strides(t: np.ndarray, acc: np.ndarray, start_s: np.ndarray, end_s: np.ndarray,
+                     g_rest: float = STANDARD_GRAVITY) -> np.ndarray:
     """Decision L611 (second rule): (B,) bool, the strides whose two ends both lack a rest: the median of
-    | |acc| - g | over the foot accelerometer's samples (``t`` s, ``acc`` (n, 3) m/s^2) within :data:`REST_WINDOW_S`
-    of the end is at least :data:`UNRESTED_MPS2` (an end without samples is a rest: nothing to judge)."""
+    | |acc| - g_rest | over the foot accelerometer's samples (``t`` s, ``acc`` (n, 3) m/s^2) within
+    :data:`REST_WINDOW_S` of the end is at least :data:`UNRESTED_MPS2` (an end without samples is a rest: nothing to
+    judge). ``g_rest``: the accelerometer's own rest reading (decision L621: a mis-scaled one, B201, reads 1.2 g)."""
     t = np.asarray(t, dtype=float)
-    dev = np.abs(np.linalg.norm(np.asarray(acc, dtype=float)[:, :3], axis=1) - STANDARD_GRAVITY)
+    dev = np.abs(np.linalg.norm(np.asarray(acc, dtype=float)[:, :3], axis=1) - float(g_rest))
 
     def moving(x: np.ndarray) -> np.ndarray:
         a = np.searchsorted(t, np.asarray(x, dtype=float) - REST_WINDOW_S, side="left")

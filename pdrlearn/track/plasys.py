@@ -91,7 +91,7 @@ from pdrlearn.signal import lowpass
 from pdrlearn.track.altitude import apply_altitude, check_altitude, set_strides_dz
 from pdrlearn.track.base import TrackResult, check_keywords, keyword_names, register_pipeline
 from pdrlearn.track.evaluate import match_by_overlap
-from pdrlearn.track.foot_rest import slow_rhythm_line
+from pdrlearn.track.foot_rest import foot_rest_gravity, slow_rhythm_line
 from pdrlearn.track.gait import (
     STRAIGHT_MAX_RAD,
     add_gait_columns,
@@ -1022,12 +1022,13 @@ def _no_strides_hint(session) -> str:
 
 
 def _without_pedalling(fd: FootDisplacement, fd_kw: dict, foot, strides: pd.DataFrame, stance: np.ndarray,
-                       transfers) -> tuple[FootDisplacement, pd.DataFrame, str | None]:
+                       transfers, g_rest: float) -> tuple[FootDisplacement, pd.DataFrame, str | None]:
     """Decisions L611 / L612: the strides whose raw heights go up and down in a closed loop (cycling), or that lie in
     a span the lower-back unit's chair ``transfers`` call seated, are not walking: their detections are left out and the
-    rest integrated again (nothing changes without them). Returns (fd, strides, warning line or None)."""
+    rest integrated again (nothing changes without them); ``g_rest``: the foot's rest reading (L621). Returns (fd,
+    strides, warning line or None)."""
     loop = closed_loop_strides(fd.disp_[:, 2], fd.start_s_, fd.end_s_,
-                               unrested_strides(foot.t, foot.acc, fd.start_s_, fd.end_s_),
+                               unrested_strides(foot.t, foot.acc, fd.start_s_, fd.end_s_, g_rest),
                                np.hypot(fd.disp_[:, 0], fd.disp_[:, 1]))
     seated, seats = seated_strides(fd.start_s_, fd.end_s_, transfers)
     if not (loop | seated).any():
@@ -1336,7 +1337,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     trunk = SimpleNamespace(info={})  # decision L612: W418's transfers, read once, before the strides are final
     if transfers:
         add_trunk_transfers(trunk, session)
-    fd, strides, pedal_warning = _without_pedalling(fd, fd_kw, foot, strides, stance, trunk.info.get("transfers"))
+    fd, strides, pedal_warning = _without_pedalling(fd, fd_kw, foot, strides, stance, trunk.info.get("transfers"),
+                                                    foot_rest_gravity(session))  # decision L621
     if not len(strides):
         raise NoStridesError(f"{session.where}: no walking strides: {pedal_warning}{_no_strides_hint(session)}")
     fd_warnings = list(fd.warnings_) + ([pedal_warning] if pedal_warning else [])
@@ -2046,7 +2048,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         warnings.append(drop_stride_warning(int((across & ~posture).sum()), streamed=True))
     # decision L611 (offline's kernel): pedalling strides are skipped as B131's posture strides are (no row, 0 m)
     pedal = closed_loop_strides(np.where(in_gap | posture, 0.0, disp[:, 2]), strides[:, 0], strides[:, 1],
-                                unrested_strides(fa_t, fa_v, strides[:, 0], strides[:, 1]),
+                                unrested_strides(fa_t, fa_v, strides[:, 0], strides[:, 1],
+                                                 foot_rest_gravity(session)),  # decision L621
                                 np.hypot(disp[:, 0], disp[:, 1]))
     pedal &= ~(in_gap | posture)
     pedal_warning = pedal_line(pedal, np.zeros(len(pedal), dtype=bool), strides[:, 0], strides[:, 1])
