@@ -123,7 +123,7 @@ def test_streamed_track_drops_the_crank(ride):
 
 def test_a_ride_alone_is_no_strides_error():
     """Only a crank, no walk: both tracks stop with B318's NoStridesError naming L611's span (streamed: no empty
-    track)."""
+    track) and B268's --units waist."""
     from pdrlearn.errors import NoStridesError
 
     s = quiet_walk("stand:3, sit:40, stand:3", 12021, 12021, rate_hz=20.0)
@@ -132,7 +132,40 @@ def test_a_ride_alone_is_no_strides_error():
     logging.disable(logging.WARNING)
     try:
         for kw in ({"ignore_force": True}, {"streaming": True}):
-            with pytest.raises(NoStridesError, match="no walking strides: .*cycling\\? decision L611"):
+            # decision B268's fix for a session with a lower-back unit (review R2 finding 5: one helper)
+            with pytest.raises(NoStridesError, match="no walking strides: .*cycling\\? decision L611\\) -- .*"
+                                                     "track it with --units waist \\(decision B268\\)$"):
                 track_plasys(s, **kw)
     finally:
         logging.disable(logging.NOTSET)
+
+
+@pytest.mark.parametrize("streaming", [False, True])
+def test_a_stile_of_two_step_rises_is_walking(streaming):
+    """Decision L621 (review R2 finding 4): up 2, down 2 four times reverses the height every two steep strides, but
+    the strides travel ~0.6 m and rest at every stance: all kept (L611 alone removed 8 of 14)."""
+    route = "stand:3, straight:3, " + ", ".join(["up:2, down:2"] * 4) + ", straight:3, stand:3"
+    s = quiet_walk(route, 12102, 0, rate_hz=100.0)  # review R2's reproducer (simulate --user-seed 12102)
+    logging.disable(logging.WARNING)
+    try:
+        res = track_plasys(s, streaming=streaming)
+    finally:
+        logging.disable(logging.NOTSET)
+    assert not any("cycling?" in w for w in res.info["warnings"])
+    assert len(res.steps) == len(s.steps)
+
+
+@pytest.mark.parametrize("streaming", [False, True])
+def test_a_mis_scaled_foot_accelerometer_is_not_pedalling(streaming):
+    """Decision L621 (second part): a foot accelerometer reading 1.2 g at rest (B201: warned, then tracked) had made
+    every stride unrested (| 1.2 g - g | = 1.96 m/s^2), so L611 removed the whole walk; a rest is judged against the
+    foot's own rest reading."""
+    s = quiet_walk("stand:3, straight:10, stand:3", 12123, 12123, rate_hz=100.0)
+    s.streams["fAccelerometer"].values[:] = s.streams["fAccelerometer"].values * 1.2
+    logging.disable(logging.WARNING)
+    try:
+        res = track_plasys(s, streaming=streaming)
+    finally:
+        logging.disable(logging.NOTSET)
+    assert not any("cycling?" in w for w in res.info["warnings"])
+    assert len(res.steps) == len(s.steps)

@@ -1182,6 +1182,8 @@ def track_all(
         subjects = subject_totals(sessions, vmap, by=group_by)
         if subjects is not None and group_by is None:
             _pooled_tests_warning(sessions)  # decision C171
+        if changes is not None and group_by is not None:
+            _paired_tests_warning(sessions, group_by)  # decision C172
         strides = combined_strides(tmp, rows, dict(zip(rels, found, strict=True)))  # decision E163
         if subjects is not None:  # decision C146: each subject's strides pooled over its sessions
             from pdrlearn.track.steady import steady_trim_set
@@ -1292,6 +1294,26 @@ def _pooled_tests_warning(sessions: pd.DataFrame) -> None:
             "%s", f"subjects.csv pools each subject's tests ({', '.join(tests[:4])}{' ...' if len(tests) > 4 else ''}"
             f"; {len(mixed)} subject{'s' if len(mixed) > 1 else ''} with more than one): pass --group-by test for "
             "one row per subject and test (decision C171)")
+
+
+def _paired_tests_warning(sessions: pd.DataFrame, by: str) -> None:
+    """Decision C172: ``--group-by`` splits subjects.csv, but changes.csv still pairs a subject's visits over all its
+    sessions (C83 averages a visit's trials): said once, naming the subject-visits whose sessions span several
+    ``by`` values (a visit's Test5 and Test11 averaged, compared with a follow-up of Test5 alone)."""
+    import logging
+
+    if by not in sessions or "subject" not in sessions or "visit" not in sessions:
+        return
+    named = sessions[sessions["subject"].notna() & sessions["visit"].notna()]
+    mixed = [f"{s} visit {v} ({', '.join(dict.fromkeys(g[by].fillna('none').astype(str)))})"
+             for (s, v), g in named.groupby(["subject", "visit"], sort=False)
+             if g[by].fillna("none").astype(str).nunique() > 1]
+    if mixed:
+        logging.getLogger("pdrlearn.cli").warning(
+            "%s", f"--group-by {by} splits subjects.csv, but changes.csv pairs each subject's visits over all its "
+            f"sessions, averaging a visit's {by}s: {len(mixed)} subject-visit(s) span several ({'; '.join(mixed[:3])}"
+            f"{' ...' if len(mixed) > 3 else ''}); for a change per {by}, run track-all on one {by}'s sessions "
+            "(decision C172)")
 
 
 def _raise_if_none_tracked(failed: list[JobResult], skipped: list[JobResult], n: int) -> None:

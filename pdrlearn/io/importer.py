@@ -406,12 +406,28 @@ def _time_word(text: str) -> str:
     return _TIME_ALIASES.get(w, w)
 
 
+def _integers(t_raw: np.ndarray) -> bool:
+    """Decision B444: every timestamp a whole number."""
+    t = np.asarray(t_raw, dtype=float)
+    return t.size > 1 and bool(np.all(np.isfinite(t)) and np.all(t == np.round(t)))
+
+
+def _sample_steps(t_raw: np.ndarray) -> str:
+    """Decision B444: how sample numbers step, for B439's line (``step 1``, ``step 2``, ``steps 1-2``, ``going back
+    1 time(s)``)."""
+    d = np.diff(np.asarray(t_raw, dtype=float))
+    if (d <= 0).any():
+        return f"going back {int((d <= 0).sum())} time(s)"
+    return f"step {d[0]:.0f}" if np.all(d == d[0]) else f"steps {d.min():.0f}-{d.max():.0f}"
+
+
 def _time_unit(t_raw: np.ndarray, given: str | None, column: str, where: str,
-               row_unit: str | None = None, *, inertial: bool = False) -> tuple[str, str]:
+               row_unit: str | None = None, *, inertial: bool = False, guessed: bool = False) -> tuple[str, str]:
     """(unit, source) of the timestamps: given, the header's hint, else decision B22's inference (the units
     in which the timestamps give a plausible rate, from B144's IMU floor for an ``inertial`` file, and a date
     before 2100; ms when ms is one of them, as read_session does). When several fit, the source names the others
-    and the --time-unit that forces one (B144)."""
+    and the --time-unit that forces one (B144). A column named as sample numbers asks for --rate (B439): always
+    when it was ``guessed`` by that name and holds whole numbers (B444), else when they step by 1."""
     if given is not None:
         u = _time_word(given)
         if u not in _TIME_SCALE:
@@ -424,9 +440,11 @@ def _time_unit(t_raw: np.ndarray, given: str | None, column: str, where: str,
     hint = _TIME_ALIASES.get(hint, hint) if hint else None
     if hint in _TIME_SCALE:
         return hint, "header"
-    if sample_numbers(t_raw) and _stem(column) in _SAMPLE_NAMES:  # decision B439: the name says which
+    named = _stem(column) in _SAMPLE_NAMES and (sample_numbers(t_raw) or (guessed and _integers(t_raw)))
+    if named:  # decisions B439, B444: the name says which; a guessed one never reaches B22's inference
         raise OptionFixError(f"{where}: column '{column}' holds sample numbers ({t_raw[0]:.0f}-{t_raw[-1]:.0f}, "
-                             "step 1): give the sampling rate with --rate HZ (decision B439)", "--rate")
+                             f"{_sample_steps(t_raw)}): give the sampling rate with --rate HZ (decision B439)",
+                             "--rate")
     if sample_numbers(t_raw):  # decision B39: never read as a 1000 Hz ms clock without being told
         raise DataError(f"{where}: column '{column}' holds consecutive integers ({t_raw[0]:.0f}-{t_raw[-1]:.0f}, "
                         "step 1): sample numbers, or a 1000 Hz clock in ms? They cannot be told apart: give the "
@@ -1146,7 +1164,7 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
             raise DataError(f"{where}: --time-unit samples needs the sampling rate: pass --rate HZ")
         if rate_hz is None:
             t_unit, t_how = _time_unit(t_num, time_unit, time_column, where, row_units.get(time_column),
-                                       inertial=bool(_INERTIAL & set(columns)))
+                                       inertial=bool(_INERTIAL & set(columns)), guessed=t_source == "guessed")
             if t_duration:  # decision B337
                 t_how = f"written after each value ({tcol.iloc[0]!r} ...: MATLAB duration text, B337)"
     if secs is not None and rate_hz is None and _whole_seconds(secs):  # decision B84: not duplicated rows

@@ -20,6 +20,9 @@ REVERSAL_MIN_DZ_M = 0.05
 #: decision L611 (third rule): a reversing stride rises or falls at least this fraction of its horizontal travel (real
 #: level walking's raw height wanders 0.06-0.10 of a 1.4 m stride, gaitmap_level_right; a crank's "strides" 0.8-20)
 STEEP = 0.3
+#: decision L621: a reversing stride counts only when it travels less than this (m, raw horizontal) or is unrested (the
+#: crank "strides" of tests/test_pedal_s43_l611.py travel 0.012-0.254 m; a stair stride 0.56-0.58 m; review R2 F4)
+TRAVEL_MAX_M = 0.3
 #: decision L611: two strides belong to one chain when the second starts at most this long (s) after the first ends
 CHAIN_PAUSE_S = 1.0
 #: decision L611: a stride's neighbourhood: itself and up to this many strides of its chain before and after it
@@ -38,12 +41,14 @@ MIN_UNRESTED = 3
 MERGE_SPANS_S = 10.0
 
 
-def unrested_strides(t: np.ndarray, acc: np.ndarray, start_s: np.ndarray, end_s: np.ndarray) -> np.ndarray:
+def unrested_strides(t: np.ndarray, acc: np.ndarray, start_s: np.ndarray, end_s: np.ndarray,
+                     g_rest: float = STANDARD_GRAVITY) -> np.ndarray:
     """Decision L611 (second rule): (B,) bool, the strides whose two ends both lack a rest: the median of
-    | |acc| - g | over the foot accelerometer's samples (``t`` s, ``acc`` (n, 3) m/s^2) within :data:`REST_WINDOW_S`
-    of the end is at least :data:`UNRESTED_MPS2` (an end without samples is a rest: nothing to judge)."""
+    | |acc| - g_rest | over the foot accelerometer's samples (``t`` s, ``acc`` (n, 3) m/s^2) within
+    :data:`REST_WINDOW_S` of the end is at least :data:`UNRESTED_MPS2` (an end without samples is a rest: nothing to
+    judge). ``g_rest``: the accelerometer's own rest reading (decision L621: a mis-scaled one, B201, reads 1.2 g)."""
     t = np.asarray(t, dtype=float)
-    dev = np.abs(np.linalg.norm(np.asarray(acc, dtype=float)[:, :3], axis=1) - STANDARD_GRAVITY)
+    dev = np.abs(np.linalg.norm(np.asarray(acc, dtype=float)[:, :3], axis=1) - float(g_rest))
 
     def moving(x: np.ndarray) -> np.ndarray:
         a = np.searchsorted(t, np.asarray(x, dtype=float) - REST_WINDOW_S, side="left")
@@ -59,7 +64,8 @@ def closed_loop_strides(dz: np.ndarray, start_s: np.ndarray, end_s: np.ndarray,
     """Decision L611: (B,) bool, the strides whose neighbourhood (:data:`NEIGHBOURS` strides of their chain either
     side) holds :data:`MIN_REVERSALS` or more height reversals: two consecutive strides of one chain (the next starting
     within :data:`CHAIN_PAUSE_S` of the previous's end) whose raw height changes ``dz`` (m) have opposite signs, each at
-    least :data:`REVERSAL_MIN_DZ_M` and (third rule) at least :data:`STEEP` of its horizontal ``travel`` (m); or
+    least :data:`REVERSAL_MIN_DZ_M` and (third rule) at least :data:`STEEP` of its horizontal ``travel`` (m), and
+    (decision L621) each ``unrested`` or travelling less than :data:`TRAVEL_MAX_M`; or
     (second rule) :data:`MIN_UNRESTED` or more ``unrested`` strides
     (:func:`unrested_strides`)."""
     dz = np.asarray(dz, dtype=float)
@@ -68,11 +74,13 @@ def closed_loop_strides(dz: np.ndarray, start_s: np.ndarray, end_s: np.ndarray,
     if n < 3:
         return np.zeros(n, dtype=bool)
     chained = start_s[1:] - end_s[:-1] <= CHAIN_PAUSE_S  # (B-1,) pair i, i+1 in one chain
+    still = np.zeros(n, dtype=bool) if unrested is None else np.asarray(unrested, dtype=bool)
     big = np.abs(dz) >= REVERSAL_MIN_DZ_M
     if travel is not None:
-        big &= np.abs(dz) >= STEEP * np.abs(np.asarray(travel, dtype=float))
+        travel = np.abs(np.asarray(travel, dtype=float))
+        big &= np.abs(dz) >= STEEP * travel
+        big &= still | (travel < TRAVEL_MAX_M)  # decision L621: a stride that travels and rests is walking (a stile)
     rev = chained & big[:-1] & big[1:] & (np.sign(dz[:-1]) != np.sign(dz[1:]))  # pair i, i+1 reverses
-    still = np.zeros(n, dtype=bool) if unrested is None else np.asarray(unrested, dtype=bool)
     out = np.zeros(n, dtype=bool)
     for i in range(n):
         lo, hi = i, i  # the stride's neighbourhood within its chain: pairs lo..hi-1

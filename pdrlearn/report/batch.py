@@ -177,12 +177,15 @@ def pooled_subject_table(folder: str | Path) -> list[tuple[str, pd.DataFrame]]:
     path = Path(folder) / "subjects.csv"
     if not path.is_file():
         return []
-    subjects = read_table(path, text_columns=("subject", "visit"))  # cohort C42: labels as written
+    by = run_group_by(folder)  # decision C172: C171's rows per test, told apart as the totals table's are
+    subjects = read_table(path, text_columns=("subject", "visit", *([by] if by else [])))  # cohort C42: as written
     if "pooled_n_strides" not in subjects.columns:  # written before C146
         return []
-    keep = ["subject", *(["visit"] if subjects["visit"].notna().any() else []), *POOLED_COLUMNS]
-    return [("per subject and visit: strides pooled over its sessions (subjects.csv pooled_*; the stride-time CV "
-             "within each session, decision C146)", subjects[[c for c in keep if c in subjects.columns]])]
+    split = [by] if by and by in subjects.columns else []
+    keep = ["subject", *(["visit"] if subjects["visit"].notna().any() else []), *split, *POOLED_COLUMNS]
+    return [(f"per subject{', visit and ' + by if split else ' and visit'}: strides pooled over its sessions "
+             "(subjects.csv pooled_*; the stride-time CV within each session, decision C146)",
+             subjects[[c for c in keep if c in subjects.columns]])]
 
 
 def change_tables(sessions: pd.DataFrame, visit_map: dict[str, str] | None = None,

@@ -43,6 +43,24 @@ MIN_REST_SAMPLES = 20
 REST_SCALE_TOL = 0.07
 
 
+def _rest_samples(acc_s, gyr_s) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The foot's (acc, gyr on the accelerometer's clock, |acc|, detected foot-flat samples)."""
+    acc = np.asarray(acc_s.values, dtype=float)
+    gyr = interp_rows(acc_s.t, gyr_s.t, np.asarray(gyr_s.values, dtype=float))
+    return acc, gyr, np.linalg.norm(acc, axis=1), inertial_stance(acc, gyr, float(acc_s.rate_hz))
+
+
+def foot_rest_gravity(session) -> float:
+    """Decision L621 (second part): the foot accelerometer's own rest reading (m/s^2), B201's ``rest_acc_g``: the median
+    |acc| over the detected foot-flats; 1 g without the foot IMU or under :data:`MIN_REST_SAMPLES` of them."""
+    acc_n, gyr_n = UNIT_IMU["foot"]
+    if not session.has(acc_n, gyr_n) or len(session.streams[acc_n]) < 4 or len(session.streams[gyr_n]) < 4:
+        return STANDARD_GRAVITY
+    _, _, norm, rest = _rest_samples(session.streams[acc_n], session.streams[gyr_n])
+    ok = np.isfinite(norm) & rest
+    return float(np.median(norm[ok])) if ok.sum() >= MIN_REST_SAMPLES else STANDARD_GRAVITY
+
+
 def foot_rest_stats(session) -> dict | None:
     """The foot unit's rest figures: ``rest_acc_g`` (median |acc| over the detected foot-flat samples, in g;
     None with fewer than :data:`MIN_REST_SAMPLES`), ``rest_fraction``, ``swing_rad_s`` (B91's statistic) and
@@ -55,10 +73,7 @@ def foot_rest_stats(session) -> dict | None:
     acc_s, gyr_s = session.streams[acc_n], session.streams[gyr_n]
     if len(acc_s) < 4 or len(gyr_s) < 4:
         return None
-    acc = np.asarray(acc_s.values, dtype=float)
-    gyr = interp_rows(acc_s.t, gyr_s.t, np.asarray(gyr_s.values, dtype=float))
-    norm = np.linalg.norm(acc, axis=1)
-    rest = inertial_stance(acc, gyr, float(acc_s.rate_hz))
+    acc, gyr, norm, rest = _rest_samples(acc_s, gyr_s)
     ok = np.isfinite(norm) & rest
     # decision B253: "walks" and "swings" are B251's largest figures of any 10 s block (a night's whole-session sd
     # and 99th percentile read a short walk as still, hiding B134's and B201's faults)

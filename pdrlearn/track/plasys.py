@@ -91,7 +91,7 @@ from pdrlearn.signal import lowpass
 from pdrlearn.track.altitude import apply_altitude, check_altitude, set_strides_dz
 from pdrlearn.track.base import TrackResult, check_keywords, keyword_names, register_pipeline
 from pdrlearn.track.evaluate import match_by_overlap
-from pdrlearn.track.foot_rest import slow_rhythm_line
+from pdrlearn.track.foot_rest import foot_rest_gravity, slow_rhythm_line
 from pdrlearn.track.gait import (
     STRAIGHT_MAX_RAD,
     add_gait_columns,
@@ -1012,13 +1012,23 @@ def _drop_impossible(length: np.ndarray, dz: np.ndarray, t0: np.ndarray, t1: np.
     return np.where(bad, 0.0, length), np.where(bad, 0.0, dz), bad
 
 
+def _no_strides_hint(session) -> str:
+    """Decision B268 (L611's NoStridesError too): the fix a foot track without strides names when the session has a
+    lower-back unit ("" without one)."""
+    if not session.has("wAccelerometer", "wGyroscope"):
+        return ""
+    return (" -- the session has a lower-back unit, which sees a chair test, a standing or a seated session without "
+            "foot strides: track it with --units waist (decision B268)")
+
+
 def _without_pedalling(fd: FootDisplacement, fd_kw: dict, foot, strides: pd.DataFrame, stance: np.ndarray,
-                       transfers) -> tuple[FootDisplacement, pd.DataFrame, str | None]:
+                       transfers, g_rest: float) -> tuple[FootDisplacement, pd.DataFrame, str | None]:
     """Decisions L611 / L612: the strides whose raw heights go up and down in a closed loop (cycling), or that lie in
     a span the lower-back unit's chair ``transfers`` call seated, are not walking: their detections are left out and the
-    rest integrated again (nothing changes without them). Returns (fd, strides, warning line or None)."""
+    rest integrated again (nothing changes without them); ``g_rest``: the foot's rest reading (L621). Returns (fd,
+    strides, warning line or None)."""
     loop = closed_loop_strides(fd.disp_[:, 2], fd.start_s_, fd.end_s_,
-                               unrested_strides(foot.t, foot.acc, fd.start_s_, fd.end_s_),
+                               unrested_strides(foot.t, foot.acc, fd.start_s_, fd.end_s_, g_rest),
                                np.hypot(fd.disp_[:, 0], fd.disp_[:, 1]))
     seated, seats = seated_strides(fd.start_s_, fd.end_s_, transfers)
     if not (loop | seated).any():
@@ -1316,11 +1326,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                                   (heading or cfg["heading"]) if waist_heads else "foot")
     strides = drop_steps_across_gaps(strides, foot_gaps)
     if not len(strides):
-        hint = (" -- the session has a lower-back unit, which sees a chair test or a standing session without foot "
-                "strides: track it with --units waist (decision B268)") if session.has(
-                    "wAccelerometer", "wGyroscope") else ""
         # decision B318: the session's folder (as every other error names it), and its own exit code 4
-        raise NoStridesError(f"{session.where}: no strides detected; is the foot unit moving?{hint}")
+        raise NoStridesError(f"{session.where}: no strides detected; is the foot unit moving?"
+                             f"{_no_strides_hint(session)}")
     fd_kw = {k: cfg[k] for k in ("integrator", "zupt_end", "gyro_bias", "attitude")}
     fd_kw.update(check_foot_settings(params, "plasys params"))  # decisions B206 / B207
     if clipped[0]:  # decision L525 (a): the streamed stride's tilt correction and ZUPT clock
@@ -1329,9 +1337,10 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     trunk = SimpleNamespace(info={})  # decision L612: W418's transfers, read once, before the strides are final
     if transfers:
         add_trunk_transfers(trunk, session)
-    fd, strides, pedal_warning = _without_pedalling(fd, fd_kw, foot, strides, stance, trunk.info.get("transfers"))
+    fd, strides, pedal_warning = _without_pedalling(fd, fd_kw, foot, strides, stance, trunk.info.get("transfers"),
+                                                    foot_rest_gravity(session))  # decision L621
     if not len(strides):
-        raise NoStridesError(f"{session.where}: no walking strides: {pedal_warning}")
+        raise NoStridesError(f"{session.where}: no walking strides: {pedal_warning}{_no_strides_hint(session)}")
     fd_warnings = list(fd.warnings_) + ([pedal_warning] if pedal_warning else [])
     raw_disp = disp = fd.disp_
     if len(fd.rows_) < len(strides):
@@ -2042,13 +2051,14 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     # reversal nor a missing rest; session 43, lead, after test_runtime_input_e29's 0.55 s gap lost 3 strides)
     unjudged = in_gap | across | posture
     pedal = closed_loop_strides(np.where(unjudged, 0.0, disp[:, 2]), strides[:, 0], strides[:, 1],
-                                unrested_strides(fa_t, fa_v, strides[:, 0], strides[:, 1]) & ~unjudged,
+                                unrested_strides(fa_t, fa_v, strides[:, 0], strides[:, 1],
+                                                 foot_rest_gravity(session)) & ~unjudged,  # decision L621
                                 np.hypot(disp[:, 0], disp[:, 1]))
     pedal &= ~unjudged
     pedal_warning = pedal_line(pedal, np.zeros(len(pedal), dtype=bool), strides[:, 0], strides[:, 1])
     warnings += [pedal_warning] if pedal_warning else []
     if (posture | pedal).all():  # as offline: no stride is left to track (B318's exit code 4)
-        raise NoStridesError(f"{session.where}: no walking strides: {pedal_warning}")
+        raise NoStridesError(f"{session.where}: no walking strides: {pedal_warning}{_no_strides_hint(session)}")
     skipped_posture, posture = posture, posture | pedal
     raw_disp, disp = disp, apply_level_gain(disp, gain)  # decision L26 (the runtime: E14)
     if (method == "M3" and use_bounds is not None and "length_class" in classes
