@@ -37,7 +37,8 @@ def _instance(cls):
     """One instance of ``cls`` with every constructor argument given (not the defaults), and an attribute set after
     construction, as FrameInferenceError's callers do."""
     params = list(inspect.signature(cls.__init__).parameters.values())[1:]
-    extra = {"unit": "waist", "offset_s": -15.2, "beside": False, "offsets": {"waist": -15.2, "foot": -3.5}}
+    extra = {"unit": "waist", "offset_s": -15.2, "beside": False, "offsets": {"waist": -15.2, "foot": -3.5},
+             "option": "--acc-unit", "value": "g"}  # B438's OptionFixError
     e = cls("a   message\nover two lines", *[extra[p.name] for p in params[1:]])
     e.note_after = 3.5
     return e
