@@ -13,6 +13,7 @@ import pytest
 
 from pdrlearn.cli import main
 from pdrlearn.track.bilateral import HEADLINE_MIN_LEVEL_STEPS, bilateral_gait
+from tests.conftest import external_session
 
 DATA = Path(__file__).resolve().parents[1] / "datasets"
 
@@ -51,7 +52,7 @@ def stairs_down(tmp_path_factory):
     buf = io.StringIO()
     with contextlib.redirect_stdout(buf):
         rc = main(["gait", str(DATA / "real" / "gaitmap_stairs_down_left"),
-                   str(DATA / "external" / "gaitmap_stairs_down_right"), "--out", str(out)])
+                   str(external_session("gaitmap_stairs_down_right")), "--out", str(out)])
     assert rc == 0
     return buf.getvalue(), json.loads((out / "gait_summary.json").read_text())
 
