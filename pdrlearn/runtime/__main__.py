@@ -180,6 +180,9 @@ def main(argv: list[str] | None = None) -> int:
     except PdrlearnError as exc:
         print(f"error: {' '.join(str(exc).split())}", file=sys.stderr)
         return exc.exit_code
+    except KeyboardInterrupt:  # decision E279: Ctrl-C as pdrlearn's (B96): one line, 130; --out is atomic (E276)
+        print("error: interrupted (Ctrl-C); nothing written", file=sys.stderr)
+        return 130
     except (OSError, MemoryError) as exc:  # decision E276: an output the system refuses (disk full ...): one line
         if out_of_memory(exc):  # decision B440, as pdrlearn's
             print(f"error: {out_of_memory_line(PROG, blocks=True)}", file=sys.stderr)
