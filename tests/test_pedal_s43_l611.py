@@ -93,17 +93,22 @@ def ride():
     return s, a, b
 
 
+def _track(session, **kw):
+    """``track_plasys`` with the pipeline's warning log silenced (the lines are read from ``info["warnings"]``)."""
+    logging.disable(logging.WARNING)
+    try:
+        return track_plasys(session, **kw)
+    finally:
+        logging.disable(logging.NOTSET)
+
+
 def _in(steps, a, b) -> int:
     return int(((steps["end_s"] > a) & (steps["start_s"] < b)).sum())
 
 
 def test_offline_track_without_insoles_drops_the_crank(ride):
     s, a, b = ride
-    logging.disable(logging.WARNING)
-    try:
-        res = track_plasys(s, ignore_force=True)
-    finally:
-        logging.disable(logging.NOTSET)
+    res = _track(s, ignore_force=True)
     assert _in(res.steps, a, b) == 0
     assert len(res.steps) == len(s.steps)  # the walks' strides all kept
     assert any("cycling?" in w and "L611" in w for w in res.info["warnings"])
@@ -111,11 +116,7 @@ def test_offline_track_without_insoles_drops_the_crank(ride):
 
 def test_streamed_track_drops_the_crank(ride):
     s, a, b = ride
-    logging.disable(logging.WARNING)
-    try:
-        res = track_plasys(s, streaming=True)
-    finally:
-        logging.disable(logging.NOTSET)
+    res = _track(s, streaming=True)
     assert _in(res.steps, a, b) == 0
     line = [w for w in res.info["warnings"] if "cycling?" in w]
     assert len(line) == 1 and "L611" in line[0]
@@ -129,15 +130,11 @@ def test_a_ride_alone_is_no_strides_error():
     s = quiet_walk("stand:3, sit:40, stand:3", 12021, 12021, rate_hz=20.0)
     tr = s.extras["transfers"]
     _pedal(s, float(tr["seated_s"].iloc[0]) + 3, float(tr["rise_s"].iloc[0]) - 3, 60.0)
-    logging.disable(logging.WARNING)
-    try:
-        for kw in ({"ignore_force": True}, {"streaming": True}):
-            # decision B268's fix for a session with a lower-back unit (review R2 finding 5: one helper)
-            with pytest.raises(NoStridesError, match="no walking strides: .*cycling\\? decision L611\\) -- .*"
-                                                     "track it with --units waist \\(decision B268\\)$"):
-                track_plasys(s, **kw)
-    finally:
-        logging.disable(logging.NOTSET)
+    for kw in ({"ignore_force": True}, {"streaming": True}):
+        # decision B268's fix for a session with a lower-back unit (review R2 finding 5: one helper)
+        with pytest.raises(NoStridesError, match="no walking strides: .*cycling\\? decision L611\\) -- .*"
+                                                 "track it with --units waist \\(decision B268\\)$"):
+            _track(s, **kw)
 
 
 @pytest.mark.parametrize("streaming", [False, True])
@@ -146,11 +143,7 @@ def test_a_stile_of_two_step_rises_is_walking(streaming):
     the strides travel ~0.6 m and rest at every stance: all kept (L611 alone removed 8 of 14)."""
     route = "stand:3, straight:3, " + ", ".join(["up:2, down:2"] * 4) + ", straight:3, stand:3"
     s = quiet_walk(route, 12102, 0, rate_hz=100.0)  # review R2's reproducer (simulate --user-seed 12102)
-    logging.disable(logging.WARNING)
-    try:
-        res = track_plasys(s, streaming=streaming)
-    finally:
-        logging.disable(logging.NOTSET)
+    res = _track(s, streaming=streaming)
     assert not any("cycling?" in w for w in res.info["warnings"])
     assert len(res.steps) == len(s.steps)
 
@@ -162,10 +155,6 @@ def test_a_mis_scaled_foot_accelerometer_is_not_pedalling(streaming):
     foot's own rest reading."""
     s = quiet_walk("stand:3, straight:10, stand:3", 12123, 12123, rate_hz=100.0)
     s.streams["fAccelerometer"].values[:] = s.streams["fAccelerometer"].values * 1.2
-    logging.disable(logging.WARNING)
-    try:
-        res = track_plasys(s, streaming=streaming)
-    finally:
-        logging.disable(logging.NOTSET)
+    res = _track(s, streaming=streaming)
     assert not any("cycling?" in w for w in res.info["warnings"])
     assert len(res.steps) == len(s.steps)
