@@ -18,6 +18,7 @@ from pdrlearn.cli import main
 from pdrlearn.errors import DataError
 from pdrlearn.io.external import fetched_by, mobgap
 from pdrlearn.io.external.pypi import default_cache_dir
+from pdrlearn.io.meta_keys import unknown_meta_keys
 from tests.test_external import FEET, _bout, _trial, _write_root
 
 INFO = {"Height": 170, "Weight": 70, "SensorHeight": 100.0, "Handedness": "R", "FootSize": 26, "WalkingAid_01": 0,
@@ -72,6 +73,7 @@ def test_from_a_tvs_tree_converts_by_the_sdist_converter_c173(tmp_path, capsys):
         assert "source_sdist" not in a and a["source_local"]["source"] == "mobgap"
         assert a["source_files"] == ["HA/009/Laboratory/data.mat", "HA/009/Laboratory/infoForAlgo.mat"]
         assert len(a["source_local"]["data_mat_sha256"]) == 64
+        assert unknown_meta_keys(a) == []  # decision B262: pdrlearn info / track name no key of it
     assert fetched_by(tmp_path / "out" / names[0]) == "mobgap"
     rc, _ = _fetch(capsys, "--from", tmp_path / "tvs", "--out", tmp_path / "out")  # again: its own folders replaced
     assert rc == 0
