@@ -173,3 +173,23 @@ def test_the_real_example_data_from_a_folder_c173(tmp_path, sub):
         a, b = (json.loads((d / "meta.json").read_text()) for d in (new, ref))
         assert {k: v for k, v in a.items() if not k.startswith("source_")} == \
             {k: v for k, v in b.items() if not k.startswith("source_")}
+
+
+def test_info_for_algo_fields_as_mobgap_reads_them_c173(tmp_path):
+    path = tmp_path / "infoForAlgo.mat"
+    scipy.io.savemat(path, {"infoForAlgo": {"TimeMeasure1": INFO}})
+    assert mobgap._info_for_algo(path) == {
+        "sensor_height_m": 1.0, "height_m": 1.7, "weight_kg": 70.0, "handedness": "right", "foot_length_cm": 26.0,
+        "indip_data_used": "All", "sensor_attachment_su": "Body-Worn", "sensor_type_su": "MM+",
+        "walking_aid_used": False}
+    odd = {k: v for k, v in INFO.items() if k != "SensorHeight"} | {"Height": "n/a", "Handedness": "L",
+                                                                   "WalkingAid_01": 1}
+    scipy.io.savemat(path, {"infoForAlgo": {"TimeMeasure1": odd}})
+    got = mobgap._info_for_algo(path)  # a field it cannot read is left out, not a traceback
+    assert "height_m" not in got and "sensor_height_m" not in got
+    assert got["handedness"] == "left" and got["walking_aid_used"] is True and got["weight_kg"] == 70.0
+    assert mobgap._info_for_algo(tmp_path / "none.mat") is None
+    scipy.io.savemat(path, {"other": 1})
+    with pytest.raises(DataError, match="no struct infoForAlgo.TimeMeasure1") as e:
+        mobgap._info_for_algo(path)
+    assert "\n" not in str(e.value)

@@ -566,8 +566,7 @@ def _info_for_algo(path: Path) -> dict | None:
     if not isinstance(m, dict):
         raise DataError(f"{path}: no struct infoForAlgo.{TIME_MEASURE}; remove it or give a Mobilise-D "
                         f"infoForAlgo.mat")
-    num = {k: float(v) if np.size(v) == 1 and np.isfinite(_scalar(v)) else None for k, v in m.items()
-           if k in ("SensorHeight", "Height", "Weight", "FootSize")}
+    num = {k: _number(m.get(k)) for k in ("SensorHeight", "Height", "Weight", "FootSize")}
     out = {"sensor_height_m": None if num.get("SensorHeight") is None else num["SensorHeight"] / 100,
            "height_m": None if num.get("Height") is None else num["Height"] / 100,
            "weight_kg": num.get("Weight"),
@@ -577,6 +576,15 @@ def _info_for_algo(path: Path) -> dict | None:
            "sensor_type_su": m.get("SensorType_SU"),
            "walking_aid_used": {0: False, 1: True}.get(_count(m.get("WalkingAid_01")))}
     return {k: v for k, v in out.items() if v is not None and not (isinstance(v, np.ndarray) and v.size == 0)}
+
+
+def _number(x) -> float | None:
+    """One finite number of an infoForAlgo field, else None (absent, empty, text, NaN)."""
+    try:
+        v = _vec(x) if x is not None else np.empty(0)
+    except (TypeError, ValueError):
+        return None
+    return float(v[0]) if v.size == 1 and np.isfinite(v[0]) else None
 
 
 def _convert(files, out_dir: Path, progress: Callable[[str], None], fix: str) -> list[Path]:
