@@ -631,13 +631,15 @@ SUBJECTS: tuple[Column, ...] = (
     ("pooled_stride_time_cv_reason", _ID, "text", "why pooled_stride_time_cv_pct is empty (C146)"),
 )
 
-#: decisions C22, C81-C83: track-all's changes.csv, one row per subject and later visit; ``{measure}`` stands for each
-#: measure compared (groups.csv's, or --metrics)
+#: decisions C22, C81-C83: track-all's changes.csv, one row per subject and later visit (and test, C174);
+#: ``{measure}`` stands for each measure compared (groups.csv's, or --metrics)
 CHANGES: tuple[Column, ...] = (
     ("subject", _ID, "text", "meta.json subject (C22)"),
     ("group", _ID, "text", "the subject's group"),
     ("baseline_visit", _ID, "text", "the subject's baseline visit (C24, C28), as sessions.csv's visit (C82)"),
     ("visit", _ID, "text", "the later visit compared with it"),
+    ("test", _ID, "text", "track-all --group-by test only: meta.json test, each test's visits paired on their own, a "
+                          "row per subject, test and later visit (empty: the sessions naming none; C174)"),
     ("baseline_visit_as_written", _ID, "text", "meta.json's name(s) of the baseline visit (C82)"),
     ("visit_as_written", _ID, "text", "meta.json's name(s) of the later visit (C82)"),
     ("status", _ID, "text", "ok (paired), missing, failed, pipelines (C30) or duplicate (C31); several: before C83"),
@@ -656,10 +658,12 @@ CHANGES: tuple[Column, ...] = (
                                             "(its change is in points, C101)"),
 )
 
-#: decisions C23, C81, C85: track-all's changes_summary.csv, one row per later visit, baseline and measure
+#: decisions C23, C81, C85: track-all's changes_summary.csv, one row per later visit, baseline (test, C174) and measure
 CHANGES_SUMMARY: tuple[Column, ...] = (
     ("visit", _ID, "text", "the later visit (changes.csv's visit, C82)"),
     ("baseline_visit", _ID, "text", "the baseline it is compared with (subjects of other baselines apart, C28)"),
+    ("test", _ID, "text", "track-all --group-by test only: changes.csv's test, a row per visit, baseline, test and "
+                          "measure (C174)"),
     ("measure", _ID, "text", "the measure (groups.csv's, or a --metrics name, C81)"),
     ("n_subjects", "count", "integer", "subjects with a change: both visits tracked and the measure at both (C23)"),
     ("mean_change", "as the measure", "number", "the mean of the subjects' changes (C23)"),

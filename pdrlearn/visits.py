@@ -494,7 +494,7 @@ def _copies(b_row, v_row) -> list[tuple[str, str]]:
     return [(p, d) for p, d in _trials(v_row) if isinstance(d, str) and d in base]
 
 
-def change_table(sessions, metrics=GROUP_METRICS, visit_map: dict[str, str] | None = None):
+def change_table(sessions, metrics=GROUP_METRICS, visit_map: dict[str, str] | None = None, by: str | None = None):
     """changes.csv from sessions.csv (a DataFrame), or ``None`` when the sessions naming a subject and a visit name
     fewer than two visits (decision C22). Visit names are first made one per visit (:func:`canonical_visits`,
     decisions C28, C29: ``BL`` and ``baseline`` one visit). One row per subject (natural order) and later visit: the
@@ -511,7 +511,11 @@ def change_table(sessions, metrics=GROUP_METRICS, visit_map: dict[str, str] | No
     in ``reason``. ``metrics``: sessions.csv's number columns compared (default groups.csv's; an unknown name is
     one error line, decision B302); each gets ``<m>_baseline``, ``<m>_change`` and ``<m>_change_pct``
     (:func:`pct_change`, C81). ``baseline_visit_as_written`` / ``visit_as_written``: the visits as meta.json wrote
-    them (C82)."""
+    them (C82). ``by``: a sessions.csv label column (``"test"``, decision C174: track-all's ``--group-by test``): the
+    visits are paired as without it, but each of the subject's values on its own - its Test5 at the follow-up against
+    its Test5 at baseline, never a visit's tests averaged (C172's finding) - one row per subject, value (natural
+    order, sessions naming none last with it empty) and later visit, the column after ``visit``; a test the subject
+    did at one of the two visits only is ``missing`` there, listed."""
     import numpy as np
     import pandas as pd
 
@@ -525,6 +529,8 @@ def change_table(sessions, metrics=GROUP_METRICS, visit_map: dict[str, str] | No
     visits = visit_order(named["visit"])
     if len(visits) < 2:
         return None
+    if by is not None:  # decision C174: the label as text, a sessions.csv without the column naming none
+        named[by] = named[by].map(_as_text) if by in named else None
     measures = [m for m in metrics if m in sessions and pd.to_numeric(sessions[m], errors="coerce").notna().any()]
     base_of = _baselines(named)
     counts = pd.Series([b for b in base_of.values() if b is not None]).value_counts()
@@ -538,11 +544,14 @@ def change_table(sessions, metrics=GROUP_METRICS, visit_map: dict[str, str] | No
     twins = _twins(named)
     rows = []
     for subject in visit_order(named["subject"]):
-        mine = named[named["subject"] == subject]
+        everything = named[named["subject"] == subject]
         base = base_of[subject] or common
-        b_status, b_reason, b_row = _side(mine[mine["visit"] == base], base, measures)
-        own = (later[base] or later[common]) + [v for v in mine["visit"] if v not in baselines]
-        for visit in visit_order(own):
+        own = (later[base] or later[common]) + [v for v in everything["visit"] if v not in baselines]
+        for label, visit in ((label, visit) for label in _labels_of(everything, by) for visit in visit_order(own)):
+            # decision C174: with ``by``, the visits the subject's sessions pair (C28) compared within each test
+            mine = everything if by is None else everything[
+                everything[by].isna() if label is None else everything[by] == label]
+            b_status, b_reason, b_row = _side(mine[mine["visit"] == base], base, measures)
             v_status, v_reason, v_row = _side(mine[mine["visit"] == visit], visit, measures)
             status = next(s for s in ("missing", "failed", "pipelines", "ok") if s in (b_status, v_status))
             reasons = [r for r in (b_reason, v_reason) if r]
@@ -552,7 +561,7 @@ def change_table(sessions, metrics=GROUP_METRICS, visit_map: dict[str, str] | No
                 reasons.append(problem[1])
             elif status == "ok":  # decision C20's copy; C84: of each trial averaged
                 reasons += [f"{p} holds the same recording as {d} (duplicate_of)" for p, d in _copies(b_row, v_row)]
-            row = {"subject": subject, "group": mine["group"].astype(str).iloc[0], "baseline_visit": base,
+            row = {"subject": subject, "group": everything["group"].astype(str).iloc[0], "baseline_visit": base,
                    "visit": visit, "status": status, "reason": "; ".join(reasons) or None,
                    **{f"{k}visit_as_written": _names(mine.loc[mine["visit"] == w, "visit_as_written"])
                       for k, w in (("baseline_", base), ("", visit))},
@@ -570,9 +579,11 @@ def change_table(sessions, metrics=GROUP_METRICS, visit_map: dict[str, str] | No
                 row[f"{m}_change"] = v - b  # later visit minus baseline (decision C22)
                 if "change_pct" in change_kinds(m):  # decision C101: none of a percent error
                     row[f"{m}_change_pct"] = pct_change(b, v)  # decision C81
-            rows.append(row)
-    out = pd.DataFrame(rows).reindex(columns=[*CHANGE_COLUMNS, *(f"{m}_{k}" for m in measures
-                                                                 for k in change_kinds(m))])
+            rows.append({**row, **({by: label} if by else {})})
+    columns = list(CHANGE_COLUMNS)
+    if by:
+        columns.insert(columns.index("visit") + 1, by)
+    out = pd.DataFrame(rows).reindex(columns=[*columns, *(f"{m}_{k}" for m in measures for k in change_kinds(m))])
     for c in ("baseline_n_trials", "n_trials"):
         out[c] = out[c].astype("Int64")
     return out
@@ -643,7 +654,7 @@ def change_measures(changes) -> list[str]:
     return [c[:-len("_change")] for c in changes.columns if c.endswith("_change")]  # "_change_pct": its percent
 
 
-def change_summary(changes, metrics=None):
+def change_summary(changes, metrics=None, by: str | None = None):
     """changes_summary.csv from changes.csv (decision C23): one row per later visit and baseline (in order; subjects
     whose baselines differ, C28, are never pooled) and measure with
     ``n_subjects`` (subjects with a change: both visits tracked and the measure present at both), ``mean_change``,
@@ -651,7 +662,10 @@ def change_summary(changes, metrics=None):
     one-sample interval of the differences, :func:`pdrlearn.cohort.t_interval`; empty under two subjects), and
     ``n_not_paired`` / ``not_paired``: the subjects of that visit whose row is not ``ok`` (``;``-separated). Decision
     C81: ``mean_pct_change``, ``sd_pct_change``, ``pct_ci95_low`` / ``pct_ci95_high``, the same of the subjects'
-    percent changes (the mean dual-task cost with its interval). ``metrics``: default changes.csv's measures."""
+    percent changes (the mean dual-task cost with its interval). ``metrics``: default changes.csv's measures.
+    ``by``: changes.csv's label column (decision C174, ``change_table(by=)``): the rows per visit, baseline and value
+    (natural order; a subject's Test5 change never averaged with its Test11 change), the column after
+    ``baseline_visit``."""
     import pandas as pd
 
     metrics = change_measures(changes) if metrics is None else metrics
@@ -659,24 +673,40 @@ def change_summary(changes, metrics=None):
     order = visit_order([*changes["visit"], *changes["baseline_visit"]])
     pairs = dict.fromkeys(zip(changes["visit"], changes["baseline_visit"], strict=True))  # decision C28
     for visit, base in sorted(pairs, key=lambda vb: (order.index(vb[0]), order.index(vb[1]))):
-        at = changes[(changes["visit"] == visit) & (changes["baseline_visit"] == base)]
-        unpaired = at[at["status"] != "ok"]["subject"].astype(str).tolist()
-        for m in metrics:
-            if f"{m}_change" not in at:
+        both = changes[(changes["visit"] == visit) & (changes["baseline_visit"] == base)]
+        for label in _labels_of(both, by):  # decision C174: each test's changes on their own
+            at = both if by is None else both[both[by].isna()] if label is None else both[both[by] == label]
+            rows += _summary_rows(at, metrics, {"visit": visit, "baseline_visit": base,
+                                                **({by: label} if by else {})})
+    columns = list(SUMMARY_COLUMNS)
+    if by:
+        columns.insert(columns.index("baseline_visit") + 1, by)
+    return pd.DataFrame(rows, columns=columns)  # B327: its columns without a measure too
+
+
+def _summary_rows(at, metrics, keys: dict) -> list[dict]:
+    """changes_summary.csv's rows (one per measure, each starting with ``keys``) of changes.csv's rows ``at``, one
+    visit and baseline (and, decision C174, one test): :func:`change_summary`'s statistics."""
+    import pandas as pd
+
+    rows = []
+    unpaired = at[at["status"] != "ok"]["subject"].astype(str).tolist()
+    for m in metrics:
+        if f"{m}_change" not in at:
+            continue
+        row = {**keys, "measure": m}
+        for kind, name in (("change", "change"), ("change_pct", "pct_change")):  # decision C81: and the percent
+            if f"{m}_{kind}" not in at:
                 continue
-            row = {"visit": visit, "baseline_visit": base, "measure": m}
-            for kind, name in (("change", "change"), ("change_pct", "pct_change")):  # decision C81: and the percent
-                if f"{m}_{kind}" not in at:
-                    continue
-                d = pd.to_numeric(at[f"{m}_{kind}"], errors="coerce").dropna()
-                mean, sd = (d.mean(), d.std()) if len(d) else (float("nan"), float("nan"))
-                low, high = t_interval(mean, sd, len(d))
-                pre = "" if kind == "change" else "pct_"
-                row.update({"n_subjects" if kind == "change" else "n_pct_subjects": len(d)})  # C85: both counts
-                row.update({f"mean_{name}": mean, f"sd_{name}": sd, f"{pre}ci95_low": float(low),
-                            f"{pre}ci95_high": float(high)})
-            rows.append({**row, "n_not_paired": len(unpaired), "not_paired": "; ".join(unpaired) or None})
-    return pd.DataFrame(rows, columns=list(SUMMARY_COLUMNS))  # B327: its columns without a measure too
+            d = pd.to_numeric(at[f"{m}_{kind}"], errors="coerce").dropna()
+            mean, sd = (d.mean(), d.std()) if len(d) else (float("nan"), float("nan"))
+            low, high = t_interval(mean, sd, len(d))
+            pre = "" if kind == "change" else "pct_"
+            row.update({"n_subjects" if kind == "change" else "n_pct_subjects": len(d)})  # C85: both counts
+            row.update({f"mean_{name}": mean, f"sd_{name}": sd, f"{pre}ci95_low": float(low),
+                        f"{pre}ci95_high": float(high)})
+        rows.append({**row, "n_not_paired": len(unpaired), "not_paired": "; ".join(unpaired) or None})
+    return rows
 
 
 #: changes_summary.csv's columns (decisions C23, C81; C85: ``n_pct_subjects``, the subjects of the percent change)
@@ -689,7 +719,7 @@ def changes_text(summary):
     """changes_summary.csv as track-all prints it and a batch report shows it (decision C23): per later visit and
     measure the subjects paired, ``mean change [low, high]`` (the paired 95 % t-interval), the same of the percent
     changes with the subjects it covers (C81, C85: ``n % change``, fewer when a baseline is 0) and the subjects not
-    paired."""
+    paired; a summary per test (decision C174) shows its ``test`` after the visit."""
     import pandas as pd
 
     from pdrlearn.cohort import plain_number
@@ -700,10 +730,12 @@ def changes_text(summary):
         return plain_number(mean, sign=True) + ("" if pd.isna(low) else
                                                 f" [{plain_number(low)}, {plain_number(high)}]")
 
+    split = [c for c in summary.columns if c not in SUMMARY_COLUMNS]  # decision C174: change_summary's ``by``
     nan = pd.Series(float("nan"), index=summary.index)
     pct = [summary.get(c, nan) for c in ("mean_pct_change", "pct_ci95_low", "pct_ci95_high")]  # decision C81
     return pd.DataFrame({"visit": [f"{v} - {b}" for v, b in zip(summary["visit"], summary["baseline_visit"],
                                                                  strict=True)],
+                         **{c: summary[c].fillna("") for c in split},
                          "measure": summary["measure"], "n_subjects": summary["n_subjects"],
                          "mean change [95 % CI]": [cell(*r) for r in zip(
                              summary["mean_change"], summary["ci95_low"], summary["ci95_high"], strict=True)],

@@ -698,9 +698,10 @@ def _run_record(root: Path, options: dict, rels: list[str], results: list[JobRes
                       cpu_time_s={rel: round(r.cpu_seconds, 2) for rel, r in zip(rels, results, strict=True)})
 
 
-def _changes(sessions: pd.DataFrame, visit_map: dict[str, str] | None = None, metrics=None
+def _changes(sessions: pd.DataFrame, visit_map: dict[str, str] | None = None, metrics=None, by: str | None = None
              ) -> tuple[pd.DataFrame | None, pd.DataFrame | None]:
-    """Decisions C22, C23: changes.csv and changes_summary.csv of the batch (visit names by ``visit_map``, C29), or
+    """Decisions C22, C23: changes.csv and changes_summary.csv of the batch (visit names by ``visit_map``, C29; per
+    ``by``, ``--group-by``'s label, too: decision C174), or
     ``(None, None)`` when the sessions name fewer than two visits; then the sessions that name a subject but no
     visit, or a visit but no subject, are warned once (they cannot be paired, and are in no row of changes.csv), and
     so are visit spellings taken as one visit, subject ids across groups and look-alike ids (C28, C32, C33)."""
@@ -708,7 +709,7 @@ def _changes(sessions: pd.DataFrame, visit_map: dict[str, str] | None = None, me
 
     from pdrlearn.visits import change_summary, change_table, empty_measures, label_warnings, visit_order_guess
 
-    changes = change_table(sessions, **({} if metrics is None else {"metrics": metrics}), visit_map=visit_map)
+    changes = change_table(sessions, **({} if metrics is None else {"metrics": metrics}), visit_map=visit_map, by=by)
     if changes is None:
         return None, None
     log = logging.getLogger("pdrlearn.cli")
@@ -723,7 +724,7 @@ def _changes(sessions: pd.DataFrame, visit_map: dict[str, str] | None = None, me
     if half:
         log.warning("%s", session_warning("meta.json names a subject but no visit, or a visit but no subject: not "
                                           "paired in changes.csv (add both, decision C22)", half, len(sessions)))
-    return changes, change_summary(changes)
+    return changes, change_summary(changes, by=by)
 
 
 METRICS_HELP = ("The sessions.csv measures changes.csv compares, comma-separated (default distance_error_pct, "
@@ -1008,8 +1009,9 @@ def track_all(
                                      "keeps the map's SHA-256 only (decision C86)."),
     metrics: str = typer.Option(None, "--metrics", metavar="A,B,...", help=METRICS_HELP),
     group_by: str = typer.Option(None, "--group-by", metavar="test", help="subjects.csv's rows per subject, visit "
-                                 "and meta.json's \"test\" (mobgap's Test5, Test11), not the subject's tests pooled "
-                                 "(sessions.csv has each session's test and trial; decisions C170, C171)."),
+                                 "and meta.json's \"test\" (mobgap's Test5, Test11), not the subject's tests pooled, "
+                                 "and changes.csv's per subject and test: each test's visits paired on their own "
+                                 "(sessions.csv has each session's test and trial; decisions C170, C171, C174)."),
     redact_paths: bool = _track.REDACT_PATHS_OPT,  # decision E176
     resume: bool = typer.Option(False, "--resume", help=RESUME_HELP),
     jobs: int = typer.Option(1, "--jobs", "-j", min=1, help="Sessions tracked at once: 1 = one after the other "
@@ -1175,15 +1177,13 @@ def track_all(
         _paired_visits(rows, vmap)  # decision C82: sessions.csv's and bouts.csv's visit is changes.csv's
         sessions = _sessions_table(rows)
         groups = group_table(sessions)
-        changes, summary = _changes(sessions, vmap, measures)
+        changes, summary = _changes(sessions, vmap, measures, group_by)  # decision C174: per test with --group-by
         from pdrlearn.visits import subject_totals
 
         # cohort C25: None when no session names a subject (C40: visits; decision C171: and tests, --group-by)
         subjects = subject_totals(sessions, vmap, by=group_by)
         if subjects is not None and group_by is None:
             _pooled_tests_warning(sessions)  # decision C171
-        if changes is not None and group_by is not None:
-            _paired_tests_warning(sessions, group_by)  # decision C172
         strides = combined_strides(tmp, rows, dict(zip(rels, found, strict=True)))  # decision E163
         if subjects is not None:  # decision C146: each subject's strides pooled over its sessions
             from pdrlearn.track.steady import steady_trim_set
@@ -1294,26 +1294,6 @@ def _pooled_tests_warning(sessions: pd.DataFrame) -> None:
             "%s", f"subjects.csv pools each subject's tests ({', '.join(tests[:4])}{' ...' if len(tests) > 4 else ''}"
             f"; {len(mixed)} subject{'s' if len(mixed) > 1 else ''} with more than one): pass --group-by test for "
             "one row per subject and test (decision C171)")
-
-
-def _paired_tests_warning(sessions: pd.DataFrame, by: str) -> None:
-    """Decision C172: ``--group-by`` splits subjects.csv, but changes.csv still pairs a subject's visits over all its
-    sessions (C83 averages a visit's trials): said once, naming the subject-visits whose sessions span several
-    ``by`` values (a visit's Test5 and Test11 averaged, compared with a follow-up of Test5 alone)."""
-    import logging
-
-    if by not in sessions or "subject" not in sessions or "visit" not in sessions:
-        return
-    named = sessions[sessions["subject"].notna() & sessions["visit"].notna()]
-    mixed = [f"{s} visit {v} ({', '.join(dict.fromkeys(g[by].fillna('none').astype(str)))})"
-             for (s, v), g in named.groupby(["subject", "visit"], sort=False)
-             if g[by].fillna("none").astype(str).nunique() > 1]
-    if mixed:
-        logging.getLogger("pdrlearn.cli").warning(
-            "%s", f"--group-by {by} splits subjects.csv, but changes.csv pairs each subject's visits over all its "
-            f"sessions, averaging a visit's {by}s: {len(mixed)} subject-visit(s) span several ({'; '.join(mixed[:3])}"
-            f"{' ...' if len(mixed) > 3 else ''}); for a change per {by}, run track-all on one {by}'s sessions "
-            "(decision C172)")
 
 
 def _raise_if_none_tracked(failed: list[JobResult], skipped: list[JobResult], n: int) -> None:

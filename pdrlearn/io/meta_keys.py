@@ -30,6 +30,7 @@ WRITTEN = frozenset({
     "source_repo", "source_sample_offset", "terrain_recording", "test", "trial", "part", "lines", "streams",
     "retimed", "stamp_rate_hz", "ambiguous_columns", "unused_columns",
     "split",  # pdrlearn split: the part's place in its session (decision B379)
+    "source_local",  # pdrlearn fetch mobgap --from: the folder converted (decision C173)
 })
 KNOWN_META_KEYS = READ | WRITTEN
 

