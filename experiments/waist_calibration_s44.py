@@ -10,7 +10,7 @@ gains of W48 and the gain of the bout's interior steps), and per reference bout 
 Arms (all on the same calibration walks; ``experiments/waist.py``'s external protocol unchanged: per subject the
 other Test5 trial for Test5, all its Test5 trials for Test11, never the tested recording):
 
-- ``defaults``: no calibration (meta.json defaults, K0 = 4.587/4, W46);
+- ``defaults``: no calibration (meta.json defaults, K0 = 4.587/4, W46; on the simulator K0 in place of the fit);
 - ``calibrated``: the current fit;
 - ``shrunk``: decision W48's precision-weighted mean of K_cal and K0 (its own per-stride se, tau from the other
   subjects' Test5 walks; ``calibrate --shrink``), i.e. shrunk toward the defaults by the number of calibration
@@ -75,7 +75,9 @@ def arm_adjust(arm: str, tau_of=None):
         k_only = params.f_m == 0  # every fit here is K only (walks of one speed, W8)
         if arm == "calibrated" or not k_only:
             return params
-        if arm == "shrunk":
+        if arm == "defaults":  # the simulator's users: K0 in place of the fit (F = 0 both)
+            k = DEFAULT_K
+        elif arm == "shrunk":
             tau = tau_of(sessions) if tau_of is not None else TAU_K
             k = k_cal if se is None else K.shrink_gain(k_cal, se, DEFAULT_K, tau)
         elif arm == "stride-median":
@@ -155,7 +157,7 @@ def medians(bouts: pd.DataFrame, arms) -> tuple[pd.DataFrame, pd.DataFrame]:
 def run_sim(users: list[int]) -> pd.DataFrame:
     """Median |distance error| (%) per arm: the standard protocol and the short calibration walks."""
     rows = []
-    for arm in ARMS:
+    for arm in ("defaults",) + ARMS:
         sim = W.simulated(users, PENDULUM, adjust=arm_adjust(arm))
         std = float(W.summarize_sim(sim).dist_err_abs_median_pct.iloc[0])
         short = pd.concat([W.simulated(users, PENDULUM, adjust=arm_adjust(arm), cal_length_m=SHORT_M, cal_seed=sd)
