@@ -36,7 +36,7 @@ def _params(k_cal: float, se: float | None) -> WaistParams:
 
 def test_w501_ha001_test5_calibrations_are_k_only_8_straight_steps_and_k0_lies_between_them():
     """W501: each HA001 Test5 trial is one straight 8-step bout, fitted K only with F = 0 (W8), no turning step,
-    no merged fragment; the two trials' gains lie 7.4 % apart with the population K0 between them (so the defaults
+    no merged fragment; the two trials' gains lie 7.7 % apart with the population K0 between them (so the defaults
     beat either calibration on the other trial), and their interior steps alone keep the gap (not the bout edges)."""
     ks, inner = [], []
     for trial in ("Trial1", "Trial2"):
