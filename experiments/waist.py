@@ -130,11 +130,13 @@ def heading_error_deg(res, session) -> float:
 
 
 def real(data: Path, runs=RUNS, configs=CONFIGS, bouts: list | None = None, *, cal_kw=None,
-         defaults: bool = True, fits: list | None = None) -> pd.DataFrame:
+         defaults: bool = True, fits: list | None = None, adjust=None) -> pd.DataFrame:
     """One row per (run, pipeline, calibrated/defaults). ``bouts`` (if given) receives one dict per
     reference bout with its error, for pooled medians. ``cal_kw(subject, cal_names)`` (if given) returns
     extra keyword arguments of :func:`calibrate` for a run; ``defaults=False`` skips the uncalibrated rows;
-    ``fits`` (if given) receives the calibrated :class:`WaistParams` of each run and pipeline."""
+    ``fits`` (if given) receives the calibrated :class:`WaistParams` of each run and pipeline; ``adjust(params,
+    sessions, distances)`` (if given) returns the params to test in their place (another gain estimator on the
+    same calibration walks, decision W503)."""
     rows = []
     for cal_names, test_name in runs:
         cal = [read_session(data / n) for n in cal_names]
@@ -145,6 +147,8 @@ def real(data: Path, runs=RUNS, configs=CONFIGS, bouts: list | None = None, *, c
             base, _ = resolve_params(cal[0], None)
             base.options = dict(opts)  # calibrate with the same pipeline options as the test
             params = calibrate(cal, pipeline, params=base, **kw)
+            if adjust is not None:
+                params = adjust(params, cal, None)
             if fits is not None:
                 fits.append(params)
             for kind, p in (("calibrated", params), ("defaults", None))[:2 if defaults else 1]:
@@ -360,23 +364,27 @@ def noise_floor(data: Path, groups: dict[str, list[str]], *, n_bout: int = 8, m_
     return out
 
 
-def simulated(users: list[int], configs=CONFIGS, *, cal_kw: dict | None = None, fits: list | None = None
-              ) -> pd.DataFrame:
+def simulated(users: list[int], configs=CONFIGS, *, cal_kw: dict | None = None, fits: list | None = None,
+              adjust=None, cal_length_m: float = 60.0, cal_seed: int = 1) -> pd.DataFrame:
     """Per user, scenario and pipeline: the simulated protocol (SIM_NOTE). ``cal_kw``: extra keyword arguments
-    of :func:`calibrate`; ``fits`` (if given) receives ``(user, pipeline label, WaistParams)`` per calibration."""
+    of :func:`calibrate`; ``fits`` (if given) receives ``(user, pipeline label, WaistParams)`` per calibration;
+    ``adjust`` as in :func:`real`; ``cal_length_m`` / ``cal_seed``: the calibration walk's nominal length and seed
+    (decision W503: a Test5-like 5 m walk)."""
     from pdrlearn.sim import simulate
     from pdrlearn.steps.evaluate import score_events
     from pdrlearn.track.evaluate import evaluate_track
 
     rows = []
     for u in users:
-        cal = simulate("walk", u, "normal", rate_hz=100.0, seed=1, length_m=60.0)
+        cal = simulate("walk", u, "normal", rate_hz=100.0, seed=cal_seed, length_m=cal_length_m)
         cal_m = walked_between_contacts(cal)
         tests = {sc: simulate(sc, u, "normal", rate_hz=100.0) for sc in "ABCD"}
         for label, pipeline, opts in configs:
             base, _ = resolve_params(cal, None)
             base.options = dict(opts)
             params = calibrate([cal], pipeline, distances=[cal_m], params=base, **(cal_kw or {}))
+            if adjust is not None:
+                params = adjust(params, [cal], [cal_m])
             if fits is not None:
                 fits.append((u, label, params))
             for sc, s in tests.items():
