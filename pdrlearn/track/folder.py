@@ -180,6 +180,10 @@ def write_folder(dest: Path, tracked: dict) -> tuple[dict, bool]:
 
         plot_aided(result, dest / "aided.png", truth=session.trajectory,
                    title=f"{session.name}: {pipeline} {result.info.get('method', '')} + fixes", dpi=dpi)
+    if tracked.get("start") is not None:  # decision B448: each row's clock time (L298's form), the last column
+        from pdrlearn.track.clock import clock_texts
+
+        traj["time"] = clock_texts(tracked["start"], traj["t"])
     write_table_csv(traj, dest / "trajectory.csv")
     from pdrlearn.track.evaluate import with_reference_columns
 
