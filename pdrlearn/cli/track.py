@@ -223,6 +223,10 @@ TURN_TO_HEADING_OPT = typer.Option(False, "--turn-to-heading", help="With --init
                                    "whole track about its start so that its first straight strides head DEG, taking "
                                    "out the compass's constant offset (decision L635; an option, not the default: "
                                    "measured, it helped on 2 of 4 courses).")
+AT_TIMES_OPT = typer.Option(None, "--at-times", metavar="FILE", help="A CSV of times, column t (seconds from the "
+                            "session's start) or time (ISO 8601, with a recording start): OUT/at_times.csv gives the "
+                            "track's x, y, z (and its other columns) at each, interpolated; the start pose before "
+                            "the first stride (decision L638). A time outside the recording is one error line.")
 START_XY_OPT = typer.Option(None, "--start-xy", metavar="X,Y", help="The start in local metres (x east, y north; "
                             "decision L637): trajectory.csv starts there, and --fixes in local x, y are in the same "
                             "frame. Not with --start (a geodetic start) or --gnss.")
@@ -344,6 +348,7 @@ def track(
     initial_heading: float = INITIAL_HEADING_OPT,
     start_xy: str = START_XY_OPT,
     turn_to_heading: bool = TURN_TO_HEADING_OPT,
+    at_times: Path = AT_TIMES_OPT,
     storey_height: float = storey_height_option(),
     params: Path = PARAMS_OPT,
     gnss: Path = typer.Option(None, "--gnss", help="GNSS fixes (NMEA, GPX or CSV) for aiding."),
@@ -547,7 +552,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    contacts: bool = False,
                    drop_neighbour: bool = False, dpi: int | None = None, no_plot: bool = False,
                    initial_heading: float | None = None, start_xy: str | None = None,
-                   turn_to_heading: bool = False,
+                   turn_to_heading: bool = False, at_times: Path | None = None,
                    common_span: bool = False, window: str | None = None, per: str | None = None,
                    per_align: str = "start", segments: Path | None = None, corridor: float | None = None,
                    splits: str | None = None,
@@ -627,13 +632,17 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
     if turn_to_heading and heading0 is None:  # decision L635
         raise DataError("track: --turn-to-heading turns the track to the start heading of --initial-heading DEG, "
                         "which is not given; add --initial-heading DEG or drop --turn-to-heading")
+    at_times_file, at_times_rows = None, None
+    if at_times is not None:  # decision L638: the times file read once, before any session
+        from pdrlearn.track.at_times import read_times
+
+        at_times_file, at_times_rows = str(at_times), read_times(at_times)
     from pdrlearn.track.start_pose import parse_start_xy
 
     xy0 = parse_start_xy(start_xy)  # decision L637: before any session
     if xy0 is not None and (start is not None or gnss is not None):
-        raise DataError(f"track: --start-xy {start_xy} gives the start in local metres; "
-                        f"{'--start gives it as latitude, longitude' if start is not None else '--gnss fixes are latitude, longitude'}"
-                        ": drop one of them")
+        other = "--start gives it as latitude, longitude" if start is not None else "--gnss fixes are geodetic"
+        raise DataError(f"track: --start-xy {start_xy} gives the start in local metres; {other}: drop one of them")
     if gnss_time_offset is not None and gnss is None:  # decision D38
         raise DataError(f"track: --gnss-time-offset {gnss_time_offset:g} places the times of a --gnss log, which is "
                         "not given; pass --gnss FILE or drop --gnss-time-offset")
@@ -742,7 +751,9 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "reference_point": reference_point, "toe_off": toe_off, "ignore_force": ignore_force,
             "contacts": contacts,
             "drop_neighbour": drop_neighbour, "dpi": dpi, "plot": plot,
-            "initial_heading_rad": heading0, "start_xy": xy0, "turn_to_heading": turn_to_heading, "common_span": common_span, "window": win, "per_s": per_s,
+            "initial_heading_rad": heading0, "start_xy": xy0, "turn_to_heading": turn_to_heading,  # L635, L637
+            "at_times": at_times_file, "at_times_table": at_times_rows,  # decision L638
+            "common_span": common_span, "window": win, "per_s": per_s,
             "per_align": per_align, "legs": legs, "segments": segments,  # decision L618
             "corridor_m": corridor_m, "walk_test_s": walk_test_s, "splits_m": splits_m,
             "ten_m_walk_m": ten_m_walk_m,
@@ -1197,6 +1208,11 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
                        f"{summary['time_no_data_s']:.1f} s without data", err=True)
     if start is not None:  # decision L298: the clock time of the recording's first sample
         summary["recording_start"] = clock_texts(start, [session.t_recording_start])[0]
+    at_times_out = None
+    if o.get("at_times_table") is not None:  # decision L638: the track's position at the given times
+        from pdrlearn.track.at_times import at_times_table
+
+        at_times_out = at_times_table(result.trajectory, o["at_times_table"], o["at_times"], session, start)
     periods = None
     if o.get("per_s") is not None:  # decision L277: periods.csv, from the whole session's track
         from pdrlearn.track.folder import clinical_tables
@@ -1260,7 +1276,7 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
     # L105: the window's session (its reference cut alike) for path.png / aided.png, as for the summary
     return {"session": tracked_session, "result": result, "summary": summary, "pipeline": pipeline, "aided": aided,
             "dpi": dpi, "plot": o["plot"], "content_id": content_id, "bouts": bouts, "periods": periods, "laps": laps,
-            "start": start, "splits": splits, "segments": segments,
+            "start": start, "splits": splits, "segments": segments, "at_times": at_times_out,
             "start_ele": bool(o.get("start_ele"))}
 
 
@@ -1431,6 +1447,7 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
                f"{'direction_changes.csv, ' if summary.get('direction_changes') is not None else ''}"
                f"{'periods.csv, ' if summary.get('per_s') else ''}"
                f"{'segments.csv, ' if (out / 'segments.csv').is_file() else ''}"  # decision L619
+               f"{'at_times.csv, ' if (out / 'at_times.csv').is_file() else ''}"  # decision L638
                f"{'path.png, ' if plot else ''}"  # decision L533: no figure with --no-plot
                f"{'aided.png, ' if aided and plot else ''}summary.json, run.json"
                # decision L363: the map files, written when the track has lat/lon (--start)

@@ -193,6 +193,8 @@ def write_folder(dest: Path, tracked: dict) -> tuple[dict, bool]:
                           tracked.get("laps"), tracked.get("splits"), tracked.get("segments"))
     for name, table in tables.items():
         write_table_csv(table, dest / name)
+    if tracked.get("at_times") is not None:  # decision L638: OUT/at_times.csv, the positions at the given times
+        write_table_csv(tracked["at_times"], dest / "at_times.csv")
     if plot:
         plot_paths({f"{pipeline} {result.info.get('method', '')}".strip(): result}, dest / "path.png",
                    session=session, title=f"{session.name}: {pipeline} {result.info.get('method', '')}", dpi=dpi)
