@@ -986,6 +986,11 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
     from pdrlearn.track.clock import clock_texts, recording_start, require_start
 
     start = recording_start(session.meta, session.where)  # decision L298 (B254: a bad one refused before tracking)
+    at_t = None
+    if o.get("at_times_table") is not None:  # decision L638: the times in session seconds, checked before tracking
+        from pdrlearn.track.at_times import times_in_session
+
+        at_t = times_in_session(o["at_times_table"], o["at_times"], session, start)
     clock = (require_start(session.meta, session.where, "--per-align clock")  # decisions L299, B254
              if o.get("per_s") is not None and o.get("per_align") == "clock" else None)
     win = None
@@ -1209,10 +1214,10 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
     if start is not None:  # decision L298: the clock time of the recording's first sample
         summary["recording_start"] = clock_texts(start, [session.t_recording_start])[0]
     at_times_out = None
-    if o.get("at_times_table") is not None:  # decision L638: the track's position at the given times
+    if at_t is not None:  # decision L638: the track's position at the given times
         from pdrlearn.track.at_times import at_times_table
 
-        at_times_out = at_times_table(result.trajectory, o["at_times_table"], o["at_times"], session, start)
+        at_times_out = at_times_table(result.trajectory, at_t, start, result.steps)
     periods = None
     if o.get("per_s") is not None:  # decision L277: periods.csv, from the whole session's track
         from pdrlearn.track.folder import clinical_tables

@@ -3,11 +3,11 @@ competitor is scored at timed waypoints).
 
 A times file is a CSV with one column ``t`` (seconds on the session's clock, from its first sample) or ``time``
 (ISO 8601 date-times, which need the session's recording start, L298 / B447). Each time gets the trajectory's
-numeric columns at that instant: linear between its rows; the start pose from the session's first sample up to
-the first row (the standstill before the first stride, where the walker stands at the start); the last row from
-there to the recording's end. A floor (an integer column, or one named ``floor`` / ``*_floor``) takes the row at or
-before the time. A time outside
-the recording is one ``error:`` line naming the file, the row and the span.
+numeric columns at that instant: a row holds until the next step starts, then linear to that step's end (a pause
+holds its place); the start pose from the session's first sample up to the first step (the standstill before the
+first stride, where the walker stands at the start); the last row from there to the recording's end. A floor (an
+integer column, or one named ``floor`` / ``*_floor``) takes the row at or before the time. A time outside the
+recording is one ``error:`` line naming the file, the row and the span, before any tracking.
 """
 
 from __future__ import annotations
@@ -76,9 +76,9 @@ def session_seconds(times: pd.DataFrame, path, start: datetime | None, where: st
     return out
 
 
-def positions_at(trajectory: pd.DataFrame, t: np.ndarray, span: tuple[float, float], path="--at-times") -> pd.DataFrame:
-    """The trajectory's numeric columns at session times ``t`` (decision L638, module docstring); ``span`` the
-    recording's first and last sample (s). A time outside it is one line naming the row."""
+def check_span(t, span: tuple[float, float], path="--at-times") -> np.ndarray:
+    """The times ``t`` (session s) inside the recording ``span`` (first and last sample, s), or one line naming the
+    first row outside it (decision L638; checked before tracking)."""
     t = np.asarray(t, dtype=float)
     lo, hi = span
     out_of = np.flatnonzero((t < lo - 1e-9) | (t > hi + 1e-9))
@@ -87,8 +87,23 @@ def positions_at(trajectory: pd.DataFrame, t: np.ndarray, span: tuple[float, flo
         raise DataError(f"--at-times {path}: row {k + 2} ({t[k]:.3f} s) lies outside the recording ({lo:.3f} to "
                         f"{hi:.3f} s on the session's clock); {out_of.size} time(s) outside - drop them or fix the "
                         "times")
-    tr = trajectory.sort_values("t", kind="stable")
+    return t
+
+
+def positions_at(trajectory: pd.DataFrame, t: np.ndarray, span: tuple[float, float], path="--at-times",
+                 step_starts=None) -> pd.DataFrame:
+    """The trajectory's numeric columns at session times ``t`` (decision L638, module docstring); ``span`` the
+    recording's first and last sample (s). With ``step_starts`` (the steps' ``start_s``, one per trajectory row
+    after the first) a row's position holds until the next step starts. A time outside ``span`` is one line naming
+    the row."""
+    t = check_span(t, span, path)
+    tr = trajectory.sort_values("t", kind="stable").reset_index(drop=True)
     rt = tr["t"].to_numpy(float)
+    if step_starts is not None and len(step_starts) + 1 == len(tr):  # held until each step starts (a pause, the
+        s = np.maximum(np.asarray(step_starts, float), rt[:-1])  # standstill before the first stride: no smear)
+        tr = tr.iloc[np.r_[0, np.repeat(np.arange(1, len(tr)), 2)] - np.r_[0, np.tile([1, 0], len(tr) - 1)]]
+        tr = tr.reset_index(drop=True)
+        rt = np.r_[rt[0], np.ravel(np.c_[s, rt[1:]])]
     out = pd.DataFrame({"t": t})
     for c in tr.columns:
         if c in ("t", "time") or not pd.api.types.is_numeric_dtype(tr[c]) or pd.api.types.is_bool_dtype(tr[c]):
@@ -106,15 +121,20 @@ def positions_at(trajectory: pd.DataFrame, t: np.ndarray, span: tuple[float, flo
     return out
 
 
-def at_times_table(trajectory: pd.DataFrame, times: pd.DataFrame, path, session, start: datetime | None,
+def times_in_session(times: pd.DataFrame, path, session, start: datetime | None) -> np.ndarray:
+    """Decision L638: the times file's times in session seconds, inside the session's recording, checked before
+    tracking (a ``time`` column without a recording start, or a time outside, is one line)."""
+    t = session_seconds(times, path, start, str(session.where))
+    return check_span(t, (float(session.t_recording_start), float(session.t_end)), path)
+
+
+def at_times_table(trajectory: pd.DataFrame, t, start: datetime | None, steps: pd.DataFrame | None = None,
                    ) -> pd.DataFrame:
-    """OUT/at_times.csv (decision L638): the rows of ``times`` in its order, ``t`` (session s), the trajectory's
-    columns there, and ``time`` (L298's form) when the recording start is known."""
+    """OUT/at_times.csv (decision L638): ``t`` (:func:`times_in_session`) in the file's order, the trajectory's
+    columns there (held until each of ``steps`` starts), and ``time`` (L298's form) with a recording start."""
     from pdrlearn.track.clock import clock_texts
 
-    t = session_seconds(times, path, start, str(session.where))
-    span = (float(session.t_recording_start), float(session.t_end))
-    out = positions_at(trajectory, t, span, path)
+    out = positions_at(trajectory, t, (-np.inf, np.inf), step_starts=None if steps is None else steps["start_s"])
     if start is not None:
         out["time"] = clock_texts(start, out["t"])
     return out
