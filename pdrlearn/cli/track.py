@@ -527,6 +527,8 @@ NOT_IN_TRACK_ALL = {
     "--gnss-time-offset": "places one --gnss log's times",
     "--fix-period": "thins --fixes",
     "--segments": "one recording's table of legs (its seconds are that session's clock)",
+    "--start-xy": "one recording's start in its building's metres (L637)",
+    "--at-times": "one recording's times (its seconds are that session's clock, L638)",
     "--strict": "track-all's exit code 1 names failed sessions; sessions.csv's n_warnings counts each one's (E156)",
 }
 
