@@ -166,22 +166,6 @@ log = logging.getLogger(__name__)
 MAX_STEP_S = 1.5  # contacts further apart end a walking sequence (slow gait: steps up to ~1 s)
 
 
-def sequence_bound_s(session: Session, det=None) -> float:
-    """Decision steps 84: the longest contact-to-contact time (s) inside one of waist-pll's walking sequences:
-    :data:`MAX_STEP_S`, or L605's :data:`pdrlearn.kernels.contact.RHYTHM_CAP_PERIODS` pelvic-gyro step periods (W475's
-    :func:`pdrlearn.waist.pelvic_rhythm.pelvic_step_period_s`) when that rhythm is under 70 steps/min (W475's
-    :func:`pdrlearn.kernels.waist.pll_slow_band` applies) and the bound is longer. ``det``: a PLL detector that has
-    read the session's pelvic steps (W485: read once)."""
-    from pdrlearn.kernels.contact import RHYTHM_CAP_PERIODS
-    from pdrlearn.kernels.waist import pll_slow_band
-    from pdrlearn.waist.pelvic_rhythm import pelvic_step_period_s
-
-    period = pelvic_step_period_s(session, read_once(det, session))
-    if pll_slow_band(period) is None:
-        return MAX_STEP_S
-    return max(MAX_STEP_S, RHYTHM_CAP_PERIODS * period)
-
-
 def _sequences(steps: pd.DataFrame) -> list[np.ndarray]:
     """Row indices of each walking sequence: consecutive rows with a next contact plus the closing row."""
     return walking_sequences(steps["has_next"].to_numpy(bool))
@@ -194,16 +178,14 @@ def _pll_steps(session: Session, imu: WaistIMU, walk_threshold: float, *, refine
     W356 option (a gated run's first / last peak only when the loop is locked; W358's "trailing": its last only;
     W367's "walk-end": its last only where the walk ends; W372's "walk-edges": also its first where it starts)."""
     # the PLL's own walking gate is a variance; use the same threshold as our motion gate (W4)
-    det = PLLStepDetector(gate_var=walk_threshold ** 2, relative_gate=False,  # the gate is track's
-                          edge_lock=edge_lock, slow_band=False)  # W475: not on this path (measured)
-    st = det.detect(session)
+    st = PLLStepDetector(gate_var=walk_threshold ** 2, relative_gate=False,  # the gate is track's
+                         edge_lock=edge_lock, slow_band=False).detect(session)  # W475: not on this path (measured)
     ev = np.sort(st["event_s"].to_numpy(float)) if len(st) else np.zeros(0)
     idx = np.clip(np.searchsorted(imu.t, ev), 0, len(imu.t) - 1)
     idx = idx[walking_gate(imu, walk_threshold=walk_threshold)[idx]]
     if refine_ic:
         idx = refine_to_contacts(imu, idx, walk_threshold=walk_threshold, rhythm=rhythm)
-    return steps_from_events(imu.t, idx, max_step_s=sequence_bound_s(session, det),  # decision steps 84
-                             detector="pll+ic" if refine_ic else "pll")
+    return steps_from_events(imu.t, idx, max_step_s=MAX_STEP_S, detector="pll+ic" if refine_ic else "pll")
 
 
 def _start(start, initial_heading: float) -> tuple[float, float, float, tuple[float, float] | None, float]:
