@@ -13,6 +13,7 @@ import logging
 import re
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from pdrlearn.errors import DataError
@@ -103,3 +104,18 @@ def test_offline_track_without_insoles_counts_no_stride_in_the_ride(ride):
     res = _quiet(track_plasys, s, ignore_force=True)
     assert _inside(res.steps, "start_s", "end_s", r) == 0 and len(res.steps) == len(s.steps)
 
+
+
+def test_simulate_cli_writes_the_cycle_ride_and_refuses_a_short_one(tmp_path, capsys):
+    from pdrlearn.cli import main
+
+    route = ["--route", "straight:3, cycle:20, straight:3", "--stand", "1", "--user-seed", "12138"]
+    assert main(["simulate", *route, "--out", str(tmp_path / "ok")]) == 0
+    rides = pd.read_csv(tmp_path / "ok" / "rides.csv")
+    assert rides["kind"].tolist() == ["cycle"] and rides["end_ms"].iloc[0] - rides["start_ms"].iloc[0] == 20000
+    capsys.readouterr()
+    bad = ["--route", "straight:3, cycle:5", "--user-seed", "12138"]
+    assert main(["simulate", *bad, "--out", str(tmp_path / "bad")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "cycle:5" in err and "20-3600 s" in err, err
+    assert not (tmp_path / "bad").exists()
