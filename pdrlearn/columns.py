@@ -470,7 +470,8 @@ SESSIONS: tuple[Column, ...] = (
     ("turn_angle_mae_deg", "deg", "number", "mean absolute error of the reference turns' angles (L42)"),
     ("turn_count", "count", "integer",
      f"turns of >= {TURN_COUNT_MIN_DEG:g} deg, with their same-direction edge rows (L104, L181); a lower-back "
-     "track's: turns.csv's rows (L231, L232)"),
+     "track's: turns.csv's rows (L231, L232) not marked carried (L622: a turn made seated or in a ride, W488, "
+     "is the seat's or the vehicle's)"),
     ("turn_count_min_deg", "deg", "number", "the smallest turn turn_count counts"),
     ("median_turn_duration_s", "s", "number", "median duration of turns.csv's turns (L200); empty without a turn"),
     ("median_turn_angle_deg", "deg", "number", "median absolute angle of turns.csv's turns (L200)"),
@@ -799,6 +800,11 @@ TURNS: tuple[Column, ...] = (
                                          "|angle_deg| over that span, longer than a 5-95 % one, so it reads lower "
                                          "than a foot track's for the same turn (about 20 % under the 5-95 % "
                                          "mean rate, L346); empty for a turn of no duration"),
+    ("carried", _ID, "true/false", "lower back: the turn is one the pelvis made seated or in a ride (W488: inside "
+                                      "a seated span, a span of contacts W336 / W486 name a ride, or with the foot "
+                                      "unit at rest), the seat's or the vehicle's, not the walker's; kept here, left "
+                                      "out of turn_count, the turn medians and periods.csv's n_turns (L622); false on "
+                                      "a foot track"),
     ("turn_steps", "count", "integer", "lower back: the detected steps (steps.csv contacts, event_s) inside the "
                                        "turn, start_s to end_s: the clinical steps per turn, unlike n_rows (W398); "
                                        "empty on a foot track (its rows are one foot's strides)"),
@@ -864,7 +870,8 @@ PERIODS: tuple[Column, ...] = (
     ("ascent_m", "m", "number", "the summary's ascent_m rule on the trajectory inside the period (L467)"),
     ("descent_m", "m", "number", "the same, descent (L467)"),
     ("n_bouts", "count", "integer", "bouts.csv's bouts that start in the period (sums to n_bouts)"),
-    ("n_turns", "count", "integer", "turns.csv's turns that start in the period (sums to turn_count)"),
+    ("n_turns", "count", "integer", "turns.csv's turns not marked carried (L622) that start in the period (sums to "
+                                    "turn_count)"),
     ("n_backward_strides", "count", "integer", "foot: the summary's backward strides whose middle lies in the period "
                                                "(sums to n_backward_strides, L484); empty on the lower back"),
     ("n_side_strides", "count", "integer", "foot: the summary's side strides whose middle lies in the period (sums "
