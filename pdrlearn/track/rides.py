@@ -305,6 +305,22 @@ def vehicle_lines(records: list[dict]) -> list[str]:
             "counter and left out of the track, so positions after a ride are off by it"]
 
 
+def trajectory_rides(traj: pd.DataFrame, records: list[dict] | None) -> pd.Series:
+    """Decision L623: trajectory.csv's ``ride``: per row, the rides.csv ``ride`` whose span (``start_s`` to
+    ``end_s``) the line from the row before to this one overlaps (``t[i - 1] < end_s`` and ``t[i] > start_s``): that
+    line was not walked (a foot track's stride after the ride starts where the walker boarded; a lower-back track's
+    contacts inside a ride, W486, are its bounce), so a plot does not draw it as a path; empty (<NA>) elsewhere and on
+    the first row. The position after a ride misses the vehicle's travel (L616)."""
+    out = pd.array([pd.NA] * len(traj), dtype="Int64")
+    if not records or len(traj) < 2:
+        return pd.Series(out, index=traj.index, name="ride")
+    t = traj["t"].to_numpy(float)
+    for r in records:
+        hit = np.flatnonzero((t[:-1] < float(r["end_s"])) & (t[1:] > float(r["start_s"]))) + 1
+        out[hit] = int(r["ride"])
+    return pd.Series(out, index=traj.index, name="ride")
+
+
 def ride_table(info: dict) -> pd.DataFrame:
     """Decision L377: rides.csv from a track's ``info["rides"]`` (:func:`ride_rows`' records); the header alone
     without rides (a foot track, no barometer)."""
