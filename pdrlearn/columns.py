@@ -217,8 +217,9 @@ SESSIONS: tuple[Column, ...] = (
     ("max_ramp_grade_pct", "%", "number", "the steepest ramp run's grade in size, ramps.csv's largest "
                                           "|max_run_grade_pct| (L572); empty without a ramp or a grade_source"),
     ("n_rides", "count", "integer", "rows of rides.csv: rides while standing, lift / escalator / vehicle / other "
-                                    "(L377, L616; a foot track's from the waist barometer, L378); empty without a "
-                                    "barometer"),
+                                    "(L377, L616; a foot track's from the waist barometer, L378, or without one its "
+                                    "vehicle rides from the foot's vibration, L624); empty without a barometer on the "
+                                    "lower back, or with the foot's ride_vibration off and no barometer"),
     ("floors_up_ref", "count", "integer", "storeys climbed in the reference; empty when the reference has no "
                                           "altitude track (0: it has one, and no storey was climbed; C103)"),
     ("frames_inferred", _ID, "text", "units whose frame was inferred from the data (D8)"),
@@ -1089,8 +1090,9 @@ FOOT_STEPS: tuple[Column, ...] = (
     ("pause_dz_m", "m", "number", "with a waist barometer (wBarometer.csv): its ride of 1.5 m or more in the "
                                   "standstill before the stride (L378, W231's rule), else 0; not in dz_m nor z, "
                                   "counted in the floors (L375)"),
-    ("ride", _ID, "text", "with a waist barometer: that ride's kind, lift / escalator / other (L376, L378); empty: "
-                          "none"),
+    ("ride", _ID, "text", "with a waist barometer: that ride's kind, lift / escalator / other / vehicle (L376, "
+                          "L378, L616); without one (L624): vehicle only, from the foot's vibration, and no "
+                          "pause_dz_m; empty: none"),
     _GRADE_PCT,
     ("terrain", _ID, "text", "M3's terrain class (empty without a model; L18)"),
     ("terrain_dz", _ID, "text", "offline: up / down / flat from dz_m by L39's 0.10 m, with or without a model "
@@ -1442,9 +1444,10 @@ RIDES: tuple[Column, ...] = (
                           "L616) or other (a slow long climb); vehicle and other count no floors (L376)"),
     ("dz_m", "m", "number", "the altitude change while standing (steps.csv pause_dz_m of the next step; a vehicle "
                             "row of a standstill under 1.5 m of change, L616: the barometer's change over it, not in "
-                            "pause_dz_m)"),
+                            "pause_dz_m); empty: a foot track without a barometer (L624: its vehicle rows are read "
+                            "from the foot's vibration alone)"),
     ("duration_s", "s", "number", "(end_s - start_s) / 0.8: the ride's duration (L376)"),
-    ("vertical_rate_mps", "m/s", "number", "|dz_m| / duration_s"),
+    ("vertical_rate_mps", "m/s", "number", "|dz_m| / duration_s; empty without dz_m (L624)"),
     ("vibration_mps2", "m/s^2", "number", "the median over 1 s windows of the detrended |specific force|'s SD during "
                                           "the ride (a lower-back track: the waist accelerometer, else the foot's; a "
                                           "foot track: the foot's first, L615); 0.15 or more is a vehicle (L402) on "
