@@ -1539,6 +1539,9 @@ DETECTIONS: tuple[Column, ...] = (
     ("fc_s", "s", "number", "waist-ic: the final contact (toe-off) after the initial contact"),
     ("tc_s", "s", "number", "a track's steps.csv with --toe-off: the toe-off, scored against steps.csv tc_ms "
                             "(steps 59)"),
+    ("pedalling", _ID, "true/false", "steps --keep-pedalling with a foot detector: the stride is one L611 calls "
+                                     "pedalling (track removes it); without the option those rows are left out "
+                                     "(L625)"),
 )
 #: decision steps 59: `pdrlearn steps / score-steps --events-out`
 EVENTS: tuple[Column, ...] = (
@@ -1604,6 +1607,9 @@ STEPS_JSON: tuple[Column, ...] = (
     ("merged_detections", "count", "integer", "foot: detections dropped between the same two rests (steps 34)"),
     ("rest_strides", "count", "integer", "foot: rest-to-rest strides the kept detections cover (steps 38)"),
     ("foot_swing_strides", "count", "integer", "foot: the foot's own rest-and-swing strides, when more (steps 47)"),
+    ("pedalling_strides", "count", "integer", "steps with a foot detector: strides L611 calls pedalling (a closed "
+                                              "loop: cycling?), left out of count (with --keep-pedalling: counted, "
+                                              "marked in --out's pedalling column); 0: none (L625)"),
     ("not_scored", _ID, "text", "why a foot table was not scored (steps 58)"),
     ("out", _ID, "text", "--out's path"),
     ("events_out", _ID, "text", "--events-out's path"),
