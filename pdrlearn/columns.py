@@ -1515,7 +1515,7 @@ TRAJECTORY: tuple[Column, ...] = (
     ("lat", "deg", "number", "latitude (WGS-84); empty without --start or geodetic fixes"),
     ("lon", "deg", "number", "longitude (WGS-84); empty without --start or geodetic fixes"),
     ("pos_sigma_m", "m", "number", "the modelled 1-sigma radius of the horizontal position (L128); not with fixes"),
-    ("ride", "index", "integer", "a track that writes rides.csv: the rides.csv ride the line from the row before to "
+    ("ride", "index", "integer", "only when rides.csv has a row: the rides.csv ride the line from the row before to "
                                  "this one crosses - not walked (the first stride after a ride starts where the "
                                  "walker boarded: the vehicle's travel is not in the track), so do not draw it as a "
                                  "path (path.png draws it dotted grey); empty elsewhere (L623)"),
