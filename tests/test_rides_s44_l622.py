@@ -65,3 +65,23 @@ def test_only_carried_yaw_turns_mark_their_rows_l622():
     assert not plain["carried"].any() and marked["carried"].all()
     assert len(walked_turns(plain)) == 1 and len(walked_turns(marked)) == 0
     assert not turn_table(steps.drop(columns="unit"))["carried"].any()
+
+
+def test_the_written_files_keep_the_turn_marked_l622(seated_turn, tmp_path):
+    """`track --units waist --per 20s`: turns.csv keeps the swivel with carried true; periods.csv's n_turns (which
+    sums to turn_count) and summary.json's turn_count leave it out."""
+    import json
+
+    from pdrlearn.cli import main
+    from pdrlearn.io import write_session
+
+    s, mid = seated_turn
+    write_session(s, tmp_path / "s")
+    assert main(["track", str(tmp_path / "s"), "--units", "waist", "--per", "20s", "--no-plot",
+                 "--out", str(tmp_path / "o")]) == 0
+    turns = pd.read_csv(tmp_path / "o" / "turns.csv")
+    seat = turns[(turns["start_s"] < mid) & (turns["end_s"] > mid)]
+    assert len(seat) == 1 and seat["carried"].astype(str).str.lower().tolist() == ["true"]
+    periods = pd.read_csv(tmp_path / "o" / "periods.csv")
+    summary = json.loads((tmp_path / "o" / "summary.json").read_text())
+    assert int(periods["n_turns"].sum()) == summary["turn_count"] == len(turns) - 1
