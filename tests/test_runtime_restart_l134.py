@@ -56,7 +56,7 @@ def test_the_old_recipe_loses_the_stride_in_progress(synthetic_bundle, walk):
 
 
 def test_a_bad_restart_state_is_one_line(synthetic_bundle):
-    with pytest.raises(DataError, match=r"^Tracker\(resume=state\): not a restart state of version 2 .*restart_state"):
+    with pytest.raises(DataError, match=r"^Tracker\(resume=state\): not a restart state of version 3 .*restart_state"):
         Tracker(synthetic_bundle, resume={"position": [0, 0, 0]})
     state = Tracker(synthetic_bundle).restart_state()
     state["heading_rad"] = float("nan")

@@ -21,18 +21,21 @@ import numpy as np
 from pdrlearn.errors import DataError
 
 #: the restart state's format (decision E237: 2 adds the clock offsets; a version-1 state is read as before, its
-#: samples taken as on the tracker's clock and the constructor's offsets kept; any other version is refused in one line)
-STATE_VERSION = 2
+#: samples taken as on the tracker's clock and the constructor's offsets kept; decision E281: 3 adds E272's stop bias,
+#: a version-1 or -2 state starts it at 0 as before; any other version is refused in one line)
+STATE_VERSION = 3
 _KEYS = ("version", "position", "heading_rad", "last_end_s", "last_step", "n_steps", "samples")
 _CLOCKS = ("waist_clock_offset_s", "foot_clock_offset_s")  # decision E237: version 2 on
+_STOP = ("stop_bias",)  # decision E281: version 3 on
 
 
 def restart_state(tracker) -> dict:
     """Decision L134: ``{"version", "position" [x, y, z] m, "heading_rad", "last_end_s" (the last measured
     stride's end, s, or None), "last_step" (the last emitted row's end, heading, position and stride times, for
     E46's gap row and E51's stride time; or None), "n_steps", "samples": {sensor: {"t": [...] s, "values":
-    [[...], ...]}}, "waist_clock_offset_s", "foot_clock_offset_s"}`` with the samples the tracker buffers (on its
-    clock: already moved by the offsets) and the offsets it applies now (a ``rebase_clock`` included; E237). A
+    [[...], ...]}}, "waist_clock_offset_s", "foot_clock_offset_s", "stop_bias"}`` with the samples the tracker buffers
+    (on its clock: already moved by the offsets), the offsets it applies now (a ``rebase_clock`` included; E237) and
+    E272's waist gyroscope bias read at the last stop (``{"rps", "n_stops"}``, None without the waist unit; E281). A
     tracker that resamples (``resample=True``, E22) is refused in one line (decision L140): its buffer holds
     resampled samples, and its low-pass filter holds the last raw ones (its delay, 0.84 s from 50 to 20 Hz), which
     no state carries; a new tracker fed the resampled samples resampled them again and lost a stride (0.20-0.28 m
@@ -55,7 +58,13 @@ def restart_state(tracker) -> dict:
         "samples": {name: {"t": t.tolist(), "values": v.tolist()}
                     for name, (t, v) in ((n, r.view()) for n, r in tracker._buf.items())},
         **{k: float(getattr(tracker, k)) for k in _CLOCKS},  # decision E237
+        "stop_bias": _stop_bias_state(tracker._stop_bias),  # decision E281
     }
+
+
+def _stop_bias_state(stop) -> dict | None:
+    """Decision E281: E272's running bias as plain numbers (None: the tracker has no waist unit)."""
+    return None if stop is None else {"rps": float(stop.rps), "n_stops": int(stop.n_stops)}
 
 
 def resume(tracker, state: dict) -> list:
@@ -64,11 +73,15 @@ def resume(tracker, state: dict) -> list:
 
     Decision E237: the samples are on the old tracker's clock already, so they are pushed with every clock offset
     (and the waist's drift) at 0; then the state's offsets are set (a version-2 state: they win over the
-    constructor's, one warning line when they differ; version 1: the constructor's kept)."""
+    constructor's, one warning line when they differ; version 1: the constructor's kept).
+
+    Decision E281: a version-3 state's ``stop_bias`` (E272's bias read at the old tracker's last stop) is the new
+    tracker's, so its waist-headed strides lose it as the old tracker's would; a version-1 or -2 state starts it at 0
+    (nothing known until the next stop, as before)."""
     where = "Tracker(resume=state)"
     version = state.get("version") if isinstance(state, dict) else None
-    keys = _KEYS + (_CLOCKS if version == STATE_VERSION else ())
-    if version not in (1, STATE_VERSION) or not set(keys) <= set(state):
+    keys = _KEYS + (_CLOCKS if version in (2, STATE_VERSION) else ()) + (_STOP if version == STATE_VERSION else ())
+    if version not in (1, 2, STATE_VERSION) or not set(keys) <= set(state):
         got = version if isinstance(state, dict) else type(state).__name__
         raise DataError(f"{where}: not a restart state of version {STATE_VERSION} (got {got!r}); give what "
                         "Tracker.restart_state() returned (decision L134)")
@@ -79,12 +92,17 @@ def resume(tracker, state: dict) -> list:
         samples = {str(n): (np.asarray(s["t"], dtype=float), np.asarray(s["values"], dtype=float))
                    for n, s in state["samples"].items()}
         clocks = {k: float(state[k]) for k in keys if k in _CLOCKS}
+        stop = state.get("stop_bias") if version == STATE_VERSION else None  # decision E281
+        stop = None if stop is None else (float(stop["rps"]), int(stop["n_stops"]))
     except (TypeError, ValueError, KeyError) as exc:
-        raise DataError(f"{where}: the state's position, heading_rad, last_end_s, samples or clock offsets are "
-                        f"malformed ({exc}); give what Tracker.restart_state() returned (decision L134)") from None
-    if not (np.isfinite(position).all() and math.isfinite(heading) and all(map(math.isfinite, clocks.values()))):
-        raise DataError(f"{where}: the state's position {position.tolist()}, heading {heading} or clock offsets "
-                        f"{clocks} are not finite; give what Tracker.restart_state() returned (decision L134)")
+        raise DataError(f"{where}: the state's position, heading_rad, last_end_s, samples, clock offsets or "
+                        f"stop_bias are malformed ({exc}); give what Tracker.restart_state() returned "
+                        "(decision L134)") from None
+    if not (np.isfinite(position).all() and math.isfinite(heading) and all(map(math.isfinite, clocks.values()))
+            and (stop is None or math.isfinite(stop[0]))):
+        raise DataError(f"{where}: the state's position {position.tolist()}, heading {heading}, clock offsets "
+                        f"{clocks} or stop_bias {stop} are not finite; give what Tracker.restart_state() returned "
+                        "(decision L134)")
     tracker.position = position
     tracker._init_fixes(position[:2])
     tracker.heading = heading
@@ -96,6 +114,8 @@ def resume(tracker, state: dict) -> list:
     tracker._kept = None if ls is None else (float(ls[0]), float(ls[1]), tuple(map(float, ls[2])),
                                              tuple(map(float, ls[3])))
     tracker.n_steps = int(state["n_steps"])
+    if stop is not None and tracker._stop_bias is not None:  # decision E281: the bias read at the old one's last stop
+        tracker._stop_bias.rps, tracker._stop_bias.n_stops = stop
     for k, v in clocks.items():  # decision E237: the state's clock wins; a different given value is said
         if v != getattr(tracker, k):
             tracker._warn(f"{where}: the state's {k} = {v:g} s replaces the {getattr(tracker, k):g} s given (the "
