@@ -97,7 +97,7 @@ def test_a_bad_stop_bias_is_one_line_e281(biased):
     assert state["version"] == 3 and state["stop_bias"] == {"rps": 0.0, "n_stops": 0}
     with pytest.raises(DataError, match=r"^Tracker\(resume=state\): .*stop_bias .*not finite"):
         Tracker(bundle, resume={**state, "stop_bias": {"rps": float("nan"), "n_stops": 1}})
-    with pytest.raises(DataError, match=r"^Tracker\(resume=state\): .*stop_bias are malformed"):
+    with pytest.raises(DataError, match=r"^Tracker\(resume=state\): .*stop_bias or pedal_history are malformed"):
         Tracker(bundle, resume={**state, "stop_bias": {"rps": 0.1}})
     with pytest.raises(DataError, match=r"^Tracker\(resume=state\): not a restart state of version 3 \(got 2\)"):
         Tracker(bundle, resume={k: v for k, v in state.items() if k != "waist_clock_offset_s"} | {"version": 2})

@@ -26,7 +26,7 @@ from pdrlearn.errors import DataError
 STATE_VERSION = 3
 _KEYS = ("version", "position", "heading_rad", "last_end_s", "last_step", "n_steps", "samples")
 _CLOCKS = ("waist_clock_offset_s", "foot_clock_offset_s")  # decision E237: version 2 on
-_STOP = ("stop_bias",)  # decision E281: version 3 on
+_STOP = ("stop_bias", "pedal_history")  # decisions E281, E280: version 3 on
 
 
 def restart_state(tracker) -> dict:
@@ -35,7 +35,9 @@ def restart_state(tracker) -> dict:
     E46's gap row and E51's stride time; or None), "n_steps", "samples": {sensor: {"t": [...] s, "values":
     [[...], ...]}}, "waist_clock_offset_s", "foot_clock_offset_s", "stop_bias"}`` with the samples the tracker buffers
     (on its clock: already moved by the offsets), the offsets it applies now (a ``rebase_clock`` included; E237) and
-    E272's waist gyroscope bias read at the last stop (``{"rps", "n_stops"}``, None without the waist unit; E281). A
+    E272's waist gyroscope bias read at the last stop (``{"rps", "n_stops"}``, None without the waist unit; E281) and
+    the last L611 rows judged (``pedal_history``, E280). Strides held for their L611 verdict (E280) are not in it:
+    ``last_end_s`` and the bias are those before the first held one, which the new tracker measures again. A
     tracker that resamples (``resample=True``, E22) is refused in one line (decision L140): its buffer holds
     resampled samples, and its low-pass filter holds the last raw ones (its delay, 0.84 s from 50 to 20 Hz), which
     no state carries; a new tracker fed the resampled samples resampled them again and lost a stride (0.20-0.28 m
@@ -48,23 +50,20 @@ def restart_state(tracker) -> dict:
                         "track at the data's own rate (resample='native', the default) to restart whole "
                         "(decision L140)")
     kept = tracker._kept
+    prev_end, stop = tracker._restart_from  # decision E280: strides held for L611's verdict are measured again
     return {
         "version": STATE_VERSION,
         "position": [float(v) for v in tracker.position],
         "heading_rad": float(tracker.heading),
-        "last_end_s": None if tracker._prev_end is None else float(tracker._prev_end),
+        "last_end_s": None if prev_end is None else float(prev_end),
         "last_step": None if kept is None else [kept[0], kept[1], list(kept[2]), list(kept[3])],
         "n_steps": int(tracker.n_steps),
         "samples": {name: {"t": t.tolist(), "values": v.tolist()}
                     for name, (t, v) in ((n, r.view()) for n, r in tracker._buf.items())},
         **{k: float(getattr(tracker, k)) for k in _CLOCKS},  # decision E237
-        "stop_bias": _stop_bias_state(tracker._stop_bias),  # decision E281
+        "stop_bias": None if stop is None else {"rps": float(stop[0]), "n_stops": int(stop[1])},  # decision E281
+        "pedal_history": [list(r) for r in tracker._loops.history],  # decision E280: the verdicts' neighbours
     }
-
-
-def _stop_bias_state(stop) -> dict | None:
-    """Decision E281: E272's running bias as plain numbers (None: the tracker has no waist unit)."""
-    return None if stop is None else {"rps": float(stop.rps), "n_stops": int(stop.n_stops)}
 
 
 def resume(tracker, state: dict) -> list:
@@ -94,9 +93,11 @@ def resume(tracker, state: dict) -> list:
         clocks = {k: float(state[k]) for k in keys if k in _CLOCKS}
         stop = state.get("stop_bias") if version == STATE_VERSION else None  # decision E281
         stop = None if stop is None else (float(stop["rps"]), int(stop["n_stops"]))
+        history = [(float(a), float(b), float(dz), bool(u), float(d), bool(j))  # decision E280
+                   for a, b, dz, u, d, j in (state["pedal_history"] if version == STATE_VERSION else [])]
     except (TypeError, ValueError, KeyError) as exc:
-        raise DataError(f"{where}: the state's position, heading_rad, last_end_s, samples, clock offsets or "
-                        f"stop_bias are malformed ({exc}); give what Tracker.restart_state() returned "
+        raise DataError(f"{where}: the state's position, heading_rad, last_end_s, samples, clock offsets, "
+                        f"stop_bias or pedal_history are malformed ({exc}); give what Tracker.restart_state() returned "
                         "(decision L134)") from None
     if not (np.isfinite(position).all() and math.isfinite(heading) and all(map(math.isfinite, clocks.values()))
             and (stop is None or math.isfinite(stop[0]))):
@@ -116,6 +117,7 @@ def resume(tracker, state: dict) -> list:
     tracker.n_steps = int(state["n_steps"])
     if stop is not None and tracker._stop_bias is not None:  # decision E281: the bias read at the old one's last stop
         tracker._stop_bias.rps, tracker._stop_bias.n_stops = stop
+    tracker._loops.history, tracker._loops.seen = history, len(history)  # decision E280
     for k, v in clocks.items():  # decision E237: the state's clock wins; a different given value is said
         if v != getattr(tracker, k):
             tracker._warn(f"{where}: the state's {k} = {v:g} s replaces the {getattr(tracker, k):g} s given (the "
