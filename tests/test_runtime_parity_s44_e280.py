@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import json
 import logging
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -17,6 +18,7 @@ from pdrlearn.kernels.pedal import CHAIN_PAUSE_S, LiveLoops, closed_loop_strides
 from tests.sim_helpers import quiet_walk
 from tests.test_pedal_s43_l611 import _pedal  # L611's crank model (T3's splicer's)
 
+ROOT = Path(__file__).resolve().parents[1]
 DIST_TOL_M = 1e-9  # the same strides, placed by the same arithmetic: rounding only
 
 
@@ -32,12 +34,10 @@ def ride():
 def _live(session, restart_at: float | None = None):
     """``pdrlearn run``'s Tracker (the shipped bundle, no classifier: ``track --streaming``'s M2) fed 1 s chunks;
     with ``restart_at`` a new tracker resumed from the old one's JSON restart state there (L134)."""
-    from pathlib import Path
-
     from pdrlearn.runtime import Tracker, load_bundle
     from tests.runtime_helpers import time_chunks
 
-    bundle = load_bundle(Path(__file__).resolve().parents[1] / "models" / "plasys-sim-default")
+    bundle = load_bundle(ROOT / "models" / "plasys-sim-default")
     kw = {"tasks": [], "sensors": list(session.streams)}
     tr, steps, held = Tracker(bundle, **kw), [], None
     logging.disable(logging.WARNING)
@@ -128,3 +128,22 @@ def test_walking_strides_are_released_at_once_and_a_pause_ends_a_chain_e280():
     assert loops.add(crank[0], "a") == [] and loops.add(crank[1], "b") == []  # held: could be pedalling
     assert loops.expire(21.5 + CHAIN_PAUSE_S, 1.0) == []  # not quiet long enough
     assert loops.expire(23.0, 1.0) == [("a", False), ("b", False)]  # two strides alone: too few reversals
+
+
+def test_pdrlearn_run_writes_the_whole_line_once_and_no_ride_row_e280(ride, tmp_path):
+    """`pdrlearn run` (the shipped bundle, its classifiers) on the ride: no row inside it, and summary.json's warnings
+    hold L611's line once, with every removed stride (the line is logged at the flush, not at the first stride)."""
+    import pandas as pd
+
+    from pdrlearn.cli import main
+    from pdrlearn.io import write_session
+
+    s, a, b = ride
+    write_session(s, tmp_path / "ride")
+    assert main(["run", "--no-plot", str(ROOT / "models" / "plasys-sim-default"), str(tmp_path / "ride"), "--out",
+                 str(tmp_path / "o")]) == 0
+    st = pd.read_csv(tmp_path / "o" / "steps.csv")
+    assert len(st) == 13 and not ((st["end_s"] > a) & (st["start_s"] < b)).any()  # main: 46 rows, 33 in the ride
+    lines = [w for w in json.loads((tmp_path / "o" / "summary.json").read_text())["info"]["warnings"]
+             if "cycling?" in w]
+    assert len(lines) == 1 and "33 stride(s) at 27.40-52.30 s (33)" in lines[0], lines

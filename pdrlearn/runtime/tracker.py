@@ -1552,6 +1552,7 @@ class Tracker(OwnGuard, FixInput):
         self._detect()
         steps = self._process_ready(force=True)
         steps += self._release(self._loops.flush())  # decision E280: the last strides, judged on what is known
+        self._log_pedal()
         self._trim()
         self.height_checks()  # decision E47: the end of a recording
         if self._repeats is not None:  # decision E236: the repeated lines held back since their last, summed up
@@ -1634,16 +1635,22 @@ class Tracker(OwnGuard, FixInput):
         return out
 
     def _note_pedal(self, t0: float, t1: float) -> None:
-        """Decision E280: L611's one warning line, as ``track --streaming``'s, widened in place as strides are removed
-        (logged at the first)."""
+        """Decision E280: L611's one warning line, as ``track --streaming``'s, widened in place in ``warnings`` as
+        strides are removed; logged by :meth:`_log_pedal`."""
         if self._pedal_line is None:
-            self._pedal_line = [[], len(self.warnings)]
+            self._pedal_line = [[], len(self.warnings), None]
             self.warnings.append("")
-        spans, at = self._pedal_line
+        spans, at, _ = self._pedal_line
         _pedal.add_span(spans, t0, t1)
         self.warnings[at] = _pedal.REMOVED + _pedal.loop_part(spans)
-        if sum(k for _, _, k in spans) == 1:
-            log.warning("bundle %s: %s", self.bundle.path, self.warnings[at])
+
+    def _log_pedal(self) -> None:
+        """Decision E280: at a flush (the end of a recording) L611's line is logged as it stands, once (again when a
+        later flush changed it), so the log has ``track --streaming``'s whole line, not its first stride's."""
+        p = self._pedal_line
+        if p is not None and self.warnings[p[1]] != p[2]:
+            p[2] = self.warnings[p[1]]
+            log.warning("bundle %s: %s", self.bundle.path, p[2])
 
     def _check_unpushed(self, t0: float, t1: float) -> None:
         """Decision B140: with no ``sensors=`` declared, a sensor a task's model reads that nothing has pushed by
