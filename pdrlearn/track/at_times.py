@@ -22,6 +22,8 @@ from pdrlearn.errors import DataError
 
 #: decision L638: the columns the times file may give (one of them)
 TIME_COLUMNS = ("t", "time")
+#: decision L638: trajectory columns that are not a place to interpolate (the times; L623's ride index of a line)
+NOT_POSITIONS = ("t", "time", "ride")
 
 
 def read_times(path: Path) -> pd.DataFrame:
@@ -106,7 +108,7 @@ def positions_at(trajectory: pd.DataFrame, t: np.ndarray, span: tuple[float, flo
         rt = np.r_[rt[0], np.ravel(np.c_[s, rt[1:]])]
     out = pd.DataFrame({"t": t})
     for c in tr.columns:
-        if c in ("t", "time") or not pd.api.types.is_numeric_dtype(tr[c]) or pd.api.types.is_bool_dtype(tr[c]):
+        if c in NOT_POSITIONS or not pd.api.types.is_numeric_dtype(tr[c]) or pd.api.types.is_bool_dtype(tr[c]):
             continue
         v = tr[c].to_numpy(float)
         ok = np.isfinite(v)

@@ -175,6 +175,10 @@ def write_folder(dest: Path, tracked: dict) -> tuple[dict, bool]:
             traj[c] = float("nan")
     if "pos_sigma_m" in traj:  # decision L128: appended after the columns trajectory.csv always had
         traj = traj[[c for c in traj.columns if c != "pos_sigma_m"] + ["pos_sigma_m"]]
+    if result.info.get("rides"):  # decision L623: the rows a ride's line reaches (not walked), last; only with a ride
+        from pdrlearn.track.rides import trajectory_rides
+
+        traj["ride"] = trajectory_rides(traj, result.info["rides"])
     if aided and plot:
         from pdrlearn.aid import plot_aided
 
