@@ -1523,6 +1523,27 @@ TRAJECTORY: tuple[Column, ...] = (
                                  "this one crosses - not walked (the first stride after a ride starts where the "
                                  "walker boarded: the vehicle's travel is not in the track), so do not draw it as a "
                                  "path (path.png draws it dotted grey); empty elsewhere (L623)"),
+    ("time", "date-time", "text", "t as a clock time, ISO 8601 with milliseconds at the recording start's own offset; "
+                                  "only when the session gives its recording start (meta.json recording_start, a "
+                                  "date-time or epoch-number `pdrlearn import`; B447, B448), the last column"),
+)
+
+#: decision L638: `track --at-times FILE`, the trajectory's columns at the given times
+AT_TIMES: tuple[Column, ...] = (
+    ("t", "s", "number", "the given time on the session's clock (a time column of the file: less the recording "
+                         "start), in the file's order"),
+    ("x", "m", "number", "trajectory.csv's x at t: linear between its rows; the start's before its first row (the "
+                         "standstill before the first stride), its last row's after its last"),
+    ("y", "m", "number", "trajectory.csv's y at t, as x"),
+    ("z", "m", "number", "trajectory.csv's z at t, as x"),
+    ("lat", "deg", "number", "trajectory.csv's lat at t, as x; only when the track has lat/lon"),
+    ("lon", "deg", "number", "trajectory.csv's lon at t, as x; only when the track has lat/lon"),
+    ("pos_sigma_m", "m", "number", "trajectory.csv's pos_sigma_m at t, as x; not with fixes"),
+    ("x_pdr", "m", "number", "with fixes: the PDR-only x at t (trajectory.csv's x_pdr)"),
+    ("y_pdr", "m", "number", "with fixes: the PDR-only y at t"),
+    ("x_rt", "m", "number", "with fixes: the causal (real-time) x at t (trajectory.csv's x_rt)"),
+    ("y_rt", "m", "number", "with fixes: the causal (real-time) y at t"),
+    ("time", "date-time", "text", "t as a clock time (as trajectory.csv's); only with a recording start"),
 )
 
 
@@ -1747,7 +1768,7 @@ TABLES: dict[str, tuple[Column, ...]] = dict(zip(TABLE_NAMES, (
     SPLITS,
     DIRECTION_CHANGES, TRANSFERS, TUG_PHASE_TABLE, TUG_TRIAL_TABLE, TEN_M_WALK_TRIAL_TABLE,
     FREEZES, FLIGHTS, RAMPS, RAMP_RUNS, STAIRS, CURBS, RIDES, WB_SCORES, WAIST_STEPS,
-    FOOT_STEPS, TRAJECTORY, GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS, GAIT_PAIRS, DETECTIONS, EVENTS, STEPS_JSON,
+    FOOT_STEPS, TRAJECTORY, AT_TIMES, GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS, GAIT_PAIRS, DETECTIONS, EVENTS, STEPS_JSON,
     COHORT_SUMMARY, COHORT_METHODS, COHORT_METHODS_SUMMARY, TRAIN_CV, TRAIN_LOUO), strict=True))
 
 #: a line under a table's heading (decision W129: steps.csv is documented for lower-back tracks)
@@ -1773,6 +1794,9 @@ NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row pe
          "trajectory.csv": "Every track and run (decision B309): the output's trajectory, one row per position. A "
                            "session's own trajectory.csv (its path reference, `timestamp` in ms) is an input of "
                            "another layout (README, Data format).",
+         "at_times.csv": "`pdrlearn track DIR --at-times FILE` (decision L638): one row per time of FILE (a CSV "
+                         "with a column t, seconds from the session's start, or time, ISO 8601), in its order: "
+                         "trajectory.csv's numeric columns there (a floor column: its row at or before t).",
          "detections.csv": "`pdrlearn steps --out FILE` (any name): one row per detection, times in s since the "
                            "session's first sample; the columns after confidence depend on the detector; "
                            "`score-steps` reads the same layout (event_s, and start_s / end_s for a foot table).",

@@ -28,6 +28,7 @@ TABLE_NAMES: tuple[str, ...] = ("sessions.csv", "groups.csv", "subjects.csv",
                                 "wb_scores.csv",  # W493
                                 "steps.csv", "steps.csv (foot)",  # E137
                                 "trajectory.csv",  # B309
+                                "at_times.csv",  # L638
                                 "gait_steps.csv", "gait_cycles.csv", "gait_bouts.csv",  # L287
                                 "gait_pairs.csv",  # C110
                                 "detections.csv", "events.csv", "steps.json",  # steps 59

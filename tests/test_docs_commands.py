@@ -291,6 +291,7 @@ def _validators() -> dict[tuple[str, str], object]:
     from pdrlearn.track.periods import parse_per
     from pdrlearn.track.plasys import METHODS as PLASYS_METHODS
     from pdrlearn.track.splits import parse_splits
+    from pdrlearn.track.start_pose import parse_start_xy
     from pdrlearn.track.units import parse_units
     from pdrlearn.track.walk_test import parse_ten_m_walk
     from pdrlearn.track.window import parse_window
@@ -331,6 +332,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("track", "method"): _one_of(["auto", *PLASYS_METHODS], case=False),
         ("track", "rules"): _one_of(RULES),
         ("track", "start"): lambda v: parse_start(v, altitude=True),  # LAT,LON[,ALT] (decision L56)
+        ("track", "start_xy"): parse_start_xy,  # X,Y in local metres (decision L637)
         ("run", "start"): lambda v: parse_start(v, altitude=True),
         ("track", "length_bounds"): two_numbers,
         ("track", "reference_point"): _one_of(REFERENCE_POINTS),  # decision L72

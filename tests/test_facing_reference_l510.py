@@ -53,7 +53,7 @@ def test_initial_heading_turns_a_side_first_drill_from_the_facing_l510():
 def test_initial_heading_is_accepted_when_d25_fell_back_to_the_foot_heading_l511():
     from types import SimpleNamespace
 
-    from pdrlearn.cli.track import _check_relative_heading
+    from pdrlearn.cli.track import _apply_start_heading
     from pdrlearn.errors import DataError
     from pdrlearn.track.plots import heading_is_absolute
 
@@ -61,10 +61,10 @@ def test_initial_heading_is_accepted_when_d25_fell_back_to_the_foot_heading_l511
     info = {"pipeline": "plasys", "heading_source": "fused", "compass_mount": {"fallback": True}}
     assert not heading_is_absolute(info, session)  # before L511: absolute, and --initial-heading refused
     result = SimpleNamespace(info=dict(info))
-    _check_relative_heading(result, session, 0.5)
+    _apply_start_heading(result, session, 0.5, None)
     assert result.info["initial_heading_rad"] == 0.5
-    with pytest.raises(DataError, match="absolute"):  # the compass kept: still refused (L98)
-        _check_relative_heading(SimpleNamespace(info={**info, "compass_mount": {"fallback": False}}), session, 0.5)
+    with pytest.raises(DataError, match="absolute"):  # the compass kept: still refused (L98; L635: unless turned)
+        _apply_start_heading(SimpleNamespace(info={**info, "compass_mount": {"fallback": False}}), session, 0.5, None)
 
 
 def test_d25_warning_names_the_facing_and_initial_heading_l511():

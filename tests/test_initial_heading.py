@@ -78,19 +78,20 @@ def test_initial_heading_with_an_absolute_heading_is_refused(walks, tmp_path, ca
     assert not (tmp_path / "o").exists()
 
 
-def test_initial_heading_with_fixes_is_refused_before_tracking(walks, tmp_path, capsys, monkeypatch):
-    """L98: --gnss / --fixes give the track its direction; known from the options alone, so the refusal comes
-    before any tracking (it had come after the whole track was computed, its warnings printed first)."""
+def test_initial_heading_with_gnss_is_refused_before_tracking(walks, tmp_path, capsys, monkeypatch):
+    """L98: --gnss gives the track its direction; known from the options alone, so the refusal comes
+    before any tracking (it had come after the whole track was computed, its warnings printed first). L637: --fixes
+    (sporadic, nothing gives the direction before the first) take it."""
     import pdrlearn.cli.track as cli_track
 
     fixes = tmp_path / "fixes.csv"
     fixes.write_text("t,lat,lon,accuracy_m\n1.0,41.178,-8.598,3.0\n")
     monkeypatch.setattr(cli_track, "track_session", lambda *a, **k: pytest.fail("tracked before refusing"))
     capsys.readouterr()
-    rc = main(["track", "--no-plot", str(walks / "nomag"), "--fixes", str(fixes), "--initial-heading", "90",
+    rc = main(["track", "--no-plot", str(walks / "nomag"), "--gnss", str(fixes), "--initial-heading", "90",
                "--out", str(tmp_path / "x")])
     err = capsys.readouterr().err.strip().splitlines()
-    assert rc == 2 and len(err) == 1 and "--gnss / --fixes give the track its direction" in err[0], err
+    assert rc == 2 and len(err) == 1 and "--gnss gives the track its direction" in err[0], err
     assert not (tmp_path / "x").exists()
 
 

@@ -17,7 +17,7 @@ from pdrlearn.aid.sporadic import SporadicFixFusion
 from pdrlearn.decision_refs import decision_ref
 from pdrlearn.errors import DataError
 from pdrlearn.io.session import Session
-from pdrlearn.kernels.fixes import FIX_TIME_HINT, initial_fix_sigma
+from pdrlearn.kernels.fixes import FIX_TIME_HINT, initial_fix_sigma, sigma_from_accuracy
 from pdrlearn.track.base import TrackResult
 
 log = logging.getLogger(__name__)
@@ -161,6 +161,15 @@ def _load(path, session: Session, offset_s: float | None = None) -> tuple[FixLog
         "recording_start with a UTC offset, nor utc_start_s), so the first fix is taken at the session start; "
         "if the receiver's first fix came later, pass --gnss-time-offset S (its seconds after the session "
         "start) or write recording_start in meta.json (decision D38)"]
+
+
+def start_fixes(fix_t, session_start_s: float, first_step_s: float) -> np.ndarray:
+    """Decision D50: indices of the fixes (times ``fix_t``, session s) from the session start up to the track's first
+    stride (``first_step_s``, the trajectory's first row), which D14 / D38 meant as start fixes: the last of them
+    gives the track's start position (a foot track starts at its first stride, after the standstill, so a start fix
+    at t = 0 had been "outside the track's steps")."""
+    ft = np.asarray(fix_t, dtype=float)
+    return np.flatnonzero((ft >= session_start_s) & (ft <= first_step_s))
 
 
 def _file_stats(stats: dict) -> dict:
@@ -358,11 +367,20 @@ def aid_track(
         flog, lines = _load(path, session, gnss_time_offset_s if kind == "gnss" else None)
         warnings += lines
         fx, origin = to_local(flog.fixes, origin)
+        n_file, start_fix, x0_run, fx_file = len(fx), None, x0, fx
+        if kind == "fixes" and t_start is not None and len(fx):  # decision D50: the fixes before the first stride
+            fx = fx_file = fx.sort_values("t", kind="stable").reset_index(drop=True)
+            pre = start_fixes(fx["t"], float(session.t_recording_start), t_start)
+            if len(pre):
+                start_fix = fx.iloc[pre[-1]]
+                x0_run = np.array([float(start_fix["x"]), float(start_fix["y"])])
+                fx = fx.drop(index=pre).reset_index(drop=True)
+                n_pre = len(pre)
         all_outside = False
         if t_start is not None and len(fx):
             t_end = float(traj0["t"].iloc[-1])
             ft = fx["t"].to_numpy(float)
-            if not ((ft >= t_start) & (ft <= t_end)).any():
+            if not ((ft >= t_start) & (ft <= t_end)).any() and start_fix is None:
                 all_outside = True
                 warnings.append(
                     f"aid: none of the {len(fx)} fixes in {path} lies within the track ({t_start:.1f} to "
@@ -373,6 +391,8 @@ def aid_track(
         # start known (or local fixes around the track's own origin): 1 m; else the first fix's sigma
         sigma0 = initial_fix_sigma(start_known=start is not None, xy_fixes="x" in flog.fixes.columns,
                                    first_accuracy_m=fx["accuracy_m"].iloc[0] if len(fx) else None)
+        if start_fix is not None:  # decision D50: the start fix's own per-axis sigma (seed 004: P_p(0) from the fix)
+            sigma0 = float(sigma_from_accuracy(float(start_fix["accuracy_m"])))
         if kind == "gnss":
             mode = "saving" if gnss_period_s else "best"
             f = GnssPdrFusion(mode=mode, period_s=float(gnss_period_s or 60.0), initial_sigma_m=sigma0,
@@ -392,15 +412,22 @@ def aid_track(
         else:
             tp = fix_period_s
             f = SporadicFixFusion(period_s=tp, initial_sigma_m=sigma0)
-            f.run(cur_steps, fx, start_xy=x0, t_start=t_start)
+            f.run(cur_steps, fx, start_xy=x0_run, t_start=t_start)
+            if start_fix is not None:  # decision D50: one start fix used, the earlier ones superseded by it
+                f.stats_["fixes_used"] += 1
+                f.stats_["fixes_superseded"] += n_pre - 1
+                f.stats_["fixes_unused"] += n_pre - 1
             if f.stats_["fixes_unused"] and not all_outside:
-                warnings.append(_unused_fixes_line(f, len(fx), path, tp, float(cur_steps["end_s"].iloc[-1])))
+                warnings.append(_unused_fixes_line(f, n_file, path, tp, float(cur_steps["end_s"].iloc[-1])))
             info["fixes"] = {
                 "file": str(path),
                 "period_s": tp,
                 **_file_stats(flog.stats),
                 **f.stats_,
                 "heading_offset_deg": float(np.degrees(f.heading_offset_rad_)),
+                # decision D50: the fix that gave the start position (None: the track's own start)
+                "start_fix": None if start_fix is None else {k: round(float(start_fix[k]), 3)
+                                                             for k in ("t", "x", "y", "accuracy_m")},
             }
         tr = f.trajectory_
         if fused is None:
@@ -411,7 +438,7 @@ def aid_track(
                 fused["x_rt"], fused["y_rt"] = tr["x_rt"].to_numpy(), tr["y_rt"].to_numpy()
             fused["fix_used"] = fused["fix_used"].to_numpy(bool) | tr["fix_used"].to_numpy(bool)
         cur_steps = _steps_from_path(tr["x"].to_numpy(), tr["y"].to_numpy(), check_sorted(steps))
-        all_fixes.append(fx.assign(source=kind))
+        all_fixes.append(fx_file.assign(source=kind))  # decision D50: the start fixes drawn too
     out = pd.DataFrame({"t": fused["t"].to_numpy(), "x": fused["x"].to_numpy(), "y": fused["y"].to_numpy()})
     out["z"] = traj0["z"].to_numpy() if "z" in traj0 and len(traj0) == len(out) else 0.0
     out["x_pdr"], out["y_pdr"] = fused["x_pdr"].to_numpy(), fused["y_pdr"].to_numpy()

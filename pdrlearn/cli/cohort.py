@@ -955,6 +955,7 @@ def track_all(
     warn_out_of_domain: float = _track.WARN_OOD_OPT,
     start: str = _track.START_OPT,
     initial_heading: float = _track.INITIAL_HEADING_OPT,
+    turn_to_heading: bool = _track.TURN_TO_HEADING_OPT,
     storey_height: float = storey_height_option(),
     params: Path = _track.PARAMS_OPT,
     params_dir: Path = typer.Option(None, "--params-dir", metavar="DIR", help=PARAMS_DIR_HELP),

@@ -218,6 +218,18 @@ UNITS_OPT = typer.Option(None, "--units", help="Body units to track with: foot (
                          "`pdrlearn run --units foot`), waist, or foot,waist (default: every unit the session has; "
                          "decision B127), e.g. to keep the foot outcome of a session whose waist unit stopped early.")
 INITIAL_HEADING_OPT = typer.Option(None, "--initial-heading", metavar="DEG", help=INITIAL_HEADING_HELP)
+TURN_TO_HEADING_OPT = typer.Option(False, "--turn-to-heading", help="With --initial-heading DEG on a track whose "
+                                   "heading is absolute (the default offline track with the waist compass): turn the "
+                                   "whole track about its start so that its first straight strides head DEG, taking "
+                                   "out the compass's constant offset (decision L635; an option, not the default: "
+                                   "measured, it helped on 2 of 4 courses).")
+AT_TIMES_OPT = typer.Option(None, "--at-times", metavar="FILE", help="A CSV of times, column t (seconds from the "
+                            "session's start) or time (ISO 8601, with a recording start): OUT/at_times.csv gives the "
+                            "track's x, y, z (and its other columns) at each, interpolated; the start pose before "
+                            "the first stride (decision L638). A time outside the recording is one error line.")
+START_XY_OPT = typer.Option(None, "--start-xy", metavar="X,Y", help="The start in local metres (x east, y north; "
+                            "decision L637): trajectory.csv starts there, and --fixes in local x, y are in the same "
+                            "frame. Not with --start (a geodetic start) or --gnss.")
 BOUT_RULE_OPT = typer.Option(None, "--bout-rule", help="Walking bouts (OUT/bouts.csv, decision L163): pdrlearn "
                               "(default: a pause of --bout-break-s beyond the walker's rhythm, a turn across it "
                               "taking its time first) or mobgap (Mobilise-D's rule as mobgap implements it: a new "
@@ -334,6 +346,9 @@ def track(
     warn_out_of_domain: float = WARN_OOD_OPT,
     start: str = START_OPT,
     initial_heading: float = INITIAL_HEADING_OPT,
+    start_xy: str = START_XY_OPT,
+    turn_to_heading: bool = TURN_TO_HEADING_OPT,
+    at_times: Path = AT_TIMES_OPT,
     storey_height: float = storey_height_option(),
     params: Path = PARAMS_OPT,
     gnss: Path = typer.Option(None, "--gnss", help="GNSS fixes (NMEA, GPX or CSV) for aiding."),
@@ -512,6 +527,8 @@ NOT_IN_TRACK_ALL = {
     "--gnss-time-offset": "places one --gnss log's times",
     "--fix-period": "thins --fixes",
     "--segments": "one recording's table of legs (its seconds are that session's clock)",
+    "--start-xy": "one recording's start in its building's metres (L637)",
+    "--at-times": "one recording's times (its seconds are that session's clock, L638)",
     "--strict": "track-all's exit code 1 names failed sessions; sessions.csv's n_warnings counts each one's (E156)",
 }
 
@@ -536,7 +553,8 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    reference_point: str | None = None, toe_off: bool = False, ignore_force: bool = False,
                    contacts: bool = False,
                    drop_neighbour: bool = False, dpi: int | None = None, no_plot: bool = False,
-                   initial_heading: float | None = None,
+                   initial_heading: float | None = None, start_xy: str | None = None,
+                   turn_to_heading: bool = False, at_times: Path | None = None,
                    common_span: bool = False, window: str | None = None, per: str | None = None,
                    per_align: str = "start", segments: Path | None = None, corridor: float | None = None,
                    splits: str | None = None,
@@ -610,9 +628,23 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
     from pdrlearn.track.grade import check_stair_grade
 
     stair_grade_pct = check_stair_grade(stair_grade)  # decision L469: before any session
-    if heading0 is not None and (gnss is not None or fixes is not None):  # L98: known before any tracking
-        raise DataError("track: --initial-heading sets the start direction of a relative heading, but --gnss / "
-                        "--fixes give the track its direction; drop --initial-heading")
+    if heading0 is not None and gnss is not None:  # L98: known before any tracking (L637: --fixes take it)
+        raise DataError("track: --initial-heading sets the start direction of the track, but --gnss gives the "
+                        "track its direction; drop --initial-heading")
+    if turn_to_heading and heading0 is None:  # decision L635
+        raise DataError("track: --turn-to-heading turns the track to the start heading of --initial-heading DEG, "
+                        "which is not given; add --initial-heading DEG or drop --turn-to-heading")
+    at_times_file, at_times_rows = None, None
+    if at_times is not None:  # decision L638: the times file read once, before any session
+        from pdrlearn.track.at_times import read_times
+
+        at_times_file, at_times_rows = str(at_times), read_times(at_times)
+    from pdrlearn.track.start_pose import parse_start_xy
+
+    xy0 = parse_start_xy(start_xy)  # decision L637: before any session
+    if xy0 is not None and (start is not None or gnss is not None):
+        other = "--start gives it as latitude, longitude" if start is not None else "--gnss fixes are geodetic"
+        raise DataError(f"track: --start-xy {start_xy} gives the start in local metres; {other}: drop one of them")
     if gnss_time_offset is not None and gnss is None:  # decision D38
         raise DataError(f"track: --gnss-time-offset {gnss_time_offset:g} places the times of a --gnss log, which is "
                         "not given; pass --gnss FILE or drop --gnss-time-offset")
@@ -721,7 +753,9 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "reference_point": reference_point, "toe_off": toe_off, "ignore_force": ignore_force,
             "contacts": contacts,
             "drop_neighbour": drop_neighbour, "dpi": dpi, "plot": plot,
-            "initial_heading_rad": heading0, "common_span": common_span, "window": win, "per_s": per_s,
+            "initial_heading_rad": heading0, "start_xy": xy0, "turn_to_heading": turn_to_heading,  # L635, L637
+            "at_times": at_times_file, "at_times_table": at_times_rows,  # decision L638
+            "common_span": common_span, "window": win, "per_s": per_s,
             "per_align": per_align, "legs": legs, "segments": segments,  # decision L618
             "corridor_m": corridor_m, "walk_test_s": walk_test_s, "splits_m": splits_m,
             "ten_m_walk_m": ten_m_walk_m,
@@ -954,6 +988,11 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
     from pdrlearn.track.clock import clock_texts, recording_start, require_start
 
     start = recording_start(session.meta, session.where)  # decision L298 (B254: a bad one refused before tracking)
+    at_t = None
+    if o.get("at_times_table") is not None:  # decision L638: the times in session seconds, checked before tracking
+        from pdrlearn.track.at_times import times_in_session
+
+        at_t = times_in_session(o["at_times_table"], o["at_times"], session, start)
     clock = (require_start(session.meta, session.where, "--per-align clock")  # decisions L299, B254
              if o.get("per_s") is not None and o.get("per_align") == "clock" else None)
     win = None
@@ -1073,7 +1112,11 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
             logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, line)
     aided = gnss is not None or fixes is not None
     if heading0 is not None:
-        _check_relative_heading(result, session, heading0)
+        result = _apply_start_heading(result, session, heading0, o["start_ll"], bool(o.get("turn_to_heading")))
+    if o.get("start_xy") is not None:  # decision L637: the start in local metres, before the fixes' fusion
+        from pdrlearn.track.start_pose import shift_to_start_xy
+
+        result = shift_to_start_xy(result, o["start_xy"])
     if aided:
         try:
             from pdrlearn.aid import aid_track
@@ -1172,6 +1215,11 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
                        f"{summary['time_no_data_s']:.1f} s without data", err=True)
     if start is not None:  # decision L298: the clock time of the recording's first sample
         summary["recording_start"] = clock_texts(start, [session.t_recording_start])[0]
+    at_times_out = None
+    if at_t is not None:  # decision L638: the track's position at the given times
+        from pdrlearn.track.at_times import at_times_table
+
+        at_times_out = at_times_table(result.trajectory, at_t, start, result.steps)
     periods = None
     if o.get("per_s") is not None:  # decision L277: periods.csv, from the whole session's track
         from pdrlearn.track.folder import clinical_tables
@@ -1235,23 +1283,39 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
     # L105: the window's session (its reference cut alike) for path.png / aided.png, as for the summary
     return {"session": tracked_session, "result": result, "summary": summary, "pipeline": pipeline, "aided": aided,
             "dpi": dpi, "plot": o["plot"], "content_id": content_id, "bouts": bouts, "periods": periods, "laps": laps,
-            "start": start, "splits": splits, "segments": segments,
+            "start": start, "splits": splits, "segments": segments, "at_times": at_times_out,
             "start_ele": bool(o.get("start_ele"))}
 
 
-def _check_relative_heading(result, session, heading0: float) -> None:
-    """Decision L98: ``--initial-heading`` turns a relative heading only; a track whose heading is absolute (the
-    waist magnetometer's; position fixes are refused before tracking, in :func:`track_settings`) would ignore
-    it - one error line (B27's rule) instead. Given and used, it is recorded in ``info``
-    (``initial_heading_rad``), and path.png draws the track in ENU."""
+def _apply_start_heading(result, session, heading0: float, start_ll, turn: bool = False):
+    """Decision L98: ``--initial-heading`` sets the start direction of a relative heading (the pipelines took it);
+    a track whose heading is absolute (the waist compass's; position fixes by GNSS are refused before tracking, in
+    :func:`track_settings`) would ignore it - one error line (B27's rule) instead, naming ``--turn-to-heading``.
+    Decision L635: with ``turn``, an absolute track is turned about its start so that its first straight strides
+    head the given way (the compass's constant offset taken out); one note line and ``info["start_heading"]``.
+    Given and used, it is recorded in ``info`` (``initial_heading_rad``), and path.png draws the track in ENU."""
     from pdrlearn.track.plots import heading_is_absolute
 
     if heading_is_absolute(result.info, session):
-        raise DataError(f"track: --initial-heading sets the start direction of a relative heading, but this "
-                        f"track's heading is absolute ({result.info.get('heading_source')} heading with the waist "
-                        "magnetometer of the session); drop --initial-heading, or track with --streaming (gyroscope "
-                        "heading) to set the start direction")
+        if not turn:
+            raise DataError(f"track: --initial-heading sets the start direction of a relative heading, but this "
+                            f"track's heading is absolute ({result.info.get('heading_source')} heading with the "
+                            "waist magnetometer of the session); add --turn-to-heading to turn the track to it "
+                            "(L635), drop --initial-heading, or track with --streaming (gyroscope heading)")
+        from pdrlearn.track.start_pose import turn_to_start_heading
+
+        result = turn_to_start_heading(result, heading0, start=start_ll)
+        rec = result.info["start_heading"]
+        if rec["turn_deg"] is not None:
+            line = (f"--turn-to-heading: the {result.info.get('heading_source')} (compass) track turned by "
+                    f"{rec['turn_deg']:+.1f} deg about its start, so that its first {rec['n_strides']} straight "
+                    f"strides head {rec['given_deg']:g} deg (they headed {rec['track_deg']:.1f} deg; decision L635)")
+            typer.echo(f"note: {session.where}: {line}", err=True)  # asked for: a note, not a warning (--strict)
+    elif turn:
+        typer.echo(f"note: {session.where}: --turn-to-heading: this track's heading is relative; --initial-heading "
+                   "set its start direction, nothing to turn (L635)", err=True)
     result.info["initial_heading_rad"] = heading0
+    return result
 
 
 def write_track(dest: Path, tracked: dict) -> tuple[dict, bool]:
@@ -1390,6 +1454,7 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
                f"{'direction_changes.csv, ' if summary.get('direction_changes') is not None else ''}"
                f"{'periods.csv, ' if summary.get('per_s') else ''}"
                f"{'segments.csv, ' if (out / 'segments.csv').is_file() else ''}"  # decision L619
+               f"{'at_times.csv, ' if (out / 'at_times.csv').is_file() else ''}"  # decision L638
                f"{'path.png, ' if plot else ''}"  # decision L533: no figure with --no-plot
                f"{'aided.png, ' if aided and plot else ''}summary.json, run.json"
                # decision L363: the map files, written when the track has lat/lon (--start)
@@ -1488,7 +1553,9 @@ def _reference_point(point: str, par, params: Path | None, pipeline: str, stream
 #: decision W422: ``--params`` keys of the plasys pipeline that are ``track_plasys`` options, not FootDisplacement
 #: settings (W126's waist-gyroscope rest-bias removal: the API had it, the CLI refused the key, trial T2 finding 5)
 #: decision L565: ``fused_climb`` (L564's one height source inside a barometric climb, an option), offline and streamed
-TRACK_PARAM_KEYS = ("waist_bias", "fused_climb")
+#: decision L636: ``hard_iron_fit`` (L84's fit of the waist compass's hard-iron offset on the walk, an option that is
+#: not the default), offline only
+TRACK_PARAM_KEYS = ("waist_bias", "fused_climb", "hard_iron_fit")
 #: decision L615: the lower-back PARAMS ``options`` (``{"options": {...}}``) the plasys pipeline reads as well
 PLASYS_OPTION_KEYS = ("ride_vibration",)
 
@@ -1505,6 +1572,10 @@ def _track_params(par: dict, path: Path, streaming: bool) -> tuple[dict, dict]:
         raise DataError(f"{path}: \"waist_bias\" removes the waist gyroscope bias from the offline two-unit heading "
                         "(decisions W126, W422); the --streaming kernel removes instead, always, the bias read at "
                         "each stop of 10 s or more (decision E272): drop --streaming or the key")
+    if "hard_iron_fit" in keys and streaming:  # decision L636
+        raise DataError(f"{path}: \"hard_iron_fit\" fits the waist compass of the offline fused heading (decisions "
+                        "L84, L636); the --streaming kernel heads by the gyroscopes and reads no compass: drop "
+                        "--streaming or the key")
     keys.update(_plasys_options(par.get("options"), path, streaming) if "options" in par else {})
     return {k: v for k, v in par.items() if k not in TRACK_PARAM_KEYS and k != "options"}, keys
 

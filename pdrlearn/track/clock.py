@@ -32,6 +32,9 @@ from pdrlearn.errors import DataError
 PER_ALIGNS = ("start", "clock", "first-step")
 #: meta.json's key for a recording start written by hand (decision L298)
 START_KEY = "recording_start"
+#: decision B447: the import's time units (``imported.time.unit``) whose numbers count from the Unix epoch when the
+#: origin is at least B39's ``EPOCH_START`` (1e9 s, 2001-09-09): seconds, ms, us, ns - not sample numbers
+EPOCH_UNITS = ("s", "ms", "us", "ns")
 #: an event table's instant columns (s on the session's clock) -> their clock columns (decision L298)
 CLOCK_COLUMNS = {"start_s": "start_time", "end_s": "end_time", "peak_s": "peak_time"}
 #: what to do when a clock option meets a session without a start (decision B254)
@@ -83,6 +86,12 @@ def on_export_clock(table: pd.DataFrame, origin_s: float, columns: tuple[str, ..
     return out
 
 
+def _epoch_start() -> float:
+    from pdrlearn.io.validate import EPOCH_START  # B39's threshold: a clock since the epoch
+
+    return EPOCH_START
+
+
 def recording_start(meta: dict | None, where: str = "meta.json") -> datetime | None:
     """Decision L298: the clock time of the session's 0 s from its ``meta`` (module docstring), or None. A
     ``recording_start`` that is not an ISO 8601 date-time is one :class:`DataError` line (decision B254); a JSON
@@ -104,6 +113,10 @@ def recording_start(meta: dict | None, where: str = "meta.json") -> datetime | N
         start = datetime.fromtimestamp(float(t["origin_s"]), tz=UTC)
         zone = _offset(dt.get("offset"))
         return start.astimezone(zone) if zone is not None else start
+    if isinstance(t, dict) and t.get("unit") in EPOCH_UNITS and isinstance(t.get("origin_s"), int | float) \
+            and not isinstance(t.get("origin_s"), bool) and math.isfinite(t["origin_s"]) \
+            and t["origin_s"] >= _epoch_start():  # decision B447: an epoch-number time column's first time, UTC
+        return datetime.fromtimestamp(float(t["origin_s"]), tz=UTC)
     text = meta.get("start_datetime")  # the Mobilise-D converter's
     return _parse_iso(text) if isinstance(text, str) and text.strip() else None
 

@@ -184,6 +184,10 @@ def write_folder(dest: Path, tracked: dict) -> tuple[dict, bool]:
 
         plot_aided(result, dest / "aided.png", truth=session.trajectory,
                    title=f"{session.name}: {pipeline} {result.info.get('method', '')} + fixes", dpi=dpi)
+    if tracked.get("start") is not None:  # decision B448: each row's clock time (L298's form), the last column
+        from pdrlearn.track.clock import clock_texts
+
+        traj["time"] = clock_texts(tracked["start"], traj["t"])
     write_table_csv(traj, dest / "trajectory.csv")
     from pdrlearn.track.evaluate import with_reference_columns
 
@@ -193,6 +197,8 @@ def write_folder(dest: Path, tracked: dict) -> tuple[dict, bool]:
                           tracked.get("laps"), tracked.get("splits"), tracked.get("segments"))
     for name, table in tables.items():
         write_table_csv(table, dest / name)
+    if tracked.get("at_times") is not None:  # decision L638: OUT/at_times.csv, the positions at the given times
+        write_table_csv(tracked["at_times"], dest / "at_times.csv")
     if plot:
         plot_paths({f"{pipeline} {result.info.get('method', '')}".strip(): result}, dest / "path.png",
                    session=session, title=f"{session.name}: {pipeline} {result.info.get('method', '')}", dpi=dpi)

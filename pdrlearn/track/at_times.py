@@ -1,0 +1,142 @@
+"""``track --at-times FILE``: the track's position at given times (decision L638; trial T3 finding F7: an IPIN
+competitor is scored at timed waypoints).
+
+A times file is a CSV with one column ``t`` (seconds on the session's clock, from its first sample) or ``time``
+(ISO 8601 date-times, which need the session's recording start, L298 / B447). Each time gets the trajectory's
+numeric columns at that instant: a row holds until the next step starts, then linear to that step's end (a pause
+holds its place); the start pose from the session's first sample up to the first step (the standstill before the
+first stride, where the walker stands at the start); the last row from there to the recording's end. A floor (an
+integer column, or one named ``floor`` / ``*_floor``) takes the row at or before the time. A time outside the
+recording is one ``error:`` line naming the file, the row and the span, before any tracking.
+"""
+
+from __future__ import annotations
+
+from datetime import datetime
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from pdrlearn.errors import DataError
+
+#: decision L638: the columns the times file may give (one of them)
+TIME_COLUMNS = ("t", "time")
+#: decision L638: trajectory columns that are not a place to interpolate (the times; L623's ride index of a line)
+NOT_POSITIONS = ("t", "time", "ride")
+
+
+def read_times(path: Path) -> pd.DataFrame:
+    """The times file read once, before any session (L638): a CSV with a ``t`` or ``time`` column and at least one
+    row; ``t`` finite numbers. One line naming the file and the fix otherwise."""
+    path = Path(path)
+    if not path.is_file():
+        raise DataError(f"--at-times {path}: no such file; pass a CSV with a column t (seconds from the session's "
+                        "start) or time (ISO 8601 date-times)")
+    try:
+        table = pd.read_csv(path, dtype=str, keep_default_na=False)
+    except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError, OSError) as exc:
+        raise DataError(f"--at-times {path}: cannot read it as a CSV ({type(exc).__name__}); pass a CSV with a "
+                        "column t or time") from None
+    table.columns = [str(c).strip() for c in table.columns]
+    given = [c for c in TIME_COLUMNS if c in table.columns]
+    if len(given) != 1 or not len(table):
+        raise DataError(f"--at-times {path}: needs exactly one column t (seconds from the session's start) or time "
+                        f"(ISO 8601 date-times) and at least one row; it has columns {', '.join(table.columns)} and "
+                        f"{len(table)} row(s)")
+    col = given[0]
+    if col == "t":
+        t = pd.to_numeric(table["t"].str.strip(), errors="coerce").to_numpy(float)
+        bad = np.flatnonzero(~np.isfinite(t))
+        if bad.size:
+            raise DataError(f"--at-times {path}: row {int(bad[0]) + 2} t {table['t'].iloc[bad[0]]!r} is not a finite "
+                            "number of seconds; fix that row")
+    return table[[col]].copy()
+
+
+def session_seconds(times: pd.DataFrame, path, start: datetime | None, where: str) -> np.ndarray:
+    """The times in session seconds: ``t`` as it is, ``time`` less the recording start (L298); a ``time`` column on
+    a session without a start, or a cell that is no ISO 8601 date-time, is one line."""
+    if "t" in times:
+        return pd.to_numeric(times["t"], errors="coerce").to_numpy(float)
+    if start is None:
+        from pdrlearn.track.clock import NO_START_FIX
+
+        raise DataError(f"--at-times {path}: its time column needs the recording's clock time, which {where} does "
+                        f"not give; give t in seconds instead, or {NO_START_FIX}")
+    out = np.empty(len(times))
+    for i, text in enumerate(times["time"]):
+        try:
+            when = datetime.fromisoformat(str(text).strip())
+        except ValueError:
+            when = None
+        if when is None or (when.tzinfo is None) != (start.tzinfo is None):
+            raise DataError(f"--at-times {path}: row {i + 2} time {text!r} is not an ISO 8601 date-time "
+                            f"{'with a UTC offset ' if start.tzinfo is not None else ''}like the recording start "
+                            f"{start.isoformat()}; fix that row")
+        out[i] = (when - start).total_seconds()
+    return out
+
+
+def check_span(t, span: tuple[float, float], path="--at-times") -> np.ndarray:
+    """The times ``t`` (session s) inside the recording ``span`` (first and last sample, s), or one line naming the
+    first row outside it (decision L638; checked before tracking)."""
+    t = np.asarray(t, dtype=float)
+    lo, hi = span
+    out_of = np.flatnonzero((t < lo - 1e-9) | (t > hi + 1e-9))
+    if out_of.size:
+        k = int(out_of[0])
+        raise DataError(f"--at-times {path}: row {k + 2} ({t[k]:.3f} s) lies outside the recording ({lo:.3f} to "
+                        f"{hi:.3f} s on the session's clock); {out_of.size} time(s) outside - drop them or fix the "
+                        "times")
+    return t
+
+
+def positions_at(trajectory: pd.DataFrame, t: np.ndarray, span: tuple[float, float], path="--at-times",
+                 step_starts=None) -> pd.DataFrame:
+    """The trajectory's numeric columns at session times ``t`` (decision L638, module docstring); ``span`` the
+    recording's first and last sample (s). With ``step_starts`` (the steps' ``start_s``, one per trajectory row
+    after the first) a row's position holds until the next step starts. A time outside ``span`` is one line naming
+    the row."""
+    t = check_span(t, span, path)
+    tr = trajectory.sort_values("t", kind="stable").reset_index(drop=True)
+    rt = tr["t"].to_numpy(float)
+    if step_starts is not None and len(step_starts) + 1 == len(tr):  # held until each step starts (a pause, the
+        s = np.maximum(np.asarray(step_starts, float), rt[:-1])  # standstill before the first stride: no smear)
+        tr = tr.iloc[np.r_[0, np.repeat(np.arange(1, len(tr)), 2)] - np.r_[0, np.tile([1, 0], len(tr) - 1)]]
+        tr = tr.reset_index(drop=True)
+        rt = np.r_[rt[0], np.ravel(np.c_[s, rt[1:]])]
+    out = pd.DataFrame({"t": t})
+    for c in tr.columns:
+        if c in NOT_POSITIONS or not pd.api.types.is_numeric_dtype(tr[c]) or pd.api.types.is_bool_dtype(tr[c]):
+            continue
+        v = tr[c].to_numpy(float)
+        ok = np.isfinite(v)
+        if not ok.any():
+            out[c] = np.nan
+            continue
+        if pd.api.types.is_integer_dtype(tr[c]) or c == "floor" or c.endswith("_floor"):  # a floor: the row before
+            idx = np.clip(np.searchsorted(rt[ok], t, side="right") - 1, 0, ok.sum() - 1)
+            out[c] = v[ok][idx]
+        else:  # np.interp holds the first / last row outside them: the start pose, the last position
+            out[c] = np.interp(t, rt[ok], v[ok])
+    return out
+
+
+def times_in_session(times: pd.DataFrame, path, session, start: datetime | None) -> np.ndarray:
+    """Decision L638: the times file's times in session seconds, inside the session's recording, checked before
+    tracking (a ``time`` column without a recording start, or a time outside, is one line)."""
+    t = session_seconds(times, path, start, str(session.where))
+    return check_span(t, (float(session.t_recording_start), float(session.t_end)), path)
+
+
+def at_times_table(trajectory: pd.DataFrame, t, start: datetime | None, steps: pd.DataFrame | None = None,
+                   ) -> pd.DataFrame:
+    """OUT/at_times.csv (decision L638): ``t`` (:func:`times_in_session`) in the file's order, the trajectory's
+    columns there (held until each of ``steps`` starts), and ``time`` (L298's form) with a recording start."""
+    from pdrlearn.track.clock import clock_texts
+
+    out = positions_at(trajectory, t, (-np.inf, np.inf), step_starts=None if steps is None else steps["start_s"])
+    if start is not None:
+        out["time"] = clock_texts(start, out["t"])
+    return out
