@@ -237,16 +237,21 @@ class LiveRest:
         return bool(unrested_strides(t, acc, np.array([t0]), np.array([t1]), self.g_rest)[0])
 
 
+#: decisions E280 / L640: how many strides of its chain either side a stride's verdict reads: L611's
+#: :data:`NEIGHBOURS`, and one more for L640's second rule (a stride's verdict reads its neighbours' verdicts)
+REACH = NEIGHBOURS + 1
+
+
 class LiveLoops:
     """Decision E280: L611's verdict (:func:`closed_loop_strides`, the same call) for strides that arrive one at a
-    time, as a live tracker measures them. A stride's verdict reads up to :data:`NEIGHBOURS` strides of its chain
+    time, as a live tracker measures them. A stride's verdict reads up to :data:`REACH` strides of its chain
     after it, so :meth:`add` holds a stride until it is final and releases the strides in order, each with its
-    verdict: final when :data:`NEIGHBOURS` later strides are known, or the next one is known and starts over
+    verdict: final when :data:`REACH` later strides are known, or the next one is known and starts over
     :data:`CHAIN_PAUSE_S` after it (its chain ends), or when no stride to come can make it pedalling: the kernel says
-    so with :data:`NEIGHBOURS` worst-case strides appended (chained, reversing, unrested, no travel: no real stride
+    so with :data:`REACH` worst-case strides appended (chained, reversing, unrested, no travel: no real stride
     adds more reversals or unrested strides), which releases a walking stride at once (no look-ahead, no latency).
     :meth:`flush` (the end of a recording) releases the rest, judged on what is known, as ``track --streaming`` judges
-    its last strides. ``history`` keeps the last :data:`NEIGHBOURS` released rows (their verdicts' neighbours).
+    its last strides. ``history`` keeps the last :data:`REACH` released rows (their verdicts' neighbours).
 
     A row is ``(start s, end s, raw dz m, unrested, raw horizontal travel m, judged)``; an unjudged row (a stride
     across a foot gap or bridged samples, a posture) is in its chain but has dz 0, no missing rest and is never
@@ -282,28 +287,28 @@ class LiveLoops:
             i = len(self.history)  # the first held row
             after = len(rows) - 1 - i
             ended = after >= 1 and rows[i + 1][0] - rows[i][1] > CHAIN_PAUSE_S
-            if final or ended or after >= NEIGHBOURS:
+            if final or ended or after >= REACH:
                 pedal = self._verdict(rows, i)
             elif not self._verdict(rows + self._worst(rows[-1]), i):
                 pedal = False
             else:
                 break
             row, payload = self.held.pop(0)
-            self.history = (self.history + [row])[-NEIGHBOURS:]
+            self.history = (self.history + [row])[-REACH:]
             out.append((payload, pedal))
         return out
 
     @staticmethod
     def _worst(last: tuple) -> list[tuple]:
-        """:data:`NEIGHBOURS` strides chained after ``last`` that reverse each other (and ``last``), unrested, not
+        """:data:`REACH` strides chained after ``last`` that reverse each other (and ``last``), unrested, not
         travelling: no real stride to come adds more to a verdict."""
         sign = -1.0 if last[2] > 0 else 1.0
         t = last[1]
-        return [(t, t, sign * (-1.0) ** k, True, 0.0, True) for k in range(NEIGHBOURS)]
+        return [(t, t, sign * (-1.0) ** k, True, 0.0, True) for k in range(REACH)]
 
     @staticmethod
     def _verdict(rows: list[tuple], i: int) -> bool:
-        lo, hi = max(0, i - NEIGHBOURS), min(len(rows), i + NEIGHBOURS + 1)  # the verdict reads no row outside
+        lo, hi = max(0, i - REACH), min(len(rows), i + REACH + 1)  # the verdict reads no row outside
         w = rows[lo:hi]
         judged = np.array([r[5] for r in w], dtype=bool)
         col = [np.array([r[k] for r in w], dtype=float) for k in range(5)]
