@@ -117,3 +117,14 @@ def test_floor_levels_is_count_floors_rule():
     z = np.array([0.0, 1.0, 1.6, 2.9, 3.1, 1.5, np.nan, -0.2, -3.0, -5.9])
     assert floor_levels(z, 3.0).tolist() == [0, 0, 0, 1, 1, 1, 1, 0, -1, -2]
     assert count_floors(z, 3.0) == (1, 3, -2)
+
+
+def test_a_row_inside_a_climb_takes_the_storeys_climbed_so_far_l631():
+    """L631: inside a walking climb the floor is the storeys its height has climbed, rounded and within the climb's
+    (ipin3 of trial T3: 7 of 95 waypoints on the wrong floor when the floor changed only at the climb's end, 4 so)."""
+    from pdrlearn.track.floor_column import climb_floor
+
+    t = [0.0, 1.0, 2.0, 3.0, 4.0, 5.0]
+    assert climb_floor(t, [0, 0, 1, 2, 3, 3], [(1.0, 4.0, 1)], 3.0).tolist() == [0, 0, 0, 1, 1, 1]
+    assert climb_floor(t, [0, 0, -1, -5, -3, -3], [(1.0, 4.0, -1)], 3.0).tolist() == [0, 0, 0, -1, -1, -1]
+    assert climb_floor(t, [0, 0, 0, 0, 0, 0], [(2.0, 2.0, -2)], 3.0).tolist() == [0, 0, -2, -2, -2, -2]  # a ride

@@ -39,22 +39,28 @@ def ride_altitude(t, z, rides: list[tuple[float, float]]) -> np.ndarray:
     return out
 
 
-def climb_floor(t, changes: list[tuple[float, int]]) -> np.ndarray:
-    """Decision L631: per row at times ``t`` the storey reached, the sum of the ``changes`` (time, storeys) at or
-    before the row."""
-    t = np.asarray(t, dtype=float)
+def climb_floor(t, z, changes: list[tuple[float, float, int]], storey_height_m: float) -> np.ndarray:
+    """Decision L631: per row at times ``t`` the storey reached: the sum of the ``changes`` ``(start, end, storeys)``
+    (:func:`floor_changes`) ended at or before the row; a row inside a walking climb (``start`` <= t < ``end``) adds
+    the storeys its height ``z`` (m) has climbed since the climb's start, rounded, within 0 and the climb's."""
+    t, z = np.asarray(t, dtype=float), np.asarray(z, dtype=float)
     out = np.zeros(len(t), dtype=int)
-    for when, n in changes:
-        out[t >= when - 1e-9] += int(n)
+    for start, end, n in changes:
+        out[t >= end - 1e-9] += int(n)
+        inside = (t >= start - 1e-9) & (t < end - 1e-9)
+        if inside.any():
+            z0 = float(np.interp(start, t, z))
+            part = np.rint((z[inside] - z0) / storey_height_m)
+            out[inside] += np.clip(np.nan_to_num(part), min(0, n), max(0, n)).astype(int)
     return out
 
 
-def floor_changes(result, storey_height_m: float) -> list[tuple[float, int]] | None:
-    """Decision L631: the summary's climbs (:func:`pdrlearn.track.evaluate.floor_climbs` on
-    :func:`~pdrlearn.track.evaluate.climb_inputs`, L127 / L375 / L394) as ``(time, storeys)``: a walking climb at the
-    end of its last stair step, a ride at the start of the step after it (its end: a ride after the last step, L394);
-    None where the floors are counted on the altitude (no per-climb count)."""
-    from pdrlearn.track.evaluate import STOREY_BAND, climb_inputs, floor_climbs
+def floor_changes(result, storey_height_m: float) -> list[tuple[float, float, int]] | None:
+    """Decision L631: the summary's climbs (L127's per-climb count, :func:`pdrlearn.track.evaluate.climb_inputs`; L375
+    rides, L394 a ride after the last step) as ``(start, end, storeys)`` (s): a walking climb from the start of its
+    first stair step to the end of its last; a ride at the start of the step after it (start = end; a ride after the
+    last step: its own end). None where the floors are counted on the altitude (no per-climb count)."""
+    from pdrlearn.track.evaluate import STOREY_BAND, _climbs, climb_inputs
 
     steps = result.steps
     dz, bridge, parts, slope_rows = climb_inputs(result)
@@ -63,14 +69,14 @@ def floor_changes(result, storey_height_m: float) -> list[tuple[float, int]] | N
     ends = steps["end_s"].to_numpy(float)
     starts = steps["start_s"].to_numpy(float) if "start_s" in steps else ends
     after = {int(r["row"]): float(r["end_s"]) for r in (result.info.get("rides") or []) if "row" in r}
-    ride_rows = set() if parts is None else set(np.flatnonzero(np.asarray(parts[0]) != 0).tolist())
     out = []
-    for last, n in floor_climbs(dz, storey_height_m, STOREY_BAND, bridge, slope_rows=slope_rows, parts=parts):
-        if last in ride_rows:  # decision L375: a ride's storeys, reached when it ends, before step `last`
+    for rows, n, ride in _climbs(dz, storey_height_m, STOREY_BAND, bridge, None, False, slope_rows, parts):
+        last = int(rows[-1])
+        if ride:  # decision L375: a ride's storeys, reached when it ends, before step `last`
             when = float(starts[last]) if last < len(steps) else after.get(last, np.inf)
+            out.append((when, when, n))
         else:
-            when = float(ends[min(last, len(steps) - 1)])
-        out.append((when, n))
+            out.append((float(starts[int(rows[0])]), float(ends[min(last, len(steps) - 1)]), n))
     return out
 
 
@@ -101,7 +107,8 @@ def with_floor_columns(traj: pd.DataFrame, result, storey_height_m: float | None
     t, z = out["t"].to_numpy(float), out["z"].to_numpy(float)
     out["z_rides"] = ride_altitude(t, z, _z_rides(result))  # decision L630
     changes = floor_changes(result, storey_height_m)
-    out["floor"] = (climb_floor(t, changes) if changes is not None  # decision L631
+    out["floor"] = (climb_floor(t, out["z_rides"].to_numpy(float), changes, storey_height_m)  # decision L631
+                    if changes is not None
                     else floor_levels(out["z_rides"].to_numpy(float), storey_height_m))
     return out
 
