@@ -221,8 +221,9 @@ SESSIONS: tuple[Column, ...] = (
     ("max_ramp_grade_pct", "%", "number", "the steepest ramp run's grade in size, ramps.csv's largest "
                                           "|max_run_grade_pct| (L572); empty without a ramp or a grade_source"),
     ("n_rides", "count", "integer", "rows of rides.csv: rides while standing, lift / escalator / vehicle / other "
-                                    "(L377, L616; a foot track's from the waist barometer, L378); empty without a "
-                                    "barometer"),
+                                    "(L377, L616; a foot track's from the waist barometer, L378, or without one its "
+                                    "vehicle rides from the foot's vibration, L624); empty without a barometer on the "
+                                    "lower back, or with the foot's ride_vibration off and no barometer"),
     ("floors_up_ref", "count", "integer", "storeys climbed in the reference; empty when the reference has no "
                                           "altitude track (0: it has one, and no storey was climbed; C103)"),
     ("frames_inferred", _ID, "text", "units whose frame was inferred from the data (D8)"),
@@ -474,7 +475,8 @@ SESSIONS: tuple[Column, ...] = (
     ("turn_angle_mae_deg", "deg", "number", "mean absolute error of the reference turns' angles (L42)"),
     ("turn_count", "count", "integer",
      f"turns of >= {TURN_COUNT_MIN_DEG:g} deg, with their same-direction edge rows (L104, L181); a lower-back "
-     "track's: turns.csv's rows (L231, L232)"),
+     "track's: turns.csv's rows (L231, L232) not marked carried (L622: a turn made seated or in a ride, W488, "
+     "is the seat's or the vehicle's)"),
     ("turn_count_min_deg", "deg", "number", "the smallest turn turn_count counts"),
     ("median_turn_duration_s", "s", "number", "median duration of turns.csv's turns (L200); empty without a turn"),
     ("median_turn_angle_deg", "deg", "number", "median absolute angle of turns.csv's turns (L200)"),
@@ -807,6 +809,11 @@ TURNS: tuple[Column, ...] = (
                                          "|angle_deg| over that span, longer than a 5-95 % one, so it reads lower "
                                          "than a foot track's for the same turn (about 20 % under the 5-95 % "
                                          "mean rate, L346); empty for a turn of no duration"),
+    ("carried", _ID, "true/false", "lower back: the turn is one the pelvis made seated or in a ride (W488: inside "
+                                      "a seated span, a span of contacts W336 / W486 name a ride, or with the foot "
+                                      "unit at rest), the seat's or the vehicle's, not the walker's; kept here, left "
+                                      "out of turn_count, the turn medians and periods.csv's n_turns (L622); false on "
+                                      "a foot track"),
     ("turn_steps", "count", "integer", "lower back: the detected steps (steps.csv contacts, event_s) inside the "
                                        "turn, start_s to end_s: the clinical steps per turn, unlike n_rows (W398); "
                                        "empty on a foot track (its rows are one foot's strides)"),
@@ -872,7 +879,8 @@ PERIODS: tuple[Column, ...] = (
     ("ascent_m", "m", "number", "the summary's ascent_m rule on the trajectory inside the period (L467)"),
     ("descent_m", "m", "number", "the same, descent (L467)"),
     ("n_bouts", "count", "integer", "bouts.csv's bouts that start in the period (sums to n_bouts)"),
-    ("n_turns", "count", "integer", "turns.csv's turns that start in the period (sums to turn_count)"),
+    ("n_turns", "count", "integer", "turns.csv's turns not marked carried (L622) that start in the period (sums to "
+                                    "turn_count)"),
     ("n_backward_strides", "count", "integer", "foot: the summary's backward strides whose middle lies in the period "
                                                "(sums to n_backward_strides, L484); empty on the lower back"),
     ("n_side_strides", "count", "integer", "foot: the summary's side strides whose middle lies in the period (sums "
@@ -1090,8 +1098,9 @@ FOOT_STEPS: tuple[Column, ...] = (
     ("pause_dz_m", "m", "number", "with a waist barometer (wBarometer.csv): its ride of 1.5 m or more in the "
                                   "standstill before the stride (L378, W231's rule), else 0; not in dz_m nor z, "
                                   "counted in the floors (L375)"),
-    ("ride", _ID, "text", "with a waist barometer: that ride's kind, lift / escalator / other (L376, L378); empty: "
-                          "none"),
+    ("ride", _ID, "text", "with a waist barometer: that ride's kind, lift / escalator / other / vehicle (L376, "
+                          "L378, L616); without one (L624): vehicle only, from the foot's vibration, and no "
+                          "pause_dz_m; empty: none"),
     _GRADE_PCT,
     ("terrain", _ID, "text", "M3's terrain class (empty without a model; L18)"),
     ("terrain_dz", _ID, "text", "offline: up / down / flat from dz_m by L39's 0.10 m, with or without a model "
@@ -1443,9 +1452,10 @@ RIDES: tuple[Column, ...] = (
                           "L616) or other (a slow long climb); vehicle and other count no floors (L376)"),
     ("dz_m", "m", "number", "the altitude change while standing (steps.csv pause_dz_m of the next step; a vehicle "
                             "row of a standstill under 1.5 m of change, L616: the barometer's change over it, not in "
-                            "pause_dz_m)"),
+                            "pause_dz_m); empty: a foot track without a barometer (L624: its vehicle rows are read "
+                            "from the foot's vibration alone)"),
     ("duration_s", "s", "number", "(end_s - start_s) / 0.8: the ride's duration (L376)"),
-    ("vertical_rate_mps", "m/s", "number", "|dz_m| / duration_s"),
+    ("vertical_rate_mps", "m/s", "number", "|dz_m| / duration_s; empty without dz_m (L624)"),
     ("vibration_mps2", "m/s^2", "number", "the median over 1 s windows of the detrended |specific force|'s SD during "
                                           "the ride (a lower-back track: the waist accelerometer, else the foot's; a "
                                           "foot track: the foot's first, L615); 0.15 or more is a vehicle (L402) on "
@@ -1522,6 +1532,10 @@ TRAJECTORY: tuple[Column, ...] = (
                                     "(storeys_changed; a ride after the last stride, L394, only there); storeys of "
                                     "--storey-height, without it L64's assumed 3.0 m - set it to the building's "
                                     "(L631)"),
+    ("ride", "index", "integer", "only when rides.csv has a row: the rides.csv ride the line from the row before to "
+                                 "this one crosses - not walked (the first stride after a ride starts where the "
+                                 "walker boarded: the vehicle's travel is not in the track), so do not draw it as a "
+                                 "path (path.png draws it dotted grey); empty elsewhere (L623)"),
 )
 
 
@@ -1542,6 +1556,9 @@ DETECTIONS: tuple[Column, ...] = (
     ("fc_s", "s", "number", "waist-ic: the final contact (toe-off) after the initial contact"),
     ("tc_s", "s", "number", "a track's steps.csv with --toe-off: the toe-off, scored against steps.csv tc_ms "
                             "(steps 59)"),
+    ("pedalling", _ID, "true/false", "steps --keep-pedalling with a foot detector: the stride is one L611 calls "
+                                     "pedalling (track removes it); without the option those rows are left out "
+                                     "(L625)"),
 )
 #: decision steps 59: `pdrlearn steps / score-steps --events-out`
 EVENTS: tuple[Column, ...] = (
@@ -1607,6 +1624,9 @@ STEPS_JSON: tuple[Column, ...] = (
     ("merged_detections", "count", "integer", "foot: detections dropped between the same two rests (steps 34)"),
     ("rest_strides", "count", "integer", "foot: rest-to-rest strides the kept detections cover (steps 38)"),
     ("foot_swing_strides", "count", "integer", "foot: the foot's own rest-and-swing strides, when more (steps 47)"),
+    ("pedalling_strides", "count", "integer", "steps with a foot detector: strides L611 calls pedalling (a closed "
+                                              "loop: cycling?), left out of count (with --keep-pedalling: counted, "
+                                              "marked in --out's pedalling column); 0: none (L625)"),
     ("not_scored", _ID, "text", "why a foot table was not scored (steps 58)"),
     ("out", _ID, "text", "--out's path"),
     ("events_out", _ID, "text", "--events-out's path"),

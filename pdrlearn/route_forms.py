@@ -30,6 +30,8 @@ ROUTE_FORMS = {
            "never), sits up and stands up ('lie:28800': a night; lying.csv, rolls.csv; up to 86400 s; S58-S61)",
     "vehicle": "'vehicle:S[:RMS[:RISE]]' standing S seconds in a moving vehicle, no steps (RMS its vibration, "
                "drawn when empty; RISE m climbed; S71, S75)",
+    "cycle": "'cycle:S' getting on a bicycle, pedalling seated S seconds (20-3600) and getting off, no steps (the "
+             "foot round the crank; rides.csv kind cycle; S99)",
 }
 
 

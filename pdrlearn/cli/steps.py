@@ -41,6 +41,10 @@ def steps(
     events_out: Path = typer.Option(None, "--events-out", help=EVENTS_OUT_HELP),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object."),
+    keep_pedalling: bool = typer.Option(False, "--keep-pedalling", help="With a foot detector: count the strides "
+                                        "that go round a closed loop (cycling?), which track removes and steps "
+                                        "leaves out of its count by default; --out's pedalling column marks them "
+                                        "(decisions L611, L625)."),
 ) -> None:
     """Detect steps and, when the session has labels, print precision/recall/F1 and the count error.
 
@@ -60,6 +64,8 @@ def steps(
         pdrlearn steps datasets/real/mobgap_HA001_Test5_Trial1 --detector pll:loop_hz=1.5   # a detector setting
 
         pdrlearn steps sessions/walk1 --out walk1_steps.csv --time-origin export   # an import's own clock
+
+        pdrlearn steps sessions/commute --detector accel --keep-pedalling --out c.csv   # count cycling strides too
     """
     from pdrlearn.io import read_session
     from pdrlearn.steps import get_detector
@@ -89,6 +95,10 @@ def steps(
                             "origin_s): its times are its own; leave --time-origin out (decision E173)")
     if detector == "auto":
         det = auto_detector(session)
+    if keep_pedalling and det.unit != "foot":  # decision L625: L611 judges a foot's strides
+        raise DataError(f"--keep-pedalling: --detector {det.name} finds lower-back steps, and the pedalling check "
+                        "(decision L611) reads a foot unit's strides; leave --keep-pedalling out, or pass a foot "
+                        "detector (--detector accel) (decision L625)")
     if det.unit == "foot" and reads_force(det) and session.has("fAccelerometer", "fGyroscope"):
         session = _tared(session, det.name)  # decision B284: an unloaded offset subtracted, with one line
     u = det.unit[0]  # "f" or "w": the unit's inertial streams (+ the force sensors of accel-force)
@@ -113,7 +123,7 @@ def steps(
         foot_checks(session, table, det.name, force=reads_force(det))
     report(session, table, name=det.name, unit=det.unit, tolerance=tolerance, out=out, was=was, as_json=as_json,
            detector=det, time_origin=time_origin, ref_offset=ref_offset,
-           events_out=events_out)
+           events_out=events_out, pedalling="keep" if keep_pedalling else "drop")
 
 
 def _events_file(events_out: Path | None, out: Path | None, force: bool) -> Path | None:
@@ -185,13 +195,15 @@ def foot_checks(session, table, name: str, *, force: bool = False) -> None:
 
 def report(session, table, *, name: str, unit: str, tolerance: float, out: Path | None = None, was: bool = False,
            as_json: bool = False, per_stride: bool = True, detector=None, time_origin: str = "session",
-           ref_offset: float = 0.0, events_out: Path | None = None) -> None:
+           ref_offset: float = 0.0, events_out: Path | None = None, pedalling: str | None = None) -> None:
     """Score ``table`` against ``session``'s labels and print the result (``steps`` and ``score-steps``): a foot
     table is first reduced to one row per rest-to-rest stride (decision steps 34) unless ``per_stride`` is False,
     with one warning when the kept rows cover many more rest-to-rest strides (decision steps 38; ``detector``, when
     given, names its shortest stride there); ``out`` gets the scored table, its times on the session's clock or
     with ``time_origin="export"`` on the imported export's (decision E173); ``ref_offset``: the reference clock
-    minus the IMU clock (decision steps 56); ``events_out`` gets the events table (decision steps 59)."""
+    minus the IMU clock (decision steps 56); ``events_out`` gets the events table (decision steps 59).
+    ``pedalling`` (decision L625; a foot table, one row per stride): ``"drop"`` leaves L611's pedalling strides out
+    of the table, ``"keep"`` keeps them with a ``pedalling`` column, each with one line; None: not judged."""
     import logging
 
     from pdrlearn.atomic import atomic_file
@@ -205,7 +217,14 @@ def report(session, table, *, name: str, unit: str, tolerance: float, out: Path 
     force = reads_force(detector)
     if unit == "foot" and len(table) and per_stride:  # decision steps 34: one row per rest-to-rest stride, as `track`
         table, merged, spanned = one_per_stride_counted(table, session, force=force)
+    pedalled = pedalled_rest = 0
+    if unit == "foot" and per_stride and pedalling is not None:  # decision L625: L611's pedalling, as track
+        table, pedalled, pedalled_rest = _pedalling(session, table, pedalling == "keep")
+        if pedalled_rest:  # the rests the left-out rows covered are no merged strides
+            spanned -= pedalled_rest - pedalled
     result: dict = {"session": session.name, "detector": name, "unit": unit, "count": int(len(table))}
+    if pedalling is not None and unit == "foot" and per_stride:
+        result["pedalling_strides"] = pedalled
     if merged:
         result["merged_detections"] = merged
     if spanned:  # decision steps 38: strides merged into one detection (track splits them at the rests)
@@ -216,7 +235,7 @@ def report(session, table, *, name: str, unit: str, tolerance: float, out: Path 
     if unit == "foot" and per_stride:
         from pdrlearn.steps.strides import swinging_rest_strides
 
-        own = swinging_rest_strides(session, force=force)
+        own = swinging_rest_strides(session, force=force) - pedalled_rest  # L625: a crank's swings are no walk
         if own > len(table):
             result["foot_swing_strides"] = own
     # decision steps 47: more than steps 38's fraction of the foot's strides lie outside any detection
@@ -324,6 +343,22 @@ def report(session, table, *, name: str, unit: str, tolerance: float, out: Path 
     for path in (events_out, out):
         if path is not None:
             typer.echo(str(path))
+
+
+def _pedalling(session, table, keep: bool):
+    """Decision L625: ``(table, rows, rest)``: a foot table without L611's pedalling strides (``keep``: with them,
+    marked in a ``pedalling`` column), how many rows were pedalling and the rest-to-rest strides they cover (0 with
+    ``keep``: nothing left out); their one line logged."""
+    import logging
+
+    from pdrlearn.track.pedalling import pedalling_rows
+
+    rows, rest, line = pedalling_rows(session, table, kept=keep)
+    if line:
+        logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, line)
+    if keep:
+        return table.assign(pedalling=rows), int(rows.sum()), 0
+    return table[~rows].reset_index(drop=True), int(rows.sum()), rest
 
 
 def events_on_clock(events, origin: float | None):

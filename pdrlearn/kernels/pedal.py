@@ -117,9 +117,14 @@ def spans_of(mask: np.ndarray, start_s: np.ndarray, end_s: np.ndarray) -> list[t
     return [(a, b, k) for a, b, k in out]
 
 
+#: decision L611: what the track does with the pedalling strides, for the line
+TRACK_REMOVED = "removed from the track (no row, 0 m)"
+
+
 def pedal_line(loop: np.ndarray, seated: np.ndarray, start_s: np.ndarray, end_s: np.ndarray,
-               seats: list[tuple[float, float]] | None = None) -> str | None:
-    """Decisions L611 / L612: the one warning line naming the removed strides' spans and why, or None."""
+               seats: list[tuple[float, float]] | None = None, removed: str = TRACK_REMOVED) -> str | None:
+    """Decisions L611 / L612: the one warning line naming the removed strides' spans and why, or None; ``removed``
+    says what was done with them (decision L625: ``pdrlearn steps`` leaves them out of its count or counts them)."""
     parts = []
     if loop.any():
         where = ", ".join(f"{a:.2f}-{b:.2f} s ({k})" for a, b, k in spans_of(loop, start_s, end_s))
@@ -134,4 +139,4 @@ def pedal_line(loop: np.ndarray, seated: np.ndarray, start_s: np.ndarray, end_s:
                      f"({seat}; cycling or a foot moving while seated? decision L612)")
     if not parts:
         return None
-    return "not walking, removed from the track (no row, 0 m): " + "; ".join(parts)
+    return f"not walking, {removed}: " + "; ".join(parts)

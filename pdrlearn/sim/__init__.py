@@ -3,7 +3,7 @@
 Entry points: :func:`simulate` (thesis scenarios and calibration exercises), :func:`simulate_path`
 (your own path of :class:`Straight`, :class:`Curve`, :class:`Stairs`, :class:`Slope`, :class:`Backward`, :class:`Turn`,
 :class:`Stand`, :class:`Sit`, :class:`Lift`, :class:`Escalator`, :class:`Trolley`, :class:`Side`,
-:class:`Freeze`, :class:`Lie`, :class:`Vehicle` segments) and :class:`UserProfile`
+:class:`Freeze`, :class:`Lie`, :class:`Vehicle`, :class:`Cycle` segments) and :class:`UserProfile`
 (anthropometry, gait, mounting, sensor errors).
 See docs/simulator.md.
 """
@@ -11,6 +11,7 @@ See docs/simulator.md.
 from pdrlearn.sim.path import (
     Backward,
     Curve,
+    Cycle,
     Escalator,
     Footstep,
     Freeze,
@@ -56,6 +57,7 @@ __all__ = [
     "Trolley",
     "Side",
     "Vehicle",
+    "Cycle",
     "Footstep",
     "plan_footsteps",
 ]

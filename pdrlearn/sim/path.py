@@ -16,6 +16,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from pdrlearn.errors import DataError
+from pdrlearn.sim.cycle import check_cycle, draw_cycle
 from pdrlearn.sim.freeze import FREEZE_MARGIN_S, FreezeEpisode, check_freeze, draw_freeze
 from pdrlearn.sim.lying import BED_SIT_S, LyingEpisode, check_lie, draw_lying
 from pdrlearn.sim.ride import RIDE_MARGIN_S, Ride, check_rise, draw_ride
@@ -196,6 +197,15 @@ class Vehicle:
 
 
 @dataclass(frozen=True)
+class Cycle:
+    """Get on a bicycle, pedal seated on the saddle for ``duration_s`` seconds (ride off, an S-bend, stop) and get
+    off: carried without a step, the instrumented foot going round the crank (decision S99,
+    :mod:`pdrlearn.sim.cycle`)."""
+
+    duration_s: float
+
+
+@dataclass(frozen=True)
 class Trolley:
     """Walk ``length_m`` metres straight ahead pushing a trolley (decision S46): the hands on the handle damp the
     pelvic rotation (:data:`pdrlearn.sim.body.PUSHING_ROTATION_GAIN`); the steps are level walking steps."""
@@ -224,7 +234,7 @@ class Lie:
 
 
 Segment = (Straight | Curve | Stairs | Slope | Backward | Turn | Pivot | Stand | Sit | Lift | Escalator | Trolley | Side
-           | Freeze | Lie | Vehicle)
+           | Freeze | Lie | Vehicle | Cycle)
 
 
 @dataclass
@@ -585,6 +595,15 @@ class _Walker:
         self.transfers.append(ride)
         self.pending_pause += RIDE_MARGIN_S + ride.duration_s + RIDE_MARGIN_S
 
+    def cycle(self, seg: Cycle) -> None:
+        """Decision S99: S71's vehicle ride (feet together, inside the pause before the next step) on a bicycle."""
+        check_cycle(seg.duration_s, str(seg))
+        self.close()
+        ride = draw_cycle(len(self.steps), float(seg.duration_s), self.psi, self.c, self.rng,
+                          delay_s=self.pending_pause + RIDE_MARGIN_S)
+        self.transfers.append(ride)
+        self.pending_pause += RIDE_MARGIN_S + ride.duration_s + RIDE_MARGIN_S
+
 
 def path_length(segments: list[Segment], user: UserProfile | None = None) -> float:
     """Horizontal length (m) of the centre line of ``segments`` (backward steps at 0.55 step length); walked only:
@@ -658,6 +677,7 @@ def plan_footsteps(
         Freeze: w.freeze,
         Lie: w.lie,
         Vehicle: w.vehicle,
+        Cycle: w.cycle,
     }
     for seg in segments:
         if isinstance(seg, Straight | Curve | Slope | Trolley) and seg.gait not in GAITS:
@@ -669,7 +689,7 @@ def plan_footsteps(
         except KeyError:
             raise DataError(
                 f"unknown path segment {seg!r}; use Straight, Curve, Stairs, Slope, Backward, Turn, Pivot, Stand, Sit, "
-                "Lift, Escalator, Trolley, Side, Freeze, Lie, Vehicle"
+                "Lift, Escalator, Trolley, Side, Freeze, Lie, Vehicle, Cycle"
             ) from None
     w.close()
     return w.steps, initial, w.pending_pause, w.transfers

@@ -43,6 +43,9 @@ ESCALATOR_MAX_RISE_M = 60.0  # the highest rise accepted (m; the deepest metro e
 #: sways the trunk by a few millimetres below 1 Hz (assumption)
 RIDE_SWAY_M = 0.004
 RIDE_SWAY_HZ = (0.2, 0.6)
+#: decisions S71, S99: the kinds whose carry (turning the body with the path) is
+#: :func:`pdrlearn.sim.vehicle.vehicle_carry`'s, not :func:`ride_offset`'s straight geometry
+CARRIED_KINDS = ("vehicle", "cycle")
 
 
 @dataclass(frozen=True)
@@ -170,7 +173,7 @@ def ride_offset(t: np.ndarray, rides: list[Ride], starts: np.ndarray, *, sway: b
         tau = t - t0
         if not (tau > 0).any():
             continue
-        if ride.kind != "vehicle":  # decision S71: a vehicle's carry is pdrlearn.sim.vehicle.vehicle_carry's
+        if ride.kind not in CARRIED_KINDS:  # S71, S99: a vehicle's carry is pdrlearn.sim.vehicle.vehicle_carry's
             out += _geometry(ride, ride_distance(ride, tau))
         if sway:
             on = (tau > 0) & (tau < ride.duration_s)

@@ -18,6 +18,7 @@
 | ``lift:H`` | stand in a lift riding H metres (+H up, -H down; no steps; decision S45) |
 | ``escalator:H`` | stand on a 30 deg escalator rising H metres straight ahead (+H up, -H down; 1-60; S45) |
 | ``vehicle:S[:RMS[:RISE]]`` | ride a bus or train for S s (20-3600), vibrating RMS (S71), climbing RISE m (S75) |
+| ``cycle:S`` | get on a bicycle, pedal seated S s (20-3600; the foot round the crank), get off (no steps; S99) |
 | ``trolley:M[:GAIT]`` | walk M metres straight pushing a trolley (pelvic rotation halved, S46; no walking aid, W456) |
 | ``side:M`` | side-step M metres facing ahead (+M left, -M right; lead foot out, trail foot closes; decision S49) |
 | ``freeze:S[:HZ[:ACC]]`` | stop, tremble in place S s at HZ (3-8) with the foot's peak ACC m/s^2 (no steps; S51) |
@@ -31,12 +32,14 @@ import math
 
 from pdrlearn.errors import DataError
 from pdrlearn.route_forms import ROUTE_FORMS
+from pdrlearn.sim.cycle import check_cycle
 from pdrlearn.sim.freeze import check_freeze
 from pdrlearn.sim.lying import check_lie
 from pdrlearn.sim.path import (
     MAX_SLOPE_GRADE,
     Backward,
     Curve,
+    Cycle,
     Escalator,
     Freeze,
     Lie,
@@ -188,6 +191,11 @@ def parse_route(spec: str) -> list[Segment]:
             rise = _number(item, parts[3], positive=False) if len(parts) > 3 else 0.0
             seg = Vehicle(_number(item, parts[1]), rms, rise)
             check_vehicle(seg.duration_s, rms, f"--route item {item!r}", rise)
+            segments.append(seg)
+        elif kind == "cycle":  # decision S99: the planner's limits, named after the item
+            _arity(item, parts, (1,))
+            seg = Cycle(_number(item, parts[1]))
+            check_cycle(seg.duration_s, f"--route item {item!r}")
             segments.append(seg)
         elif kind == "curve":
             _arity(item, parts, (2, 3))

@@ -35,6 +35,7 @@ from pdrlearn.sim.body import (
     step_lengths,
     trunk_vibration_source,
 )
+from pdrlearn.sim.cycle import cycle_foot, cycle_loads, cycle_pelvis
 from pdrlearn.sim.freeze import FreezeEpisode, freeze_foot, freeze_loads, freeze_pelvis, freeze_table
 from pdrlearn.sim.kernels import (
     angular_rate_body,
@@ -459,14 +460,17 @@ def simulate_path(
     t_out = block_mean(t100, k_out)
     check_gaps_inside(t_out, opt["gaps"])  # decision L548: before the sensors are simulated
 
+    cycling = any(r.kind == "cycle" for r in rides)  # decision S99
     # -- foot unit (the right foot, S1, or the left, S54) --
     # per-user mount: from beside the heel to the instep (decisions S19)
     r_sensor = np.array([user.foot_sensor_x_frac * user.foot_length_m, 0.0, user.foot_sensor_height_m])
 
     def foot_unit(tt: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         heel, rot = foot_pose(tt, foot, steps, ev, initial, user, vibration=1.0 if noise else 0.0)
-        if freezes:  # decision S51: the trembling foot (pitching about the unit, moving fore-aft and up)
-            dp, pitch = freeze_foot(tt, freezes, freeze_starts)
+        moved = [freeze_foot(tt, freezes, freeze_starts)] if freezes else []  # decision S51: the trembling foot
+        if cycling:  # decision S99: the foot on the pedal, going round the crank
+            moved.append(cycle_foot(tt, rides, ride_starts))
+        for dp, pitch in moved:  # pitching about the unit, moving fore-aft and up
             c, s_ = np.cos(pitch), np.sin(pitch)
             ry = np.zeros((tt.size, 3, 3))
             ry[:, 0, 0], ry[:, 0, 2], ry[:, 1, 1], ry[:, 2, 0], ry[:, 2, 2] = c, s_, 1.0, -s_, c
@@ -500,6 +504,8 @@ def simulate_path(
     load_h, load_t = foot_loads(t100, foot, steps, ev, user)
     if freezes:  # decision S51: the heel and forefoot loads alternate while trembling
         load_h, load_t = freeze_loads(t100, load_h, load_t, freezes, freeze_starts)
+    if cycling:  # decision S99: the heel off the pedal, the forefoot pressing on the downstroke
+        load_h, load_t = cycle_loads(t100, load_h, load_t, rides, ride_starts)
     force_a = sn.force_readout(load_h, f_rng, noise=noise)
     force_b = sn.force_readout(load_t, f_rng, noise=noise)
     if foot != "right":  # decision S54: advance the session stream past the right unit's draws
@@ -544,6 +550,8 @@ def simulate_path(
             p_pel = p_pel + freeze_pelvis(tt, freezes, freeze_starts)
         if lyings:  # decisions S58, S59: lying down on the bed, turning over, sitting up (body frame)
             p_pel, rot = _lie_down(tt, p_pel, rot, lyings, lying_starts)
+        if cycling:  # decision S99: seated on the saddle, tilted forward, rocking with the crank (body frame)
+            rot = rot @ cycle_pelvis(tt, rides, ride_starts)
         if rides:  # decision S45: the ride, and the standing passenger's small sway (with the trunk's vibration)
             pos, rot = vehicle_carry(tt, p_pel + rot @ r_waist, rot, rides, ride_starts)  # S71
             return pos + ride_offset(tt, rides, ride_starts, sway=trunk > 0), rot

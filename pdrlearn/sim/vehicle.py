@@ -172,20 +172,24 @@ class VehicleRide:
 
 
 def draw_vehicle(after: int, duration_s: float, rms: float | None, heading_rad: float, centre: np.ndarray,
-                 rng: np.random.Generator, *, delay_s: float, rise_m: float = 0.0) -> VehicleRide:
+                 rng: np.random.Generator, *, delay_s: float, rise_m: float = 0.0,
+                 ranges: dict[str, tuple[float, float]] | None = None) -> VehicleRide:
     """A :class:`VehicleRide` of ``duration_s`` seconds with the module's ranges drawn from ``rng`` (``rms`` None:
     drawn from :data:`VEHICLE_VIB_RMS_MPS2`). The cruise speed is capped so that the ramps take at most half the
     ride, the bend's turn so that it fits in the cruise. Decision S75: ``rise_m`` != 0 climbs that far in the middle
     of the cruise at a peak grade drawn from :data:`VEHICLE_GRADE` (steeper when the cruise is too short for it; one
     :class:`DataError` line past :data:`VEHICLE_MAX_GRADE`). The draws are those of a level ride (the grade takes
-    the one spare uniform), so a ride without a climb is unchanged."""
+    the one spare uniform), so a ride without a climb is unchanged. ``ranges`` (decision S99, a bicycle's): any of
+    ``acc``, ``speed`` and ``rms`` in place of :data:`VEHICLE_ACC_MPS2`, :data:`VEHICLE_SPEED_MPS` and
+    :data:`VEHICLE_VIB_RMS_MPS2` (the same draws)."""
     u = rng.uniform(0.0, 1.0, 10)
+    ranges = {"acc": VEHICLE_ACC_MPS2, "speed": VEHICLE_SPEED_MPS, "rms": VEHICLE_VIB_RMS_MPS2, **(ranges or {})}
 
     def pick(rangeof: tuple[float, float], x: float) -> float:
         return rangeof[0] + x * (rangeof[1] - rangeof[0])
 
-    acc = pick(VEHICLE_ACC_MPS2, u[0])
-    speed = min(pick(VEHICLE_SPEED_MPS, u[1]), acc * duration_s / (2.0 * math.pi))  # ramp pi v / (2 a) <= T / 4
+    acc = pick(ranges["acc"], u[0])
+    speed = min(pick(ranges["speed"], u[1]), acc * duration_s / (2.0 * math.pi))  # ramp pi v / (2 a) <= T / 4
     lat = pick(VEHICLE_LAT_MPS2, u[2])
     bend = math.radians(pick(VEHICLE_BEND_DEG, u[3]))
     ramp_m = 0.5 * speed * math.pi * speed / (2.0 * acc)  # distance of the speed's rise: v T_a / 2
@@ -194,7 +198,7 @@ def draw_vehicle(after: int, duration_s: float, rms: float | None, heading_rad: 
     bend = min(bend, 0.8 * cruise_m * lat / (_BELL_SLOPE * speed**2))
     bend_m = _BELL_SLOPE * bend * speed**2 / lat
     start = ramp_m + 0.5 * (cruise_m - bend_m)
-    vib = pick(VEHICLE_VIB_RMS_MPS2, u[4]) if rms is None else float(rms)
+    vib = pick(ranges["rms"], u[4]) if rms is None else float(rms)
     t_rng = np.random.default_rng(rng.integers(2**32))
     tones = tuple((float(f), float(a), float(b)) for f, a, b in zip(
         t_rng.uniform(*VEHICLE_VIB_HZ, VEHICLE_VIB_TONES), t_rng.uniform(0, 2 * math.pi, VEHICLE_VIB_TONES),

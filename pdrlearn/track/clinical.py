@@ -58,6 +58,7 @@ import pandas as pd
 from pdrlearn.kernels.rests import between_rows
 from pdrlearn.kernels.yaw_turns import TURN_TIMING_FRACTIONS as _TURN_TIMING_FRACTIONS
 from pdrlearn.track.flags import flag_values
+from pdrlearn.waist.turn_steps import CARRIED
 
 #: a pause is at least this much (s) longer than the walk's median row-to-row interval
 PAUSE_MIN_S = 1.0
@@ -629,7 +630,7 @@ def yaw_turn_times(lo: float, hi: float, angle: float, yaw: pd.DataFrame | None)
 
 #: turns.csv's columns (decision L200), in order
 TURN_TABLE_COLUMNS = ("turn", "start_s", "end_s", "duration_s", "angle_deg", "peak_rate_dps", "n_rows", "bout",
-                      "mean_rate_dps")
+                      "mean_rate_dps", "carried")
 
 
 def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
@@ -688,7 +689,9 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
         raise ValueError(f"turn_table timing must be one of {(*TURN_TIMINGS, 'yaw')}, not {timing!r}")
     fractions = bool(yaw_fractions)
     yaw = pd.DataFrame(list(yaw_turns or []), columns=["start_s", "end_s", "peak_s", "angle_deg", "peak_dps",
-                                                       "start_5_s", "end_95_s"]) if timing == "yaw" else None
+                                                       "start_5_s", "end_95_s", CARRIED]) if timing == "yaw" else None
+    if yaw is not None:  # decision L622: W488's mark, False where a record has none
+        yaw[CARRIED] = [v is True for v in yaw[CARRIED]]
     if yaw is not None:  # decision L345: the times a yaw-timed row takes, and the share of the angle between them
         yaw_share = TURN_TIMING_FRACTIONS[1] - TURN_TIMING_FRACTIONS[0] if fractions else 1.0
         t_on = yaw["start_5_s"].where(yaw["start_5_s"].notna(), yaw["start_s"]) if fractions else yaw["start_s"]
@@ -765,7 +768,9 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
                          "angle_deg": angle, "peak_rate_dps": peak,
                          "n_rows": int(last - first), "bout": bout_of(float(t[a + 1])),
                          # decision L209: the share of the angle turned between the two times (L208: 5 % to 95 %)
-                         "mean_rate_dps": share * abs(angle) / (t1 - t0) if t1 > t0 else np.nan})
+                         "mean_rate_dps": share * abs(angle) / (t1 - t0) if t1 > t0 else np.nan,
+                         # decision L622: timed by a yaw-rate turn W488 marked made seated or riding
+                         "carried": match is not None and bool(yaw[CARRIED].iloc[match[0]])})
             if match is not None:
                 by_yaw[match[0]] = rows[-1]  # decision W403
     if (yaw_only or whole) and yaw is not None:  # decision L233: a yaw-rate turn no counted turn overlaps
@@ -777,11 +782,22 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
             dur = y.t_off - y.t_on  # decision L345: the 5-95 % times with yaw_fractions
             rows.append({"start_s": y.t_on, "end_s": y.t_off, "duration_s": dur, "angle_deg": y.angle_deg,
                          "peak_rate_dps": y.peak_dps, "n_rows": 0, "bout": bout_of(y.peak_s),
-                         "mean_rate_dps": yaw_share * abs(y.angle_deg) / dur if dur > 0 else np.nan})
+                         "mean_rate_dps": yaw_share * abs(y.angle_deg) / dur if dur > 0 else np.nan,
+                         "carried": bool(getattr(y, CARRIED))})  # decision L622
     rows.sort(key=lambda r: r["start_s"])  # stable: step-heading turns keep their order
     out = pd.DataFrame([{"turn": i + 1, **r} for i, r in enumerate(rows)], columns=list(TURN_TABLE_COLUMNS))
     out["bout"] = out["bout"].astype("Int64")
+    out["carried"] = out["carried"].astype(bool)
     return out
+
+
+def walked_turns(table: pd.DataFrame) -> pd.DataFrame:
+    """Decision L622: the rows of a :func:`turn_table` the walker made - those not ``carried`` (W488: a yaw-rate
+    turn made seated or in a ride, the seat's or the vehicle's); ``turn_count``, the turn medians and periods.csv's
+    ``n_turns`` count these, turns.csv keeps every row, marked."""
+    if "carried" not in table or not len(table):
+        return table
+    return table[~table["carried"].astype(bool).to_numpy()]
 
 
 def turn_summary(table: pd.DataFrame) -> dict:

@@ -679,16 +679,16 @@ def _basic(result: TrackResult, out: dict) -> None:
     from pdrlearn.track.gait import gait_summary
 
     out.update(gait_summary(result.steps))
-    from pdrlearn.track.clinical import clinical_summary, leg_summary, turn_summary, turn_table
+    from pdrlearn.track.clinical import clinical_summary, leg_summary, turn_summary, turn_table, walked_turns
     from pdrlearn.waist.transfers import transfer_summary
 
     out.update(clinical_summary(result.steps))  # decision L104: pauses, walking bouts, turns, stride-time CV
     out.update(leg_summary(result.steps))  # decision W228: steps per leg, the lower back's step-time asymmetry
     # decision L200: each turn's duration, angle, peak rate (L210: a lower-back track's yaw-rate turns)
     table = turn_table(result.steps, yaw_turns=result.info.get("yaw_turns"))
-    out.update(turn_summary(table))
+    out.update(turn_summary(walked_turns(table)))  # decision L622: not the turns made seated or riding (W488)
     if result.info.get("yaw_turns") is not None:  # decisions L231 / L233: turns.csv's turns are turn_count's
-        out["turn_count"] = len(table)
+        out["turn_count"] = len(walked_turns(table))  # L622: less those marked carried
     from pdrlearn.track.trunk_tug import foot_strides, trunk_note, tug_contacts, tug_source_summary, tug_yaw_turns
 
     # decision W183: chair transfers, TUG (W418: a foot track's from the waist unit's transfers and contacts; W490 /

@@ -178,6 +178,10 @@ def write_folder(dest: Path, tracked: dict) -> tuple[dict, bool]:
     from pdrlearn.track.floor_column import with_floor_columns
 
     traj = with_floor_columns(traj, result, summary.get("storey_height_m"))  # decisions L630, L631
+    if result.info.get("rides"):  # decision L623: the rows a ride's line reaches (not walked), last; only with a ride
+        from pdrlearn.track.rides import trajectory_rides
+
+        traj["ride"] = trajectory_rides(traj, result.info["rides"])
     if aided and plot:
         from pdrlearn.aid import plot_aided
 

@@ -436,6 +436,9 @@ def interval_rows(result, session, starts, ends, closed, *, unit: str | None, bo
     climbs = climb_times(steps, result.info, storey_height_m)
     climb_t, climb_n = climbs if climbs is not None else (np.zeros(0), np.zeros(0))
     bout_t = bouts["start_s"].to_numpy(float) if bouts is not None and len(bouts) else np.zeros(0)
+    from pdrlearn.track.clinical import walked_turns
+
+    turns = None if turns is None else walked_turns(turns)  # decision L622: n_turns sums to turn_count
     turn_t = turns["start_s"].to_numpy(float) if turns is not None and len(turns) else np.zeros(0)
     rise_t = rise_times(result.info.get("transfers"))  # decision W448: None on a track without a trunk unit
     traj = result.trajectory

@@ -1027,9 +1027,9 @@ def _without_pedalling(fd: FootDisplacement, fd_kw: dict, foot, strides: pd.Data
     a span the lower-back unit's chair ``transfers`` call seated, are not walking: their detections are left out and the
     rest integrated again (nothing changes without them); ``g_rest``: the foot's rest reading (L621). Returns (fd,
     strides, warning line or None)."""
-    loop = closed_loop_strides(fd.disp_[:, 2], fd.start_s_, fd.end_s_,
-                               unrested_strides(foot.t, foot.acc, fd.start_s_, fd.end_s_, g_rest),
-                               np.hypot(fd.disp_[:, 0], fd.disp_[:, 1]))
+    from pdrlearn.track.pedalling import pedal_loops
+
+    loop = pedal_loops(fd, foot, g_rest)  # decision L611 (L625: shared with `pdrlearn steps`)
     seated, seats = seated_strides(fd.start_s_, fd.end_s_, transfers)
     if not (loop | seated).any():
         return fd, strides, None

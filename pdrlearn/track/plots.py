@@ -91,8 +91,10 @@ def path_figure(paths: dict[str, TrackResult], *, session: Session | None = None
                            **({"height_ratios": ratios} if len(ratios) > 1 else {}))
     axes = list(np.atleast_1d(axes))
     ax, az = axes[0], axes[1] if climbs else None
+    rides = {f"{name} ({r.distance_m:.1f} m)": ride_rows(r) for name, r in paths.items()}  # decision L623
     for label, _, x, y, _, style in lines:
-        ax.plot(x, y, label=label, **style)
+        ax.plot(*broken_at(x, y, rides.get(label)), label=label, **style)
+    draw_rides(ax, lines, rides)
     if any(spans.values()):
         draw_climbs(ax, axes[-1], paths, spans)
     box = path_box([(x, y) for _, _, x, y, _, _ in lines])
@@ -126,6 +128,34 @@ def path_figure(paths: dict[str, TrackResult], *, session: Session | None = None
         az.grid(alpha=0.3)
         az.set_title("height over time", fontsize=9)
     return plt, fig
+
+
+def ride_rows(result: TrackResult) -> np.ndarray:
+    """Decision L623: the trajectory rows whose line from the row before crosses a ride of ``info["rides"]``
+    (:func:`pdrlearn.track.rides.trajectory_rides`: not walked); none without rides."""
+    from pdrlearn.track.rides import trajectory_rides
+
+    tr = result.trajectory
+    if not (result.info or {}).get("rides") or not len(tr):
+        return np.zeros(0, dtype=int)
+    return np.flatnonzero(trajectory_rides(tr, result.info["rides"]).notna().to_numpy())
+
+
+def broken_at(x: np.ndarray, y: np.ndarray, rows) -> tuple[np.ndarray, np.ndarray]:
+    """Decision L623: ``x``, ``y`` with a NaN put before each of ``rows`` (a line plot draws no line into them)."""
+    if rows is None or not len(rows):
+        return x, y
+    return np.insert(np.asarray(x, float), rows, np.nan), np.insert(np.asarray(y, float), rows, np.nan)
+
+
+def draw_rides(ax, lines, rides: dict) -> None:
+    """Decision L623: each ride's line (the row before to the row after, ``rides``: per track label the rows of
+    :func:`ride_rows`) thin, grey and dotted, one legend entry: not a walked path."""
+    label = "ride (rides.csv): not walked; its travel is not in the track (L623)"
+    for name, _, x, y, _, _ in lines:
+        for i in rides.get(name, ()):
+            ax.plot(x[i - 1:i + 1], y[i - 1:i + 1], ls=":", lw=1.0, color="0.5", label=label)
+            label = None
 
 
 def climb_spans(result: TrackResult) -> list[tuple[str, int, int]]:

@@ -151,7 +151,8 @@ def _vehicle(t, p_hpa, a: float, b: float, acc) -> dict | None:
     s0, s1, vib = span
     if freeze_share(acc, s0, s1) >= VEHICLE_FREEZE_SHARE:  # decision L616 amended: a freeze of gait trembles too
         return None
-    dz = float(np.diff(relative_altitude(t, p_hpa, np.array([s0, s1])))[0])
+    # decision L624: no barometer (t None), no altitude change
+    dz = float(np.diff(relative_altitude(t, p_hpa, np.array([s0, s1])))[0]) if t is not None else float("nan")
     duration = s1 - s0
     return {"start_s": s0, "end_s": s1, "kind": "vehicle", "dz_m": dz, "duration_s": duration,
             "vertical_rate_mps": abs(dz) / max(duration, 1e-9), "vibration_mps2": vib, "horizontal_est_m": None,
@@ -164,9 +165,9 @@ RIDE_GAP_S = 2.0
 
 def _gap_in(t, a: float, b: float) -> float:
     """Decision B298: the longest interval between two barometer samples ``t`` that overlaps the ride ``[a, b]``."""
-    t = np.asarray(t, dtype=float)
-    if len(t) < 2:
+    if t is None or len(t) < 2:  # decision L624: no barometer, no gap of it
         return 0.0
+    t = np.asarray(t, dtype=float)
     overlap = (t[1:] > a) & (t[:-1] < b)
     return float(np.diff(t)[overlap].max()) if overlap.any() else 0.0
 
@@ -187,7 +188,11 @@ def foot_rides(result, session, vibration_kind: bool = True) -> None:
 
     steps = result.steps
     b = usable_barometer(session, [], FOOT_EFFECT)  # B188's line is the foot's barometer check's (L145)
-    if b is None or not len(steps) or not len(result.trajectory):
+    if not len(steps) or not len(result.trajectory):
+        return
+    if b is None:  # decision L624: no barometer, no climb; a vehicle is read from the foot's vibration alone
+        if vibration_kind:
+            _vibration_rides(result, session)
         return
     p = b.values[:, 0]
     # decision L393: the first standstill from the barometer's first time (the first stride's start hid a ride
@@ -203,6 +208,36 @@ def foot_rides(result, session, vibration_kind: bool = True) -> None:
     steps = steps.copy()
     steps.insert(at, "pause_dz_m", pause)
     steps.insert(at + 1, "ride", kinds)
+    result.steps = steps
+    result.info["rides"] = records
+    lines = ride_lines(records)
+    result.info.setdefault("warnings", []).extend(lines)
+    for line in lines:
+        logging.getLogger("pdrlearn.track").warning("%s: %s", session.where, line)
+
+
+def _vibration_rides(result, session) -> None:
+    """Decision L624: a foot track without a usable barometer: L616's vehicle rows from the foot unit's vibration
+    (:data:`FOOT_VIBRATION_STREAMS`), each standstill between two strides (the first from the accelerometer's first
+    time, L393; the one after the last stride to its last time, L394) of ``VEHICLE_STILL_MIN_S`` or more whose
+    vibration is a vehicle's and no freeze (:func:`_vehicle`); ``dz_m`` and ``vertical_rate_mps`` empty (no
+    barometer), no ``pause_dz_m`` (no altitude read). Sets steps.csv's ``ride``, ``info["rides"]`` (rides.csv) and
+    the vehicle line, as :func:`foot_rides`."""
+    import logging
+
+    acc = ride_accelerometer(session, FOOT_VIBRATION_STREAMS)
+    if acc is None or not len(acc[0]):
+        return
+    steps = result.steps
+    ends = _pause_ends(steps, min(float(acc[0][0]), float(result.trajectory["t"].iloc[0])))
+    starts = steps["start_s"].to_numpy(float)
+    kinds, records = _rides(None, None, ends, starts, np.zeros(len(starts)), acc, True)
+    last = _vehicle(None, None, float(steps["end_s"].iloc[-1]), float(acc[0][-1]), acc)  # decision L394
+    if last is not None:
+        records.append({**last, "ride": len(records) + 1, "row": len(steps)})
+    at = list(steps.columns).index("stride_time_s") if "stride_time_s" in steps else len(steps.columns)
+    steps = steps.copy()
+    steps.insert(at, "ride", kinds)
     result.steps = steps
     result.info["rides"] = records
     lines = ride_lines(records)
@@ -296,13 +331,30 @@ def vehicle_lines(records: list[dict]) -> list[str]:
     rides = [r for r in records if r["kind"] == "vehicle"]
     if not rides:
         return []
-    shown = ", ".join(f"{r['start_s']:.0f}-{r['end_s']:.0f} s ({r['vibration_mps2']:.2f} m/s^2, {r['dz_m']:+.1f} m)"
+    shown = ", ".join(f"{r['start_s']:.0f}-{r['end_s']:.0f} s ({r['vibration_mps2']:.2f} m/s^2, "
+                      + (f"{r['dz_m']:+.1f} m)" if np.isfinite(r["dz_m"]) else "no barometer)")  # decision L624
                       for r in rides[:3])
     minutes = sum(float(r["end_s"]) - float(r["start_s"]) for r in rides) / 60.0
     return [f"{len(rides)} vehicle ride(s) ({shown}{', ...' if len(rides) > 3 else ''}; {minutes:.1f} min in all): "
             f"standstills whose floor vibrated at {VEHICLE_VIBRATION_MPS2:g} m/s^2 or more (rides.csv kind vehicle; "
             "decisions L402, L615, L616); they count no floors, and the vehicle's travel is unknown to a step "
             "counter and left out of the track, so positions after a ride are off by it"]
+
+
+def trajectory_rides(traj: pd.DataFrame, records: list[dict] | None) -> pd.Series:
+    """Decision L623: trajectory.csv's ``ride``: per row, the rides.csv ``ride`` whose span (``start_s`` to
+    ``end_s``) the line from the row before to this one overlaps (``t[i - 1] < end_s`` and ``t[i] > start_s``): that
+    line was not walked (a foot track's stride after the ride starts where the walker boarded; a lower-back track's
+    contacts inside a ride, W486, are its bounce), so a plot does not draw it as a path; empty (<NA>) elsewhere and on
+    the first row. The position after a ride misses the vehicle's travel (L616)."""
+    out = pd.array([pd.NA] * len(traj), dtype="Int64")
+    if not records or len(traj) < 2:
+        return pd.Series(out, index=traj.index, name="ride")
+    t = traj["t"].to_numpy(float)
+    for r in records:
+        hit = np.flatnonzero((t[:-1] < float(r["end_s"])) & (t[1:] > float(r["start_s"]))) + 1
+        out[hit] = int(r["ride"])
+    return pd.Series(out, index=traj.index, name="ride")
 
 
 def ride_table(info: dict) -> pd.DataFrame:
