@@ -1528,10 +1528,10 @@ TRAJECTORY: tuple[Column, ...] = (
                                "walker's altitude, track.gpx / track.geojson's elevation; = z on the lower back "
                                "(its barometric z holds them) and without a ride"),
     ("floor", "storeys", "integer", "the storey the row is on, from the start's (0): the summary's climbs and rides "
-                                    "(L127, L375) summed up to the row, so the last row's is the end floor "
-                                    "(storeys_changed; a ride after the last stride, L394, only there); storeys of "
-                                    "--storey-height, without it L64's assumed 3.0 m - set it to the building's "
-                                    "(L631)"),
+                                    "(L127, L375) summed up to the row (inside a stair climb: the storeys climbed so "
+                                    "far, rounded), so the last row's is the end floor (storeys_changed; a ride after "
+                                    "the last stride, L394, only there); storeys of --storey-height, without it L64's "
+                                    "assumed 3.0 m - set it to the building's (L631)"),
     ("ride", "index", "integer", "only when rides.csv has a row: the rides.csv ride the line from the row before to "
                                  "this one crosses - not walked (the first stride after a ride starts where the "
                                  "walker boarded: the vehicle's travel is not in the track), so do not draw it as a "

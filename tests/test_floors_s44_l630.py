@@ -38,7 +38,8 @@ def _track(session_dir, out, *extra):
 def test_trajectory_has_the_ride_inclusive_altitude_and_floor_l630_l631(session_dir, tmp_path, capsys):
     """L630 / L631: z stays the strides' height (ends one storey up); z_rides adds the lift (ends one storey down, as
     the truth); floor steps 0 -> +1 -> -1 and ends on the summary's end floor; the elevation of track.gpx /
-    track.geojson is z_rides; final_altitude_error_m compares it (main: z ended +3.4 m, error 6.8 m, no floor)."""
+    track.geojson is z_rides; final_altitude_error_m compares it (main: z ended +3.51 m, final_altitude_error_m 6.91,
+    no floor column; now 0.08)."""
     traj, summary, rides = _track(session_dir, tmp_path / "t", "--start", "41.178,-8.598,100")
     printed = capsys.readouterr().out
     assert len(rides) == 1 and rides["kind"][0] == "lift"
@@ -62,7 +63,8 @@ def test_trajectory_has_the_ride_inclusive_altitude_and_floor_l630_l631(session_
 
 def test_a_fused_track_subtracts_its_rides_and_sends_no_one_to_the_lower_back_l633(session_dir, tmp_path, capsys):
     """L633: `--altitude fused` keeps the lift out of z as the foot does; its barometer line left the rides in and
-    sent the user to `--pipeline waist-pendulum` (main: "foot altitude change +3.4 m disagrees ... -3.4 m")."""
+    sent the user to `--pipeline waist-pendulum` (main: "foot altitude change +3.20 m disagrees with the waist
+    barometer's -3.47 m")."""
     traj, summary, _ = _track(session_dir, tmp_path / "f", "--altitude", "fused")
     err = capsys.readouterr().err
     assert "disagrees with the waist barometer" not in err, err
