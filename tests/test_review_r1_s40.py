@@ -110,7 +110,7 @@ def test_a_resumed_tracker_does_not_move_the_saved_waist_samples_again_e237(bund
     for _, _, d in packets[:at]:
         tr.push(d)  # no flush: a crash
     state = json.loads(json.dumps(tr.restart_state()))
-    assert state["version"] == 2 and state["waist_clock_offset_s"] == 5.0 and state["foot_clock_offset_s"] == 0.0
+    assert state["version"] == 3 and state["waist_clock_offset_s"] == 5.0 and state["foot_clock_offset_s"] == 0.0
     new = make(resume=state)
     rest, errors = _run(new, packets[at:])
     # before: the saved waist samples 5 s early, the optional waist streams dropped, E223 advising offset 0.00
@@ -153,8 +153,8 @@ def test_a_version_1_state_is_read_with_the_given_offsets_and_others_are_refused
     new = Tracker(bundle, waist_clock_offset_s=5.0, resume=old)
     rest, errors = _run(new, packets[at:])
     assert errors == [] and _same_end(rest, ref)  # its samples not moved again either
-    with pytest.raises(DataError, match=r"^Tracker\(resume=state\): not a restart state of version 2 \(got 3\)"):
-        Tracker(bundle, resume={**state, "version": 3})
+    with pytest.raises(DataError, match=r"^Tracker\(resume=state\): not a restart state of version 3 \(got 4\)"):
+        Tracker(bundle, resume={**state, "version": 4})
     with pytest.raises(DataError, match="clock offsets .* not finite"):
         Tracker(bundle, resume={**state, "foot_clock_offset_s": float("nan")})
 

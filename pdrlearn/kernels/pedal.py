@@ -106,19 +106,36 @@ def seated_strides(start_s: np.ndarray, end_s: np.ndarray, transfers) -> tuple[n
     return out, spans
 
 
+def add_span(spans: list[list], start_s: float, end_s: float) -> None:
+    """One more marked stride into ``spans`` (``[start s, end s, strides]`` lists, in time order): it extends the last
+    span when it starts under :data:`MERGE_SPANS_S` after that span's end."""
+    if spans and float(start_s) - spans[-1][1] < MERGE_SPANS_S:
+        spans[-1][1], spans[-1][2] = float(end_s), spans[-1][2] + 1
+    else:
+        spans.append([float(start_s), float(end_s), 1])
+
+
 def spans_of(mask: np.ndarray, start_s: np.ndarray, end_s: np.ndarray) -> list[tuple[float, float, int]]:
     """The marked strides' spans (start s, end s, strides), merged when under :data:`MERGE_SPANS_S` apart."""
     out: list[list] = []
     for i in np.flatnonzero(mask):
-        if out and float(start_s[i]) - out[-1][1] < MERGE_SPANS_S:
-            out[-1][1], out[-1][2] = float(end_s[i]), out[-1][2] + 1
-        else:
-            out.append([float(start_s[i]), float(end_s[i]), 1])
+        add_span(out, start_s[i], end_s[i])
     return [(a, b, k) for a, b, k in out]
 
 
 #: decision L611: what the track does with the pedalling strides, for the line
 TRACK_REMOVED = "removed from the track (no row, 0 m)"
+
+
+def loop_part(spans) -> str:
+    """Decision L611's part of the warning line: the closed-loop strides' ``spans`` ((start s, end s, strides))."""
+    where = ", ".join(f"{a:.2f}-{b:.2f} s ({k})" for a, b, k in spans)
+    return (f"{sum(k for _, _, k in spans)} stride(s) at {where} went round a closed loop without rests or travel "
+            "(cycling? decision L611)")
+
+
+#: decisions L611 / L612: how the track's warning line starts (the live tracker's too, decision E280)
+REMOVED = f"not walking, {TRACK_REMOVED}: "
 
 
 def pedal_line(loop: np.ndarray, seated: np.ndarray, start_s: np.ndarray, end_s: np.ndarray,
@@ -127,9 +144,7 @@ def pedal_line(loop: np.ndarray, seated: np.ndarray, start_s: np.ndarray, end_s:
     says what was done with them (decision L625: ``pdrlearn steps`` leaves them out of its count or counts them)."""
     parts = []
     if loop.any():
-        where = ", ".join(f"{a:.2f}-{b:.2f} s ({k})" for a, b, k in spans_of(loop, start_s, end_s))
-        parts.append(f"{int(loop.sum())} stride(s) at {where} went round a closed loop without rests or travel "
-                     "(cycling? decision L611)")
+        parts.append(loop_part(spans_of(loop, start_s, end_s)))
     only_seated = seated & ~loop
     if only_seated.any():
         where = ", ".join(f"{a:.2f}-{b:.2f} s ({k})" for a, b, k in spans_of(only_seated, start_s, end_s))
@@ -140,3 +155,131 @@ def pedal_line(loop: np.ndarray, seated: np.ndarray, start_s: np.ndarray, end_s:
     if not parts:
         return None
     return f"not walking, {removed}: " + "; ".join(parts)
+
+
+#: decision E280: the live rest reading (L621's ``g_rest``) is the standard gravity until this many still foot samples
+#: were read (B201's minimum of rest samples, ``track.foot_rest.MIN_REST_SAMPLES``)
+LIVE_REST_MIN_SAMPLES = 20
+#: decision E280: the live rest reading is the median of the last this many strides' readings (bounded state)
+LIVE_REST_STRIDES = 200
+
+
+def unjudged_row(t0: float, t1: float) -> tuple:
+    """Decision E280: a :class:`LiveLoops` row in its chain that is never judged (no dz, no missing rest)."""
+    return (float(t0), float(t1), 0.0, False, 0.0, False)
+
+
+class LiveRest:
+    """Decision E280: L621's ``g_rest`` (the foot accelerometer's own rest reading) and L611's second rule, causally
+    and numpy only, for a live tracker: each stride adds the median |acc| of its foot samples that the shared still
+    test (:func:`pdrlearn.kernels.waist.still_from_magnitudes`, magnitudes only: a mis-scaled unit's rest is still)
+    marks still; the reading is the median of the last :data:`LIVE_REST_STRIDES` strides' (the standard gravity until
+    :data:`LIVE_REST_MIN_SAMPLES` still samples). ``track --streaming`` reads the whole recording's foot-flats instead
+    (``track.foot_rest.foot_rest_gravity``, which the runtime cannot import)."""
+
+    def __init__(self) -> None:
+        self.readings: list[float] = []
+        self.n_still = 0
+
+    @property
+    def g_rest(self) -> float:
+        return float(np.median(self.readings)) if self.n_still >= LIVE_REST_MIN_SAMPLES else STANDARD_GRAVITY
+
+    def unrested(self, stream, t0: float, t1: float) -> bool:
+        """The stride ``[t0, t1]`` (s) adds its reading, then L611's second rule (:func:`unrested_strides`) on the
+        foot accelerometer ``stream("fAccelerometer")`` with the reading so far. False without the stream."""
+        from pdrlearn.kernels.waist import still_from_magnitudes
+
+        try:
+            t, acc = stream("fAccelerometer")
+            tg, gyr = stream("fGyroscope")
+        except KeyError:
+            return False
+        t = np.asarray(t, dtype=float)
+        a, b = np.searchsorted(t, t0 - REST_WINDOW_S, side="left"), np.searchsorted(t, t1 + REST_WINDOW_S, side="right")
+        if b - a >= 3 and len(tg) >= 2:
+            ts = t[a:b]
+            am = np.linalg.norm(np.asarray(acc, dtype=float)[a:b, :3], axis=1)
+            g = np.asarray(gyr, dtype=float)[:, :3]
+            gm = np.linalg.norm(np.column_stack([np.interp(ts, tg, g[:, k]) for k in range(3)]), axis=1)
+            period = float(np.median(np.diff(ts)))
+            still = still_from_magnitudes(am, gm, 1.0 / period) if period > 0 else np.zeros(len(ts), dtype=bool)
+            if still.any():
+                self.readings = (self.readings + [float(np.median(am[still]))])[-LIVE_REST_STRIDES:]
+                self.n_still += int(still.sum())
+        return bool(unrested_strides(t, acc, np.array([t0]), np.array([t1]), self.g_rest)[0])
+
+
+class LiveLoops:
+    """Decision E280: L611's verdict (:func:`closed_loop_strides`, the same call) for strides that arrive one at a
+    time, as a live tracker measures them. A stride's verdict reads up to :data:`NEIGHBOURS` strides of its chain
+    after it, so :meth:`add` holds a stride until it is final and releases the strides in order, each with its
+    verdict: final when :data:`NEIGHBOURS` later strides are known, or the next one is known and starts over
+    :data:`CHAIN_PAUSE_S` after it (its chain ends), or when no stride to come can make it pedalling: the kernel says
+    so with :data:`NEIGHBOURS` worst-case strides appended (chained, reversing, unrested, no travel: no real stride
+    adds more reversals or unrested strides), which releases a walking stride at once (no look-ahead, no latency).
+    :meth:`flush` (the end of a recording) releases the rest, judged on what is known, as ``track --streaming`` judges
+    its last strides. ``history`` keeps the last :data:`NEIGHBOURS` released rows (their verdicts' neighbours).
+
+    A row is ``(start s, end s, raw dz m, unrested, raw horizontal travel m, judged)``; an unjudged row (a stride
+    across a foot gap or bridged samples, a posture) is in its chain but has dz 0, no missing rest and is never
+    pedalling (the lead's amendment of L611, as ``track --streaming``'s ``unjudged``)."""
+
+    def __init__(self) -> None:
+        self.history: list[tuple] = []
+        self.held: list[tuple[tuple, object]] = []  # (row, payload)
+        self.seen = 0
+
+    def add(self, row: tuple, payload) -> list[tuple[object, bool]]:
+        """Hold ``row`` (with the caller's ``payload``); returns the ``(payload, pedalling)`` now final, in order."""
+        self.seen += 1
+        self.held.append((tuple(row), payload))
+        return self._release(final=False)
+
+    def flush(self) -> list[tuple[object, bool]]:
+        """Every held row's ``(payload, pedalling)``, judged on the rows known (the recording's end)."""
+        return self._release(final=True)
+
+    def expire(self, now: float, quiet_s: float) -> list[tuple[object, bool]]:
+        """Every held row's ``(payload, pedalling)`` when the data reach ``now`` (s) over ``quiet_s`` after the last
+        held row's end with no stride after it: none to come can join its chain (the caller knows how long a stride
+        takes to be detected); else none."""
+        if self.held and now - self.held[-1][0][1] > quiet_s:
+            return self._release(final=True)
+        return []
+
+    def _release(self, final: bool) -> list[tuple[object, bool]]:
+        out = []
+        while self.held:
+            rows = self.history + [r for r, _ in self.held]
+            i = len(self.history)  # the first held row
+            after = len(rows) - 1 - i
+            ended = after >= 1 and rows[i + 1][0] - rows[i][1] > CHAIN_PAUSE_S
+            if final or ended or after >= NEIGHBOURS:
+                pedal = self._verdict(rows, i)
+            elif not self._verdict(rows + self._worst(rows[-1]), i):
+                pedal = False
+            else:
+                break
+            row, payload = self.held.pop(0)
+            self.history = (self.history + [row])[-NEIGHBOURS:]
+            out.append((payload, pedal))
+        return out
+
+    @staticmethod
+    def _worst(last: tuple) -> list[tuple]:
+        """:data:`NEIGHBOURS` strides chained after ``last`` that reverse each other (and ``last``), unrested, not
+        travelling: no real stride to come adds more to a verdict."""
+        sign = -1.0 if last[2] > 0 else 1.0
+        t = last[1]
+        return [(t, t, sign * (-1.0) ** k, True, 0.0, True) for k in range(NEIGHBOURS)]
+
+    @staticmethod
+    def _verdict(rows: list[tuple], i: int) -> bool:
+        lo, hi = max(0, i - NEIGHBOURS), min(len(rows), i + NEIGHBOURS + 1)  # the verdict reads no row outside
+        w = rows[lo:hi]
+        judged = np.array([r[5] for r in w], dtype=bool)
+        col = [np.array([r[k] for r in w], dtype=float) for k in range(5)]
+        loop = closed_loop_strides(np.where(judged, col[2], 0.0), col[0], col[1],
+                                   (col[3] > 0) & judged, col[4])  # decision L621: the travel
+        return bool(loop[i - lo] and judged[i - lo])

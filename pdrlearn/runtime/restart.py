@@ -21,18 +21,23 @@ import numpy as np
 from pdrlearn.errors import DataError
 
 #: the restart state's format (decision E237: 2 adds the clock offsets; a version-1 state is read as before, its
-#: samples taken as on the tracker's clock and the constructor's offsets kept; any other version is refused in one line)
-STATE_VERSION = 2
+#: samples taken as on the tracker's clock and the constructor's offsets kept; decision E281: 3 adds E272's stop bias,
+#: a version-1 or -2 state starts it at 0 as before; any other version is refused in one line)
+STATE_VERSION = 3
 _KEYS = ("version", "position", "heading_rad", "last_end_s", "last_step", "n_steps", "samples")
 _CLOCKS = ("waist_clock_offset_s", "foot_clock_offset_s")  # decision E237: version 2 on
+_STOP = ("stop_bias", "pedal_history")  # decisions E281, E280: version 3 on
 
 
 def restart_state(tracker) -> dict:
     """Decision L134: ``{"version", "position" [x, y, z] m, "heading_rad", "last_end_s" (the last measured
     stride's end, s, or None), "last_step" (the last emitted row's end, heading, position and stride times, for
     E46's gap row and E51's stride time; or None), "n_steps", "samples": {sensor: {"t": [...] s, "values":
-    [[...], ...]}}, "waist_clock_offset_s", "foot_clock_offset_s"}`` with the samples the tracker buffers (on its
-    clock: already moved by the offsets) and the offsets it applies now (a ``rebase_clock`` included; E237). A
+    [[...], ...]}}, "waist_clock_offset_s", "foot_clock_offset_s", "stop_bias"}`` with the samples the tracker buffers
+    (on its clock: already moved by the offsets), the offsets it applies now (a ``rebase_clock`` included; E237) and
+    E272's waist gyroscope bias read at the last stop (``{"rps", "n_stops"}``, None without the waist unit; E281) and
+    the last L611 rows judged (``pedal_history``, E280). Strides held for their L611 verdict (E280) are not in it:
+    ``last_end_s`` and the bias are those before the first held one, which the new tracker measures again. A
     tracker that resamples (``resample=True``, E22) is refused in one line (decision L140): its buffer holds
     resampled samples, and its low-pass filter holds the last raw ones (its delay, 0.84 s from 50 to 20 Hz), which
     no state carries; a new tracker fed the resampled samples resampled them again and lost a stride (0.20-0.28 m
@@ -45,16 +50,19 @@ def restart_state(tracker) -> dict:
                         "track at the data's own rate (resample='native', the default) to restart whole "
                         "(decision L140)")
     kept = tracker._kept
+    prev_end, stop = tracker._restart_from  # decision E280: strides held for L611's verdict are measured again
     return {
         "version": STATE_VERSION,
         "position": [float(v) for v in tracker.position],
         "heading_rad": float(tracker.heading),
-        "last_end_s": None if tracker._prev_end is None else float(tracker._prev_end),
+        "last_end_s": None if prev_end is None else float(prev_end),
         "last_step": None if kept is None else [kept[0], kept[1], list(kept[2]), list(kept[3])],
         "n_steps": int(tracker.n_steps),
         "samples": {name: {"t": t.tolist(), "values": v.tolist()}
                     for name, (t, v) in ((n, r.view()) for n, r in tracker._buf.items())},
         **{k: float(getattr(tracker, k)) for k in _CLOCKS},  # decision E237
+        "stop_bias": None if stop is None else {"rps": float(stop[0]), "n_stops": int(stop[1])},  # decision E281
+        "pedal_history": [list(r) for r in tracker._loops.history],  # decision E280: the verdicts' neighbours
     }
 
 
@@ -64,11 +72,15 @@ def resume(tracker, state: dict) -> list:
 
     Decision E237: the samples are on the old tracker's clock already, so they are pushed with every clock offset
     (and the waist's drift) at 0; then the state's offsets are set (a version-2 state: they win over the
-    constructor's, one warning line when they differ; version 1: the constructor's kept)."""
+    constructor's, one warning line when they differ; version 1: the constructor's kept).
+
+    Decision E281: a version-3 state's ``stop_bias`` (E272's bias read at the old tracker's last stop) is the new
+    tracker's, so its waist-headed strides lose it as the old tracker's would; a version-1 or -2 state starts it at 0
+    (nothing known until the next stop, as before)."""
     where = "Tracker(resume=state)"
     version = state.get("version") if isinstance(state, dict) else None
-    keys = _KEYS + (_CLOCKS if version == STATE_VERSION else ())
-    if version not in (1, STATE_VERSION) or not set(keys) <= set(state):
+    keys = _KEYS + (_CLOCKS if version in (2, STATE_VERSION) else ()) + (_STOP if version == STATE_VERSION else ())
+    if version not in (1, 2, STATE_VERSION) or not set(keys) <= set(state):
         got = version if isinstance(state, dict) else type(state).__name__
         raise DataError(f"{where}: not a restart state of version {STATE_VERSION} (got {got!r}); give what "
                         "Tracker.restart_state() returned (decision L134)")
@@ -79,12 +91,19 @@ def resume(tracker, state: dict) -> list:
         samples = {str(n): (np.asarray(s["t"], dtype=float), np.asarray(s["values"], dtype=float))
                    for n, s in state["samples"].items()}
         clocks = {k: float(state[k]) for k in keys if k in _CLOCKS}
+        stop = state.get("stop_bias") if version == STATE_VERSION else None  # decision E281
+        stop = None if stop is None else (float(stop["rps"]), int(stop["n_stops"]))
+        history = [(float(a), float(b), float(dz), bool(u), float(d), bool(j))  # decision E280
+                   for a, b, dz, u, d, j in (state["pedal_history"] if version == STATE_VERSION else [])]
     except (TypeError, ValueError, KeyError) as exc:
-        raise DataError(f"{where}: the state's position, heading_rad, last_end_s, samples or clock offsets are "
-                        f"malformed ({exc}); give what Tracker.restart_state() returned (decision L134)") from None
-    if not (np.isfinite(position).all() and math.isfinite(heading) and all(map(math.isfinite, clocks.values()))):
-        raise DataError(f"{where}: the state's position {position.tolist()}, heading {heading} or clock offsets "
-                        f"{clocks} are not finite; give what Tracker.restart_state() returned (decision L134)")
+        raise DataError(f"{where}: the state's position, heading_rad, last_end_s, samples, clock offsets, "
+                        f"stop_bias or pedal_history are malformed ({exc}); give what Tracker.restart_state() returned "
+                        "(decision L134)") from None
+    if not (np.isfinite(position).all() and math.isfinite(heading) and all(map(math.isfinite, clocks.values()))
+            and (stop is None or math.isfinite(stop[0]))):
+        raise DataError(f"{where}: the state's position {position.tolist()}, heading {heading}, clock offsets "
+                        f"{clocks} or stop_bias {stop} are not finite; give what Tracker.restart_state() returned "
+                        "(decision L134)")
     tracker.position = position
     tracker._init_fixes(position[:2])
     tracker.heading = heading
@@ -96,6 +115,9 @@ def resume(tracker, state: dict) -> list:
     tracker._kept = None if ls is None else (float(ls[0]), float(ls[1]), tuple(map(float, ls[2])),
                                              tuple(map(float, ls[3])))
     tracker.n_steps = int(state["n_steps"])
+    if stop is not None and tracker._stop_bias is not None:  # decision E281: the bias read at the old one's last stop
+        tracker._stop_bias.rps, tracker._stop_bias.n_stops = stop
+    tracker._loops.history, tracker._loops.seen = history, len(history)  # decision E280
     for k, v in clocks.items():  # decision E237: the state's clock wins; a different given value is said
         if v != getattr(tracker, k):
             tracker._warn(f"{where}: the state's {k} = {v:g} s replaces the {getattr(tracker, k):g} s given (the "

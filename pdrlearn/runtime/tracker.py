@@ -26,6 +26,7 @@ import numpy as np
 from pdrlearn.errors import DataError, InternalError, ModelError, VerticalAxisError
 from pdrlearn.kernels import distance as _distance
 from pdrlearn.kernels import first_walk as _first_walk
+from pdrlearn.kernels import pedal as _pedal
 from pdrlearn.kernels import relative_length as _relative_length
 from pdrlearn.kernels import sideways as _sideways
 from pdrlearn.kernels import stop_bias as _stop_bias
@@ -478,6 +479,7 @@ class Tracker(OwnGuard, FixInput):
     _baro = None  # decision E232 (likewise: no barometer check)
     _first_walk = None  # decision E215 (a bare Tracker.__new__ has none)
     _stop_bias = None  # decision E272 (a bare Tracker.__new__ has none)
+    _pedal_line: list | None = None  # decision E280: [spans, index in warnings]
     _foot_gaps: list | tuple = ()
     _drop_ref: tuple | None = None  # decision L167 (a bare Tracker.__new__ has no clean stride yet)
     _session_length = None  # decision C117 (a bare Tracker.__new__: the model's length class)
@@ -709,6 +711,11 @@ class Tracker(OwnGuard, FixInput):
         self.waist_gap_yaw = bool(waist_gap_yaw)  # decision L61
         #: decision E272: the waist gyroscope's bias read at the last stop (None without the waist unit)
         self._stop_bias = _stop_bias.StopBias() if "waist" in self.units else None
+        #: decision E280: L611's verdicts stride by stride, the foot's rest reading (L621) and the warning line
+        self._loops, self._foot_rest, self._pedal_line = _pedal.LiveLoops(), _pedal.LiveRest(), None
+        #: decision E280: no stride starting within L611's CHAIN_PAUSE_S of the last one's end can still be detected
+        #: this long (s) after that end: the longest stride, its closing stance and the wait before a step is measured
+        self._chain_quiet_s = _pedal.CHAIN_PAUSE_S + self.segmenter.max_step_s + 2.0 + self._lookahead_s
         self.waist_bridge = bool(waist_bridge)  # decisions L91 / L99 (the default)
         #: the input side (decision E22): streams at another rate than the bundle's are tracked at their own
         #: rate (``resample="native"``, the default, as ``pdrlearn track --streaming``), resampled to the
@@ -1544,6 +1551,8 @@ class Tracker(OwnGuard, FixInput):
             self._frozen_foot_said(self._frozen_foot.flush())
         self._detect()
         steps = self._process_ready(force=True)
+        steps += self._release(self._loops.flush())  # decision E280: the last strides, judged on what is known
+        self._log_pedal()
         self._trim()
         self.height_checks()  # decision E47: the end of a recording
         if self._repeats is not None:  # decision E236: the repeated lines held back since their last, summed up
@@ -1566,7 +1575,7 @@ class Tracker(OwnGuard, FixInput):
     def _process_ready(self, force: bool = False) -> list[Step]:
         """Process pending steps once every buffered sensor has samples past the step's end (sensors
         stream with different delays; a window cut before the waist data arrives would be wrong)."""
-        if not self._pending:
+        if not self._pending and not self._loops.held:
             return []
         paused = self._paused  # decision E115: not waited for
         ends = [r.last for n, r in self._buf.items() if n not in paused]
@@ -1575,6 +1584,8 @@ class Tracker(OwnGuard, FixInput):
         # a sensor that stopped must not hold the steps forever: the thesis asks for < 2 s delay
         stale = max(ends) - self._wait_s
         out = []
+        if not self._pending:  # decision E280: held strides whose chain can no longer go on are judged
+            return self._release(self._loops.expire(max(latest, stale), self._chain_quiet_s))
         while self._pending and (force or self._pending[0][1] + self._lookahead_s < max(latest, stale)):
             if self._unchecked:  # decision B140: before the first step's window is cut
                 self._check_unpushed(*self._pending[0])
@@ -1582,17 +1593,64 @@ class Tracker(OwnGuard, FixInput):
             if latest < t1 - self._held_s:  # decision E31: a stream's last value held for this step
                 self._note_held(t1, force)
             t0, t1 = self._pending.pop(0)
+            snap = self._before()  # decision E280: what a restart state holds while the stride is held
             try:
-                out += self._emit(self.process_step(t0, t1))
+                rec = self._measure(t0, t1)
             except VerticalAxisError:
-                if not self.n_steps:  # decision B131: the session starts so: the frame cannot be judged
-                    raise
-                self._note_posture(t0, t1)
+                if not (self.n_steps or self._loops.seen):  # decision B131: the session starts so: the frame
+                    raise  # cannot be judged
+                rec = ("posture", t0, t1, _pedal.unjudged_row(t0, t1))  # E280: in its chain, not judged
             except DataError as exc:  # decision B123: the kernel's zero gravity, named by sensor and time
                 if not str(exc).startswith("gravity_rotation:"):
                     raise
                 raise DataError(self._no_gravity(t0, t1)) from None
+            out += self._release(self._loops.add(rec[3], (rec, snap)))
         return out
+
+    def _before(self) -> tuple:
+        """Decision E280: the measuring state before a stride (the last stride's end, E272's bias): a restart state
+        taken while strides are held (L611's verdict pending) restarts from the first held one's."""
+        stop = self._stop_bias
+        return self._prev_end, None if stop is None else (stop.rps, stop.n_stops)
+
+    @property
+    def _restart_from(self) -> tuple:
+        """Decision E280: :meth:`_before` the first held stride, or the state now when none is held."""
+        return self._loops.held[0][1][1] if self._loops.held else self._before()
+
+    def _release(self, judged: list) -> list[Step]:
+        """Decision E280: the measured strides whose L611 verdict is final (:class:`~pdrlearn.kernels.pedal.
+        LiveLoops`), placed in order: a posture noted (B131), a pedalling stride's turn kept and its span warned, the
+        rest emitted."""
+        out = []
+        for (rec, _), pedal in judged:
+            if rec[0] == "posture":
+                self._note_posture(rec[1], rec[2])
+                continue
+            step = self._apply(rec, pedal)
+            if step is None:
+                self._note_pedal(rec[1], rec[2])
+            else:
+                out += self._emit(step)
+        return out
+
+    def _note_pedal(self, t0: float, t1: float) -> None:
+        """Decision E280: L611's one warning line, as ``track --streaming``'s, widened in place in ``warnings`` as
+        strides are removed; logged by :meth:`_log_pedal`."""
+        if self._pedal_line is None:
+            self._pedal_line = [[], len(self.warnings), None]
+            self.warnings.append("")
+        spans, at, _ = self._pedal_line
+        _pedal.add_span(spans, t0, t1)
+        self.warnings[at] = _pedal.REMOVED + _pedal.loop_part(spans)
+
+    def _log_pedal(self) -> None:
+        """Decision E280: at a flush (the end of a recording) L611's line is logged as it stands, once (again when a
+        later flush changed it), so the log has ``track --streaming``'s whole line, not its first stride's."""
+        p = self._pedal_line
+        if p is not None and self.warnings[p[1]] != p[2]:
+            p[2] = self.warnings[p[1]]
+            log.warning("bundle %s: %s", self.bundle.path, p[2])
 
     def _check_unpushed(self, t0: float, t1: float) -> None:
         """Decision B140: with no ``sensors=`` declared, a sensor a task's model reads that nothing has pushed by
@@ -1941,7 +1999,15 @@ class Tracker(OwnGuard, FixInput):
         return lev, classes, proba, disp, dyaw, ood
 
     def process_step(self, t0: float, t1: float) -> Step:
-        """Classify, measure and place the step ``[t0, t1]`` (s) from the buffered samples."""
+        """Classify, measure and place the step ``[t0, t1]`` (s) from the buffered samples (no L611 verdict: the
+        tracker's own pushes judge each stride first, decision E280)."""
+        return self._apply(self._measure(t0, t1))
+
+    def _measure(self, t0: float, t1: float) -> tuple:
+        """Decision E280: what :meth:`process_step` reads from the samples and the strides before (classes,
+        displacement, turns, E272's bias, the contact), with L611's row (:class:`~pdrlearn.kernels.pedal.LiveLoops`);
+        :meth:`_apply` places it once its verdict is known. ``("gap", t0, t1, row, gap_s, bridge_yaw)`` for a stride
+        across a foot gap (E30), else ``("stride", t0, t1, row, lev, classes, proba, disp, dyaw, turn, event_s)``."""
         spec = self._spec
         if spec is not None and spec[0] == (t0, t1):  # computed ahead (decision E24): from the same data?
             self._spec = None
@@ -1961,12 +2027,11 @@ class Tracker(OwnGuard, FixInput):
             self._foot_gaps = [g for g in self._foot_gaps if g[1] > t0]
             gap = max([d for d, long, _ in over if long], default=0.0)
             if gap:
+                bridge = 0.0
                 if self._bridged() and any(long and imu for _, long, imu in over):  # decision L91
-                    self.heading += waist_bridge_yaw(self._stream, min(t0, t0 if prev is None else prev), t1)
+                    bridge = waist_bridge_yaw(self._stream, min(t0, t0 if prev is None else prev), t1)
                 self._prev_end = t1  # no L31 pivot across it either: the foot's turn inside the gap is unknown
-                self._heights.append(None, 0.0, 0.0)  # decision E47: no class, 0 m (as --streaming's)
-                x, y, z = self.position.tolist()
-                return Step(t0, t1, {}, {}, 0.0, 0.0, self.heading, x, y, z, gap_s=gap)
+                return ("gap", t0, t1, _pedal.unjudged_row(t0, t1), gap, bridge)  # E280: in its chain, not judged
             bridged = bool(over)  # a shorter gap in the foot accelerometer / gyroscope: no classes (B11)
         if bridged:  # no classes, as UserModel.predict_steps leaves a step without the foot unit (offline, track
             # --streaming); decision E36: levelled and integrated with the gap counted as one sample interval, as
@@ -2007,6 +2072,29 @@ class Tracker(OwnGuard, FixInput):
             turn -= self._stop_bias.turn(t0, t1)
             dyaw -= self._stop_bias.turn(lo, t1)
         self._prev_end = t1
+        if bridged:  # decision E280: a stride across bridged samples (L167's) is in its chain, not judged
+            row = _pedal.unjudged_row(t0, t1)
+        else:  # decision L621: the foot's own rest reading, causally (E280)
+            row = (t0, t1, float(disp[2]), self._foot_rest.unrested(self._stream, t0, t1), float(np.hypot(*disp[:2])),
+                   True)
+        event_s = self._contact(t0, t1) if self.contacts else math.nan
+        return ("stride", t0, t1, row, lev, classes, proba, disp, dyaw, turn, event_s)
+
+    def _apply(self, rec: tuple, pedal: bool = False) -> Step | None:
+        """Decision E280: place a measured stride (:meth:`_measure`): the rules, heading, position and the Step. A
+        pedalling one (L611) is no step: its turn still turns the heading (as ``track --streaming``'s), it moves 0 m,
+        and its height counts as a 0 m stride without class in E47's checks; None."""
+        if rec[0] == "gap":
+            _, t0, t1, _, gap, bridge = rec
+            self.heading += bridge  # decision L91
+            self._heights.append(None, 0.0, 0.0)  # decision E47: no class, 0 m (as --streaming's)
+            x, y, z = self.position.tolist()
+            return Step(t0, t1, {}, {}, 0.0, 0.0, self.heading, x, y, z, gap_s=gap)
+        _, t0, t1, _, lev, classes, proba, disp, dyaw, turn, event_s = rec
+        if pedal:  # decision L611, as track --streaming: no row, 0 m, no class; the turn kept
+            self.heading += dyaw
+            self._heights.append(None, float(disp[2]), 0.0)
+            return None
         if self.distance_gain is None:
             self._resolve_calibration()
         # the one-stride kernels on Python floats: the same arithmetic as apply_level_gain, apply_stride_rules
@@ -2082,8 +2170,7 @@ class Tracker(OwnGuard, FixInput):
                                                     terrain=classes.get("terrain"),
                                                     direction=classes.get("direction"), turn_rad=turn_wrapped)
             classes, proba = {**classes, "length": label}, {**proba, "length": lp}
-        return Step(t0, t1, classes, proba, length, dz, direction, x, y, z,
-                    event_s=self._contact(t0, t1) if self.contacts else math.nan,
+        return Step(t0, t1, classes, proba, length, dz, direction, x, y, z, event_s=event_s,
                     turn_angle_rad=turn_wrapped, impossible=impossible,
                     pivot_rad=float(np.angle(np.exp(1j * (dyaw - turn)))),  # decision L106
                     sideways=self._side_rows.decided)  # decision L243
@@ -2224,13 +2311,16 @@ class Tracker(OwnGuard, FixInput):
             keep_from = max(keep_from, self.segmenter.last_boundary - _LOOK_BACK_S)
         if self._pending:  # keep what the waiting steps need
             keep_from = min(keep_from, self._pending[0][0] - _LOOK_BACK_S)
-        if self._prev_end is not None and any(g[2] and g[3] for g in self._foot_gaps):  # decision L91: the waist's
-            keep_from = min(keep_from, self._prev_end - _LOOK_BACK_S)  # turn from the last stride's end is bridged
-        elif self._prev_end is not None and self.waist_gap_yaw and "waist" in self.units \
-                and waist_gap_max_s(self._prev_end, self._latest) > GAP_YAW_MAX_S:  # decision L498: a stop up to 60 s
-            keep_from = min(keep_from, self._prev_end - _LOOK_BACK_S)  # keeps its samples for the waist's gap yaw
-        if self._stop_bias is not None and self._prev_end is not None:  # decision E272: a stop's last KEEP_S seconds
-            keep_from = min(keep_from, max(self._prev_end, self._latest - _stop_bias.KEEP_S) - _LOOK_BACK_S)
+        prev_end = self._restart_from[0]  # decision E280: a restart state re-measures the held strides from there
+        if self._loops.held:
+            keep_from = min(keep_from, self._loops.held[0][0][0] - _LOOK_BACK_S)
+        if prev_end is not None and any(g[2] and g[3] for g in self._foot_gaps):  # decision L91: the waist's
+            keep_from = min(keep_from, prev_end - _LOOK_BACK_S)  # turn from the last stride's end is bridged
+        elif prev_end is not None and self.waist_gap_yaw and "waist" in self.units \
+                and waist_gap_max_s(prev_end, self._latest) > GAP_YAW_MAX_S:  # decision L498: a stop up to 60 s
+            keep_from = min(keep_from, prev_end - _LOOK_BACK_S)  # keeps its samples for the waist's gap yaw
+        if self._stop_bias is not None and prev_end is not None:  # decision E272: a stop's last KEEP_S seconds
+            keep_from = min(keep_from, max(prev_end, self._latest - _stop_bias.KEEP_S) - _LOOK_BACK_S)
         keep_from = min(keep_from, self._foot_silent_keep())  # decision E113
         if keep_from <= self._drop_at:  # nothing to drop (the common case between two steps)
             return
