@@ -61,8 +61,8 @@ def test_trajectory_has_the_ride_inclusive_altitude_and_floor_l630_l631(session_
     assert line[-1][-1] == pytest.approx(traj["z_rides"].iloc[-1], abs=0.01)
 
 
-def test_a_fused_track_subtracts_its_rides_and_sends_no_one_to_the_lower_back_l633(session_dir, tmp_path, capsys):
-    """L633: `--altitude fused` keeps the lift out of z as the foot does; its barometer line left the rides in and
+def test_a_fused_track_subtracts_its_rides_and_sends_no_one_to_the_lower_back_l632(session_dir, tmp_path, capsys):
+    """L632: `--altitude fused` keeps the lift out of z as the foot does; its barometer line left the rides in and
     sent the user to `--pipeline waist-pendulum` (main: "foot altitude change +3.20 m disagrees with the waist
     barometer's -3.47 m")."""
     traj, summary, _ = _track(session_dir, tmp_path / "f", "--altitude", "fused")

@@ -64,7 +64,7 @@ def barometer_warning(summary: dict) -> str | None:
     if baro is None or foot is None:
         return None
     fused = not summary.get("barometer_unused", True)  # decision L154: the barometer was fused into the altitude
-    # decision L396: the rides L378 read are no disagreement; L633: a fused track's too (L154 fuses the strides'
+    # decision L396: the rides L378 read are no disagreement; L632: a fused track's too (L154 fuses the strides'
     # height: its z leaves the rides out as the foot's does)
     ridden = ridden_climbs(summary)
     source = (f"(wBarometer.csv, {'fused with the strides by L154' if fused else 'not read by foot tracks'})"
@@ -73,7 +73,7 @@ def barometer_warning(summary: dict) -> str | None:
               + (f"; without its rides' {ridden['net']:+.2f} m, L396)" if ridden["net"] else ")"))
     if ridden is not None:
         baro, raw = float(baro) - ridden["net"], float(baro if raw is None else raw) - ridden["net"]
-    # decision L633: a track whose rides.csv holds a ride read the lifts; the lower back would read no more of them
+    # decision L632: a track whose rides.csv holds a ride read the lifts; the lower back would read no more of them
     lifts = ("" if ridden is not None and (ridden["ascent"] or ridden["descent"]) else
              "; for floors by lift or escalator track the lower back, `--pipeline waist-pendulum`")
     advice = (lifts + "; for altitude on slopes, hills and ramps "
