@@ -97,6 +97,10 @@ SESSIONS: tuple[Column, ...] = (
                                          "settings: not a duplicate (L137)"),
     ("params_file", _ID, "text", "--params-dir only: the calibration file used (C26)"),
     ("altitude_change_m", "m", "number", "tracked z change, last minus first"),
+    ("altitude_change_rides_m", "m", "number", "altitude_change_m with the rides a foot track's z leaves out "
+                                               "(rides.csv dz_m of 1.5 m or more: a lift, an escalator; L630): "
+                                               "trajectory.csv z_rides' change; final_altitude_error_m compares "
+                                               "it; = altitude_change_m on the lower back (barometric z)"),
     ("altitude_change_ref_m", "m", "number", "reference z change"),
     ("altitude_ref_source", _ID, "text", "where altitude_change_ref_m comes from"),
     ("altitude_error_pct", "%", "number", "altitude change error against the reference"),
@@ -1519,6 +1523,15 @@ TRAJECTORY: tuple[Column, ...] = (
     ("lat", "deg", "number", "latitude (WGS-84); empty without --start or geodetic fixes"),
     ("lon", "deg", "number", "longitude (WGS-84); empty without --start or geodetic fixes"),
     ("pos_sigma_m", "m", "number", "the modelled 1-sigma radius of the horizontal position (L128); not with fixes"),
+    ("z_rides", "m", "number", "z with the rides a foot track's z leaves out (rides.csv dz_m of 1.5 m or more - a "
+                               "lift, an escalator - from the first row at or after the ride's end; L630): the "
+                               "walker's altitude, track.gpx / track.geojson's elevation; = z on the lower back "
+                               "(its barometric z holds them) and without a ride"),
+    ("floor", "storeys", "integer", "the storey the row is on, from the start's (0): the summary's climbs and rides "
+                                    "(L127, L375) summed up to the row (inside a stair climb: the storeys climbed so "
+                                    "far, rounded), so the last row's is the end floor (storeys_changed; a ride after "
+                                    "the last stride, L394, only there); storeys of --storey-height, without it L64's "
+                                    "assumed 3.0 m - set it to the building's (L631)"),
     ("ride", "index", "integer", "only when rides.csv has a row: the rides.csv ride the line from the row before to "
                                  "this one crosses - not walked (the first stride after a ride starts where the "
                                  "walker boarded: the vehicle's travel is not in the track), so do not draw it as a "

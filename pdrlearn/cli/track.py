@@ -1363,6 +1363,7 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
     err = summary.get("distance_error_pct")
     bouts = err is not None and "bout_distance_m" in summary and "bout_reference_m" in summary
     from pdrlearn.track.evaluate import floors_phrase  # decisions L64, L127 (numpy: lazily)
+    from pdrlearn.track.floor_column import rides_altitude_phrase
 
     typer.echo(f"{name}: {count_phrase(summary)}, {summary['distance_m']:.2f} m"
                # W21: the lower-back error counts the reference bouts only; say so before the number
@@ -1374,6 +1375,7 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
                + (f", altitude change {summary['altitude_change_m']:+.2f} m" if "altitude_change_m" in summary else "")
                + (f" (reference {summary['altitude_change_ref_m']:+.2f} m)" if "altitude_change_ref_m" in summary
                   else "")
+               + rides_altitude_phrase(summary)  # decision L630
                # L64: the storeys climbed and descended, when the track changed floors
                + floors_phrase(summary)
                # decision C16: how much of the walk the model's training data covered

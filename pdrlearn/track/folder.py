@@ -175,6 +175,9 @@ def write_folder(dest: Path, tracked: dict) -> tuple[dict, bool]:
             traj[c] = float("nan")
     if "pos_sigma_m" in traj:  # decision L128: appended after the columns trajectory.csv always had
         traj = traj[[c for c in traj.columns if c != "pos_sigma_m"] + ["pos_sigma_m"]]
+    from pdrlearn.track.floor_column import with_floor_columns
+
+    traj = with_floor_columns(traj, result, summary.get("storey_height_m"))  # decisions L630, L631
     if result.info.get("rides"):  # decision L623: the rows a ride's line reaches (not walked), last; only with a ride
         from pdrlearn.track.rides import trajectory_rides
 

@@ -1744,8 +1744,11 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     logged = len(warnings)  # apply_altitude logs its own lines
     apply_altitude(res, session, altitude,  # decision L154 (L292: rewrites L69's line; L564 / L565: an option)
                    raw_dz=climb_dz if fused_climb else None)
-    foot_rides(res, session, ride_vibration)  # decision L378: the rides, from the waist barometer (offline only, as
-    # run's files); L615 / L616: the foot's vibration tells a vehicle
+    from pdrlearn.track.units import with_left_out_units
+
+    # decision L378: the rides, from the waist barometer (offline only, as run's files); L615 / L616: the foot's
+    # vibration tells a vehicle; L634: `--units foot` leaves the waist's motion out, not its barometer
+    foot_rides(res, with_left_out_units(session), ride_vibration)
     res.steps.insert(res.steps.columns.get_loc("terrain") + 1, "terrain_dz",  # decision L424: beside the class
                      KD.terrain_from_dz(res.steps["dz_m"], stride_rows(res.steps)))
     for w in warnings[:logged]:
