@@ -1218,8 +1218,10 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
     at_times_out = None
     if at_t is not None:  # decision L638: the track's position at the given times
         from pdrlearn.track.at_times import at_times_table
+        from pdrlearn.track.floor_column import with_floor_columns
 
-        at_times_out = at_times_table(result.trajectory, at_t, start, result.steps)
+        traj = with_floor_columns(result.trajectory, result, summary.get("storey_height_m"))  # L630, L631: the floor
+        at_times_out = at_times_table(traj, at_t, start, result.steps)
     periods = None
     if o.get("per_s") is not None:  # decision L277: periods.csv, from the whole session's track
         from pdrlearn.track.folder import clinical_tables
