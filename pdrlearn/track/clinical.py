@@ -21,8 +21,9 @@ the initial contact). Definitions (seconds and degrees, no sample counts):
   gaps is L275's ``time_no_data_s``.
 * **turn**: a run of consecutive rows whose heading changes at :data:`TURN_RATE_MIN_DPS` deg/s or more from
   one row to the next (heading change / time between the rows' starts; one slower row between two such rows
-  belongs to the turn), its angle the summed (signed) change, with the change of the row just before and just
-  after the run when it turns the same way and belongs to no other turn (decision L181: a corner's edge strides);
+  belongs to the turn, unless it walks - :func:`walking_rows`, decision L653), its angle the summed (signed)
+  change, with the change of the row just before and just after the run when it turns the same way and belongs to
+  no other turn (decision L181: a corner's edge strides);
   ``turn_count`` counts the turns of at least :data:`TURN_COUNT_MIN_DEG` degrees (turnarounds, corners); a gentle
   curve (below 15 deg/s, e.g. a 5 m radius at 1.2 m/s) or a pause is no turn; an interval holding a pause and a
   heading change of :data:`PAUSE_MAX_TURN_DEG` or more turns (L119: the turn took the time beside the
