@@ -145,7 +145,7 @@ def plot(
 
         pdrlearn plot datasets/real/gaitmap_level_right --out out/right.svg --steps out/track_right --dpi 200
 
-        pdrlearn plot out/vr --out out/vr_travel.png --steps out/track_vr --shade travel
+        pdrlearn plot out/sim/D_u1 --out out/D_travel.png --steps out/track/D_M3 --shade travel
     """
     from pdrlearn.errors import DataError
     from pdrlearn.io import read_session
