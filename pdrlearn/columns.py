@@ -1087,9 +1087,10 @@ FOOT_STEPS: tuple[Column, ...] = (
     ("end_s", "s", "number", "the stride's end: the middle of the rest after it"),
     ("event_s", "s", "number", "the step detector's initial contact (IC) in the stride (--streaming: empty, or the "
                                "streamed IC with --contacts; E49-E51)"),
-    ("length_m", "m", "number", "horizontal distance the stride moved after the class rules; negative only when "
-                                "classed backward and no side step nor turn on the spot (L65, C137, L578); 0 for a "
-                                "gap row or an impossible stride"),
+    ("length_m", "m", "number", "horizontal distance the stride moved after the class rules; negative exactly when "
+                                "the stride travelled backward (backward_travel: raw_length_m < 0, no side step nor "
+                                "turn on the spot), whatever the direction class (L654, amending L65; C137, L578); 0 "
+                                "for a gap row or an impossible stride"),
     ("raw_length_m", "m", "number", "the estimate before the rules, signed with the foot's forward axis at the "
                                     "stride start (< 0: it moved backwards in that frame)"),
     ("heading_rad", "rad", "number", "the direction the stride is placed along (ENU, 0 = east or the start "

@@ -276,6 +276,7 @@ def _validators() -> dict[tuple[str, str], object]:
     from pdrlearn.kernels.bayes import RULES
     from pdrlearn.kernels.relative_length import LENGTH_REFERENCES
     from pdrlearn.kernels.window import BOUNDARIES
+    from pdrlearn.plots import SHADE_COLOURS
     from pdrlearn.plugins import parse_spec
     from pdrlearn.runtime.bundle import UNITS as BODY_UNITS
     from pdrlearn.sim import SCENARIOS, SPEEDS
@@ -338,6 +339,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("track", "reference_point"): _one_of(REFERENCE_POINTS),  # decision L72
         ("track", "altitude"): _one_of(ALTITUDES),  # decision L154
         ("track", "compass"): _one_of(COMPASS_CHOICES),  # decision L545
+        ("plot", "shade"): _one_of(list(SHADE_COLOURS)),  # decision L655
         ("track", "window"): parse_window,  # decision L105
         ("track", "per"): parse_per,  # decision L277
         ("track", "splits"): parse_splits,  # decision L411 (B307)

@@ -547,8 +547,8 @@ def backward_travel(steps: pd.DataFrame) -> np.ndarray | None:
     from pdrlearn.track.gait import sideways_rows
 
     units = set(steps["unit"].astype(str)) if len(steps) and "unit" in steps else set()
-    # L203 amended: a replayed table (`pdrlearn run`) has no raw length; its signed ``length_m`` (negative only for a
-    # stride classed backward, thesis eq. 61's sign) counts instead
+    # L203 amended: a replayed table (`pdrlearn run`) has no raw length; its signed ``length_m`` (the measured travel's
+    # sign, decision L654) counts instead
     column = "raw_length_m" if "raw_length_m" in steps else "length_m"
     if units != {"foot"} or column not in steps:
         return None

@@ -1695,8 +1695,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     if start is not None:
         ll = geodetic_track(start, length, head)
         traj["lat"], traj["lon"] = ll[:, 0], ll[:, 1]
-    # decision L65: a negative length only with a backward class (else |length| along heading + pi, same path)
-    rep_length, rep_head = SK.travel_sign(length, head, table["direction"].to_numpy(dtype=object),
+    # decision L654 (amends L65): length_m's sign is the measured travel (|length| along heading + pi, same path)
+    rep_length, rep_head = SK.travel_sign(length, head, table["raw_length_m"].to_numpy(float),
                                           table["sideways"].to_numpy(dtype=bool),  # decision C137
                                           table["turn_angle_rad"].to_numpy(float))  # decision L578
     side_class_warning(table, warnings, trained_side_strides(model))  # decisions C137, C161
@@ -2168,9 +2168,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     for c in classes.columns:
         if not c.startswith("ood_feature_"):
             table[c] = classes[c].to_numpy()
-    # decision L65 (as the runtime's Step): a negative length only with a backward class; the path is the same
-    rep_length, rep_head = SK.travel_sign(length, head, table["direction"].to_numpy(dtype=object)
-                                          if "direction" in table else None, sideways,  # decision C137
+    # decision L654 (as the runtime's Step): length_m's sign is the measured travel; the path is the same
+    rep_length, rep_head = SK.travel_sign(length, head, raw_disp[:, 0], sideways,  # decision C137
                                           np.angle(np.exp(1j * turn)))  # decision L578: E51's wrapped own turn
     table.insert(3, "length_m", rep_length)
     table.insert(5, "heading_rad", wrap_angle(rep_head))
@@ -2179,8 +2178,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     table["impossible"] = impossible & ~in_gap  # decision L97: the strides L94 moved 0 m (no gait values)
     table["gap_s"] = np.where(in_gap, longest_gap_in(table["start_s"], table["end_s"], foot_gaps), 0.0)  # E37, L67
     table["sideways"] = sideways  # decision L243 (L228's column, decided stride by stride as the runtime's)
-    side_class_warning(table, warnings, trained_side_strides(model))  # decisions C137, C161
     table["unit"] = "foot"
+    side_class_warning(table, warnings, trained_side_strides(model))  # decisions C137, C161, L652 (a foot table)
     traj = pd.DataFrame({"t": np.concatenate([[table["start_s"].iloc[0]], table["end_s"].to_numpy()]),
                          "x": xyz[:, 0], "y": xyz[:, 1], "z": xyz[:, 2] + start_alt})  # L157: z from alt
     if start is not None:
