@@ -270,9 +270,10 @@ CORRIDOR_OPT = typer.Option(None, "--corridor", metavar="METRES", help="A corrid
                             "fatigue_index (decisions L383, L384). A 6MWT inside a longer "
                             "recording: with --window T0,T0+360.")
 WALK_TEST_DURATION_OPT = typer.Option(None, "--walk-test-duration", metavar="SECONDS", help="With --corridor: "
-                                      "the test lasts SECONDS from the first step (360 for a 6MWT, 120 for a "
-                                      "2MWT, the ATS 2002 protocol's 'go'); walking after it (back to a chair) "
-                                      "is not scored (decision L516).")
+                                      "the test lasts SECONDS from 'go' (--walk-test-start; 360 for a 6MWT, 120 for "
+                                      "a 2MWT, the ATS 2002 protocol); walking after it (back to a chair) is not "
+                                      "scored (decision L516); a recording or walk that ends early is said "
+                                      "(walk_test_stopped_s, L644).")
 WALK_TEST_START_OPT = typer.Option("auto", "--walk-test-start", metavar="auto|first-step|SECONDS", help="With "
                                    "--walk-test-duration: the test's 'go'. auto (default): the first step after the "
                                    "last standstill of 5 s or more before the first full lap (a walk to the start "
@@ -432,7 +433,7 @@ def track(
 
         pdrlearn track out/sim/D_u1 --corridor 30 --out out/D_laps   # a 6MWT: OUT/laps.csv, laps x 30 m (L383)
 
-        pdrlearn track clinic/6mwt --corridor 30 --walk-test-duration 360 --out out/6mwt   # 6 min from the 1st step
+        pdrlearn track clinic/6mwt --corridor 30 --walk-test-duration 360 --out out/6mwt   # 6 min from 'go'
 
         pdrlearn track out/sim/A_u1 --splits 5,10,20 --out out/A_splits   # OUT/splits.csv: times at 5, 10, 20 m
 

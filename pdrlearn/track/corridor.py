@@ -322,11 +322,11 @@ def corridor_agreement(tracked: np.ndarray, corridor_m: float, *, lower_back: bo
         tol += CORRIDOR_SPREAD_K[unit] * spread
         if abs(np.log(ref / corridor_m)) <= np.log1p(tol):
             return None
+        lost = " or did the track lose steps?" if ref < corridor_m else ""  # decision L646
         return coded(f"corridor walk test: the median lap tracked {ref:.1f} m (laps {np.min(laps):.1f}-"
                      f"{np.max(laps):.1f} m) against --corridor {corridor_m:g} m ({ref / corridor_m:.2f} x), outside "
                      f"the {1 / (1 + tol):.2f}-{1 + tol:.2f} x a {unit} track's scale error allows: is the corridor "
-                     f"length right?{' or did the track lose steps?' if ref < corridor_m else ''} the laps count {corridor_m:g} m each (decisions "
-                     "L518, L646)", "L518")
+                     f"length right?{lost} the laps count {corridor_m:g} m each (decisions L518, L646)", "L518")
     last = float(np.sum(tracked)) if len(tracked) else 0.0
     if last <= (1.0 + tol) * corridor_m:
         return None
