@@ -96,6 +96,16 @@ def test_track_and_track_all_start_at_go_or_the_given_start_l642(walk_to_start, 
         (ses / "meta.json").write_text(json.dumps(meta))
 
 
+def test_a_start_after_the_walk_is_one_line_l642(walk_to_start, tmp_path, capsys):
+    capsys.readouterr()
+    assert main(["track", str(walk_to_start), "--units", "waist", "--corridor", "15", "--walk-test-duration", "40",
+                 "--walk-test-start", "900", "--no-plot", "--out", str(tmp_path / "o")]) != 0
+    text = capsys.readouterr().err
+    err = [x for x in text.splitlines() if x.startswith("error")]
+    assert len(err) == 1 and "walk test's start 900 s" in err[0] and "Traceback" not in text
+    assert not (tmp_path / "o").exists()
+
+
 @pytest.mark.parametrize("args, words", [(["--walk-test-duration", "360", "--walk-test-start", "soon"], "auto"),
                                          (["--walk-test-duration", "360", "--walk-test-start=-3"], "seconds"),
                                          (["--walk-test-start", "37"], "add --walk-test-duration")])

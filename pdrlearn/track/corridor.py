@@ -261,6 +261,13 @@ def go_time(st: pd.DataFrame, t: np.ndarray, d: np.ndarray, mids: np.ndarray,
     corridor (L646: it lost steps, so its gaps are not known to be standstills)."""
     first = float(t[0])
     if not isinstance(start, str):
+        last = float(st["end_s"].max())
+        if not float(start) < last:
+            from pdrlearn.errors import DataError
+
+            raise DataError(f"the walk test's start {float(start):g} s (--walk-test-start or meta.json "
+                            f"walk_test_start_s) is not before the track's last step ({last:.1f} s): give the "
+                            "test's 'go' in seconds of the session's clock, inside the walk (decision L642)")
         return float(start), None
     if start != "auto" or len(st) < 2:
         return first, None
