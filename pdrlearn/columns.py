@@ -1407,7 +1407,8 @@ LAPS: tuple[Column, ...] = (
     ("duration_s", "s", "number", "end_s - start_s, rests included (L384)"),
     ("corridor_laps", "count", "integer", "corridor lengths it counts: round(tracked_m / the median stretch); 2 or "
                                           "more a missed turn, 0 the final partial lap or a last lap that turned "
-                                          "back short (L384, L517)"),
+                                          "back short (L384, L517); 1 a final lap scaled to 95 % of the corridor "
+                                          "or more (it reached the cone, L645)"),
     ("tracked_m", "m", "number", "the track's distance over it (steps.csv's lengths)"),
     ("distance_m", "m", "number", "corridor_laps x corridor_m, or the final lap's scaled tracked distance (L383)"),
     ("distance_source", _ID, "text", "corridor, tracked x scale (the final lap or a last lap that turned back "
