@@ -364,13 +364,26 @@ SESSIONS: tuple[Column, ...] = (
                                             "distance x the last lap's corridor / tracked ratio, at most corridor_m; "
                                             "ATS 2002 as recalled, L383)"),
     ("walk_test_duration_s", "s", "number", "--corridor only: the span walk_test_distance_m covers (--walk-test-"
-                                            "duration's from the first step, L516; --window's; else the first "
-                                            "step's start to the last step's end); a note when it is over 7 minutes "
-                                            "without either (L462)"),
+                                            "duration's from walk_test_start_s, L516, up to the recording's end at "
+                                            "most, L644; --window's; else the first step's start to the last step's "
+                                            "end); a note when it is over 7 minutes without either (L462)"),
     ("walk_test_distance_per_minute_m", "m", "number", "--corridor only, summary.json only (a list): the corridor "
-                                                     "distance in each full minute from the first step (L383)"),
+                                                     "distance in each full minute from the test's start, up to "
+                                                     "walk_test_stopped_s when given (L383, L644); empty when the "
+                                                     "laps track under half the corridor (L646)"),
     ("fatigue_index", "ratio", "number", "--corridor only: the last full minute's distance / the first minute's "
-                                         "(our choice, L383); empty under 2 full minutes"),
+                                         "(our choice, L383; the minutes walked, L644); empty under 2 full minutes "
+                                         "or with the per-minute distances withheld (L646)"),
+    ("walk_test_start_s", "s", "number", "--walk-test-duration only: the test's start ('go', session clock): "
+                                         "--walk-test-start, meta.json walk_test_start_s, else the first step after "
+                                         "a standstill before the first full lap, else the first step (L642)"),
+    ("walk_test_protocol_s", "s", "number", "--walk-test-duration only: the test's duration asked (120: 2MWT, 360: "
+                                            "6MWT; the label clinical.md gives it, L644)"),
+    ("walk_test_stopped_s", "s", "number", "--walk-test-duration only: the last step's end after walk_test_start_s "
+                                           "when the walking ended over 10 s before the test's end (stopped early, "
+                                           "L644); empty otherwise"),
+    ("walk_test_note", _ID, "text", "--corridor only: why no walk test was scored (not a corridor, L643) or why the "
+                                    "per-minute distances and fatigue index are withheld (L646); empty otherwise"),
     ("splits_m", "m", "number", "--splits only, summary.json only (a list): the distance marks given (L411); "
                                 "with --splits every:STEP each STEP on the path, then the path's end (L553)"),
     ("split_times_s", "s", "number", "--splits only, summary.json only (a list): each mark's time from the first "
@@ -1408,7 +1421,8 @@ LAPS: tuple[Column, ...] = (
     ("duration_s", "s", "number", "end_s - start_s, rests included (L384)"),
     ("corridor_laps", "count", "integer", "corridor lengths it counts: round(tracked_m / the median stretch); 2 or "
                                           "more a missed turn, 0 the final partial lap or a last lap that turned "
-                                          "back short (L384, L517)"),
+                                          "back short (L384, L517); 1 a final lap scaled to 95 % of the corridor "
+                                          "or more (it reached the cone, L645)"),
     ("tracked_m", "m", "number", "the track's distance over it (steps.csv's lengths)"),
     ("distance_m", "m", "number", "corridor_laps x corridor_m, or the final lap's scaled tracked distance (L383)"),
     ("distance_source", _ID, "text", "corridor, tracked x scale (the final lap or a last lap that turned back "

@@ -325,11 +325,27 @@ def _side(rows, visit: str, measures) -> tuple[str, str | None, object]:
         why = (f"{visit}: its trials were tracked by {', '.join(pipelines)}: a mean across pipelines is the "
                "methods' mix; track every trial with the same --pipeline (decisions C30, C83)")
         return "pipelines", why, None
+    reasons += partial_measures(ok, visit, measures)  # decision C176
     row = pd.Series({"path": "; ".join(ok["path"].astype(str)), "paths": ok["path"].astype(str).tolist(),
                      "pipeline": pipelines[0] if pipelines else None, "n_trials": len(ok),
                      "duplicate_of": ok["duplicate_of"].tolist() if "duplicate_of" in ok else [None] * len(ok),  # C84
                      **{m: pd.to_numeric(ok[m], errors="coerce").mean() for m in measures}})  # C83: the trials' mean
     return "ok", "; ".join(reasons) or None, row
+
+
+def partial_measures(ok, visit: str, measures) -> list[str]:
+    """Decision C176: one reason per measure that only some of a visit's averaged sessions ``ok`` have (C83 averages
+    the sessions with a value): which sessions it comes from, e.g. a 6MWT's ``walk_test_distance_m`` beside a TUG
+    session of the same visit that scores none (L643)."""
+    import pandas as pd
+
+    out = []
+    for m in measures:
+        has = pd.to_numeric(ok[m], errors="coerce").notna() if m in ok else pd.Series(False, index=ok.index)
+        if has.any() and not has.all():
+            out.append(f"{visit}: {m} from {int(has.sum())} of {len(ok)} sessions ("
+                       f"{', '.join(ok.loc[has, 'path'].astype(str))}; the others have none)")
+    return out
 
 
 #: a visit name's leading word and the word it is a spelling of (decision C28), after case and separators are

@@ -986,6 +986,7 @@ def track_all(
     per_align: str = _track.PER_ALIGN_OPT,
     corridor: float = _track.CORRIDOR_OPT,
     walk_test_duration: float = _track.WALK_TEST_DURATION_OPT,  # decision L516
+    walk_test_start: str = _track.WALK_TEST_START_OPT,  # decision L642: auto, or each session's meta.json
     ten_m_walk: str = _track.TEN_M_WALK_OPT,  # decision L534: every session's walkway (L522)
     splits: str = _track.SPLITS_OPT,
     stair_rise: float = _track.STAIR_RISE_OPT,

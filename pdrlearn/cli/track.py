@@ -282,9 +282,16 @@ CORRIDOR_OPT = typer.Option(None, "--corridor", metavar="METRES", help="A corrid
                             "fatigue_index (decisions L383, L384). A 6MWT inside a longer "
                             "recording: with --window T0,T0+360.")
 WALK_TEST_DURATION_OPT = typer.Option(None, "--walk-test-duration", metavar="SECONDS", help="With --corridor: "
-                                      "the test lasts SECONDS from the first step (360 for a 6MWT, 120 for a "
-                                      "2MWT, the ATS 2002 protocol's 'go'); walking after it (back to a chair) "
-                                      "is not scored (decision L516).")
+                                      "the test lasts SECONDS from 'go' (--walk-test-start; 360 for a 6MWT, 120 for "
+                                      "a 2MWT, the ATS 2002 protocol); walking after it (back to a chair) is not "
+                                      "scored (decision L516); a recording or walk that ends early is said "
+                                      "(walk_test_stopped_s, L644).")
+WALK_TEST_START_OPT = typer.Option("auto", "--walk-test-start", metavar="auto|first-step|SECONDS", help="With "
+                                   "--walk-test-duration: the test's 'go'. auto (default): the first step after the "
+                                   "last standstill of 5 s or more before the first full lap (a walk to the start "
+                                   "line and a wait), else the first step; a session's meta.json walk_test_start_s "
+                                   "gives its own 'go' (s); first-step: the first step; SECONDS: that time on every "
+                                   "session's clock (decision L642).")
 SPLITS_OPT = typer.Option(None, "--splits", metavar="METRES", help="Split times at distances along the tracked path "
                           "(e.g. 5,10,20: a sprint's marks, metres from the first step; every:1000: a mark every "
                           "1000 m and the final partial split at the path's end, L553): OUT/splits.csv (each mark's "
@@ -387,6 +394,7 @@ def track(
     segments: Path = SEGMENTS_OPT,
     corridor: float = CORRIDOR_OPT,
     walk_test_duration: float = WALK_TEST_DURATION_OPT,
+    walk_test_start: str = WALK_TEST_START_OPT,
     splits: str = SPLITS_OPT,
     ten_m_walk: str = TEN_M_WALK_OPT,
     stair_rise: float = STAIR_RISE_OPT,
@@ -440,7 +448,7 @@ def track(
 
         pdrlearn track out/sim/D_u1 --corridor 30 --out out/D_laps   # a 6MWT: OUT/laps.csv, laps x 30 m (L383)
 
-        pdrlearn track clinic/6mwt --corridor 30 --walk-test-duration 360 --out out/6mwt   # 6 min from the 1st step
+        pdrlearn track clinic/6mwt --corridor 30 --walk-test-duration 360 --out out/6mwt   # 6 min from 'go'
 
         pdrlearn track out/sim/A_u1 --splits 5,10,20 --out out/A_splits   # OUT/splits.csv: times at 5, 10, 20 m
 
@@ -558,7 +566,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    common_span: bool = False, window: str | None = None, per: str | None = None,
                    per_align: str = "start", segments: Path | None = None, corridor: float | None = None,
                    splits: str | None = None,
-                   walk_test_duration: float | None = None,
+                   walk_test_duration: float | None = None, walk_test_start: str = "auto",
                    ten_m_walk: str | None = None,
                    stair_rise: float | None = None, stair_grade: float | None = None, resample: bool = False,
                    no_resample: bool = False, units: str | None = None, bout_break_s: float | None = None,
@@ -616,6 +624,9 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
     from pdrlearn.track.corridor import walk_test_duration as check_walk_test_duration
 
     walk_test_s = check_walk_test_duration(walk_test_duration, corridor_m)  # decision B396: before any session
+    from pdrlearn.track.corridor import walk_test_start as check_walk_test_start
+
+    go = check_walk_test_start(walk_test_start, walk_test_s)  # decision L642: before any session
     from pdrlearn.track.splits import parse_splits
 
     splits_m = parse_splits(splits)  # decision B307: before any session
@@ -757,7 +768,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "at_times": at_times_file, "at_times_table": at_times_rows,  # decision L638
             "common_span": common_span, "window": win, "per_s": per_s,
             "per_align": per_align, "legs": legs, "segments": segments,  # decision L618
-            "corridor_m": corridor_m, "walk_test_s": walk_test_s, "splits_m": splits_m,
+            "corridor_m": corridor_m, "walk_test_s": walk_test_s, "walk_test_start": go, "splits_m": splits_m,
             "ten_m_walk_m": ten_m_walk_m,
             "stair_rise_m": stair_rise_m, "stair_grade_pct": stair_grade_pct,
             "resample": rate_mode,
@@ -1261,8 +1272,13 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
         from pdrlearn.track.folder import clinical_tables
 
         span = (summary["window_start_s"], summary["window_end_s"]) if win is not None else None  # L383: the test's
+        from pdrlearn.track.corridor import session_go
+        from pdrlearn.track.periods import session_span
+
         laps, keys, lines = corridor_laps(result.steps, clinical_tables(result, bouts)["turns.csv"], o["corridor_m"],
-                                          bouts, span=span, duration_s=o.get("walk_test_s"))  # L516
+                                          bouts, span=span, duration_s=o.get("walk_test_s"),  # L516
+                                          start=session_go(o.get("walk_test_start", "auto"), session),  # L642
+                                          data_end=session_span(session, unit)[1])  # L644
         summary.update(keys)
         if lines:
             import logging

@@ -152,17 +152,37 @@ def _unit(source: str) -> str:
     return "foot unit" if source == "foot" else "lower-back unit"
 
 
+def walk_test_line(summary: dict, unit: str) -> str | None:
+    """Decisions W420, L644: the corridor walk test's line, named by the duration asked (2MWT, 6MWT, "N-min walk
+    test"; untimed: none), with the span it covers, a stop or a span shorter than asked, and (L643) a test not
+    scored."""
+    from pdrlearn.track.corridor import clock_text, walk_test_label
+
+    corridor, protocol = summary.get("corridor_m"), summary.get("walk_test_protocol_s")
+    name = f" ({walk_test_label(protocol)})" if protocol is not None else ""
+    if summary.get("walk_test_distance_m") is None:
+        note = summary.get("walk_test_note")
+        return f"- Corridor walk test{name}: not scored: {note} ({unit})" if corridor and note else None
+    laps = f", {summary['n_laps']} laps of {corridor:g} m" if corridor and summary.get("n_laps") is not None else ""
+    dur = summary.get("walk_test_duration_s")
+    span = f" in {dur / 60:.1f} min" if dur else ""
+    short = protocol is not None and dur is not None and dur < protocol - 1e-6  # decision L644: shorter than asked
+    if summary.get("walk_test_stopped_s") is not None:
+        span = (f"; walking stopped after {clock_text(summary['walk_test_stopped_s'])} of "
+                f"{clock_text(protocol or dur or 0.0)}" + (f" (recording ends at {clock_text(dur)})" if short else ""))
+    elif short:
+        span += f" (the recording ends {clock_text(dur)} after the start: incomplete {walk_test_label(protocol)})"
+    extra = f"; {summary['walk_test_note']}" if summary.get("walk_test_note") else ""
+    return f"- Corridor walk test{name}: {summary['walk_test_distance_m']:.0f} m{laps}{span}{extra} ({unit})"
+
+
 def clinical_lines(summary: dict, folder: Path) -> list[str]:
     """Decision W420: one line per clinical test the track in ``folder`` (its ``summary``) measured."""
     unit = UNIT_NAMES.get(str(summary.get("pipeline")), str(summary.get("pipeline")))
     lines = []
-    if summary.get("walk_test_distance_m") is not None:
-        corridor = summary.get("corridor_m")
-        laps = f", {summary['n_laps']} laps of {corridor:g} m" if corridor and summary.get("n_laps") is not None \
-            else ""
-        dur = summary.get("walk_test_duration_s")
-        lines.append(f"- Corridor walk test (6MWT): {summary['walk_test_distance_m']:.0f} m{laps}"
-                     f"{f' in {dur / 60:.1f} min' if dur else ''} ({unit})")
+    walk = walk_test_line(summary, unit)
+    if walk:
+        lines.append(walk)
     tug = tug_line(summary, folder)
     if tug:
         lines.append(tug)
