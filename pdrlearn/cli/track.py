@@ -247,9 +247,10 @@ PER_OPT = typer.Option(None, "--per", help="Totals per period in OUT/periods.csv
                        "distance, steps, walking / between-steps / no-step / no-data time, floors, bouts, "
                        "turns, the position sigma at the period's end (decisions L275, L277). With --window: the "
                        "window cut into periods from its start (decision L381).")
-PER_ALIGN_OPT = typer.Option("start", "--per-align", help="Where --per's periods begin: start (default: at the "
+PER_ALIGN_OPT = typer.Option(None, "--per-align", help="Where --per's periods begin: start (default: at the "
                              "recording's start, or the --window's), first-step (at the first tracked step: a walk "
-                             "test's minutes from 'go'; decision L381) or clock (at whole multiples of the period on "
+                             "test's minutes from 'go'; decision L381; the default with --walk-test-duration, "
+                             "decision C178) or clock (at whole multiples of the period on "
                              "the recording's clock, 1h = the clock hours; the first and last periods partial). clock "
                              "needs the session's start (meta.json recording_start or a date-time import; decision "
                              "L299).")
@@ -538,7 +539,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    drop_neighbour: bool = False, dpi: int | None = None, no_plot: bool = False,
                    initial_heading: float | None = None,
                    common_span: bool = False, window: str | None = None, per: str | None = None,
-                   per_align: str = "start", segments: Path | None = None, corridor: float | None = None,
+                   per_align: str | None = None, segments: Path | None = None, corridor: float | None = None,
                    splits: str | None = None,
                    walk_test_duration: float | None = None,
                    ten_m_walk: str | None = None,
@@ -580,6 +581,10 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
     per_s = parse_per(per)  # decision L277
     from pdrlearn.track.clock import PER_ALIGNS
 
+    # decision C178: with --walk-test-duration the periods are the test's minutes, from its first step ("go")
+    per_align_auto = per_align is None
+    if per_align_auto:
+        per_align = "first-step" if walk_test_duration is not None and per_s is not None else "start"
     if per_align not in PER_ALIGNS:  # decision L299
         raise DataError(f"--per-align {per_align!r}: give start (periods from the recording's start), first-step "
                         "(from the first tracked step) or clock (on the clock's whole periods)")
@@ -722,7 +727,8 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "contacts": contacts,
             "drop_neighbour": drop_neighbour, "dpi": dpi, "plot": plot,
             "initial_heading_rad": heading0, "common_span": common_span, "window": win, "per_s": per_s,
-            "per_align": per_align, "legs": legs, "segments": segments,  # decision L618
+            "per_align": per_align, "per_align_auto": per_align_auto,  # decision C178
+            "legs": legs, "segments": segments,  # decision L618
             "corridor_m": corridor_m, "walk_test_s": walk_test_s, "splits_m": splits_m,
             "ten_m_walk_m": ten_m_walk_m,
             "stair_rise_m": stair_rise_m, "stair_grade_pct": stair_grade_pct,
@@ -1178,14 +1184,22 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
         from pdrlearn.track.periods import period_span, period_table
 
         # decision L381: the window's span (its first step's with first-step), else the recording's
-        span = period_span(whole, session, unit, (summary["window_start_s"], summary["window_end_s"])
-                           if win is not None else None, first_step=o.get("per_align") == "first-step")
+        first_step = o.get("per_align") == "first-step"
+        in_window = (summary["window_start_s"], summary["window_end_s"]) if win is not None else None
+        try:
+            span = period_span(whole, session, unit, in_window, first_step=first_step)
+        except DataError:
+            if not o.get("per_align_auto"):
+                raise
+            # decision C178: the walk test's default, without a step to start from: the span's start (as before)
+            first_step = False
+            span = period_span(whole, session, unit, in_window)
         periods = period_table(whole, session, o["per_s"], unit=unit, bouts=bouts,
                                turns=clinical_tables(whole, bouts)["turns.csv"],
                                storey_height_m=o.get("storey_height_m", 3.0), clock=clock, span=span)
         summary["per_s"] = float(o["per_s"])
         summary["per_start_s"] = float(span[0])
-        if o.get("per_align") == "first-step":
+        if first_step:
             summary["per_align"] = "first-step"
         from pdrlearn.track.periods import constant_bounce_line
 

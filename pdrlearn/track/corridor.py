@@ -299,4 +299,22 @@ def corridor_line(summary: dict) -> str:
             f"{(summary.get('walk_test_distance_m') or 0.0):.1f} m (laps x {summary['corridor_m']:g} m + the final "
             f"partial lap, laps.csv; L383)"
             + (f"; per minute from the test's start {' / '.join(f'{v:.1f}' for v in per)} m" if per else "")
-            + (f"; fatigue index {fatigue:.2f} (last / first minute)" if fatigue is not None else ""))
+            + (f"; fatigue index {fatigue:.2f} (last / first minute)" if fatigue is not None else "")
+            + walk_test_speed_text(summary))
+
+
+def walk_test_speed(summary: dict) -> float | None:
+    """Decision L650: the walk test's own mean speed (m/s): its distance (from the corridor's laps) / its duration;
+    None without a walk test."""
+    dist, dur = summary.get("walk_test_distance_m"), summary.get("walk_test_duration_s")
+    return float(dist) / float(dur) if dist is not None and dur else None
+
+
+def walk_test_speed_text(summary: dict) -> str:
+    """Decision L650: :func:`walk_test_speed` named as the test's beside the gait speed line's (the whole recording's
+    walking, from the step lengths); "" without one."""
+    speed = walk_test_speed(summary)
+    if speed is None:
+        return ""
+    return (f"; test speed {speed:.2f} m/s (the test's distance / its {summary['walk_test_duration_s']:.0f} s; the "
+            "gait speed line is the whole recording's walking, from step lengths: L650)")
