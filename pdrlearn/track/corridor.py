@@ -14,6 +14,7 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.track.clinical import _is_lower_back, data_gap_lengths
+from pdrlearn.track.rests import rest_seconds
 from pdrlearn.track.walk_test import _path
 from pdrlearn.warning_lines import coded
 
@@ -75,15 +76,6 @@ def _row_steps(steps: pd.DataFrame) -> np.ndarray:
     if _is_lower_back(steps):
         return np.ones(len(steps))
     return np.where(data_gap_lengths(steps) > 0, 0.0, 2.0)
-
-
-def _rest_s(start: float, end: float, bouts: pd.DataFrame | None) -> float:
-    """The time of ``[start, end]`` outside every walking bout of bouts.csv (decision L384)."""
-    if bouts is None or not len(bouts):
-        return float(end - start)
-    a = np.clip(bouts["start_s"].to_numpy(float), start, end)
-    b = np.clip(bouts["end_s"].to_numpy(float), start, end)
-    return float(max(end - start - np.sum(np.maximum(b - a, 0.0)), 0.0))
 
 
 def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
@@ -173,7 +165,7 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
         inside = (contact > a) & (contact <= b)
         rows.append({"lap": i, "start_s": a, "end_s": b, "duration_s": b - a, "corridor_laps": max(c, 0),
                      "tracked_m": m, "distance_m": dist, "distance_source": source,
-                     "speed_mps": dist / (b - a) if b > a else float("nan"), "rest_s": _rest_s(a, b, bouts),
+                     "speed_mps": dist / (b - a) if b > a else float("nan"), "rest_s": rest_seconds(a, b, bouts, turns),
                      "n_steps": int(n_row[inside].sum())})
         known.append((b, known[-1][1] + dist))
     laps = pd.DataFrame(rows, columns=list(LAP_COLUMNS))
