@@ -81,6 +81,9 @@ def tug_line(summary: dict, folder: Path) -> str | None:
     path = folder / "tug_trials.csv"
     trials = pd.read_csv(path) if path.is_file() else None
     if summary.get("tug_time_s") is None:
+        note = summary.get("tug_time_note")
+        if isinstance(note, str) and "L648" in note:  # decision L648: a TUG with one transfer missed, said
+            return f"- TUG: not timed ({note}; chair transfers: lower-back unit)"
         if not summary.get("n_tug_trials") or trials is None:
             return None
         times = ", ".join(_s(t) for t in trials["tug_time_s"])
