@@ -8,7 +8,9 @@ standing ``stand:3, straight:12, stand:3`` (truth: the body's first movement, 1 
 7.62 m). The kernel is read without L313's refusal (the steps' unit relabelled, as experiments/step_length_l310.py),
 calibrated and uncalibrated.
 
-Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/walk_test_calibrated_l649.py TMPDIR
+Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/walk_test_calibrated_l649.py TMPDIR [--flying]
+(--flying, after a first run in TMPDIR: trial T1's walkway 1,7.62,3.38 on the 16 m walks, calibrated; truth the body's
+crossing of 1 m and 8.62 m)
 """
 from __future__ import annotations
 
@@ -83,5 +85,22 @@ def run(tmp: Path) -> None:
               f"{np.median(np.abs(a)):.2f} %, max |.| {np.abs(a).max():.2f} %")
 
 
+def flying(tmp: Path) -> None:
+    logging.disable(logging.WARNING)
+    errs = []
+    for u in USERS:
+        tr = pd.read_csv(tmp / f"w16_{u}" / "trajectory.csv")
+        truth = crossing(tr, 8.62) - crossing(tr, 1.0)
+        r = ten_metre_walk(unrefused(read_session(tmp / f"w16_{u}"), str(tmp / f"p_{u}.json")), (1.0, 7.62, 3.38))
+        if r["ten_m_walk_time_s"] is None:
+            print(f"u{u}: not timed ({r['ten_m_walk_note'][:80]})")
+            continue
+        errs.append(100.0 * (truth / r["ten_m_walk_time_s"] - 1.0))
+        print(f"u{u}: 1,7.62,3.38 true {truth:.2f} s, calibrated {r['ten_m_walk_time_s']:.2f} s ({errs[-1]:+.1f} %)")
+    a = np.asarray(errs)
+    print(f"1,7.62,3.38 calibrated: n={len(a)}, speed error median {np.median(a):+.2f} %, median |.| "
+          f"{np.median(np.abs(a)):.2f} %, max |.| {np.abs(a).max():.2f} %")
+
+
 if __name__ == "__main__":
-    run(Path(sys.argv[1]))
+    flying(Path(sys.argv[1])) if "--flying" in sys.argv else run(Path(sys.argv[1]))
