@@ -389,7 +389,8 @@ SESSIONS: tuple[Column, ...] = (
     ("split_times_s", "s", "number", "--splits only, summary.json only (a list): each mark's time from the first "
                                      "step's start (splits.csv's time_s); empty for a mark beyond the path (L411)"),
     ("per_align", _ID, "text", "--per-align clock or first-step only: clock (periods.csv cut at the clock's whole "
-                               "periods, L299) or first-step (from the first tracked step, L381)"),
+                               "periods, L299) or first-step (from the first tracked step, L381; the default with "
+                               "--walk-test-duration, C178)"),
     ("per_start_s", "s", "number", "--per only: the first period's start (the recording's or --window's start, or "
                                    "the first step's with --per-align first-step; L381)"),
     ("recording_start", "date-time", "text", "the clock time of the recording's first sample, ISO 8601 at its own "
@@ -514,7 +515,9 @@ SESSIONS: tuple[Column, ...] = (
                                    "a stand-to-sit (not starting and ending seated, several trials, steps outside; "
                                    "W282; no step between: a chair stand, W340), pointing at --window - or, with "
                                    "TUG trials found, that each is timed in tug_trials.csv (W325), or that the "
-                                   "seat-to-seat walks are chair-to-chair walks (W445); empty otherwise"),
+                                   "seat-to-seat walks are chair-to-chair walks (W445); or that a walk of at most "
+                                   "120 s has a rise before it and no sit after it, or the reverse: a slow transfer "
+                                   "missed (L648); empty otherwise"),
     ("n_tug_trials", "count", "integer", "lower back: TUG trials, W183's seat-to-seat rule applied to each "
                                          "sit-to-stand directly followed by a stand-to-sit with walking between "
                                          "(tug_trials.csv, W325) that looks like a TUG: at most 120 s and back "
@@ -550,7 +553,8 @@ SESSIONS: tuple[Column, ...] = (
     ("ten_m_walk_time_s", "s", "number", "10 m walk test: the time the path takes over the timed metres of "
                                          "ten_m_walk_zones_m (default 2 m to 12 m) of the first walking bout "
                                          "reaching the walkway's length, straight (L312, L522, L531); empty on a "
-                                         "shorter or turning walk (L313)"),
+                                         "shorter or turning walk (L313) and on the lower back unless calibrated "
+                                         "with an acceleration zone (L649)"),
     ("ten_m_walk_speed_mps", "m/s", "number", "the timed metres of ten_m_walk_zones_m (default 10 m) / "
                                               "ten_m_walk_time_s (L312, L531)"),
     ("ten_m_walk_note", _ID, "text", "why there is no ten_m_walk_time_s (L313); with one, the walking bouts that "
@@ -566,7 +570,7 @@ SESSIONS: tuple[Column, ...] = (
                                           "--ten-m-walk, L522)"),
     ("t25fw_time_s", "s", "number", "timed 25-foot walk: the time from the first walking bout's start (standing) to "
                                     "where its path passes 7.62 m, straight (L387); empty on a shorter or turning "
-                                    "walk and on the lower back (L313)"),
+                                    "walk and on the lower back, calibrated or not (L313, L649)"),
     ("t25fw_speed_mps", "m/s", "number", "7.62 m / t25fw_time_s (L387)"),
     ("t25fw_note", _ID, "text", "why there is no t25fw_time_s (L387); empty when there is one"),
     ("n_freezes", "count", "integer", "freeze episodes of the tracked unit (freezes.csv): freeze index over 3 with "
@@ -1429,7 +1433,9 @@ LAPS: tuple[Column, ...] = (
                                      "short, L517: x the last lap's corridor / tracked ratio) or tracked (no lap "
                                      "completed)"),
     ("speed_mps", "m/s", "number", "distance_m / duration_s (E98's name, as bouts.csv)"),
-    ("rest_s", "s", "number", "its time outside bouts.csv's walking bouts (a rest at a cone stays in its lap, L384)"),
+    ("rest_s", "s", "number", "its time outside bouts.csv's walking bouts (a rest at a cone stays in its lap, L384) "
+                              "and outside turns.csv's turns widened by a step interval, a gap's leftover under 1 s "
+                              "no rest (L647: a stepless cone turn is no rest)"),
     ("n_steps", "count", "integer", "steps of both feet whose contact lies in it (as bouts.csv's n_steps)"),
     *_clocks("start_s", "end_s"),
 )
@@ -1895,7 +1901,9 @@ def markdown(tables: list[str] | None = None) -> str:
              else ", ".join(dict.fromkeys(t.split(" ")[0] for t in tables)))
     lines = [f"# Columns of {title}", "",
              "Generated by `pdrlearn columns` from `pdrlearn/columns.py` (cohort decision C35); `{measure}` stands "
-             f"for each of {', '.join(GROUP_METRICS)} (changes.csv: or each `track-all --metrics` measure, C81). "
+             f"for each of {', '.join(GROUP_METRICS)} (changes.csv: or each `track-all --metrics` measure, C81; "
+             "by default also the clinical tests' walk_test_distance_m, fatigue_index, tug_time_s, "
+             "ten_m_walk_speed_mps, t25fw_time_s where a session has them, first, C177). "
              "Empty cell = not measured for that session (a failed "
              "session, another pipeline, no reference).", "", STEP_COUNT_LINE, ""]
     for name in tables or list(TABLES):

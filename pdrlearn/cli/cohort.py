@@ -727,7 +727,9 @@ def _changes(sessions: pd.DataFrame, visit_map: dict[str, str] | None = None, me
     return changes, change_summary(changes, by=by)
 
 
-METRICS_HELP = ("The sessions.csv measures changes.csv compares, comma-separated (default distance_error_pct, "
+METRICS_HELP = ("The sessions.csv measures changes.csv compares, comma-separated (default: the clinical tests' "
+                "walk_test_distance_m, fatigue_index, tug_time_s, ten_m_walk_speed_mps, t25fw_time_s where a "
+                "session has them, decision C177, then distance_error_pct, "
                 "gait_speed_mps, median_cadence_spm, median_stride_length_m), e.g. gait_speed_mps,median_cadence_spm,"
                 "median_stride_time_s,stride_time_cv_pct,median_stride_length_m; each gets its baseline, change and "
                 "percent change (the dual-task cost when the visits are single / dual; decisions C81, B303).")

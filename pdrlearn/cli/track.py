@@ -259,9 +259,10 @@ PER_OPT = typer.Option(None, "--per", help="Totals per period in OUT/periods.csv
                        "distance, steps, walking / between-steps / no-step / no-data time, floors, bouts, "
                        "turns, the position sigma at the period's end (decisions L275, L277). With --window: the "
                        "window cut into periods from its start (decision L381).")
-PER_ALIGN_OPT = typer.Option("start", "--per-align", help="Where --per's periods begin: start (default: at the "
+PER_ALIGN_OPT = typer.Option(None, "--per-align", help="Where --per's periods begin: start (default: at the "
                              "recording's start, or the --window's), first-step (at the first tracked step: a walk "
-                             "test's minutes from 'go'; decision L381) or clock (at whole multiples of the period on "
+                             "test's minutes from 'go'; decision L381; the default with --walk-test-duration, "
+                             "decision C178) or clock (at whole multiples of the period on "
                              "the recording's clock, 1h = the clock hours; the first and last periods partial). clock "
                              "needs the session's start (meta.json recording_start or a date-time import; decision "
                              "L299).")
@@ -564,7 +565,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    initial_heading: float | None = None, start_xy: str | None = None,
                    turn_to_heading: bool = False, at_times: Path | None = None,
                    common_span: bool = False, window: str | None = None, per: str | None = None,
-                   per_align: str = "start", segments: Path | None = None, corridor: float | None = None,
+                   per_align: str | None = None, segments: Path | None = None, corridor: float | None = None,
                    splits: str | None = None,
                    walk_test_duration: float | None = None, walk_test_start: str = "auto",
                    ten_m_walk: str | None = None,
@@ -606,6 +607,10 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
     per_s = parse_per(per)  # decision L277
     from pdrlearn.track.clock import PER_ALIGNS
 
+    # decision C178: with --walk-test-duration the periods are the test's minutes, from its first step ("go")
+    per_align_auto = per_align is None
+    if per_align_auto:
+        per_align = "first-step" if walk_test_duration is not None and per_s is not None else "start"
     if per_align not in PER_ALIGNS:  # decision L299
         raise DataError(f"--per-align {per_align!r}: give start (periods from the recording's start), first-step "
                         "(from the first tracked step) or clock (on the clock's whole periods)")
@@ -767,7 +772,8 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "initial_heading_rad": heading0, "start_xy": xy0, "turn_to_heading": turn_to_heading,  # L635, L637
             "at_times": at_times_file, "at_times_table": at_times_rows,  # decision L638
             "common_span": common_span, "window": win, "per_s": per_s,
-            "per_align": per_align, "legs": legs, "segments": segments,  # decision L618
+            "per_align": per_align, "per_align_auto": per_align_auto,  # decision C178
+            "legs": legs, "segments": segments,  # decision L618
             "corridor_m": corridor_m, "walk_test_s": walk_test_s, "walk_test_start": go, "splits_m": splits_m,
             "ten_m_walk_m": ten_m_walk_m,
             "stair_rise_m": stair_rise_m, "stair_grade_pct": stair_grade_pct,
@@ -1233,40 +1239,7 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
 
         traj = with_floor_columns(result.trajectory, result, summary.get("storey_height_m"))  # L630, L631: the floor
         at_times_out = at_times_table(traj, at_t, start, result.steps)
-    periods = None
-    if o.get("per_s") is not None:  # decision L277: periods.csv, from the whole session's track
-        from pdrlearn.track.folder import clinical_tables
-        from pdrlearn.track.periods import period_span, period_table
-
-        # decision L381: the window's span (its first step's with first-step), else the recording's
-        span = period_span(whole, session, unit, (summary["window_start_s"], summary["window_end_s"])
-                           if win is not None else None, first_step=o.get("per_align") == "first-step")
-        periods = period_table(whole, session, o["per_s"], unit=unit, bouts=bouts,
-                               turns=clinical_tables(whole, bouts)["turns.csv"],
-                               storey_height_m=o.get("storey_height_m", 3.0), clock=clock, span=span)
-        summary["per_s"] = float(o["per_s"])
-        summary["per_start_s"] = float(span[0])
-        if o.get("per_align") == "first-step":
-            summary["per_align"] = "first-step"
-        from pdrlearn.track.periods import constant_bounce_line
-
-        bounce = constant_bounce_line(session.meta, summary.get("info") or {})  # decision S69
-        if bounce:
-            import logging
-
-            logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, bounce)
-            summary["info"]["warnings"] = [*summary["info"].get("warnings", []), bounce]
-        if clock is not None:
-            summary["per_align"] = "clock"
-    segments = None
-    if legs is not None:  # decision L619: segments.csv, from the whole session's track (one track for every leg)
-        from pdrlearn.track.folder import clinical_tables
-        from pdrlearn.track.segments import segment_table
-
-        segments = segment_table(whole, session, legs, unit=unit, bouts=bouts,
-                                 turns=clinical_tables(whole, bouts)["turns.csv"],
-                                 storey_height_m=o.get("storey_height_m", 3.0))
-    laps = None
+    laps = None  # before periods.csv: C178 starts the test's minutes at its go (L642)
     if o.get("corridor_m") is not None:  # decisions L383, L384: the corridor walk test of the track (or its window)
         from pdrlearn.track.corridor import corridor_laps
         from pdrlearn.track.folder import clinical_tables
@@ -1286,6 +1259,52 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
             for line in lines:
                 logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, line)
             summary["info"]["warnings"] = [*summary["info"].get("warnings", []), *lines]
+    periods = None
+    if o.get("per_s") is not None:  # decision L277: periods.csv, from the whole session's track
+        from pdrlearn.track.folder import clinical_tables
+        from pdrlearn.track.periods import period_span, period_table
+
+        # decision L381: the window's span (its first step's with first-step), else the recording's
+        first_step = o.get("per_align") == "first-step"
+        in_window = (summary["window_start_s"], summary["window_end_s"]) if win is not None else None
+        go = summary.get("walk_test_start_s") if o.get("per_align_auto") and first_step else None
+        try:
+            if go is not None:  # the lead's merge of C178 with L642: the test's minutes from its go, not its first step
+                whole_span = period_span(whole, session, unit, in_window)
+                span = (max(whole_span[0], float(go)), whole_span[1])
+            else:
+                span = period_span(whole, session, unit, in_window, first_step=first_step)
+        except DataError:
+            if not o.get("per_align_auto"):
+                raise
+            # decision C178: the walk test's default, without a step to start from: the span's start (as before)
+            first_step = False
+            span = period_span(whole, session, unit, in_window)
+        periods = period_table(whole, session, o["per_s"], unit=unit, bouts=bouts,
+                               turns=clinical_tables(whole, bouts)["turns.csv"],
+                               storey_height_m=o.get("storey_height_m", 3.0), clock=clock, span=span)
+        summary["per_s"] = float(o["per_s"])
+        summary["per_start_s"] = float(span[0])
+        if first_step:
+            summary["per_align"] = "first-step"
+        from pdrlearn.track.periods import constant_bounce_line
+
+        bounce = constant_bounce_line(session.meta, summary.get("info") or {})  # decision S69
+        if bounce:
+            import logging
+
+            logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, bounce)
+            summary["info"]["warnings"] = [*summary["info"].get("warnings", []), bounce]
+        if clock is not None:
+            summary["per_align"] = "clock"
+    segments = None
+    if legs is not None:  # decision L619: segments.csv, from the whole session's track (one track for every leg)
+        from pdrlearn.track.folder import clinical_tables
+        from pdrlearn.track.segments import segment_table
+
+        segments = segment_table(whole, session, legs, unit=unit, bouts=bouts,
+                                 turns=clinical_tables(whole, bouts)["turns.csv"],
+                                 storey_height_m=o.get("storey_height_m", 3.0))
     splits = None
     if o.get("splits_m"):  # decision L411: times at distance marks from the track's (or window's) first step
         from pdrlearn.track.splits import split_table

@@ -14,6 +14,7 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.track.clinical import _is_lower_back, data_gap_lengths
+from pdrlearn.track.rests import rest_seconds
 from pdrlearn.track.walk_test import _path
 from pdrlearn.warning_lines import coded
 
@@ -90,15 +91,6 @@ def _row_steps(steps: pd.DataFrame) -> np.ndarray:
     if _is_lower_back(steps):
         return np.ones(len(steps))
     return np.where(data_gap_lengths(steps) > 0, 0.0, 2.0)
-
-
-def _rest_s(start: float, end: float, bouts: pd.DataFrame | None) -> float:
-    """The time of ``[start, end]`` outside every walking bout of bouts.csv (decision L384)."""
-    if bouts is None or not len(bouts):
-        return float(end - start)
-    a = np.clip(bouts["start_s"].to_numpy(float), start, end)
-    b = np.clip(bouts["end_s"].to_numpy(float), start, end)
-    return float(max(end - start - np.sum(np.maximum(b - a, 0.0)), 0.0))
 
 
 def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
@@ -209,7 +201,7 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
         inside = (contact > a) & (contact <= b)
         rows.append({"lap": i, "start_s": a, "end_s": b, "duration_s": b - a, "corridor_laps": max(c, 0),
                      "tracked_m": m, "distance_m": dist, "distance_source": source,
-                     "speed_mps": dist / (b - a) if b > a else float("nan"), "rest_s": _rest_s(a, b, bouts),
+                     "speed_mps": dist / (b - a) if b > a else float("nan"), "rest_s": rest_seconds(a, b, bouts, turns),
                      "n_steps": int(n_row[inside].sum())})
         known.append((b, known[-1][1] + dist))
     laps = pd.DataFrame(rows, columns=list(LAP_COLUMNS))
@@ -488,4 +480,22 @@ def corridor_line(summary: dict) -> str:
             f"partial lap, laps.csv; L383){timing}"
             + (f"; per minute from the test's start {' / '.join(f'{v:.1f}' for v in per)} m" if per else "")
             + (f"; fatigue index {fatigue:.2f} (last / first full minute)" if fatigue is not None else "")
-            + (f"; {summary['walk_test_note']}" if summary.get("walk_test_note") else ""))
+            + (f"; {summary['walk_test_note']}" if summary.get("walk_test_note") else "")
+            + walk_test_speed_text(summary))
+
+
+def walk_test_speed(summary: dict) -> float | None:
+    """Decision L650: the walk test's own mean speed (m/s): its distance (from the corridor's laps) / its duration;
+    None without a walk test."""
+    dist, dur = summary.get("walk_test_distance_m"), summary.get("walk_test_duration_s")
+    return float(dist) / float(dur) if dist is not None and dur else None
+
+
+def walk_test_speed_text(summary: dict) -> str:
+    """Decision L650: :func:`walk_test_speed` named as the test's beside the gait speed line's (the whole recording's
+    walking, from the step lengths); "" without one."""
+    speed = walk_test_speed(summary)
+    if speed is None:
+        return ""
+    return (f"; test speed {speed:.2f} m/s (the test's distance / its {summary['walk_test_duration_s']:.0f} s; the "
+            "gait speed line is the whole recording's walking, from step lengths: L650)")

@@ -711,9 +711,10 @@ def _basic(result: TrackResult, out: dict) -> None:
     from pdrlearn.track.walk_test import t25fw, ten_metre_walk
 
     # decisions L312, L313: the 10 m walk test's middle 10 m; L522: --ten-m-walk's walkway; L524: every trial
-    out.update(ten_metre_walk(result.steps, result.info.get("ten_m_walk_m")))
+    calibrated = result.info.get("params_source") == "calibrated"  # decision L649
+    out.update(ten_metre_walk(result.steps, result.info.get("ten_m_walk_m"), calibrated))
     # decision L387: the timed 25-foot walk from standing; L552: a long bout only on a declared walkway
-    out.update(t25fw(result.steps, walkway=result.info.get("ten_m_walk_m") is not None))
+    out.update(t25fw(result.steps, walkway=result.info.get("ten_m_walk_m") is not None, calibrated=calibrated))
     from pdrlearn.track.stair_flights import flight_summary
 
     out.update(flight_summary(result.steps))  # decision L432: stairs.csv's flights up and down

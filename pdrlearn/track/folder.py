@@ -141,7 +141,8 @@ def clinical_tables(result, bouts) -> dict:
             out["tug_trials.csv"] = trials
     from pdrlearn.track.walk_test import ten_metre_walk_trials
 
-    trials = ten_metre_walk_trials(result.steps, result.info.get("ten_m_walk_m"))  # decision L524: every 10MWT trial
+    trials = ten_metre_walk_trials(result.steps, result.info.get("ten_m_walk_m"),  # decision L524: every trial
+                                   result.info.get("params_source") == "calibrated")  # L649
     if len(trials):
         out["ten_m_walk_trials.csv"] = trials
     if result.info.get("flights") is not None:  # decision W417: each unit's flight phases, with a jump height
