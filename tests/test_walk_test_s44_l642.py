@@ -116,3 +116,12 @@ def test_a_bad_walk_test_start_is_one_line_l642(walk_to_start, tmp_path, capsys,
     err = [x for x in capsys.readouterr().err.splitlines() if x.strip()]
     assert len(err) == 1 and "--walk-test-start" in err[0] and words in err[0] and "Traceback" not in err[0]
     assert not (tmp_path / "o").exists()
+
+
+def test_the_test_minutes_start_at_go_c178_l642(walk_to_start, tmp_path):
+    """The lead's merge of C178 (``--per`` follows the walk test by default) with L642 (the test starts at go): the
+    periods start at the test's go, not at the walk to the start cone."""
+    base = ["--units", "waist", "--corridor", "15", "--walk-test-duration", "40", "--no-plot", "--per", "10s"]
+    assert main(["track", str(walk_to_start), *base, "--out", str(tmp_path / "per")]) == 0
+    s = json.loads((tmp_path / "per" / "summary.json").read_text())
+    assert s["per_start_s"] == pytest.approx(s["walk_test_start_s"])
