@@ -30,11 +30,16 @@ from pdrlearn.track.units import keep_units
 
 ROOT = Path(__file__).resolve().parents[1]
 ROUTE = "stand:10, straight:200, stand:5"
-STRAIGHT_USERS = {"l626": range(12200, 12205), "l627": range(12205, 12210)}
+STRAIGHT_USERS = {"l626": range(12200, 12205), "l627": range(12205, 12210), "l628": range(12211, 12216)}
 SCENARIO_USERS = (1, 2, 3)
 SD = importlib.import_module("pdrlearn.kernels.strapdown")
-#: per decision: (old, new) = (coning coefficient, FootDisplacement settings); None = the code's default
-RULES = {"l626": ((0.0, None), (None, None)), "l627": ((0.0, None), (None, {"attitude": "accel"}))}
+#: per decision: (old, new) = (coning coefficient, FootDisplacement settings); None = the code's default coefficient
+KALMAN, ACCEL = {"attitude": "kalman"}, {"attitude": "accel"}
+FINE = {**ACCEL, "upsample": "L628"}  # decision L628: x5 below 150 Hz
+RULES = {"l626": ((0.0, KALMAN), (None, KALMAN)), "l627": ((0.0, KALMAN), (None, ACCEL)),
+         "l628": ((0.0, {**KALMAN, "upsample": "L24"}), (None, FINE))}
+#: the former default grid (L24: x5 below 50 Hz) and L628's (x5 below 150 Hz)
+GRID_BELOW_HZ = {"L24": 50.0, "L628": 150.0}
 
 
 @contextlib.contextmanager
@@ -49,6 +54,11 @@ def coning(coef):
 
 def run(session, rule, **kw):
     coef, params = rule
+    if isinstance(params.get("upsample"), str):  # the rule's default grid at this session's foot rate
+        fs = session.streams["fGyroscope"].rate_hz
+        params = {**params, "upsample": 5 if fs < GRID_BELOW_HZ[params["upsample"]] else 1}
+    if kw.get("method") == "M1":  # M1's own attitude (the accelerometer's, L7) either way
+        params = {k: v for k, v in params.items() if k != "attitude"} or None
     with coning(coef):
         return track_plasys(session, params=params, **kw)
 
