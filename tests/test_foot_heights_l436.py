@@ -65,10 +65,10 @@ def test_simulated_feet_of_one_stair_walk_raise_no_warning(tmp_path, capsys):
 @pytest.mark.skipif(not (ROOT / "datasets/external/gaitmap_stairs_up_right").is_dir(),
                     reason="datasets/external (pdrlearn fetch) not present")
 def test_the_real_stair_pair_disagrees_on_the_ascent(capsys):
-    """Gaitmap's stairs (one staircase, both feet on one clock): the left foot's ascent reads 0.39 m under the
-    right's, beyond the 0.24 m the feet's per-stride spread explains."""
+    """Gaitmap's stairs (one staircase, both feet on one clock): the left foot's ascent reads 0.35 m under the
+    right's, beyond the 0.22 m the feet's per-stride spread explains (0.39 / 0.24 m before L627's start tilt)."""
     rc = main(["gait", str(ROOT / "datasets/real/gaitmap_stairs_up_left"),
                str(ROOT / "datasets/external/gaitmap_stairs_up_right")])
     assert rc == 0
     err = capsys.readouterr().err
-    assert "ascent left 4.47 m / right 4.86 m" in err and "L437" in err
+    assert "ascent left 4.52 m / right 4.87 m" in err and "L437" in err

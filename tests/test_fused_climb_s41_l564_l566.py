@@ -103,8 +103,10 @@ def ramp6():
 
 def test_the_fused_climb_option_puts_the_ramp_where_it_is(ramp6):
     """L564 / L565: with ``fused_climb`` the fused ramp is one run that ends where the truth does, with its rise and
-    grade; without it (the default) it ends 2.2 s early with a fake landing and 0.56 of its 0.90 m (printed in
-    session 41: 2 runs, end 20.87 s against 23.11 s, rise 0.562 m; with the option 1 run, 23.15 s, 0.917 m, 6.45 %)."""
+    grade; without it (the default) it reads the ramp short: in session 41 it ended 2.2 s early with a fake landing
+    and 0.56 of its 0.90 m (2 runs, end 20.87 s against 23.11 s, rise 0.562 m; with the option 1 run, 23.15 s,
+    0.917 m, 6.45 %); since L627's start tilt (session 44) it starts 5.9 s late, no landing, 0.491 m (17.32 s against
+    11.44 s; with the option 12.67-23.15 s, 0.898 m, 6.32 %)."""
     from pdrlearn.track.grade import ramp_table
     from pdrlearn.track.plasys import track_plasys
 
@@ -114,7 +116,8 @@ def test_the_fused_climb_option_puts_the_ramp_where_it_is(ramp6):
         res = track_plasys(s, altitude="fused", fused_climb=on)
         r = ramp_table(res.steps, res.info)
         got[on] = r.loc[r["rise_m"].idxmax()]
-    assert got[False]["landings"] >= 1 and t1 - got[False]["end_s"] > 1.5 and got[False]["rise_m"] < 0.7
+    assert got[False]["rise_m"] < 0.7 and (got[False]["landings"] >= 1 or t1 - got[False]["end_s"] > 1.5
+                                           or got[False]["start_s"] - t0 > 1.5)  # L627: a late start, no landing
     assert got[True]["landings"] == 0 and abs(got[True]["end_s"] - t1) < 0.3 and abs(got[True]["start_s"] - t0) < 1.3
     assert abs(got[True]["rise_m"] - 0.9) < 0.1 and abs(got[True]["mean_grade_pct"] - 6.0) < 0.6
 

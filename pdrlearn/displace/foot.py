@@ -187,6 +187,12 @@ REFERENCE_POINTS = ("sensor", "heel")
 # gyroscope's bias (``gyro_bias="standstill"``) is re-read from the rest's still samples; decision L477: not adopted
 # (two sessions grew by more than 0.3 m), opt-in.
 
+#: decision L628: below this foot rate (Hz) the strides are integrated on L24's x5 histospline by default (L24 took
+#: it below 50 Hz, the 20 Hz firmware means); at 100 Hz L626's coning term leaves +0.0020 deg per stride of a
+#: swinging foot's heading on the unit's own grid (~0.3 deg over a 200 m straight), on the x5 grid -0.0001
+#: (experiments/foot_coning_l626.py, docs/decisions/localization.md L626 / L628); at 204.8 Hz the own grid is kept
+FINE_GRID_BELOW_HZ = 150.0
+
 #: decision B206: the ranges of :class:`FootDisplacement`'s numeric settings (their types come from its signature's
 #: annotations: a bool is JSON true / false, an int a whole number); windows and durations in s, rates, noise terms
 SETTING_BOUNDS = {"sw": {"low": 0, "open_low": True}, "r": {"low": 0, "open_low": True},
@@ -246,8 +252,9 @@ class FootDisplacement:
     gyro_bias : gyroscope offset removed: ``"standstill"`` (the thesis' setup standstill, ch.7.2.1; none
         found -> no correction), ``"stance"`` (mean rate of the stance run before each stride) or ``"none"``.
         The attitude itself is re-initialised from gravity at every stride start (ZARU).
-    attitude : ``"kalman"`` -> initial roll/pitch of each stride from the 2-state angle Kalman filter
-        (thesis eq. 40-43); ``"accel"`` -> from the accelerometer at rest (thesis eq. 38/39)
+    attitude : ``"accel"`` (default, decision L627) -> initial roll/pitch of each stride from the accelerometer
+        at rest (thesis eq. 38/39: the mean specific force over +-``rest_s``); ``"kalman"`` -> from the 2-state
+        angle Kalman filter (thesis eq. 40-43; its swing propagation leaves ~1 deg at the stride starts, L627)
     sw, r : white-noise-jerk filter settings (thesis ch.7.2.1: Sw = 1.8, R = 0.01)
     max_rest_s : a stride starts/ends at the middle of the adjacent stance, at most this far (s) into a
         longer rest (see :func:`rest_to_rest`)
@@ -270,7 +277,7 @@ class FootDisplacement:
         2 x ``max_rest_s``) to the foot heading (decision L28); samples with |w| < ``zaru_gyro_rad_s``
         count as still (ZARU: no heading change)
     upsample : strapdown on a ``k`` times finer grid (block-mean preserving spline); default 5 below
-        50 Hz (20 Hz firmware means), else 1
+        :data:`FINE_GRID_BELOW_HZ` = 150 Hz (decision L628; L24: below 50 Hz, the 20 Hz firmware means), else 1
     yaw : a stride's heading change: ``"twist"`` (default, decision L30) = the rotation about the vertical
         of the foot's attitude change from rest to rest (swing-twist decomposition), or ``"x-axis"`` = the
         heading of the unit's x axis at the stride end (the former rule; ill-conditioned when the mount
@@ -308,7 +315,7 @@ class FootDisplacement:
     """
 
     def __init__(self, *, integrator: str = "kalman", zupt_end: bool = True, gyro_bias: str = "standstill",
-                 attitude: str = "kalman", sw: float = 1.8, r: float = 0.01, max_rest_s: float = 0.3,
+                 attitude: str = "accel", sw: float = 1.8, r: float = 0.01, max_rest_s: float = 0.3,
                  rest_s: float = 0.05, zupt_erode: float = 0.25, zupt_erode_max_s: float = 0.5,
                  upsample: int | None = None,
                  max_stride_s: float = 3.0, accel_scale_error: float = 0.01,
@@ -357,9 +364,10 @@ class FootDisplacement:
         self.accel_scale_error = float(accel_scale_error)
 
     def _grid(self, unit: UnitData) -> tuple[np.ndarray, np.ndarray, np.ndarray, float, int]:
-        """``(t, acc, gyr, fs, k)``: the integration grid, the unit's samples upsampled ``k`` times below 50 Hz."""
+        """``(t, acc, gyr, fs, k)``: the integration grid, the unit's samples upsampled ``k`` times below
+        :data:`FINE_GRID_BELOW_HZ` (decision L628)."""
         fs0 = unit.fs
-        k = self.upsample if self.upsample is not None else (5 if fs0 < 50.0 else 1)
+        k = self.upsample if self.upsample is not None else (5 if fs0 < FINE_GRID_BELOW_HZ else 1)
         if k <= 1:
             return unit.t, unit.acc, unit.gyr, fs0, 1
         both = np.hstack([unit.acc, unit.gyr])

@@ -39,7 +39,9 @@ def end_speeds(acc: np.ndarray, gyr: np.ndarray, dt: float, i0: np.ndarray, i1: 
     G = np.concatenate([s * gyr for s in signs])
     idx, mask = stride_index(starts, ends)
     g_body = A[starts]
-    q = stride_quaternions(level_quat(g_body), G, dt, idx, mask)
+    # decision L626: D11's verdict compares two integrations of the same order; it keeps the first-order
+    # propagation (its ratios as before; the coning term is for the track's attitude, not this vote)
+    q = stride_quaternions(level_quat(g_body), G, dt, idx, mask, coning=0.0)
     a_nav = qrotate(q, A[idx])
     a_nav[:, :, 2] -= np.linalg.norm(g_body, axis=1)[:, None]
     a_nav[~mask] = 0.0

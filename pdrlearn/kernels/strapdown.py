@@ -11,6 +11,15 @@ from __future__ import annotations
 
 import numpy as np
 
+#: Decision L35: coefficient of the second-order (coning) term of an attitude propagated with the rotation of the
+#: mean of two adjacent samples, for samples that are the means of the rate over their own sample interval (the
+#: PLASYS foot firmware averages five 100 Hz samples into each 20 Hz sample, thesis ch.4.2.3; a real IMU's delta
+#: angles): 1/12 for the rate varying linearly within an interval (Bortz's rotation-vector equation, the classical
+#: two-sample coning term) + 1/8 for the increments of the mean of two adjacent samples, which keep only 3/4 of the
+#: non-commuting products of adjacent sample intervals. The streamed heading chain (``kernels.window.coning_yaw``)
+#: and, decision L626, the offline stride strapdown (:func:`stride_quaternions`) both take it.
+CONING_COEF = 1.0 / 12.0 + 1.0 / 8.0
+
 
 def stride_index(starts: np.ndarray, ends: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Padded sample indices (B, L) and validity mask (B, L) of strides ``starts[b]..ends[b]`` inclusive."""
@@ -56,16 +65,29 @@ def level_quat(g_body: np.ndarray) -> np.ndarray:
     return np.concatenate([np.cos(half)[:, None], unit * np.sin(half)[:, None]], axis=1)
 
 
+def coning_increments(theta: np.ndarray, coef: float | None = None) -> np.ndarray:
+    """Decision L626: the body-frame rotation vectors (B, m, 3) of consecutive steps ``theta`` (each the midpoint
+    rate times its interval) with the coning term ``coef`` theta_k-1 x theta_k (default :data:`CONING_COEF`, L35)
+    added to each step but the first: what the rotation of the mean rate misses when the rotation axis turns (a
+    swinging foot's pitch and roll, which do not commute). A new array; ``coef`` 0 returns the increments."""
+    c = CONING_COEF if coef is None else float(coef)
+    out = np.array(theta, dtype=float)
+    if c and out.shape[1] > 1:
+        out[:, 1:] += c * np.cross(theta[:, :-1], theta[:, 1:])
+    return out
+
+
 def stride_quaternions(q0: np.ndarray, gyr: np.ndarray, dt: float | np.ndarray, idx: np.ndarray, mask: np.ndarray,
-                       gyro_bias: np.ndarray | None = None) -> np.ndarray:
+                       gyro_bias: np.ndarray | None = None, *, coning: float | None = None) -> np.ndarray:
     """Attitude (B, L, 4) of every stride sample: ``q0`` (B, 4) at the stride start propagated with the gyroscope
-    ``gyr`` (n, 3) rad/s (midpoint rate, ``gyro_bias`` (B, 3) removed); padded samples repeat the stride's last
-    attitude. ``dt``, ``idx``, ``mask`` as :func:`pdrlearn.displace._kernels.strapdown`."""
+    ``gyr`` (n, 3) rad/s (midpoint rate, ``gyro_bias`` (B, 3) removed, the coning term of :func:`coning_increments`
+    with coefficient ``coning``, default :data:`CONING_COEF`; decision L626: 0 = the former rule); padded samples
+    repeat the stride's last attitude. ``dt``, ``idx``, ``mask`` as :func:`pdrlearn.displace._kernels.strapdown`."""
     B, L = idx.shape
     bias = np.zeros((B, 3)) if gyro_bias is None else np.asarray(gyro_bias, dtype=float)
-    # body-frame rotation increments of every step (midpoint rate), as quaternions [w, x, y, z]
+    # body-frame rotation increments of every step (midpoint rate + L626's coning term), as quaternions [w, x, y, z]
     w = 0.5 * (gyr[idx[:, :-1]] + gyr[idx[:, 1:]]) - bias[:, None, :]
-    w = np.where(mask[:, 1:, None], w, 0.0) * step_dt(dt)
+    w = coning_increments(np.where(mask[:, 1:, None], w, 0.0) * step_dt(dt), coning)
     ang = np.linalg.norm(w, axis=2, keepdims=True)
     half = 0.5 * ang
     dq = np.concatenate([np.cos(half), w * np.where(ang > 1e-12, np.sin(half) / np.maximum(ang, 1e-300), 0.5)],

@@ -466,8 +466,8 @@ HEADING_SOURCES = ("auto", "foot", "waist-gyro")
 #: bundle's ``displacement`` / ``track --streaming --params`` key, default :data:`STRIDE_UPSAMPLE_DEFAULT`
 STRIDE_UPSAMPLE_KEY = "stride_upsample"
 STRIDE_UPSAMPLE_DEFAULT = 1
-#: decision L141: offline ``FootDisplacement``'s factor below 50 Hz (L16, L24), and the padding L132 measured
-#: (without it the spline's free ends ring: down strides 0.93-0.95 of their height)
+#: decision L141: offline ``FootDisplacement``'s factor (L16, L24; offline below 150 Hz since L628), and the padding
+#: L132 measured (without it the spline's free ends ring: down strides 0.93-0.95 of their height)
 STRIDE_UPSAMPLE_OPTION = 5
 FINE_BELOW_HZ = 50.0
 FINE_PAD_S = 0.5

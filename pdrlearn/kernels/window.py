@@ -23,6 +23,7 @@ from pdrlearn.kernels.stats import (
     rest_score,
     row_norm,
 )
+from pdrlearn.kernels.strapdown import CONING_COEF  # decision L35 (L626: shared with the offline strapdown)
 
 #: Sensor groups and their channels, in the order of :data:`CHANNELS` (after ``t_s``).
 GROUPS: dict[str, tuple[str, ...]] = {
@@ -330,12 +331,6 @@ def stride_headings(forward_s: np.ndarray, acc: np.ndarray, Y: np.ndarray, s: in
     return (d if t is None else d + coning_yaw(t, Y, s)), psi0
 
 
-#: Decision L35: coefficient of the second-order (coning) term of the heading chain, for samples that are the
-#: means of the rate over their own sample interval (the PLASYS foot firmware averages five 100 Hz samples into
-#: each 20 Hz sample, thesis ch.4.2.3): 1/12 for the rate varying linearly within an interval (Bortz's
-#: rotation-vector equation, the classical two-sample coning term) + 1/8 for the increments of the mean of
-#: two adjacent samples, which keep only 3/4 of the non-commuting products of adjacent sample intervals.
-CONING_COEF = 1.0 / 12.0 + 1.0 / 8.0
 
 
 def coning_yaw(t: np.ndarray, Y: np.ndarray, s: int = 0) -> float:

@@ -153,8 +153,10 @@ def no_waist_heading(session) -> str:
                  f"{NO_WAIST_HEADING.removeprefix('no waist unit: ')}; add {' and '.join(missing)} to head by the "
                  "waist unit (decision B153)", "B153")  # decision E170
 
+# decision L627: M2 / M3 start each stride from the accelerometer's tilt at rest (thesis eq. 38/39), not the angle
+# filter's (L5, thesis eq. 40-43), whose swing propagation leaves ~1 deg at the stride starts
 _M2 = {"detector": "AccelForceStepDetector", "integrator": "kalman", "zupt_end": True,
-       "gyro_bias": "standstill", "attitude": "kalman", "heading": "fused", "rules": False, "force": True}
+       "gyro_bias": "standstill", "attitude": "accel", "heading": "fused", "rules": False, "force": True}
 METHODS: dict[str, dict] = {
     "M1": {"detector": "AccelStepDetector", "integrator": "integration", "zupt_end": False,
            "gyro_bias": "none", "attitude": "accel", "heading": "foot", "rules": False, "force": False},
