@@ -776,8 +776,9 @@ def compass_check(session: Session, strides: pd.DataFrame, psi: np.ndarray,
             f"{int(ok.sum())} straight strides{over}, more than a hard-iron offset explains (over "
             f"{COMPASS_DISAGREE_DEG:g} deg warns, decision L182): one of the two headings is wrong and the check "
             "cannot tell which (a magnetic disturbance turns the compass; the foot's own yaw drifts over a walk; "
-            "decision L336); track with `--streaming` (the waist gyroscope's heading) or `--units foot` (the foot's "
-            "own) if it is the compass: this offline track's heading follows the compass (L17)"), info
+            "decision L336); track with `--compass off` (the gyroscopes' heading, decision L657), `--streaming` (the "
+            "waist gyroscope's) or `--units foot` (the foot's own) if it is the compass: this offline track's heading "
+            "follows the compass (L17)"), info
 
 
 def check_angle(mf: np.ndarray, ml: np.ndarray, psi: np.ndarray, t: np.ndarray, *, windowed: bool,
@@ -1527,8 +1528,12 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             head = relative + initial_heading - foot_walk_reference(  # decisions L494, L510
                 relative + side_extra, disp, lateral, fd.yaw_change_)
         else:
-            compass_line, compass_info = compass_check(  # decision L182: straight strides (L79), no foot gap
-                work, strides, relative, straight)
+            from pdrlearn.track.stride_kinds import disp_kind_labels
+
+            # decision L182: straight strides (L79), no foot gap; L656: none W415 classes side or backward
+            kinds = disp_kind_labels(disp, fd.yaw_change_)
+            compass_line, compass_info = compass_check(work, strides, relative,
+                                                       straight & ~np.isin(kinds, ("side", "backward")))
         warnings += [compass_line] if compass_line else []
         fallback = (hsrc == "fused" and compass_line is not None
                     and (COMPASS_GYRO_FALLBACK if compass_fallback is None else compass_fallback))
