@@ -1365,8 +1365,10 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                                "between steps): their displacement is unreliable")
     # decision L605: L80's stride cap, or 1.5 of a slow foot's own rhythm (L596) where its strides fill half of it
     windows, period = (fd.end_s_ - fd.start_s_)[~in_gap], foot_period(foot.gyr, foot.fs)
-    stride_cap = stride_cap_s(period, float(np.median(windows)) if len(windows) else np.nan)
-    slow_line = slow_rhythm_line(period, stride_cap)  # decision L599: a rhythm over 3 s is named
+    window = float(np.median(windows)) if len(windows) else np.nan
+    stride_cap = stride_cap_s(period, window)
+    slow_line = slow_rhythm_line(period, stride_cap, window)  # decision L599: a rhythm over 3 s is named (L658: the
+    # strides' own, filling half of it)
     if slow_line:
         fd_warnings = [w for w in fd_warnings if "stride(s) longer than" not in w] + [slow_line]
     warnings += fd_warnings
