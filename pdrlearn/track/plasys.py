@@ -1610,7 +1610,10 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     # decisions L389 / L390 / B297: the insoles' clock against the IMU's own events; steps 75: not on one channel,
     # whose drop-off is the heel's when it is a heel (user 10138: -210 ms against the toe-off, a false clock line)
     if fev is not None and len(force_names) == 2:
-        force_offset, clock_line = offset_check(session, fev, force_names, table=table, tc_gyro=tc_gyro)
+        from pdrlearn.track.stride_kinds import disp_kind_labels
+
+        force_offset, clock_line = offset_check(session, fev, force_names, table=table, tc_gyro=tc_gyro,
+                                                forward=disp_kind_labels(disp, fd.yaw_change_) == "forward")  # B449
         if clock_line:  # B297: L161's waist-vs-foot line compares with the insoles' contacts, so it says so
             warnings[:] = [w + INSOLE_CLOCK_NOTE if "decision L161" in w else w for w in warnings]
             warnings.append(clock_line)
