@@ -97,6 +97,10 @@ SESSIONS: tuple[Column, ...] = (
                                          "settings: not a duplicate (L137)"),
     ("params_file", _ID, "text", "--params-dir only: the calibration file used (C26)"),
     ("altitude_change_m", "m", "number", "tracked z change, last minus first"),
+    ("altitude_change_rides_m", "m", "number", "altitude_change_m with the rides a foot track's z leaves out "
+                                               "(rides.csv dz_m of 1.5 m or more: a lift, an escalator; L630): "
+                                               "trajectory.csv z_rides' change; final_altitude_error_m compares "
+                                               "it; = altitude_change_m on the lower back (barometric z)"),
     ("altitude_change_ref_m", "m", "number", "reference z change"),
     ("altitude_ref_source", _ID, "text", "where altitude_change_ref_m comes from"),
     ("altitude_error_pct", "%", "number", "altitude change error against the reference"),
@@ -360,19 +364,33 @@ SESSIONS: tuple[Column, ...] = (
                                             "distance x the last lap's corridor / tracked ratio, at most corridor_m; "
                                             "ATS 2002 as recalled, L383)"),
     ("walk_test_duration_s", "s", "number", "--corridor only: the span walk_test_distance_m covers (--walk-test-"
-                                            "duration's from the first step, L516; --window's; else the first "
-                                            "step's start to the last step's end); a note when it is over 7 minutes "
-                                            "without either (L462)"),
+                                            "duration's from walk_test_start_s, L516, up to the recording's end at "
+                                            "most, L644; --window's; else the first step's start to the last step's "
+                                            "end); a note when it is over 7 minutes without either (L462)"),
     ("walk_test_distance_per_minute_m", "m", "number", "--corridor only, summary.json only (a list): the corridor "
-                                                     "distance in each full minute from the first step (L383)"),
+                                                     "distance in each full minute from the test's start, up to "
+                                                     "walk_test_stopped_s when given (L383, L644); empty when the "
+                                                     "laps track under half the corridor (L646)"),
     ("fatigue_index", "ratio", "number", "--corridor only: the last full minute's distance / the first minute's "
-                                         "(our choice, L383); empty under 2 full minutes"),
+                                         "(our choice, L383; the minutes walked, L644); empty under 2 full minutes "
+                                         "or with the per-minute distances withheld (L646)"),
+    ("walk_test_start_s", "s", "number", "--walk-test-duration only: the test's start ('go', session clock): "
+                                         "--walk-test-start, meta.json walk_test_start_s, else the first step after "
+                                         "a standstill before the first full lap, else the first step (L642)"),
+    ("walk_test_protocol_s", "s", "number", "--walk-test-duration only: the test's duration asked (120: 2MWT, 360: "
+                                            "6MWT; the label clinical.md gives it, L644)"),
+    ("walk_test_stopped_s", "s", "number", "--walk-test-duration only: the last step's end after walk_test_start_s "
+                                           "when the walking ended over 10 s before the test's end (stopped early, "
+                                           "L644); empty otherwise"),
+    ("walk_test_note", _ID, "text", "--corridor only: why no walk test was scored (not a corridor, L643) or why the "
+                                    "per-minute distances and fatigue index are withheld (L646); empty otherwise"),
     ("splits_m", "m", "number", "--splits only, summary.json only (a list): the distance marks given (L411); "
                                 "with --splits every:STEP each STEP on the path, then the path's end (L553)"),
     ("split_times_s", "s", "number", "--splits only, summary.json only (a list): each mark's time from the first "
                                      "step's start (splits.csv's time_s); empty for a mark beyond the path (L411)"),
     ("per_align", _ID, "text", "--per-align clock or first-step only: clock (periods.csv cut at the clock's whole "
-                               "periods, L299) or first-step (from the first tracked step, L381)"),
+                               "periods, L299) or first-step (from the first tracked step, L381; the default with "
+                               "--walk-test-duration, C178)"),
     ("per_start_s", "s", "number", "--per only: the first period's start (the recording's or --window's start, or "
                                    "the first step's with --per-align first-step; L381)"),
     ("recording_start", "date-time", "text", "the clock time of the recording's first sample, ISO 8601 at its own "
@@ -497,7 +515,9 @@ SESSIONS: tuple[Column, ...] = (
                                    "a stand-to-sit (not starting and ending seated, several trials, steps outside; "
                                    "W282; no step between: a chair stand, W340), pointing at --window - or, with "
                                    "TUG trials found, that each is timed in tug_trials.csv (W325), or that the "
-                                   "seat-to-seat walks are chair-to-chair walks (W445); empty otherwise"),
+                                   "seat-to-seat walks are chair-to-chair walks (W445); or that a walk of at most "
+                                   "120 s has a rise before it and no sit after it, or the reverse: a slow transfer "
+                                   "missed (L648); empty otherwise"),
     ("n_tug_trials", "count", "integer", "lower back: TUG trials, W183's seat-to-seat rule applied to each "
                                          "sit-to-stand directly followed by a stand-to-sit with walking between "
                                          "(tug_trials.csv, W325) that looks like a TUG: at most 120 s and back "
@@ -533,7 +553,8 @@ SESSIONS: tuple[Column, ...] = (
     ("ten_m_walk_time_s", "s", "number", "10 m walk test: the time the path takes over the timed metres of "
                                          "ten_m_walk_zones_m (default 2 m to 12 m) of the first walking bout "
                                          "reaching the walkway's length, straight (L312, L522, L531); empty on a "
-                                         "shorter or turning walk (L313)"),
+                                         "shorter or turning walk (L313) and on the lower back unless calibrated "
+                                         "with an acceleration zone (L649)"),
     ("ten_m_walk_speed_mps", "m/s", "number", "the timed metres of ten_m_walk_zones_m (default 10 m) / "
                                               "ten_m_walk_time_s (L312, L531)"),
     ("ten_m_walk_note", _ID, "text", "why there is no ten_m_walk_time_s (L313); with one, the walking bouts that "
@@ -549,7 +570,7 @@ SESSIONS: tuple[Column, ...] = (
                                           "--ten-m-walk, L522)"),
     ("t25fw_time_s", "s", "number", "timed 25-foot walk: the time from the first walking bout's start (standing) to "
                                     "where its path passes 7.62 m, straight (L387); empty on a shorter or turning "
-                                    "walk and on the lower back (L313)"),
+                                    "walk and on the lower back, calibrated or not (L313, L649)"),
     ("t25fw_speed_mps", "m/s", "number", "7.62 m / t25fw_time_s (L387)"),
     ("t25fw_note", _ID, "text", "why there is no t25fw_time_s (L387); empty when there is one"),
     ("n_freezes", "count", "integer", "freeze episodes of the tracked unit (freezes.csv): freeze index over 3 with "
@@ -1083,9 +1104,10 @@ FOOT_STEPS: tuple[Column, ...] = (
     ("end_s", "s", "number", "the stride's end: the middle of the rest after it"),
     ("event_s", "s", "number", "the step detector's initial contact (IC) in the stride (--streaming: empty, or the "
                                "streamed IC with --contacts; E49-E51)"),
-    ("length_m", "m", "number", "horizontal distance the stride moved after the class rules; negative only when "
-                                "classed backward and no side step nor turn on the spot (L65, C137, L578); 0 for a "
-                                "gap row or an impossible stride"),
+    ("length_m", "m", "number", "horizontal distance the stride moved after the class rules; negative exactly when "
+                                "the stride travelled backward (backward_travel: raw_length_m < 0, no side step nor "
+                                "turn on the spot), whatever the direction class (L654, amending L65; C137, L578); 0 "
+                                "for a gap row or an impossible stride"),
     ("raw_length_m", "m", "number", "the estimate before the rules, signed with the foot's forward axis at the "
                                     "stride start (< 0: it moved backwards in that frame)"),
     ("heading_rad", "rad", "number", "the direction the stride is placed along (ENU, 0 = east or the start "
@@ -1403,14 +1425,17 @@ LAPS: tuple[Column, ...] = (
     ("duration_s", "s", "number", "end_s - start_s, rests included (L384)"),
     ("corridor_laps", "count", "integer", "corridor lengths it counts: round(tracked_m / the median stretch); 2 or "
                                           "more a missed turn, 0 the final partial lap or a last lap that turned "
-                                          "back short (L384, L517)"),
+                                          "back short (L384, L517); 1 a final lap scaled to 95 % of the corridor "
+                                          "or more (it reached the cone, L645)"),
     ("tracked_m", "m", "number", "the track's distance over it (steps.csv's lengths)"),
     ("distance_m", "m", "number", "corridor_laps x corridor_m, or the final lap's scaled tracked distance (L383)"),
     ("distance_source", _ID, "text", "corridor, tracked x scale (the final lap or a last lap that turned back "
                                      "short, L517: x the last lap's corridor / tracked ratio) or tracked (no lap "
                                      "completed)"),
     ("speed_mps", "m/s", "number", "distance_m / duration_s (E98's name, as bouts.csv)"),
-    ("rest_s", "s", "number", "its time outside bouts.csv's walking bouts (a rest at a cone stays in its lap, L384)"),
+    ("rest_s", "s", "number", "its time outside bouts.csv's walking bouts (a rest at a cone stays in its lap, L384) "
+                              "and outside turns.csv's turns widened by a step interval, a gap's leftover under 1 s "
+                              "no rest (L647: a stepless cone turn is no rest)"),
     ("n_steps", "count", "integer", "steps of both feet whose contact lies in it (as bouts.csv's n_steps)"),
     *_clocks("start_s", "end_s"),
 )
@@ -1519,6 +1544,15 @@ TRAJECTORY: tuple[Column, ...] = (
     ("lat", "deg", "number", "latitude (WGS-84); empty without --start or geodetic fixes"),
     ("lon", "deg", "number", "longitude (WGS-84); empty without --start or geodetic fixes"),
     ("pos_sigma_m", "m", "number", "the modelled 1-sigma radius of the horizontal position (L128); not with fixes"),
+    ("z_rides", "m", "number", "z with the rides a foot track's z leaves out (rides.csv dz_m of 1.5 m or more - a "
+                               "lift, an escalator - from the first row at or after the ride's end; L630): the "
+                               "walker's altitude, track.gpx / track.geojson's elevation; = z on the lower back "
+                               "(its barometric z holds them) and without a ride"),
+    ("floor", "storeys", "integer", "the storey the row is on, from the start's (0): the summary's climbs and rides "
+                                    "(L127, L375) summed up to the row (inside a stair climb: the storeys climbed so "
+                                    "far, rounded), so the last row's is the end floor (storeys_changed; a ride after "
+                                    "the last stride, L394, only there); storeys of --storey-height, without it L64's "
+                                    "assumed 3.0 m - set it to the building's (L631)"),
     ("ride", "index", "integer", "only when rides.csv has a row: the rides.csv ride the line from the row before to "
                                  "this one crosses - not walked (the first stride after a ride starts where the "
                                  "walker boarded: the vehicle's travel is not in the track), so do not draw it as a "
@@ -1539,6 +1573,9 @@ AT_TIMES: tuple[Column, ...] = (
     ("lat", "deg", "number", "trajectory.csv's lat at t, as x; only when the track has lat/lon"),
     ("lon", "deg", "number", "trajectory.csv's lon at t, as x; only when the track has lat/lon"),
     ("pos_sigma_m", "m", "number", "trajectory.csv's pos_sigma_m at t, as x; not with fixes"),
+    ("z_rides", "m", "number", "trajectory.csv's z_rides at t, as x (the altitude with the rides, decision L630)"),
+    ("floor", "storeys", "integer", "trajectory.csv's floor at t: its row at or before t (decision L631; the "
+                                    "lead's merge of L638 with L631, session 44)"),
     ("x_pdr", "m", "number", "with fixes: the PDR-only x at t (trajectory.csv's x_pdr)"),
     ("y_pdr", "m", "number", "with fixes: the PDR-only y at t"),
     ("x_rt", "m", "number", "with fixes: the causal (real-time) x at t (trajectory.csv's x_rt)"),
@@ -1864,7 +1901,9 @@ def markdown(tables: list[str] | None = None) -> str:
              else ", ".join(dict.fromkeys(t.split(" ")[0] for t in tables)))
     lines = [f"# Columns of {title}", "",
              "Generated by `pdrlearn columns` from `pdrlearn/columns.py` (cohort decision C35); `{measure}` stands "
-             f"for each of {', '.join(GROUP_METRICS)} (changes.csv: or each `track-all --metrics` measure, C81). "
+             f"for each of {', '.join(GROUP_METRICS)} (changes.csv: or each `track-all --metrics` measure, C81; "
+             "by default also the clinical tests' walk_test_distance_m, fatigue_index, tug_time_s, "
+             "ten_m_walk_speed_mps, t25fw_time_s where a session has them, first, C177). "
              "Empty cell = not measured for that session (a failed "
              "session, another pipeline, no reference).", "", STEP_COUNT_LINE, ""]
     for name in tables or list(TABLES):

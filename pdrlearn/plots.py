@@ -28,6 +28,11 @@ DEFAULT_DPI = 110
 DPI_RANGE = (20, 600)
 
 _TERRAIN_COLOURS = {"flat": "#9ecae1", "up": "#a1d99b", "down": "#fdae6b"}
+#: decision L655: ``plot --shade travel``'s colours, one per steps.csv ``travel`` label (L412); forward as flat's
+_TRAVEL_COLOURS = {"forward": "#9ecae1", "backward": "#fb6a4a", "left": "#74c476", "right": "#fdd0a2",
+                   "side": "#c7e9c0", "turn": "#bcbddc"}
+#: decision L655: the steps columns ``plot`` shades by (``--shade``) and their colours; terrain the default
+SHADE_COLOURS = {"terrain": _TERRAIN_COLOURS, "travel": _TRAVEL_COLOURS}
 #: decision W296: a track's transfers.csv rows drawn on ``plot``'s panels, by kind (the lying kinds, W245, as one)
 _TRANSFER_COLOURS = {"sit-to-stand": "#2ca02c", "stand-to-sit": "#d62728", "lying": "#9467bd"}
 #: decision E99: a ``plot`` window longer than this (s) is drawn for display: each stream's min/max envelope over
@@ -151,11 +156,13 @@ def check_window(start: float | None, end: float | None, duration_s: float, wher
 
 
 def plot_session(session: Session, out: Path, *, start: float | None = None, end: float | None = None,
-                 steps=None, steps_what: str | None = None, dpi: float | None = None, transfers=None) -> Path:
-    """One panel per sensor stream; steps shaded by terrain (or alternately when unknown): the labelled
-    ones, or ``steps`` (arguments of :func:`session_figure`; ``transfers`` too). The format follows the suffix of
-    ``out`` (PNG, PDF or SVG; ``dpi`` default :data:`DEFAULT_DPI`, decision L70)."""
-    _, fig = session_figure(session, start=start, end=end, steps=steps, steps_what=steps_what, transfers=transfers)
+                 steps=None, steps_what: str | None = None, dpi: float | None = None, transfers=None,
+                 shade: str = "terrain") -> Path:
+    """One panel per sensor stream; steps shaded by terrain (``shade``, decision L655: or by travel; alternately
+    when unknown): the labelled ones, or ``steps`` (arguments of :func:`session_figure`; ``transfers`` too). The
+    format follows the suffix of ``out`` (PNG, PDF or SVG; ``dpi`` default :data:`DEFAULT_DPI`, decision L70)."""
+    _, fig = session_figure(session, start=start, end=end, steps=steps, steps_what=steps_what, transfers=transfers,
+                            shade=shade)
     save_atomic(fig, Path(out), metadata=dict([PLOT_MARK]), dpi=dpi)
     return Path(out)
 
@@ -199,7 +206,7 @@ def steps_in_window(steps, lo: float, hi: float):
 
 
 def session_figure(session: Session, *, start: float | None = None, end: float | None = None, steps=None,
-                   steps_what: str | None = None, transfers=None):
+                   steps_what: str | None = None, transfers=None, shade: str = "terrain"):
     """The figure of :func:`plot_session` (not saved): ``(pyplot, figure)``, a figure of :func:`new_figure`
     (decision E88: the backend left alone; ``pyplot.close`` of it is a no-op, the first item is kept for callers
     that close it).
@@ -211,7 +218,13 @@ def session_figure(session: Session, *, start: float | None = None, end: float |
 
     ``transfers`` (decision W296): a track's transfers.csv (``kind``, ``start_s``, ``end_s``) drawn as hatched spans
     over the steps, coloured by kind, with a legend; the title counts those in the window.
+
+    ``shade`` (decision L655): the steps column the shading follows, a key of :data:`SHADE_COLOURS` - ``terrain``
+    (flat / up / down) or ``travel`` (a foot track's forward / backward / left / right / side / turn, L412).
     """
+    if shade not in SHADE_COLOURS:
+        raise ValueError(f"session_figure: shade must be one of {', '.join(SHADE_COLOURS)}, not {shade!r}")
+    palette = SHADE_COLOURS[shade]
     names = list(session.streams)
     t0 = session.t_start
     start, end = check_window(start, end, session.t_end - t0, session.name)
@@ -235,9 +248,9 @@ def session_figure(session: Session, *, start: float | None = None, end: float |
     spans = []
     if shown is not None:
         for i, row in enumerate(shown.itertuples()):
-            terrain = getattr(row, "terrain", None)
-            colour = _TERRAIN_COLOURS.get(terrain if isinstance(terrain, str) else None,
-                                          "#dddddd" if (i % 2 and not long) else "#f0f0f0")
+            value = getattr(row, shade, None)  # decision L655: terrain or travel
+            colour = palette.get(value if isinstance(value, str) else None,
+                                 "#dddddd" if (i % 2 and not long) else "#f0f0f0")
             # decision L70: clipped to the window (a stride it cuts widened the axis before)
             spans.append((max(row.start_s, lo) - t0, min(row.end_s, hi) - t0, colour))
         if long:
@@ -257,10 +270,11 @@ def session_figure(session: Session, *, start: float | None = None, end: float |
             ax.axvspan(a, b, facecolor=colour, edgecolor=colour, alpha=0.3, hatch="//", lw=1.0)
     axes[-1].set_xlim(start, end)  # decision L70: the window exactly (shared by every panel)
     axes[-1].set_xlabel("time since session start [s]")
-    if shown is not None and "terrain" in shown and shown["terrain"].isin(list(_TERRAIN_COLOURS)).any():
-        handles = [Rectangle((0, 0), 1, 1, color=c, alpha=0.5) for c in _TERRAIN_COLOURS.values()]
-        fig.legend(handles, list(_TERRAIN_COLOURS), loc="outside lower center", ncol=3, fontsize=8,
-                   title=steps_what.replace("(s)", "s"), title_fontsize=8)
+    if shown is not None and shade in shown and shown[shade].isin(list(palette)).any():
+        handles = [Rectangle((0, 0), 1, 1, color=c, alpha=0.5) for c in palette.values()]
+        fig.legend(handles, list(palette), loc="outside lower center", ncol=len(palette), fontsize=8,
+                   title=steps_what.replace("(s)", "s") + ("" if shade == "terrain" else f" by {shade}"),
+                   title_fontsize=8)
     if kinds:  # decision W296
         handles = [Rectangle((0, 0), 1, 1, facecolor=_TRANSFER_COLOURS[k], alpha=0.4, hatch="//") for k in kinds]
         fig.legend(handles, kinds, loc="outside upper left", ncol=len(kinds), fontsize=8,

@@ -26,6 +26,13 @@ STATUSES = ("ok", "missing", "failed", "several")
 COMMON_MEASURES = ("gait_speed_mps", "median_cadence_spm", "median_stride_time_s", "stride_time_cv_pct",
                    "median_stride_length_m", "stride_length_cv_pct", "step_time_asymmetry_pct")
 
+#: decision C177: the clinical tests' measures changes.csv compares by default before groups.csv's (GROUP_METRICS),
+#: each only where a session has a value (``--corridor``'s walk test and fatigue index, a TUG, a 10 m walk, a
+#: timed 25-foot walk): a trial's primary endpoint (the 6MWT distance) is not left out of the default visit change
+CLINICAL_MEASURES = ("walk_test_distance_m", "fatigue_index", "tug_time_s", "ten_m_walk_speed_mps", "t25fw_time_s")
+#: decision C177: changes.csv's default measures (those without a value in any session are not compared)
+CHANGE_METRICS = CLINICAL_MEASURES + GROUP_METRICS
+
 
 def measure_columns() -> tuple[str, ...]:
     """The number columns of sessions.csv (the data dictionary's, :data:`pdrlearn.columns.SESSIONS`): the measures
@@ -325,11 +332,27 @@ def _side(rows, visit: str, measures) -> tuple[str, str | None, object]:
         why = (f"{visit}: its trials were tracked by {', '.join(pipelines)}: a mean across pipelines is the "
                "methods' mix; track every trial with the same --pipeline (decisions C30, C83)")
         return "pipelines", why, None
+    reasons += partial_measures(ok, visit, measures)  # decision C176
     row = pd.Series({"path": "; ".join(ok["path"].astype(str)), "paths": ok["path"].astype(str).tolist(),
                      "pipeline": pipelines[0] if pipelines else None, "n_trials": len(ok),
                      "duplicate_of": ok["duplicate_of"].tolist() if "duplicate_of" in ok else [None] * len(ok),  # C84
                      **{m: pd.to_numeric(ok[m], errors="coerce").mean() for m in measures}})  # C83: the trials' mean
     return "ok", "; ".join(reasons) or None, row
+
+
+def partial_measures(ok, visit: str, measures) -> list[str]:
+    """Decision C176: one reason per measure that only some of a visit's averaged sessions ``ok`` have (C83 averages
+    the sessions with a value): which sessions it comes from, e.g. a 6MWT's ``walk_test_distance_m`` beside a TUG
+    session of the same visit that scores none (L643)."""
+    import pandas as pd
+
+    out = []
+    for m in measures:
+        has = pd.to_numeric(ok[m], errors="coerce").notna() if m in ok else pd.Series(False, index=ok.index)
+        if has.any() and not has.all():
+            out.append(f"{visit}: {m} from {int(has.sum())} of {len(ok)} sessions ("
+                       f"{', '.join(ok.loc[has, 'path'].astype(str))}; the others have none)")
+    return out
 
 
 #: a visit name's leading word and the word it is a spelling of (decision C28), after case and separators are
@@ -494,7 +517,7 @@ def _copies(b_row, v_row) -> list[tuple[str, str]]:
     return [(p, d) for p, d in _trials(v_row) if isinstance(d, str) and d in base]
 
 
-def change_table(sessions, metrics=GROUP_METRICS, visit_map: dict[str, str] | None = None, by: str | None = None):
+def change_table(sessions, metrics=CHANGE_METRICS, visit_map: dict[str, str] | None = None, by: str | None = None):
     """changes.csv from sessions.csv (a DataFrame), or ``None`` when the sessions naming a subject and a visit name
     fewer than two visits (decision C22). Visit names are first made one per visit (:func:`canonical_visits`,
     decisions C28, C29: ``BL`` and ``baseline`` one visit). One row per subject (natural order) and later visit: the
@@ -508,8 +531,8 @@ def change_table(sessions, metrics=GROUP_METRICS, visit_map: dict[str, str] | No
     when the visits were tracked by different pipelines (C30) and ``duplicate`` when a recording is also another
     subject's (C31; ``baseline_duplicate_of`` / ``duplicate_of`` name the other sessions holding it). A copy of
     the baseline recording at a later visit of the same subject (C20's ``duplicate_of``) stays ``ok`` and is said
-    in ``reason``. ``metrics``: sessions.csv's number columns compared (default groups.csv's; an unknown name is
-    one error line, decision B302); each gets ``<m>_baseline``, ``<m>_change`` and ``<m>_change_pct``
+    in ``reason``. ``metrics``: sessions.csv's number columns compared (default :data:`CHANGE_METRICS`, C177; an
+    unknown name is one error line, decision B302); each gets ``<m>_baseline``, ``<m>_change`` and ``<m>_change_pct``
     (:func:`pct_change`, C81). ``baseline_visit_as_written`` / ``visit_as_written``: the visits as meta.json wrote
     them (C82). ``by``: a sessions.csv label column (``"test"``, decision C174: track-all's ``--group-by test``): the
     visits are paired as without it, but each of the subject's values on its own - its Test5 at the follow-up against

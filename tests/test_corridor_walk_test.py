@@ -77,7 +77,8 @@ def test_extra_turn_joins_the_next_lap():
 def test_rest_at_a_cone_stays_in_its_lap():
     bouts = pd.DataFrame({"start_s": [0.0, 90.0], "end_s": [60.0, 165.0]})
     laps, s, _ = corridor_laps(_walk(rest_after=60, rest_s=30.0), _turns([30, 90, 120, 150]), 30.0, bouts)
-    assert laps["duration_s"].iloc[1] == pytest.approx(60.0) and laps["rest_s"].iloc[1] == pytest.approx(30.0)
+    # decision L647: the cone turn's half second in the gap (89.5-90 s) is turning, not rest
+    assert laps["duration_s"].iloc[1] == pytest.approx(60.0) and laps["rest_s"].iloc[1] == pytest.approx(29.5)
     assert laps["speed_mps"].iloc[1] == pytest.approx(0.5) and laps["rest_s"].iloc[0] == 0.0
     # minute 2 (60-120 s) holds the rest and lap 3: 30 m
     assert s["walk_test_distance_per_minute_m"][:2] == pytest.approx([60.0, 30.0])

@@ -276,6 +276,7 @@ def _validators() -> dict[tuple[str, str], object]:
     from pdrlearn.kernels.bayes import RULES
     from pdrlearn.kernels.relative_length import LENGTH_REFERENCES
     from pdrlearn.kernels.window import BOUNDARIES
+    from pdrlearn.plots import SHADE_COLOURS
     from pdrlearn.plugins import parse_spec
     from pdrlearn.runtime.bundle import UNITS as BODY_UNITS
     from pdrlearn.sim import SCENARIOS, SPEEDS
@@ -287,6 +288,7 @@ def _validators() -> dict[tuple[str, str], object]:
     from pdrlearn.track.base import PIPELINES
     from pdrlearn.track.bouts import BOUT_PRESETS
     from pdrlearn.track.clock import PER_ALIGNS, TIME_ORIGINS
+    from pdrlearn.track.corridor import walk_test_start as check_walk_test_start
     from pdrlearn.track.geodetic import parse_start
     from pdrlearn.track.periods import parse_per
     from pdrlearn.track.plasys import METHODS as PLASYS_METHODS
@@ -338,10 +340,12 @@ def _validators() -> dict[tuple[str, str], object]:
         ("track", "reference_point"): _one_of(REFERENCE_POINTS),  # decision L72
         ("track", "altitude"): _one_of(ALTITUDES),  # decision L154
         ("track", "compass"): _one_of(COMPASS_CHOICES),  # decision L545
+        ("plot", "shade"): _one_of(list(SHADE_COLOURS)),  # decision L655
         ("track", "window"): parse_window,  # decision L105
         ("track", "per"): parse_per,  # decision L277
         ("track", "splits"): parse_splits,  # decision L411 (B307)
         ("track", "ten_m_walk"): parse_ten_m_walk,  # decision L522
+        ("track", "walk_test_start"): lambda v: check_walk_test_start(v, 360.0),  # decision L642
         ("track", "per_align"): _one_of(PER_ALIGNS),  # decision L299
         ("steps", "time_origin"): _one_of(TIME_ORIGINS),  # decision E173
         **{(c, "bout_rule"): _one_of(BOUT_PRESETS, case=False) for c in ("track", "track-all", "run")},  # decision L163
@@ -386,7 +390,7 @@ def _validators() -> dict[tuple[str, str], object]:
     }
     for opt in ("pipeline", "method", "rules", "start", "length_bounds", "reference_point", "window", "per",
                 "per_align", "units", "altitude", "detector", "length_model", "splits",
-                "ten_m_walk", "compass"):  # C12, L108, B127, L154, E93, L534, L545
+                "ten_m_walk", "compass", "walk_test_start"):  # C12, L108, B127, L154, E93, L534, L545, L642
         v[("track-all", opt)] = v[("track", opt)]
     for cmd in ("train", "train-all"):
         v[(cmd, "tasks")] = settings("tasks")

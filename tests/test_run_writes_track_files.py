@@ -77,7 +77,7 @@ def test_run_writes_path_png_and_lat_lon_with_start(root, walk, tmp_path, capsys
     assert rec_track["command"] == "track" and rec_track["options"]["streaming"] is True
     assert rec_track["model"]["path"] == str(root / "model") and len(rec_track["model"]["manifest_sha256"]) == 64
     run, trk = (pd.read_csv(tmp_path / d / "trajectory.csv") for d in ("r", "t"))
-    assert list(run.columns) == ["t", "x", "y", "z", "lat", "lon", "pos_sigma_m"]  # L128 appends pos_sigma_m
+    assert list(run.columns) == ["t", "x", "y", "z", "lat", "lon", "pos_sigma_m", "z_rides", "floor"]  # L128, L630
     np.testing.assert_allclose(run["pos_sigma_m"], trk["pos_sigma_m"], atol=0.01)  # the same model as --streaming
     assert run[["lat", "lon"]].notna().all().all()
     assert run["lat"].iloc[0] == pytest.approx(41.178) and run["lon"].iloc[0] == pytest.approx(-8.608)

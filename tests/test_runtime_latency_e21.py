@@ -127,17 +127,18 @@ class _Full(Tracker):
 
 def test_queue_is_fed_first_when_feeding_it_would_reallocate_the_state(bundle):
     """A queued sample that would reallocate the state is fed before the step, as the pre-E21 push did, so
-    the step's rounding is the same (capacities chosen so that the state is full at some step events; seed 7 since
-    E280: strides held for L611's verdict keep more samples, and seed 5's state was full at one step event)."""
-    s = synthetic_session(30, seed=7)
+    the step's rounding is the same (capacities chosen so that the state is full at some step event; since L640 a
+    stride is held for L611's verdict up to REACH = 3 strides, which keeps more samples: seed 5 at capacity 64 is full
+    at one step event, the lead's scan of seeds 1-12 at capacities 8-100 found no other)."""
+    s = synthetic_session(30, seed=5)
     full = 0
-    for cap in (11, 24, 33):
+    for cap in (11, 24, 33, 64):
         tr, ref = _Full(bundle), _Eager(bundle)
         for x in (tr, ref):
             x._foot = FootLevelling(x.forward["foot"], capacity=cap)
         _assert_identical(tr, ref, native_chunks(s))
         full += tr.full
-    assert full >= 2  # the case is exercised
+    assert full >= 1  # the case is exercised
 
 
 def test_measurement_objects_and_flush_feed_the_queue(bundle):

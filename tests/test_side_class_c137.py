@@ -23,10 +23,10 @@ ROUTE = "straight:3, side:-1.5, straight:3, side:1.5, straight:3"
 
 
 def test_the_sign_kernel_leaves_a_side_step_positive():
-    assert travel_sign_one(-0.4, 0.0, "backward") == (-0.4, 0.0)  # L65: a backward class keeps its sign
-    length, head = travel_sign_one(-0.4, 0.0, "backward", sideways=True)
+    assert travel_sign_one(-0.4, 0.0, -0.4) == (-0.4, 0.0)  # L654: a stride measured backward keeps its sign
+    length, head = travel_sign_one(-0.4, 0.0, -0.4, sideways=True)
     assert length == 0.4 and head == pytest.approx(math.pi)  # the same displacement
-    ln, hd = travel_sign([-0.4, -0.4, 0.5], [0.0, 0.0, 0.0], ["backward"] * 3, [True, False, False])
+    ln, hd = travel_sign([-0.4, -0.4, 0.5], [0.0, 0.0, 0.0], [-0.4, -0.4, 0.5], [True, False, False])
     assert ln.tolist() == [0.4, -0.4, 0.5] and hd[0] == pytest.approx(math.pi) and hd[1] == 0.0
 
 

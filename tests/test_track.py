@@ -127,7 +127,7 @@ def test_cli_track_json_contract(real_dir, tmp_path, capsys):
     for f in ("trajectory.csv", "steps.csv", "path.png", "summary.json"):
         assert (out / f).is_file()
     traj = pd.read_csv(out / "trajectory.csv")
-    assert list(traj.columns) == ["t", "x", "y", "z", "lat", "lon", "pos_sigma_m"]  # L128 appends pos_sigma_m
+    assert list(traj.columns) == ["t", "x", "y", "z", "lat", "lon", "pos_sigma_m", "z_rides", "floor"]  # L128, L630
     assert "length_m" in pd.read_csv(out / "steps.csv")
 
 

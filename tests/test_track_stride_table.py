@@ -26,14 +26,15 @@ def _quiet():
 
 
 # -- L65: the sign of a reported stride ------------------------------------------------------------------
-def test_travel_sign_keeps_a_negative_length_only_with_a_backward_class():
+def test_travel_sign_gives_length_the_measured_travel_sign():
+    """Decisions L65 / L654: the reported sign is the stride's measured travel (its x along the foot), not the class."""
     from pdrlearn.kernels.stride import travel_sign, travel_sign_one
 
-    assert travel_sign_one(-1.3, 0.2, None) == (1.3, 0.2 + math.pi)
-    assert travel_sign_one(-1.3, 0.2, "forward") == (1.3, 0.2 + math.pi)  # a bayes rule left the estimate's sign
-    assert travel_sign_one(-1.3, 0.2, "backward") == (-1.3, 0.2)  # the thesis' sign rule stays
-    assert travel_sign_one(1.3, 0.2, None) == (1.3, 0.2)
-    L, h = travel_sign(np.array([-1.0, 1.0, -0.5]), np.zeros(3), np.array([None, None, "backward"], dtype=object))
+    assert travel_sign_one(-1.3, 0.2, 0.4) == (1.3, 0.2 + math.pi)  # measured forward: positive, the same path
+    assert travel_sign_one(-1.3, 0.2, -1.3) == (-1.3, 0.2)  # measured backward: negative, whatever the class
+    assert travel_sign_one(1.3, 0.2, -1.3) == (-1.3, 0.2 + math.pi)  # L654: a class rule's + on a backward stride
+    assert travel_sign_one(1.3, 0.2) == (1.3, 0.2)  # no measurement (a gap row): positive
+    L, h = travel_sign(np.array([-1.0, 1.0, -0.5]), np.zeros(3), np.array([1.0, 1.0, -0.5]))
     assert L.tolist() == [1.0, 1.0, -0.5] and h.tolist() == [math.pi, 0.0, 0.0]
 
 
@@ -63,8 +64,9 @@ def test_a_turnaround_stride_has_a_positive_length_along_its_displacement(monkey
     _turned(monkeypatch, k)
     turned = get_pipeline("plasys")(s)
     t = turned.steps
-    assert t["raw_length_m"].iloc[k] < 0  # the measured x points backwards (it read length_m < 0 before L65)
-    assert (t["length_m"] >= 0).all() and t["direction"].isna().all()
+    assert t["raw_length_m"].iloc[k] < 0  # the measured x points backwards, the foot not turning: backward travel
+    # decision L654 (amends L65): length_m's sign is that measured travel (a real turnaround turns: L578 keeps it +)
+    assert (t["length_m"] < 0).tolist() == [i == k for i in range(len(t))] and t["direction"].isna().all()
     step = np.diff(turned.trajectory[["x", "y"]].to_numpy(), axis=0)
     step0 = np.diff(plain.trajectory[["x", "y"]].to_numpy(), axis=0)
     np.testing.assert_allclose(step[k], -step0[k], atol=1e-9)  # it goes along its (turned) displacement
@@ -85,7 +87,7 @@ def test_a_turnaround_classed_forward_goes_along_its_displacement_offline(monkey
     _turned(monkeypatch, k)
     res = get_pipeline("plasys")(s, model="oracle")
     assert res.steps["direction"].iloc[k] == "forward" and res.steps["raw_length_m"].iloc[k] < 0
-    assert res.steps["length_m"].iloc[k] > 0
+    assert res.steps["length_m"].iloc[k] < 0  # decision L654: the measured travel's sign, not the class's
     step = np.diff(res.trajectory[["x", "y"]].to_numpy(), axis=0)
     step0 = np.diff(plain.trajectory[["x", "y"]].to_numpy(), axis=0)
     np.testing.assert_allclose(step[k], -step0[k], atol=1e-9)

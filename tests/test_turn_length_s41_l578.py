@@ -22,10 +22,10 @@ ROUTE = "stand:2, straight:3, turn:180, straight:3, turn:-360, straight:2, stand
 
 
 def test_the_sign_kernel_leaves_a_turn_on_the_spot_positive():
-    assert travel_sign_one(-0.15, 0.0, "backward", turn_rad=math.radians(10.0)) == (-0.15, 0.0)  # backward walking
-    length, head = travel_sign_one(-0.15, 0.0, "backward", turn_rad=math.radians(-120.0))
+    assert travel_sign_one(-0.15, 0.0, -0.15, turn_rad=math.radians(10.0)) == (-0.15, 0.0)  # backward walking
+    length, head = travel_sign_one(-0.15, 0.0, -0.15, turn_rad=math.radians(-120.0))
     assert length == 0.15 and head == pytest.approx(math.pi)  # the same displacement
-    ln, hd = travel_sign([-0.15, -0.15, -0.4], [0.0, 0.0, 0.0], ["backward"] * 3,
+    ln, hd = travel_sign([-0.15, -0.15, -0.4], [0.0, 0.0, 0.0], [-0.15, -0.15, -0.4],
                          turn_rad=np.radians([120.0, 30.0, 5.0]))
     assert ln.tolist() == [0.15, 0.15, -0.4] and hd[2] == 0.0
 

@@ -568,13 +568,16 @@ def results_table(task_result: dict, task: str | None = None) -> list[list[str]]
 
 def headline(r: dict) -> str:
     """Decision C49: a task's chosen-model accuracy on the strides the runtime detects first (what the user gets),
-    the labelled-boundary figure (the table's) second; the labelled one alone without a foot gyroscope."""
+    the labelled-boundary figure (the table's) second; the labelled one alone without a foot gyroscope; decision
+    C179: the count of strides C160 left out of both, when any."""
+    from pdrlearn.classify.uncovered import uncovered_note
+
     det = r.get("detected")
     if not det or not det["n_steps"]:
-        return f"{100 * r['accuracy']:.1f} % on the labelled boundaries"
+        return f"{100 * r['accuracy']:.1f} % on the labelled boundaries" + uncovered_note(r)  # decision C179
     return (f"{100 * det['accuracy']:.1f} % on the strides the runtime detects ({det['n_steps']} of "
             f"{det['n_labelled']} labelled steps matched); {100 * r['accuracy']:.1f} % on the labelled "
-            "boundaries (the table)")
+            "boundaries (the table)" + uncovered_note(r))  # decision C179
 
 
 def markdown_tables(result: dict) -> str:

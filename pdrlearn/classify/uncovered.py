@@ -88,6 +88,17 @@ def all_uncovered_line(task: str) -> str:
             "do not cover (decision C160)")
 
 
+def uncovered_note(r: dict) -> str:
+    """Decision C179: the end of a task's headline (a model directory's and a bundle's) when :func:`uncovered_score`
+    left strides out of its figures - "; N side / turn stride(s) not in these figures (listed below, decision C179)"
+    - so the headline's accuracy is not read as the whole walk's; empty without any."""
+    unc = r.get("uncovered") or {}
+    if not unc.get("n_steps"):
+        return ""
+    return (f"; {unc['n_steps']} {' / '.join(unc['kinds'])} stride(s) the classes do not cover are not in these "
+            "figures (listed below, decision C179)")
+
+
 def uncovered_line(task: str, unc: dict | None, classes) -> str | None:
     """Decision C160: the one line under a task's table for its :func:`uncovered_score`; None without one."""
     if not unc or not unc.get("n_steps"):

@@ -727,7 +727,9 @@ def _changes(sessions: pd.DataFrame, visit_map: dict[str, str] | None = None, me
     return changes, change_summary(changes, by=by)
 
 
-METRICS_HELP = ("The sessions.csv measures changes.csv compares, comma-separated (default distance_error_pct, "
+METRICS_HELP = ("The sessions.csv measures changes.csv compares, comma-separated (default: the clinical tests' "
+                "walk_test_distance_m, fatigue_index, tug_time_s, ten_m_walk_speed_mps, t25fw_time_s where a "
+                "session has them, decision C177, then distance_error_pct, "
                 "gait_speed_mps, median_cadence_spm, median_stride_length_m), e.g. gait_speed_mps,median_cadence_spm,"
                 "median_stride_time_s,stride_time_cv_pct,median_stride_length_m; each gets its baseline, change and "
                 "percent change (the dual-task cost when the visits are single / dual; decisions C81, B303).")
@@ -986,6 +988,7 @@ def track_all(
     per_align: str = _track.PER_ALIGN_OPT,
     corridor: float = _track.CORRIDOR_OPT,
     walk_test_duration: float = _track.WALK_TEST_DURATION_OPT,  # decision L516
+    walk_test_start: str = _track.WALK_TEST_START_OPT,  # decision L642: auto, or each session's meta.json
     ten_m_walk: str = _track.TEN_M_WALK_OPT,  # decision L534: every session's walkway (L522)
     splits: str = _track.SPLITS_OPT,
     stair_rise: float = _track.STAIR_RISE_OPT,

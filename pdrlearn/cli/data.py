@@ -129,6 +129,9 @@ def plot(
                               "detected (found by `pdrlearn steps`' default detector), or a steps table "
                               "(`pdrlearn steps --out`, a track's steps.csv) or a `track`/`run` output folder "
                               "(a lower-back track's transfers.csv is drawn too, W296)."),
+    shade: str = typer.Option("terrain", "--shade", help="What the steps' shading shows: terrain (flat / up / "
+                              "down) or travel (a foot track's steps.csv travel: forward / backward / left / right "
+                              "/ side / turn, decision L655; give --steps a track's output folder or steps.csv)."),
     dpi: int = typer.Option(None, "--dpi", min=20, max=600, help=DPI_HELP),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
 ) -> None:
@@ -141,17 +144,25 @@ def plot(
         pdrlearn plot datasets/real/gaitmap_level_left --out out/level.pdf --steps detected
 
         pdrlearn plot datasets/real/gaitmap_level_right --out out/right.svg --steps out/track_right --dpi 200
-    """
-    from pdrlearn.io import read_session
-    from pdrlearn.plots import FIGURE_SUFFIXES, check_window, plot_session
 
+        pdrlearn plot out/sim/D_u1 --out out/D_travel.png --steps out/track/D_M3 --shade travel
+    """
+    from pdrlearn.errors import DataError
+    from pdrlearn.io import read_session
+    from pdrlearn.plots import FIGURE_SUFFIXES, SHADE_COLOURS, check_window, plot_session
+
+    if shade not in SHADE_COLOURS:  # decision L655
+        raise DataError(f"--shade {shade}: give one of {', '.join(SHADE_COLOURS)}")
     out = out_file(out, FIGURE_SUFFIXES, "plot", force=force)
     was = existed(out)
     s = read_session(session_dir)
     check_window(start, end, s.t_end - s.t_start, str(session_dir))
     table, what = _steps_to_shade(steps, s)
+    if shade != "terrain" and (table is None or shade not in table):  # decision L655: before anything is written
+        raise DataError(f"--shade {shade}: the steps shaded ({what or 'the labelled steps'}) have no {shade} column; "
+                        f"give --steps a foot track's output folder or steps.csv (`pdrlearn track`, `run`)")
     plot_session(s, out, start=start, end=end, steps=table, steps_what=what, dpi=dpi,
-                 transfers=_transfers_to_draw(steps))  # decision W296
+                 transfers=_transfers_to_draw(steps), shade=shade)  # decision W296
     replaced(out, was)
     typer.echo(str(out))
 

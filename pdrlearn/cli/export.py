@@ -1116,7 +1116,10 @@ def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: i
 
         steps = with_reference_columns(result, session)  # decision E135: the reference pairs, as track
         write_table_csv(steps, tmp / "steps.csv")  # decision E164: an epoch time keeps its decimals
-        write_table_csv(result.trajectory, tmp / "trajectory.csv")
+        from pdrlearn.track.floor_column import with_floor_columns
+
+        traj = with_floor_columns(result.trajectory, result, summary.get("storey_height_m"))  # L630, L631
+        write_table_csv(traj, tmp / "trajectory.csv")
         # L124 (E98), L200, L202: bouts.csv, turns.csv ... as track; E144: its clock columns
         tables = event_tables(result, bouts, start=start)
         for name, table in tables.items():
@@ -1128,7 +1131,7 @@ def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: i
         from pdrlearn.track.geoexport import write_geo_files
         from pdrlearn.track.ramp_audit import route_features
 
-        write_geo_files(tmp, result.trajectory, session=summary.get("session") or source,  # decision L363, as track
+        write_geo_files(tmp, traj, session=summary.get("session") or source,  # decision L363, as track
                         pipeline=summary.get("pipeline"), distance_m=summary.get("distance_m"), start=start,
                         with_ele=with_ele, features=route_features(tables))  # decision L570: ramps, flights
         write_run_json(tmp, record)

@@ -263,9 +263,10 @@ PER_OPT = typer.Option(None, "--per", help="Totals per period in OUT/periods.csv
                        "distance, steps, walking / between-steps / no-step / no-data time, floors, bouts, "
                        "turns, the position sigma at the period's end (decisions L275, L277). With --window: the "
                        "window cut into periods from its start (decision L381).")
-PER_ALIGN_OPT = typer.Option("start", "--per-align", help="Where --per's periods begin: start (default: at the "
+PER_ALIGN_OPT = typer.Option(None, "--per-align", help="Where --per's periods begin: start (default: at the "
                              "recording's start, or the --window's), first-step (at the first tracked step: a walk "
-                             "test's minutes from 'go'; decision L381) or clock (at whole multiples of the period on "
+                             "test's minutes from 'go'; decision L381; the default with --walk-test-duration, "
+                             "decision C178) or clock (at whole multiples of the period on "
                              "the recording's clock, 1h = the clock hours; the first and last periods partial). clock "
                              "needs the session's start (meta.json recording_start or a date-time import; decision "
                              "L299).")
@@ -286,9 +287,16 @@ CORRIDOR_OPT = typer.Option(None, "--corridor", metavar="METRES", help="A corrid
                             "fatigue_index (decisions L383, L384). A 6MWT inside a longer "
                             "recording: with --window T0,T0+360.")
 WALK_TEST_DURATION_OPT = typer.Option(None, "--walk-test-duration", metavar="SECONDS", help="With --corridor: "
-                                      "the test lasts SECONDS from the first step (360 for a 6MWT, 120 for a "
-                                      "2MWT, the ATS 2002 protocol's 'go'); walking after it (back to a chair) "
-                                      "is not scored (decision L516).")
+                                      "the test lasts SECONDS from 'go' (--walk-test-start; 360 for a 6MWT, 120 for "
+                                      "a 2MWT, the ATS 2002 protocol); walking after it (back to a chair) is not "
+                                      "scored (decision L516); a recording or walk that ends early is said "
+                                      "(walk_test_stopped_s, L644).")
+WALK_TEST_START_OPT = typer.Option("auto", "--walk-test-start", metavar="auto|first-step|SECONDS", help="With "
+                                   "--walk-test-duration: the test's 'go'. auto (default): the first step after the "
+                                   "last standstill of 5 s or more before the first full lap (a walk to the start "
+                                   "line and a wait), else the first step; a session's meta.json walk_test_start_s "
+                                   "gives its own 'go' (s); first-step: the first step; SECONDS: that time on every "
+                                   "session's clock (decision L642).")
 SPLITS_OPT = typer.Option(None, "--splits", metavar="METRES", help="Split times at distances along the tracked path "
                           "(e.g. 5,10,20: a sprint's marks, metres from the first step; every:1000: a mark every "
                           "1000 m and the final partial split at the path's end, L553): OUT/splits.csv (each mark's "
@@ -391,6 +399,7 @@ def track(
     segments: Path = SEGMENTS_OPT,
     corridor: float = CORRIDOR_OPT,
     walk_test_duration: float = WALK_TEST_DURATION_OPT,
+    walk_test_start: str = WALK_TEST_START_OPT,
     splits: str = SPLITS_OPT,
     ten_m_walk: str = TEN_M_WALK_OPT,
     stair_rise: float = STAIR_RISE_OPT,
@@ -444,7 +453,7 @@ def track(
 
         pdrlearn track out/sim/D_u1 --corridor 30 --out out/D_laps   # a 6MWT: OUT/laps.csv, laps x 30 m (L383)
 
-        pdrlearn track clinic/6mwt --corridor 30 --walk-test-duration 360 --out out/6mwt   # 6 min from the 1st step
+        pdrlearn track clinic/6mwt --corridor 30 --walk-test-duration 360 --out out/6mwt   # 6 min from 'go'
 
         pdrlearn track out/sim/A_u1 --splits 5,10,20 --out out/A_splits   # OUT/splits.csv: times at 5, 10, 20 m
 
@@ -560,9 +569,9 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    initial_heading: float | None = None, start_xy: str | None = None,
                    turn_to_heading: bool = False, at_times: Path | None = None,
                    common_span: bool = False, window: str | None = None, per: str | None = None,
-                   per_align: str = "start", segments: Path | None = None, corridor: float | None = None,
+                   per_align: str | None = None, segments: Path | None = None, corridor: float | None = None,
                    splits: str | None = None,
-                   walk_test_duration: float | None = None,
+                   walk_test_duration: float | None = None, walk_test_start: str = "auto",
                    ten_m_walk: str | None = None,
                    stair_rise: float | None = None, stair_grade: float | None = None, resample: bool = False,
                    no_resample: bool = False, units: str | None = None, bout_break_s: float | None = None,
@@ -602,6 +611,10 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
     per_s = parse_per(per)  # decision L277
     from pdrlearn.track.clock import PER_ALIGNS
 
+    # decision C178: with --walk-test-duration the periods are the test's minutes, from its first step ("go")
+    per_align_auto = per_align is None
+    if per_align_auto:
+        per_align = "first-step" if walk_test_duration is not None and per_s is not None else "start"
     if per_align not in PER_ALIGNS:  # decision L299
         raise DataError(f"--per-align {per_align!r}: give start (periods from the recording's start), first-step "
                         "(from the first tracked step) or clock (on the clock's whole periods)")
@@ -620,6 +633,9 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
     from pdrlearn.track.corridor import walk_test_duration as check_walk_test_duration
 
     walk_test_s = check_walk_test_duration(walk_test_duration, corridor_m)  # decision B396: before any session
+    from pdrlearn.track.corridor import walk_test_start as check_walk_test_start
+
+    go = check_walk_test_start(walk_test_start, walk_test_s)  # decision L642: before any session
     from pdrlearn.track.splits import parse_splits
 
     splits_m = parse_splits(splits)  # decision B307: before any session
@@ -760,8 +776,9 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "initial_heading_rad": heading0, "start_xy": xy0, "turn_to_heading": turn_to_heading,  # L635, L637
             "at_times": at_times_file, "at_times_table": at_times_rows,  # decision L638
             "common_span": common_span, "window": win, "per_s": per_s,
-            "per_align": per_align, "legs": legs, "segments": segments,  # decision L618
-            "corridor_m": corridor_m, "walk_test_s": walk_test_s, "splits_m": splits_m,
+            "per_align": per_align, "per_align_auto": per_align_auto,  # decision C178
+            "legs": legs, "segments": segments,  # decision L618
+            "corridor_m": corridor_m, "walk_test_s": walk_test_s, "walk_test_start": go, "splits_m": splits_m,
             "ten_m_walk_m": ten_m_walk_m,
             "stair_rise_m": stair_rise_m, "stair_grade_pct": stair_grade_pct,
             "resample": rate_mode,
@@ -1224,22 +1241,57 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
     at_times_out = None
     if at_t is not None:  # decision L638: the track's position at the given times
         from pdrlearn.track.at_times import at_times_table
+        from pdrlearn.track.floor_column import with_floor_columns
 
-        at_times_out = at_times_table(result.trajectory, at_t, start, result.steps)
+        traj = with_floor_columns(result.trajectory, result, summary.get("storey_height_m"))  # L630, L631: the floor
+        at_times_out = at_times_table(traj, at_t, start, result.steps)
+    laps = None  # before periods.csv: C178 starts the test's minutes at its go (L642)
+    if o.get("corridor_m") is not None:  # decisions L383, L384: the corridor walk test of the track (or its window)
+        from pdrlearn.track.corridor import corridor_laps
+        from pdrlearn.track.folder import clinical_tables
+
+        span = (summary["window_start_s"], summary["window_end_s"]) if win is not None else None  # L383: the test's
+        from pdrlearn.track.corridor import session_go
+        from pdrlearn.track.periods import session_span
+
+        laps, keys, lines = corridor_laps(result.steps, clinical_tables(result, bouts)["turns.csv"], o["corridor_m"],
+                                          bouts, span=span, duration_s=o.get("walk_test_s"),  # L516
+                                          start=session_go(o.get("walk_test_start", "auto"), session),  # L642
+                                          data_end=session_span(session, unit)[1])  # L644
+        summary.update(keys)
+        if lines:
+            import logging
+
+            for line in lines:
+                logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, line)
+            summary["info"]["warnings"] = [*summary["info"].get("warnings", []), *lines]
     periods = None
     if o.get("per_s") is not None:  # decision L277: periods.csv, from the whole session's track
         from pdrlearn.track.folder import clinical_tables
         from pdrlearn.track.periods import period_span, period_table
 
         # decision L381: the window's span (its first step's with first-step), else the recording's
-        span = period_span(whole, session, unit, (summary["window_start_s"], summary["window_end_s"])
-                           if win is not None else None, first_step=o.get("per_align") == "first-step")
+        first_step = o.get("per_align") == "first-step"
+        in_window = (summary["window_start_s"], summary["window_end_s"]) if win is not None else None
+        go = summary.get("walk_test_start_s") if o.get("per_align_auto") and first_step else None
+        try:
+            if go is not None:  # the lead's merge of C178 with L642: the test's minutes from its go, not its first step
+                whole_span = period_span(whole, session, unit, in_window)
+                span = (max(whole_span[0], float(go)), whole_span[1])
+            else:
+                span = period_span(whole, session, unit, in_window, first_step=first_step)
+        except DataError:
+            if not o.get("per_align_auto"):
+                raise
+            # decision C178: the walk test's default, without a step to start from: the span's start (as before)
+            first_step = False
+            span = period_span(whole, session, unit, in_window)
         periods = period_table(whole, session, o["per_s"], unit=unit, bouts=bouts,
                                turns=clinical_tables(whole, bouts)["turns.csv"],
                                storey_height_m=o.get("storey_height_m", 3.0), clock=clock, span=span)
         summary["per_s"] = float(o["per_s"])
         summary["per_start_s"] = float(span[0])
-        if o.get("per_align") == "first-step":
+        if first_step:
             summary["per_align"] = "first-step"
         from pdrlearn.track.periods import constant_bounce_line
 
@@ -1259,21 +1311,6 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
         segments = segment_table(whole, session, legs, unit=unit, bouts=bouts,
                                  turns=clinical_tables(whole, bouts)["turns.csv"],
                                  storey_height_m=o.get("storey_height_m", 3.0))
-    laps = None
-    if o.get("corridor_m") is not None:  # decisions L383, L384: the corridor walk test of the track (or its window)
-        from pdrlearn.track.corridor import corridor_laps
-        from pdrlearn.track.folder import clinical_tables
-
-        span = (summary["window_start_s"], summary["window_end_s"]) if win is not None else None  # L383: the test's
-        laps, keys, lines = corridor_laps(result.steps, clinical_tables(result, bouts)["turns.csv"], o["corridor_m"],
-                                          bouts, span=span, duration_s=o.get("walk_test_s"))  # L516
-        summary.update(keys)
-        if lines:
-            import logging
-
-            for line in lines:
-                logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, line)
-            summary["info"]["warnings"] = [*summary["info"].get("warnings", []), *lines]
     splits = None
     if o.get("splits_m"):  # decision L411: times at distance marks from the track's (or window's) first step
         from pdrlearn.track.splits import split_table
@@ -1369,6 +1406,7 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
     err = summary.get("distance_error_pct")
     bouts = err is not None and "bout_distance_m" in summary and "bout_reference_m" in summary
     from pdrlearn.track.evaluate import floors_phrase  # decisions L64, L127 (numpy: lazily)
+    from pdrlearn.track.floor_column import rides_altitude_phrase
 
     typer.echo(f"{name}: {count_phrase(summary)}, {summary['distance_m']:.2f} m"
                # W21: the lower-back error counts the reference bouts only; say so before the number
@@ -1380,6 +1418,7 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
                + (f", altitude change {summary['altitude_change_m']:+.2f} m" if "altitude_change_m" in summary else "")
                + (f" (reference {summary['altitude_change_ref_m']:+.2f} m)" if "altitude_change_ref_m" in summary
                   else "")
+               + rides_altitude_phrase(summary)  # decision L630
                # L64: the storeys climbed and descended, when the track changed floors
                + floors_phrase(summary)
                # decision C16: how much of the walk the model's training data covered

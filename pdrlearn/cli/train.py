@@ -481,7 +481,7 @@ def _evaluate_bundle(bundle_dir: Path, data_dirs: list[Path], as_json: bool, giv
                         f"{bundle_dir} is an exported runtime bundle (scored with its chosen models only): drop "
                         f"{', '.join(given)}, or evaluate the model directory the bundle was exported from")
     from pdrlearn.classify.evaluation import table_pairs
-    from pdrlearn.classify.uncovered import uncovered_line
+    from pdrlearn.classify.uncovered import uncovered_line, uncovered_note
     from pdrlearn.cohort import captured_warnings
     from pdrlearn.export.score import score_bundle
     from pdrlearn.runtime.bundle import WAIST_SCHEMA_NAME, bundle_kind
@@ -509,7 +509,8 @@ def _evaluate_bundle(bundle_dir: Path, data_dirs: list[Path], as_json: bool, giv
                f"bundle's foot-only (the chosen {chosen['method']}/{chosen['unit']} ran on no session)")
         _task_table(c, r, task, f"{task}: {r['n_steps']} strides - {who} {scored['method']}/{scored['unit']} "
                     f"{100 * r['accuracy']:.1f} % on the strides the runtime detects (matched to the labelled steps)"
-                    + ("; one row per model the runtime used" if len(table_pairs(r)) > 1 else ""))
+                    + ("; one row per model the runtime used" if len(table_pairs(r)) > 1 else "")
+                    + uncovered_note(r))  # decision C179
         line = uncovered_line(task, r.get("uncovered"), r["classes"])  # decision C166: as a model directory's (C160)
         if line:
             c.print(f"  {line}", markup=False)

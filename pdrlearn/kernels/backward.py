@@ -1,7 +1,7 @@
 """Backward travel of a foot stride (decisions L203, L224), one definition for the full tracks and the lean runtime.
 
 A stride travels backward when its signed length is negative (the displacement points backward along the foot's
-forward axis; a replayed stride's ``length_m`` is negative only for a stride classed backward, thesis eq. 61's sign),
+forward axis; a replayed stride's ``length_m`` carries that measured sign, decision L654),
 unless it is a 0 m gap row (L67), a stride the last-line guard moved 0 m (``impossible``, L97), or a turn: a stride
 turning :data:`BACKWARD_MAX_TURN_DEG` or more is a turn on the spot whose short chord can point anywhere (L203
 amended), or a side step (decision L270): a stride of a side-stepping run (L219 / L228's ``sideways`` column; a

@@ -22,21 +22,22 @@ _FOOT_BLIND = ("the foot's height is integrated stride by stride: it misses a li
                "cause indoors: the height changes while the feet stand) and slopes and hills (L144)")
 
 
-def _ridden(summary: dict) -> dict | None:
+def ridden_climbs(summary: dict) -> dict | None:
     """Decision L396: a foot track's rides read from the barometer (L378; ``info["rides"]``) as their height up
     (``"ascent"``), down (``"descent"``, positive) and net (``"net"``); None where no ride was read."""
     rides = (summary.get("info") or {}).get("rides")
     if rides is None:
         return None
-    dz = [float(r["dz_m"]) for r in rides]
+    # decision L632: a ride without a barometric height (L624's vibration rows: dz_m empty) adds none
+    dz = [float(r["dz_m"]) for r in rides if r.get("dz_m") is not None and np.isfinite(float(r["dz_m"]))]
     return {"ascent": sum(d for d in dz if d > 0), "descent": -sum(d for d in dz if d < 0), "net": sum(dz)}
 
 
 def _climb_miss(summary: dict, ridden: dict | None = None) -> tuple[str, float] | None:
     """Decision L180: the barometer's ascent or descent (``barometer_ascent_m`` / ``barometer_descent_m``, L172's
     climbs of 0.5 m within a minute) that the track's own (``ascent_m`` / ``descent_m``) misses by the most, as
-    (``"ascent"`` or ``"descent"``, metres missed); None without them. Decision L396: ``ridden`` (:func:`_ridden`),
-    the rides' part of the barometer's climbs is no miss."""
+    (``"ascent"`` or ``"descent"``, metres missed); None without them. Decision L396: ``ridden``
+    (:func:`ridden_climbs`), the rides' part of the barometer's climbs is no miss."""
     misses = [(k, float(summary[f"barometer_{k}_m"]) - (ridden or {}).get(k, 0.0) - float(summary[f"{k}_m"]))
               for k in ("ascent", "descent")
               if summary.get(f"barometer_{k}_m") is not None and summary.get(f"{k}_m") is not None]
@@ -63,15 +64,20 @@ def barometer_warning(summary: dict) -> str | None:
     if baro is None or foot is None:
         return None
     fused = not summary.get("barometer_unused", True)  # decision L154: the barometer was fused into the altitude
-    ridden = None if fused else _ridden(summary)  # decision L396: the rides L378 read are no disagreement
+    # decision L396: the rides L378 read are no disagreement; L632: a fused track's too (L154 fuses the strides'
+    # height: its z leaves the rides out as the foot's does)
+    ridden = ridden_climbs(summary)
     source = (f"(wBarometer.csv, {'fused with the strides by L154' if fused else 'not read by foot tracks'})"
-              if ridden is None else "(wBarometer.csv, read for rides only, L378"
+              if ridden is None else "(wBarometer.csv, " + ("fused with the strides by L154" if fused else
+                                                            "read for rides only, L378")
               + (f"; without its rides' {ridden['net']:+.2f} m, L396)" if ridden["net"] else ")"))
     if ridden is not None:
         baro, raw = float(baro) - ridden["net"], float(baro if raw is None else raw) - ridden["net"]
-    advice = ("; for floors by lift or escalator track the lower back, `--pipeline waist-pendulum`; for altitude on "
-              "slopes, hills and ramps " + ("" if fused else "fuse the barometer, `--altitude fused` (L154), or ")
-              + "track the lower back")
+    # decision L632: a track whose rides.csv holds a ride read the lifts; the lower back would read no more of them
+    lifts = ("" if ridden is not None and (ridden["ascent"] or ridden["descent"]) else
+             "; for floors by lift or escalator track the lower back, `--pipeline waist-pendulum`")
+    advice = (lifts + "; for altitude on slopes, hills and ramps "
+              + ("" if fused else "fuse the barometer, `--altitude fused` (L154), or ") + "track the lower back")
     if not abs(float(foot) - float(baro)) > float(limit):
         miss = _climb_miss(summary, ridden)  # decision L180: the net agrees; did the foot miss a climb and its return?
         if miss is None or not miss[1] > float(limit):

@@ -39,6 +39,10 @@ UNRESTED_MPS2 = 1.0
 MIN_UNRESTED = 3
 #: decision L611: pedalling spans closer than this (s) are named as one in the warning line
 MERGE_SPANS_S = 10.0
+#: decision L639: an offline rest-to-rest stride longer than this many of the foot's stride caps (L605's
+#: ``kernels.contact.stride_cap_s``: L80's 3 s at a normal rhythm) is a ride, not walking: three strides' time without
+#: one rest of the foot (I5's S99 bike ride made one 57.5 s "stride" of 24.59 m)
+RIDE_STRIDE_CAPS = 3.0
 
 
 def unrested_strides(t: np.ndarray, acc: np.ndarray, start_s: np.ndarray, end_s: np.ndarray,
@@ -67,7 +71,8 @@ def closed_loop_strides(dz: np.ndarray, start_s: np.ndarray, end_s: np.ndarray,
     least :data:`REVERSAL_MIN_DZ_M` and (third rule) at least :data:`STEEP` of its horizontal ``travel`` (m), and
     (decision L621) each ``unrested`` or travelling less than :data:`TRAVEL_MAX_M`; or
     (second rule) :data:`MIN_UNRESTED` or more ``unrested`` strides
-    (:func:`unrested_strides`)."""
+    (:func:`unrested_strides`). Decision L640: and a stride chained to one of those that travels under
+    :data:`TRAVEL_MAX_M` or whose own ``dz`` passes the reversal test (a mount's or a dismount's pedal stroke)."""
     dz = np.asarray(dz, dtype=float)
     start_s, end_s = np.asarray(start_s, dtype=float), np.asarray(end_s, dtype=float)
     n = len(dz)
@@ -89,7 +94,14 @@ def closed_loop_strides(dz: np.ndarray, start_s: np.ndarray, end_s: np.ndarray,
         while hi < n - 1 and hi - i < NEIGHBOURS and chained[hi]:
             hi += 1
         out[i] = int(rev[lo:hi].sum()) >= MIN_REVERSALS or int(still[lo:hi + 1].sum()) >= MIN_UNRESTED
-    return out
+    # decision L640 (second rule): a stride chained to a pedalling stride that travels under L621's TRAVEL_MAX_M or
+    # whose own height passes the reversal test (the mount's and the dismount's strokes: one end rests, one pedalling
+    # neighbour) is pedalling too; one pass, no spreading
+    edge = np.zeros(n, dtype=bool)
+    edge[1:] |= chained & out[:-1]
+    edge[:-1] |= chained & out[1:]
+    short = big if travel is None else big | (travel < TRAVEL_MAX_M)
+    return out | (edge & short)
 
 
 def seated_strides(start_s: np.ndarray, end_s: np.ndarray, transfers) -> tuple[np.ndarray, list[tuple[float, float]]]:
@@ -113,6 +125,12 @@ def add_span(spans: list[list], start_s: float, end_s: float) -> None:
         spans[-1][1], spans[-1][2] = float(end_s), spans[-1][2] + 1
     else:
         spans.append([float(start_s), float(end_s), 1])
+
+
+def ride_strides(start_s: np.ndarray, end_s: np.ndarray, cap_s: float) -> np.ndarray:
+    """Decision L639: (B,) bool, the strides longer than :data:`RIDE_STRIDE_CAPS` x ``cap_s`` (s, the foot's stride
+    cap, L605): no walking stride lasts that long without a rest of the foot (a bike ride, a foot never at rest)."""
+    return np.asarray(end_s, dtype=float) - np.asarray(start_s, dtype=float) > RIDE_STRIDE_CAPS * float(cap_s)
 
 
 def spans_of(mask: np.ndarray, start_s: np.ndarray, end_s: np.ndarray) -> list[tuple[float, float, int]]:
@@ -139,10 +157,19 @@ REMOVED = f"not walking, {TRACK_REMOVED}: "
 
 
 def pedal_line(loop: np.ndarray, seated: np.ndarray, start_s: np.ndarray, end_s: np.ndarray,
-               seats: list[tuple[float, float]] | None = None, removed: str = TRACK_REMOVED) -> str | None:
-    """Decisions L611 / L612: the one warning line naming the removed strides' spans and why, or None; ``removed``
-    says what was done with them (decision L625: ``pdrlearn steps`` leaves them out of its count or counts them)."""
+               seats: list[tuple[float, float]] | None = None, ride: np.ndarray | None = None,
+               cap_s: float | None = None, removed: str = TRACK_REMOVED) -> str | None:
+    """Decisions L611 / L612 / L639: the one warning line naming the removed strides' spans and why, or None
+    (``ride``: L639's strides, ``cap_s`` the stride cap they were judged on; not counted as pedalling or seated);
+    ``removed`` says what was done with them (decision L625: ``pdrlearn steps`` leaves them out of its count or counts
+    them)."""
     parts = []
+    if ride is not None and ride.any():
+        where = ", ".join(f"{a:.2f}-{b:.2f} s" for a, b in zip(start_s[ride], end_s[ride], strict=True))
+        parts.append(f"{int(ride.sum())} stride(s) at {where} lasted longer than {RIDE_STRIDE_CAPS * cap_s:g} s "
+                     f"({RIDE_STRIDE_CAPS:g} of the foot's {cap_s:g} s stride cap) without a rest of the foot "
+                     "(a ride? decision L639)")
+        loop, seated = loop & ~ride, seated & ~ride
     if loop.any():
         parts.append(loop_part(spans_of(loop, start_s, end_s)))
     only_seated = seated & ~loop
@@ -210,16 +237,21 @@ class LiveRest:
         return bool(unrested_strides(t, acc, np.array([t0]), np.array([t1]), self.g_rest)[0])
 
 
+#: decisions E280 / L640: how many strides of its chain either side a stride's verdict reads: L611's
+#: :data:`NEIGHBOURS`, and one more for L640's second rule (a stride's verdict reads its neighbours' verdicts)
+REACH = NEIGHBOURS + 1
+
+
 class LiveLoops:
     """Decision E280: L611's verdict (:func:`closed_loop_strides`, the same call) for strides that arrive one at a
-    time, as a live tracker measures them. A stride's verdict reads up to :data:`NEIGHBOURS` strides of its chain
+    time, as a live tracker measures them. A stride's verdict reads up to :data:`REACH` strides of its chain
     after it, so :meth:`add` holds a stride until it is final and releases the strides in order, each with its
-    verdict: final when :data:`NEIGHBOURS` later strides are known, or the next one is known and starts over
+    verdict: final when :data:`REACH` later strides are known, or the next one is known and starts over
     :data:`CHAIN_PAUSE_S` after it (its chain ends), or when no stride to come can make it pedalling: the kernel says
-    so with :data:`NEIGHBOURS` worst-case strides appended (chained, reversing, unrested, no travel: no real stride
+    so with :data:`REACH` worst-case strides appended (chained, reversing, unrested, no travel: no real stride
     adds more reversals or unrested strides), which releases a walking stride at once (no look-ahead, no latency).
     :meth:`flush` (the end of a recording) releases the rest, judged on what is known, as ``track --streaming`` judges
-    its last strides. ``history`` keeps the last :data:`NEIGHBOURS` released rows (their verdicts' neighbours).
+    its last strides. ``history`` keeps the last :data:`REACH` released rows (their verdicts' neighbours).
 
     A row is ``(start s, end s, raw dz m, unrested, raw horizontal travel m, judged)``; an unjudged row (a stride
     across a foot gap or bridged samples, a posture) is in its chain but has dz 0, no missing rest and is never
@@ -255,28 +287,28 @@ class LiveLoops:
             i = len(self.history)  # the first held row
             after = len(rows) - 1 - i
             ended = after >= 1 and rows[i + 1][0] - rows[i][1] > CHAIN_PAUSE_S
-            if final or ended or after >= NEIGHBOURS:
+            if final or ended or after >= REACH:
                 pedal = self._verdict(rows, i)
             elif not self._verdict(rows + self._worst(rows[-1]), i):
                 pedal = False
             else:
                 break
             row, payload = self.held.pop(0)
-            self.history = (self.history + [row])[-NEIGHBOURS:]
+            self.history = (self.history + [row])[-REACH:]
             out.append((payload, pedal))
         return out
 
     @staticmethod
     def _worst(last: tuple) -> list[tuple]:
-        """:data:`NEIGHBOURS` strides chained after ``last`` that reverse each other (and ``last``), unrested, not
+        """:data:`REACH` strides chained after ``last`` that reverse each other (and ``last``), unrested, not
         travelling: no real stride to come adds more to a verdict."""
         sign = -1.0 if last[2] > 0 else 1.0
         t = last[1]
-        return [(t, t, sign * (-1.0) ** k, True, 0.0, True) for k in range(NEIGHBOURS)]
+        return [(t, t, sign * (-1.0) ** k, True, 0.0, True) for k in range(REACH)]
 
     @staticmethod
     def _verdict(rows: list[tuple], i: int) -> bool:
-        lo, hi = max(0, i - NEIGHBOURS), min(len(rows), i + NEIGHBOURS + 1)  # the verdict reads no row outside
+        lo, hi = max(0, i - REACH), min(len(rows), i + REACH + 1)  # the verdict reads no row outside
         w = rows[lo:hi]
         judged = np.array([r[5] for r in w], dtype=bool)
         col = [np.array([r[k] for r in w], dtype=float) for k in range(5)]

@@ -601,38 +601,42 @@ def _turns_on_the_spot(turn_rad) -> np.ndarray:
         return np.abs(np.asarray(turn_rad, dtype=float)) >= math.radians(BACKWARD_MAX_TURN_DEG)
 
 
-def travel_sign_one(length: float, heading: float, direction=None, sideways: bool = False,
+def travel_sign_one(length: float, heading: float, measured_x: float = math.nan, sideways: bool = False,
                     turn_rad: float = math.nan) -> tuple[float, float]:
-    """Decision L65: the ``(length_m, heading_rad)`` a stride is REPORTED with. A negative length stays only
-    when the stride's direction class is ``"backward"`` (the thesis' sign rule); any other negative length (no
-    class, or a "forward" class the bayes rule left the estimate's sign) becomes its magnitude along the
-    heading turned by pi: the same displacement (``advance``), no negative stride in a table without a
-    backward class. The sign of a stride's measured x flips when the foot turns by ~180 deg within it (a
-    turnaround), so without this a turnaround stride read -1.3 m with its heading reversed. Apply it after
-    the position update (the position is the same either way). Decision C137: a ``sideways`` stride (L219 / L486's
-    side step) is no backward travel (L270) whatever its class, so it keeps no negative length either: a model that
-    never saw side steps classes them backward, and steps.csv read -0.38 m side strides (trial T2, finding 3).
-    Decision L578: nor does a stride turning ``turn_rad`` (its own turn) through ``BACKWARD_MAX_TURN_DEG`` or more
-    (travel = turn): a pivot stride of a turn on the spot the model classed backward read -0.15 m (trial T1, F4)."""
-    if length < 0.0 and (direction != "backward" or sideways or bool(_turns_on_the_spot([turn_rad])[0])):
+    """Decision L654 (amends L65): the ``(length_m, heading_rad)`` a stride is REPORTED with - the same displacement
+    (``advance``), so apply it after the position update - whose sign is the stride's measured travel: ``length_m``
+    is negative exactly when the stride travels backward, its measured x (``measured_x``, the displacement along the
+    foot's forward axis; steps.csv ``raw_length_m``'s sign) negative, and ``heading_rad`` is then the facing the
+    stride went back from; otherwise positive along the direction it moved (a negative length becomes its magnitude
+    along the heading turned by pi, and a positive one the thesis' class rule signed against its measured x the
+    other way). So the sign of ``length_m`` says what steps.csv ``backward_travel`` / ``travel`` say, whatever the
+    model's ``direction`` class (T2 F10: a backward stride classed forward read +0.46 m; F3: a forward stride
+    classed backward read -1.41 m with oracle classes). A NaN ``measured_x`` (a gap row) is no backward travel.
+    Decision C137: a ``sideways`` stride (L219 / L486's side step) is no backward travel (L270), so it keeps no
+    negative length; decision L578: nor does a stride turning ``turn_rad`` (its own turn) through
+    ``BACKWARD_MAX_TURN_DEG`` or more (travel = turn: a pivot's or a turnaround's chord points anywhere, L65's
+    -1.3 m turnaround stride)."""
+    back = bool(measured_x < 0.0) and not sideways and not bool(_turns_on_the_spot([turn_rad])[0])
+    if length != 0.0 and (length < 0.0) != back:
         return -length, heading + math.pi
     return length, heading
 
 
-def travel_sign(length: np.ndarray, heading: np.ndarray, direction=None,
+def travel_sign(length: np.ndarray, heading: np.ndarray, measured_x=None,
                 sideways=None, turn_rad=None) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`travel_sign_one` on arrays (``direction``: one class or None per stride, or None for all;
-    ``sideways``: (n,) bool, decision C137, or None: none; ``turn_rad``: (n,) each stride's own turn, decision
-    L578, or None: none)."""
+    """:func:`travel_sign_one` on arrays (``measured_x``: (n,) each stride's measured x, or None: no stride travels
+    backward; ``sideways``: (n,) bool, decision C137, or None: none; ``turn_rad``: (n,) each stride's own turn,
+    decision L578, or None: none)."""
     length = np.asarray(length, dtype=float)
     heading = np.asarray(heading, dtype=float)
-    back = (np.zeros(len(length), dtype=bool) if direction is None
-            else np.asarray(direction, dtype=object) == "backward")
+    with np.errstate(invalid="ignore"):
+        back = (np.zeros(len(length), dtype=bool) if measured_x is None
+                else np.asarray(measured_x, dtype=float) < 0.0)  # decision L654: the measured travel
     if sideways is not None:
         back &= ~np.asarray(sideways, dtype=bool)  # decision C137: a side step keeps no negative length
     if turn_rad is not None:
         back &= ~_turns_on_the_spot(turn_rad)  # decision L578: nor does a turn on the spot
-    flip = (length < 0.0) & ~back
+    flip = (length != 0.0) & ((length < 0.0) != back)
     return np.where(flip, -length, length), np.where(flip, heading + math.pi, heading)
 
 

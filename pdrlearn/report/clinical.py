@@ -81,6 +81,9 @@ def tug_line(summary: dict, folder: Path) -> str | None:
     path = folder / "tug_trials.csv"
     trials = pd.read_csv(path) if path.is_file() else None
     if summary.get("tug_time_s") is None:
+        note = summary.get("tug_time_note")
+        if isinstance(note, str) and "L648" in note:  # decision L648: a TUG with one transfer missed, said
+            return f"- TUG: not timed ({note}; chair transfers: lower-back unit)"
         if not summary.get("n_tug_trials") or trials is None:
             return None
         times = ", ".join(_s(t) for t in trials["tug_time_s"])
@@ -132,9 +135,76 @@ def gait_speed_line(summary: dict, unit: str) -> str | None:
                 f"(pdrlearn calibrate, W446){given} ({'; '.join(flags)})")
     flags = [unit, "calibrated" if _calibrated(summary) else
              "uncalibrated: step length from body height, no per-user calibration (W169)"]
+    if summary.get("walk_test_distance_m") is not None:  # decision L650: not the walk test's speed
+        flags.append("all the recording's walking, from step lengths; the walk test's own speed is its line's (L650)")
     if speed < VALIDATED_MIN_MPS or slow_cad:
         flags.append(f"slower than the validated {VALIDATED_MIN_MPS:g} m/s / {VALIDATED_MIN_SPM:g} steps/min (L95)")
     return f"- Gait speed {speed:.2f} m/s{cadence} ({'; '.join(flags)})"
+
+
+def walk_test_pace_line(summary: dict) -> str | None:
+    """Decisions C177, L650: the corridor walk test's minutes and pace under its line - the distance per minute, the
+    fatigue index (last / first minute) and the test's own mean speed (its distance from the corridor's laps / its
+    duration), said to be the test's, not the gait speed line's (whole recording, step lengths); None without a
+    walk test."""
+    from pdrlearn.track.corridor import walk_test_speed
+
+    speed = walk_test_speed(summary)
+    if speed is None:
+        return None
+    parts = [f"test speed {speed:.2f} m/s (the test's distance from the corridor's laps / its duration; L650)"]
+    minutes = summary.get("walk_test_distance_per_minute_m")
+    if isinstance(minutes, list) and minutes:
+        parts.append("per minute " + " / ".join(f"{m:.0f}" for m in minutes) + " m")
+    fatigue = summary.get("fatigue_index")
+    if fatigue is not None:
+        parts.append(f"fatigue index {fatigue:.2f} (last / first full minute)")
+    return "  - " + "; ".join(parts)
+
+
+#: decision C177: clinical.md's change-from-baseline measures (visits.CLINICAL_MEASURES): (name, unit, digits)
+CHANGE_LINE_MEASURES = {"walk_test_distance_m": ("walk test distance", "m", 0), "fatigue_index": ("fatigue index", "",
+                        2), "tug_time_s": ("TUG", "s", 1), "ten_m_walk_speed_mps": ("10 m walk", "m/s", 2),
+                        "t25fw_time_s": ("T25FW", "s", 1)}
+
+
+def change_lines(rows: list) -> list[str]:
+    """Decision C177: one patient's change-from-baseline lines, one per later visit: each clinical test measure
+    (:data:`CHANGE_LINE_MEASURES`) both visits have, baseline -> later (change, percent change), paired by
+    :func:`pdrlearn.visits.change_table`'s rules (C28 baseline, C83 a visit's trials averaged); none when the
+    patient's tracks name fewer than two visits (summary.json ``visit``)."""
+    from pdrlearn.visits import change_table
+
+    tracks = [r[3] for r in rows if r[0] == "track" and r[3].get("subject") and r[3].get("visit")]
+    if len({str(s["visit"]) for s in tracks}) < 2:
+        return []
+    frame = pd.DataFrame([{"subject": str(r[3]["subject"]), "group": "", "visit": str(r[3]["visit"]), "path": r[2],
+                           "status": "ok", "pipeline": r[3].get("pipeline"),
+                           **{m: r[3].get(m) for m in CHANGE_LINE_MEASURES}}
+                          for r in rows if r[0] == "track" and r[3].get("subject") and r[3].get("visit")])
+    frame[list(CHANGE_LINE_MEASURES)] = frame[list(CHANGE_LINE_MEASURES)].apply(pd.to_numeric, errors="coerce")
+    measures = [m for m in CHANGE_LINE_MEASURES if frame[m].notna().any()]
+    if not measures:
+        return []
+    changes = change_table(frame, metrics=measures)
+    lines = []
+    for _, row in (changes.iterrows() if changes is not None else iter(())):
+        parts = []
+        for m in measures:
+            base, change = row.get(f"{m}_baseline"), row.get(f"{m}_change")
+            if pd.isna(base) or pd.isna(change):
+                continue
+            name, unit, k = CHANGE_LINE_MEASURES[m]
+            u = f" {unit}" if unit else ""
+            pct = row.get(f"{m}_change_pct")
+            rel = f", {pct:+.0f} %" if pct is not None and not pd.isna(pct) else ""
+            parts.append(f"{name} {base:.{k}f} -> {base + change:.{k}f}{u} ({change:+.{k}f}{u}{rel})")
+        if row["status"] != "ok":
+            parts = [f"not paired ({row['status']}: {row['reason']})"]
+        if parts:
+            lines.append(f"- Change from baseline ({row['baseline_visit']} -> {row['visit']}, C177): "
+                         + "; ".join(parts))
+    return lines
 
 
 def warnings_line(summary: dict) -> str | None:
@@ -152,17 +222,40 @@ def _unit(source: str) -> str:
     return "foot unit" if source == "foot" else "lower-back unit"
 
 
+def walk_test_line(summary: dict, unit: str) -> str | None:
+    """Decisions W420, L644: the corridor walk test's line, named by the duration asked (2MWT, 6MWT, "N-min walk
+    test"; untimed: none), with the span it covers, a stop or a span shorter than asked, and (L643) a test not
+    scored."""
+    from pdrlearn.track.corridor import clock_text, walk_test_label
+
+    corridor, protocol = summary.get("corridor_m"), summary.get("walk_test_protocol_s")
+    name = f" ({walk_test_label(protocol)})" if protocol is not None else ""
+    if summary.get("walk_test_distance_m") is None:
+        note = summary.get("walk_test_note")
+        return f"- Corridor walk test{name}: not scored: {note} ({unit})" if corridor and note else None
+    laps = f", {summary['n_laps']} laps of {corridor:g} m" if corridor and summary.get("n_laps") is not None else ""
+    dur = summary.get("walk_test_duration_s")
+    span = f" in {dur / 60:.1f} min" if dur else ""
+    short = protocol is not None and dur is not None and dur < protocol - 1e-6  # decision L644: shorter than asked
+    if summary.get("walk_test_stopped_s") is not None:
+        span = (f"; walking stopped after {clock_text(summary['walk_test_stopped_s'])} of "
+                f"{clock_text(protocol or dur or 0.0)}" + (f" (recording ends at {clock_text(dur)})" if short else ""))
+    elif short:
+        span += f" (the recording ends {clock_text(dur)} after the start: incomplete {walk_test_label(protocol)})"
+    extra = f"; {summary['walk_test_note']}" if summary.get("walk_test_note") else ""
+    return f"- Corridor walk test{name}: {summary['walk_test_distance_m']:.0f} m{laps}{span}{extra} ({unit})"
+
+
 def clinical_lines(summary: dict, folder: Path) -> list[str]:
     """Decision W420: one line per clinical test the track in ``folder`` (its ``summary``) measured."""
     unit = UNIT_NAMES.get(str(summary.get("pipeline")), str(summary.get("pipeline")))
     lines = []
-    if summary.get("walk_test_distance_m") is not None:
-        corridor = summary.get("corridor_m")
-        laps = f", {summary['n_laps']} laps of {corridor:g} m" if corridor and summary.get("n_laps") is not None \
-            else ""
-        dur = summary.get("walk_test_duration_s")
-        lines.append(f"- Corridor walk test (6MWT): {summary['walk_test_distance_m']:.0f} m{laps}"
-                     f"{f' in {dur / 60:.1f} min' if dur else ''} ({unit})")
+    walk = walk_test_line(summary, unit)
+    if walk:
+        lines.append(walk)
+        pace = walk_test_pace_line(summary)  # decisions C177, L650: its minutes, fatigue index and own speed
+        if pace:
+            lines.append(pace)
     tug = tug_line(summary, folder)
     if tug:
         lines.append(tug)
@@ -312,13 +405,17 @@ def clinical_markdown(source: str | Path) -> str:
         out += [f"## Patient {patient}", ""]
         for block in walk_blocks(rows):
             out += block + [""]
+        changes = change_lines(rows)  # decision C177: the visits' change from baseline
+        if changes:
+            out += changes + [""]
     return "\n".join(out)
 
 
 def _track_block(folder: Path, rel: str, summary: dict, head: str = "Session") -> list[str]:
     date = recording_date(summary, folder)
     when = f"recorded {date}" if date else "recording date unknown (no meta.json recording_start)"
-    return [f"{head} {summary.get('session')} ({rel}), {when}:",
+    visit = f", visit {summary['visit']}" if summary.get("visit") else ""  # decision C177
+    return [f"{head} {summary.get('session')} ({rel}){visit}, {when}:",
             *(clinical_lines(summary, folder) or ["- no clinical test measured"])]
 
 

@@ -17,26 +17,27 @@ PERIOD_COLUMNS = ("period", "start_s", "end_s", "duration_s", "partial", "distan
 #: decision L386: laps.csv's columns the report shows
 LAP_COLUMNS = ("lap", "start_s", "end_s", "duration_s", "corridor_laps", "distance_m", "distance_source", "speed_mps",
                "rest_s", "n_steps")  # E98's speed_mps (a laps.csv written before it: speed_m_s renamed on reading)
-#: decision L386: the rests shown are the gaps between walking bouts of at least this long (s; L104's 1 s pause)
-REST_MIN_S = 1.0
 
 
 def _read(path: Path) -> pd.DataFrame | None:
     return read_table(path) if path.is_file() else None
 
 
-def rest_table(bouts: pd.DataFrame | None) -> pd.DataFrame | None:
-    """Decision L386: the rests of a track: each gap of at least :data:`REST_MIN_S` between one bouts.csv row's end
-    and the next one's start (``start_s``, ``end_s``, ``duration_s``); None without two bouts or without a gap."""
+def rest_table(bouts: pd.DataFrame | None, turns: pd.DataFrame | None = None) -> pd.DataFrame | None:
+    """Decision L386: the rests of a track between one bouts.csv row's end and the next one's start; decision L647:
+    a gap's time in a turns.csv turn (widened by a step interval) is turning, and a gap is a rest only when at least
+    :data:`~pdrlearn.track.rests.REST_MIN_S` is left (:func:`pdrlearn.track.rests.rests`): ``start_s`` / ``end_s``
+    its rest's first and last instant, ``duration_s`` the rest's time; None without two bouts or without a rest."""
+    from pdrlearn.track.rests import rests as gap_rests
+
     if bouts is None or len(bouts) < 2 or not {"start_s", "end_s"} <= set(bouts.columns):
         return None
-    b = bouts.sort_values("start_s")
-    start, end = b["end_s"].to_numpy(float)[:-1], b["start_s"].to_numpy(float)[1:]
-    keep = end - start >= REST_MIN_S
-    if not keep.any():
+    found = [gap for gap in gap_rests(bouts, turns) if gap]
+    if not found:
         return None
-    return pd.DataFrame({"rest": np.arange(1, keep.sum() + 1), "start_s": start[keep], "end_s": end[keep],
-                         "duration_s": (end - start)[keep]})
+    return pd.DataFrame({"rest": np.arange(1, len(found) + 1), "start_s": [g[0][0] for g in found],
+                         "end_s": [g[-1][1] for g in found],
+                         "duration_s": [sum(e - s for s, e in g) for g in found]})
 
 
 def _with_speed(periods: pd.DataFrame) -> pd.DataFrame:
@@ -57,7 +58,7 @@ def time_course_section(folder: Path, label: str):
     periods, laps = _read(folder / "periods.csv"), _read(folder / "laps.csv")
     laps = laps.rename(columns={"speed_m_s": "speed_mps"}) if laps is not None else None  # E98
     bouts = _read(folder / "bouts.csv")
-    rests = rest_table(bouts)
+    rests = rest_table(bouts, _read(folder / "turns.csv"))  # decision L647: a turn is not a rest
     from pdrlearn.report.travel import travel_bouts
 
     travel = travel_bouts(bouts)  # decision L582: bouts.csv's backward / side strides per bout

@@ -2162,7 +2162,7 @@ class Tracker(OwnGuard, FixInput):
         self.n_steps += 1
         self._heights.append(classes.get("terrain"), raw_dz, dz)  # decision E47
         turn_wrapped = float(np.angle(np.exp(1j * turn)))
-        length, direction = travel_sign_one(length, direction, classes.get("direction"),  # L65: after the position
+        length, direction = travel_sign_one(length, direction, dx,  # L654: the measured travel, after the position
                                             self._side_rows.decided,  # decision C137: a side step is no backward
                                             turn_wrapped)  # decision L578: nor a turn on the spot
         if self._session_length is not None and "length" in classes:  # decision C117: the reported class only

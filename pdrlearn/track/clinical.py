@@ -21,8 +21,9 @@ the initial contact). Definitions (seconds and degrees, no sample counts):
   gaps is L275's ``time_no_data_s``.
 * **turn**: a run of consecutive rows whose heading changes at :data:`TURN_RATE_MIN_DPS` deg/s or more from
   one row to the next (heading change / time between the rows' starts; one slower row between two such rows
-  belongs to the turn), its angle the summed (signed) change, with the change of the row just before and just
-  after the run when it turns the same way and belongs to no other turn (decision L181: a corner's edge strides);
+  belongs to the turn, unless it walks - :func:`walking_rows`, decision L653), its angle the summed (signed)
+  change, with the change of the row just before and just after the run when it turns the same way and belongs to
+  no other turn (decision L181: a corner's edge strides);
   ``turn_count`` counts the turns of at least :data:`TURN_COUNT_MIN_DEG` degrees (turnarounds, corners); a gentle
   curve (below 15 deg/s, e.g. a 5 m radius at 1.2 m/s) or a pause is no turn; an interval holding a pause and a
   heading change of :data:`PAUSE_MAX_TURN_DEG` or more turns (L119: the turn took the time beside the
@@ -435,6 +436,26 @@ def foot_turn_stops(st: pd.DataFrame) -> np.ndarray:
     return _intervals(st)[1] | (pair & (rest - usual >= PAUSE_MIN_S))
 
 
+#: decision L653: a stride longer than this (m) that travels forward or backward walks: the thesis' short steps are
+#: at most 30 cm (seed 002, ch. 6.3: "short steps are the ones with a maximum distance of 30cm")
+WALK_MIN_STRIDE_M = 0.30
+
+
+def walking_rows(st: pd.DataFrame) -> np.ndarray:
+    """Decision L653: (N,) bool, the rows of a foot table that walk - ``travel`` forward or backward (L412: not a
+    side step, not a stride turning on the spot, L203) and ``|length_m|`` over :data:`WALK_MIN_STRIDE_M` - which
+    :func:`_turn_spans` never takes as a turn's slower row (a turn on the spot, a 2 m walk, a turn on the spot are
+    two turns, trial T2 finding F6); all False on a lower-back table (no travel per step)."""
+    from pdrlearn.track.travel import travel_labels
+
+    travel = travel_labels(st) if is_foot_table(st) and "length_m" in st else None
+    if travel is None:
+        return np.zeros(len(st), bool)
+    length = np.abs(pd.to_numeric(st["length_m"], errors="coerce").to_numpy(float))
+    with np.errstate(invalid="ignore"):
+        return np.isin(travel, ("forward", "backward")) & (length > WALK_MIN_STRIDE_M)
+
+
 def _cut_before(a: int, b: int, stops: np.ndarray) -> list[tuple[int, int]]:
     """Decision L577: the run ``[a, b)`` of intervals cut before each interval after its first flagged in ``stops``."""
     edges = [a, *(i for i in range(a + 1, b) if stops[i]), b]
@@ -474,8 +495,10 @@ def _turn_spans(steps: pd.DataFrame, *, min_rate_dps: float = TURN_RATE_MIN_DPS,
         turning = ok[:-1] & ok[1:] & np.isfinite(dh) & (dt > 0) & (np.abs(dh) / dt >= min_rate_dps)
         # decision L119: a turn beside a pause turns in the time the pause rule left it (TURN_ON_SPOT_MIN_DPS)
         turning |= _intervals(st)[1] & (np.abs(dh) >= PAUSE_MAX_TURN_DEG)
-    # one row under the rate between two turning rows (a turn's slower step) does not split the turn
-    turning[1:-1] |= turning[:-2] & turning[2:] & ok[1:-2] & ok[2:-1] & ok[3:] & np.isfinite(dh[1:-1])
+    # one row under the rate between two turning rows (a turn's slower step) does not split the turn; decision L653:
+    # a walking stride (walking_rows) is no slower step of a turn, it ends the turn before it
+    turning[1:-1] |= (turning[:-2] & turning[2:] & ok[1:-2] & ok[2:-1] & ok[3:] & np.isfinite(dh[1:-1])
+                      & ~walking_rows(st)[2:-1])
     stops = foot_turn_stops(st)  # decision L577: a foot turn ends at a pause / bout boundary / rest gap
     runs, a = [], None  # the turns' intervals [a, b) in dh
     for i, on in enumerate(np.r_[turning, False]):

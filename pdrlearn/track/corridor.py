@@ -14,6 +14,7 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.track.clinical import _is_lower_back, data_gap_lengths
+from pdrlearn.track.rests import rest_seconds
 from pdrlearn.track.walk_test import _path
 from pdrlearn.warning_lines import coded
 
@@ -52,9 +53,24 @@ SHORT_LAP_MIN_FRAC = 0.10
 SHORT_LAP_SPREAD_K = 4.0
 #: decision L517: at least this many other single laps judge a last lap short (fewer: no spread to judge by)
 SHORT_LAP_MIN_LAPS = 2
+#: decision L642: a standstill (no step from one row's end to the next row's start) of at least this long (s)
+#: before the first full lap can be the wait for "go" (ours: longer than a slow walker's stepless cone turn, 3-4.9 s
+#: in trial T1)
+GO_WAIT_MIN_S = 5.0
+#: decision L643: a lap time whose corridor length is faster than this (m/s) is no walk (a 900 m 6MWT; ours)
+MAX_LAP_SPEED_MPS = 2.5
+#: decision L643: ... when the median lap also tracks less than this fraction of the corridor (L384's lower bound)
+NOT_CORRIDOR_FRAC = 0.5
+#: decision L644: the walking ended this long (s) before the timed test's end: the test stopped early (ours)
+STOP_MIN_S = 10.0
+#: decision L645: a final partial lap scaled to at least this fraction of the corridor reached the cone (ours)
+LAST_LAP_REACHED_FRAC = 0.95
+#: decision L644: the names of the timed tests by their duration (s; the 2- and 6-minute walk tests)
+TEST_LABELS = {120.0: "2MWT", 360.0: "6MWT"}
 #: decision L383: the summary keys :func:`corridor_walk_test` gives
 KEYS = ("corridor_m", "n_laps", "walk_test_distance_m", "walk_test_duration_s", "walk_test_distance_per_minute_m",
-        "fatigue_index")  # L462: walk_test_duration_s in the no-steps path and the report's walk-test table too
+        "fatigue_index",  # L462: walk_test_duration_s in the no-steps path and the report's walk-test table too
+        "walk_test_start_s", "walk_test_protocol_s", "walk_test_stopped_s", "walk_test_note")  # L642-L646
 
 
 def _distance_in_time(steps: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:
@@ -77,51 +93,60 @@ def _row_steps(steps: pd.DataFrame) -> np.ndarray:
     return np.where(data_gap_lengths(steps) > 0, 0.0, 2.0)
 
 
-def _rest_s(start: float, end: float, bouts: pd.DataFrame | None) -> float:
-    """The time of ``[start, end]`` outside every walking bout of bouts.csv (decision L384)."""
-    if bouts is None or not len(bouts):
-        return float(end - start)
-    a = np.clip(bouts["start_s"].to_numpy(float), start, end)
-    b = np.clip(bouts["end_s"].to_numpy(float), start, end)
-    return float(max(end - start - np.sum(np.maximum(b - a, 0.0)), 0.0))
-
-
 def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
                   bouts: pd.DataFrame | None = None,
                   span: tuple[float, float] | None = None,
-                  duration_s: float | None = None) -> tuple[pd.DataFrame, dict, list[str]]:
+                  duration_s: float | None = None, *, start: float | str = "auto",
+                  data_end: float | None = None) -> tuple[pd.DataFrame, dict, list[str]]:
     """Decisions L383, L384: ``(laps, summary, warnings)`` of a tracked step table walked up and down a corridor of
     ``corridor_m`` metres: laps.csv's rows (:data:`LAP_COLUMNS`), the summary's :data:`KEYS` and the warning lines
     (missed or extra turns, a corridor length far from the tracked laps). ``span``: the test's start and end (s;
     ``track --window``'s), else the first step's start and the last step's end. ``duration_s`` (decision L516,
-    ``track --walk-test-duration``): the test runs ``duration_s`` seconds from the first step's start (inside
-    ``span`` when both are given)."""
+    ``track --walk-test-duration``): the test runs ``duration_s`` seconds from "go" (inside ``span`` when both are
+    given): ``start`` (L642) a time (s), ``"first-step"`` or ``"auto"`` (:func:`go_time`); it ends at ``data_end``
+    (the recording's end) at the latest (L644)."""
     out = dict.fromkeys(KEYS)
     out["corridor_m"] = float(corridor_m)
+    out["walk_test_protocol_s"] = None if duration_s is None else float(duration_s)
     empty = pd.DataFrame(columns=list(LAP_COLUMNS))
     if not len(steps) or not {"start_s", "end_s", "length_m"} <= set(steps.columns):
         return empty, out, [coded("corridor walk test: no steps; no laps", "corridor-walk-test")]
     st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
     t, d = _distance_in_time(st)
     t0, t_end = (float(t[0]), float(st["end_s"].max())) if span is None else (float(span[0]), float(span[1]))
-    if duration_s is not None:  # decision L516: the 6MWT's minutes from "go", the first step (ATS 2002)
-        t0 = float(t[0])
-        t_end = t0 + float(duration_s) if span is None else min(t0 + float(duration_s), t_end)
-    out["walk_test_duration_s"] = t_end - t0  # decision L462: the span the distance is over
-    warnings_l462 = duration_note(t_end - t0, windowed=span is not None or duration_s is not None)
-    contact = t[1::2]  # each row's contact
-    n_row = _row_steps(st)
     turns = turns if turns is not None else pd.DataFrame(columns=["start_s", "end_s", "angle_deg"])
     cone = turns[np.abs(turns["angle_deg"].to_numpy(float)) >= CONE_TURN_MIN_DEG] if len(turns) else turns
     mids = ((cone["start_s"].to_numpy(float) + cone["end_s"].to_numpy(float)) / 2.0) if len(cone) else np.array([])
+    warnings: list[str] = []
+    if duration_s is not None:  # decision L516: the 6MWT's minutes from "go" (ATS 2002); L642: "go" found or given
+        t0, go_line = go_time(st, t, d, np.sort(mids), start, corridor_m)
+        if go_line:
+            warnings.append(go_line)
+        end = t_end if span is not None else data_end  # decision L644: the data's end (the recording's or window's)
+        t_end = t0 + float(duration_s) if end is None else min(t0 + float(duration_s), float(end))
+        if end is not None and float(end) < t0 + float(duration_s) - 1e-6:
+            warnings.append(coded(f"corridor walk test: the {'window' if span is not None else 'recording'} ends "
+                                  f"{t_end - t0:.0f} s after the test's start, before the {duration_s:g} s test: the "
+                                  f"test is incomplete; walk_test_duration_s is the {t_end - t0:.0f} s recorded "
+                                  "(decision L644)", "L644"))
+        out["walk_test_start_s"] = t0
+    out["walk_test_duration_s"] = t_end - t0  # decision L462: the span the distance is over
+    warnings_l462 = duration_note(t_end - t0, windowed=span is not None or duration_s is not None)
+    if warnings_l462 is not None:
+        warnings.insert(0, warnings_l462)
+    contact = t[1::2]  # each row's contact
+    n_row = _row_steps(st)
     mids = np.sort(mids[(mids > t0) & (mids < t_end)])
     # decision L399: lap 1 starts at the first step, the final lap ends at the last step (inside the span), so that
     # standing before the first or after the last step is no lap's time; the minutes stay the span's (L383)
     lap_t0, lap_end = max(t0, float(t[0])), min(t_end, float(st["end_s"].max()))
     bounds = np.concatenate([[lap_t0], mids[(mids > lap_t0) & (mids < lap_end)], [lap_end]])
     tracked = np.diff(np.interp(bounds, t, d))  # the stretches between cone turns (and the test's ends)
-    warnings: list[str] = [] if warnings_l462 is None else [warnings_l462]
     ref = float(np.median(tracked[:-1])) if len(tracked) > 1 else float("nan")
+    note = not_a_corridor(tracked, np.diff(bounds), corridor_m)
+    if note:  # decision L643: no walk test scored
+        out["walk_test_note"] = note
+        return empty, out, [*(w for w in warnings if "L644" not in w), coded(f"corridor walk test: {note}", "L643")]
     line = corridor_agreement(tracked, corridor_m, lower_back=_is_lower_back(st))
     if line:
         warnings.append(line)
@@ -167,22 +192,118 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
     singles = [s for s in stretches if s[3] == 1 and s[2] > 0]
     scale = corridor_m / singles[-1][2] if singles else 1.0  # L383: the last single lap's corridor / tracked
     rows, known = [], [(lap_t0, 0.0)]  # known: (time, corridor distance) at each stretch's end
+    a, b, m, _ = stretches[-1]
+    if m * scale >= LAST_LAP_REACHED_FRAC * corridor_m:  # decision L645: the final lap reached the cone
+        stretches[-1] = (a, b, m, 1)
     for i, (a, b, m, c) in enumerate(stretches, start=1):
         dist = c * corridor_m if c > 0 else min(m * scale, corridor_m)
         source = "corridor" if c > 0 else ("tracked x scale" if singles else "tracked")
         inside = (contact > a) & (contact <= b)
         rows.append({"lap": i, "start_s": a, "end_s": b, "duration_s": b - a, "corridor_laps": max(c, 0),
                      "tracked_m": m, "distance_m": dist, "distance_source": source,
-                     "speed_mps": dist / (b - a) if b > a else float("nan"), "rest_s": _rest_s(a, b, bouts),
+                     "speed_mps": dist / (b - a) if b > a else float("nan"), "rest_s": rest_seconds(a, b, bouts, turns),
                      "n_steps": int(n_row[inside].sum())})
         known.append((b, known[-1][1] + dist))
     laps = pd.DataFrame(rows, columns=list(LAP_COLUMNS))
     out["n_laps"] = int(laps["corridor_laps"].sum())
     out["walk_test_distance_m"] = float(laps["distance_m"].sum())
-    per_minute = _per_minute(t, d, stretches, laps["distance_m"].to_numpy(float), t0, t_end)
+    walked_end = t_end
+    last_step = float(st.loc[st["start_s"] < t_end, "end_s"].max()) if (st["start_s"] < t_end).any() else t0
+    if duration_s is not None and t_end - last_step > STOP_MIN_S:  # decision L644: the walking stopped early
+        walked_end = last_step
+        out["walk_test_stopped_s"] = last_step - t0
+        warnings.append(coded(f"corridor walk test: the walking stopped {clock_text(last_step - t0)} after the "
+                              f"test's start ({t_end - last_step:.0f} s before its end): the test stopped early (or "
+                              "a rest to the end); the per-minute distances and the fatigue index are of the full "
+                              "minutes walked (decision L644)", "L644"))
+    if ref < NOT_CORRIDOR_FRAC * corridor_m:  # decision L646: the tracked metres cannot share a lap out by minute
+        out["walk_test_note"] = ("per-minute distances and fatigue index withheld: the laps tracked "
+                                 f"{ref:.1f} m (median) against the {corridor_m:g} m corridor, so the track lost "
+                                 "steps (a pipeline unsuited to this gait?) or the corridor length is wrong; the lap "
+                                 "count and distance come from the cone turns (decision L646)")
+        warnings.append(coded(f"corridor walk test: {out['walk_test_note']}", "L646"))
+        return laps, out, warnings
+    per_minute = _per_minute(t, d, stretches, laps["distance_m"].to_numpy(float), t0, walked_end)
     out["walk_test_distance_per_minute_m"] = per_minute
     out["fatigue_index"] = per_minute[-1] / per_minute[0] if len(per_minute) >= 2 and per_minute[0] > 0 else None
     return laps, out, warnings
+
+
+def clock_text(seconds: float) -> str:
+    """Decision L644: ``m:ss`` of a time in a test (250.4 -> ``4:10``)."""
+    whole = int(round(seconds))
+    return f"{whole // 60}:{whole % 60:02d}"
+
+
+def walk_test_label(protocol_s: float | None) -> str:
+    """Decision L644: a timed corridor test's name by the duration asked (:data:`TEST_LABELS`, else "N-min walk
+    test"); without one "corridor walk test"."""
+    if protocol_s is None:
+        return "corridor walk test"
+    return TEST_LABELS.get(float(protocol_s), f"{float(protocol_s) / 60:g}-min walk test")
+
+
+def go_time(st: pd.DataFrame, t: np.ndarray, d: np.ndarray, mids: np.ndarray,
+            start: float | str, corridor_m: float) -> tuple[float, str | None]:
+    """Decision L642: the timed test's start ("go", s) and a line when it is not the first step. ``start``: a time
+    (s, taken as given), ``"first-step"`` (L516) or ``"auto"``: the first step after the last standstill of at least
+    :data:`GO_WAIT_MIN_S` (one row's end to the next row's start) that lies before the first full lap's end and is
+    followed by a full lap to the next cone turn (a full lap: at least (1 - :data:`LAP_AGREEMENT_TOL`) x the median
+    stretch between cone turns); none on a track whose median stretch is under :data:`NOT_CORRIDOR_FRAC` of the
+    corridor (L646: it lost steps, so its gaps are not known to be standstills)."""
+    first = float(t[0])
+    if not isinstance(start, str):
+        last = float(st["end_s"].max())
+        if not float(start) < last:
+            from pdrlearn.errors import DataError
+
+            raise DataError(f"the walk test's start {float(start):g} s (--walk-test-start or meta.json "
+                            f"walk_test_start_s) is not before the track's last step ({last:.1f} s): give the "
+                            "test's 'go' in seconds of the session's clock, inside the walk (decision L642)")
+        return float(start), None
+    if start != "auto" or len(st) < 2:
+        return first, None
+    inner = mids[(mids > first) & (mids < float(st["end_s"].max()))]
+    if len(inner) < 2:
+        return first, None
+    at = np.interp(inner, t, d)
+    ref = float(np.median(np.diff(at)))
+    if ref < NOT_CORRIDOR_FRAC * corridor_m:  # decision L642 amended: a track that lost steps has false standstills
+        return first, None
+    full = (1.0 - LAP_AGREEMENT_TOL) * ref
+    ends = np.concatenate([[d[0]], at])
+    first_full = next((float(m) for m, a, b in zip(inner, ends[:-1], ends[1:], strict=True) if b - a >= full),
+                      float("inf"))
+    stop, go = st["end_s"].to_numpy(float)[:-1], st["start_s"].to_numpy(float)[1:]
+    best = None
+    for a, b in zip(stop, go, strict=True):
+        nxt = inner[inner > b]
+        if b - a < GO_WAIT_MIN_S or b >= first_full or not len(nxt):
+            continue
+        if float(np.interp(nxt[0], t, d) - np.interp(b, t, d)) >= full:
+            best = (a, b)
+    if best is None:
+        return first, None
+    before = float(np.interp(best[0], t, d) - d[0])
+    return best[1], coded(f"corridor walk test: started at {best[1]:.1f} s, the first step after a "
+                          f"{best[1] - best[0]:.1f} s standstill before the first full lap (the walk to the start "
+                          f"line and the wait for 'go'?); the {before:.1f} m walked before it are not scored; "
+                          "give --walk-test-start SECONDS (or first-step, or meta.json walk_test_start_s) to set "
+                          "it (decision L642)", "L642")
+
+
+def not_a_corridor(tracked: np.ndarray, durations: np.ndarray, corridor_m: float) -> str | None:
+    """Decision L643: why the laps (``tracked`` metres and ``durations`` of the stretches between cone turns, the
+    last one the final stretch) are not a corridor's - the median lap tracks under :data:`NOT_CORRIDOR_FRAC` of the
+    corridor and its time gives the corridor faster than :data:`MAX_LAP_SPEED_MPS` - or None."""
+    if len(tracked) < 2:
+        return None
+    ref, lap_s = float(np.median(tracked[:-1])), float(np.median(durations[:-1]))
+    if not (ref < NOT_CORRIDOR_FRAC * corridor_m and lap_s > 0 and corridor_m / lap_s > MAX_LAP_SPEED_MPS):
+        return None
+    return (f"not a corridor test: the laps tracked {ref:.1f} m (median) in {lap_s:.1f} s, so {corridor_m:g} m "
+            f"laps would be walked at {corridor_m / lap_s:.1f} m/s, faster than walking ({MAX_LAP_SPEED_MPS:g} m/s): "
+            "a shorter course (a TUG?); no walk test scored (decision L643)")
 
 
 def corridor_agreement(tracked: np.ndarray, corridor_m: float, *, lower_back: bool) -> str | None:
@@ -200,10 +321,11 @@ def corridor_agreement(tracked: np.ndarray, corridor_m: float, *, lower_back: bo
         tol += CORRIDOR_SPREAD_K[unit] * spread
         if abs(np.log(ref / corridor_m)) <= np.log1p(tol):
             return None
+        lost = " or did the track lose steps?" if ref < corridor_m else ""  # decision L646
         return coded(f"corridor walk test: the median lap tracked {ref:.1f} m (laps {np.min(laps):.1f}-"
-                     f"{np.max(laps):.1f} m) against --corridor {corridor_m:g} m ({ref / corridor_m - 1:+.0%}), more "
-                     f"than a {unit} track's scale error allows ({tol:.0%}): is the corridor length right? the laps "
-                     f"count {corridor_m:g} m each (decision L518)", "L518")
+                     f"{np.max(laps):.1f} m) against --corridor {corridor_m:g} m ({ref / corridor_m:.2f} x), outside "
+                     f"the {1 / (1 + tol):.2f}-{1 + tol:.2f} x a {unit} track's scale error allows: is the corridor "
+                     f"length right?{lost} the laps count {corridor_m:g} m each (decisions L518, L646)", "L518")
     last = float(np.sum(tracked)) if len(tracked) else 0.0
     if last <= (1.0 + tol) * corridor_m:
         return None
@@ -291,12 +413,89 @@ def walk_test_duration(duration: float | None, corridor_m: float | None) -> floa
     return float(duration)
 
 
+def walk_test_start(start: str | None, duration_s: float | None) -> float | str:
+    """Decision L642: ``--walk-test-start``'s value checked before any session: ``"auto"``, ``"first-step"`` or a
+    time (s); one :class:`DataError` line otherwise, or when it is given without ``--walk-test-duration``."""
+    import math
+
+    from pdrlearn.errors import DataError
+
+    text = "auto" if start is None else str(start).strip()
+    if text in ("auto", "first-step"):
+        value: float | str = text
+    else:
+        try:
+            value = float(text)
+        except ValueError:
+            value = math.nan
+        if not math.isfinite(value) or value < 0:
+            raise DataError(f"--walk-test-start {text}: give auto, first-step or the test's start in seconds of the "
+                            "session's clock (e.g. --walk-test-start 37.1)")
+    if value != "auto" and duration_s is None:
+        raise DataError(f"--walk-test-start {text} starts a timed corridor walk test: add --walk-test-duration SECONDS "
+                        "(e.g. 360) and --corridor METRES, or drop --walk-test-start")
+    return value
+
+
+def session_go(start: float | str, session) -> float | str:
+    """Decision L642: the session's "go": ``--walk-test-start`` when it gives a time or first-step, else the
+    session's meta.json ``walk_test_start_s`` (a number of seconds; anything else is one :class:`DataError` line),
+    else ``"auto"``."""
+    if start != "auto":
+        return start
+    meta = getattr(session, "meta", None) or {}
+    if meta.get("walk_test_start_s") is None:
+        return "auto"
+    import math
+
+    from pdrlearn.errors import DataError
+
+    value = meta["walk_test_start_s"]
+    if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value) or value < 0:
+        raise DataError(f"{session.where}: meta.json walk_test_start_s {value!r}: give the walk test's start in "
+                        "seconds of the session's clock (a number, e.g. 37.1), or remove the key")
+    return float(value)
+
+
 def corridor_line(summary: dict) -> str:
-    """Decision L383: ``track``'s line of the corridor walk test."""
+    """Decision L383: ``track``'s line of the corridor walk test; L642-L646: where a timed test started, a stop, a
+    span shorter than asked, and the note of a test not scored or of withheld minutes."""
     per = summary.get("walk_test_distance_per_minute_m") or []
     fatigue = summary.get("fatigue_index")
-    return (f"corridor walk test ({summary['corridor_m']:g} m): {summary.get('n_laps') or 0} lap(s), "
+    head = f"corridor walk test ({summary['corridor_m']:g} m)"
+    protocol = summary.get("walk_test_protocol_s")
+    if protocol is not None:
+        head = f"corridor {walk_test_label(protocol)} ({summary['corridor_m']:g} m)"
+    if summary.get("walk_test_distance_m") is None:  # decision L643: not scored
+        return f"{head}: {summary.get('walk_test_note') or 'not scored'}"
+    timing = ""
+    if protocol is not None and summary.get("walk_test_start_s") is not None:
+        dur = summary.get("walk_test_duration_s") or 0.0
+        timing = (f"; from {summary['walk_test_start_s']:.1f} s for {clock_text(dur)}"
+                  + (f" of {clock_text(protocol)} (incomplete)" if dur < protocol - 1e-6 else "")
+                  + (f", walking stopped at {clock_text(summary['walk_test_stopped_s'])}"
+                     if summary.get("walk_test_stopped_s") is not None else ""))
+    return (f"{head}: {summary.get('n_laps') or 0} lap(s), "
             f"{(summary.get('walk_test_distance_m') or 0.0):.1f} m (laps x {summary['corridor_m']:g} m + the final "
-            f"partial lap, laps.csv; L383)"
+            f"partial lap, laps.csv; L383){timing}"
             + (f"; per minute from the test's start {' / '.join(f'{v:.1f}' for v in per)} m" if per else "")
-            + (f"; fatigue index {fatigue:.2f} (last / first minute)" if fatigue is not None else ""))
+            + (f"; fatigue index {fatigue:.2f} (last / first full minute)" if fatigue is not None else "")
+            + (f"; {summary['walk_test_note']}" if summary.get("walk_test_note") else "")
+            + walk_test_speed_text(summary))
+
+
+def walk_test_speed(summary: dict) -> float | None:
+    """Decision L650: the walk test's own mean speed (m/s): its distance (from the corridor's laps) / its duration;
+    None without a walk test."""
+    dist, dur = summary.get("walk_test_distance_m"), summary.get("walk_test_duration_s")
+    return float(dist) / float(dur) if dist is not None and dur else None
+
+
+def walk_test_speed_text(summary: dict) -> str:
+    """Decision L650: :func:`walk_test_speed` named as the test's beside the gait speed line's (the whole recording's
+    walking, from the step lengths); "" without one."""
+    speed = walk_test_speed(summary)
+    if speed is None:
+        return ""
+    return (f"; test speed {speed:.2f} m/s (the test's distance / its {summary['walk_test_duration_s']:.0f} s; the "
+            "gait speed line is the whole recording's walking, from step lengths: L650)")

@@ -158,19 +158,27 @@ def count_floors(z, storey_height_m: float = STOREY_HEIGHT_M, band: float = STOR
     reached when ``|z - z[0] - k h| <= band h`` (h = ``storey_height_m``); each change of the floor reached adds
     its storeys to the up or down count. Non-finite values are skipped."""
     z = np.asarray(z, dtype=float).ravel()
-    z = z[np.isfinite(z)]
-    level = up = down = 0
-    if not len(z):
-        return 0, 0, 0
-    rel = (z - z[0]) / storey_height_m
-    nearest = np.rint(rel)
-    for k in nearest[np.abs(rel - nearest) <= band].astype(int).tolist():  # the altitudes inside a floor's band
-        if k > level:
-            up += k - level
-        elif k < level:
-            down += level - k
-        level = k
-    return up, down, level
+    levels = floor_levels(z[np.isfinite(z)], storey_height_m, band)
+    steps = np.diff(np.concatenate([[0], levels]))
+    return int(steps[steps > 0].sum()), int(-steps[steps < 0].sum()), int(levels[-1]) if len(levels) else 0
+
+
+def floor_levels(z, storey_height_m: float = STOREY_HEIGHT_M, band: float = STOREY_BAND) -> np.ndarray:
+    """Decision L64's floor per sample of an altitude track ``z`` (m, relative to its first finite value): floor k
+    once ``|z - z[0] - k h| <= band h``, else the last floor reached (0 before any; NaN samples keep it) - the rule
+    :func:`count_floors` counts on, and trajectory.csv's ``floor`` where no climbs are counted (decision L631)."""
+    z = np.asarray(z, dtype=float).ravel()
+    out = np.zeros(len(z), dtype=int)
+    ok = np.flatnonzero(np.isfinite(z))
+    if not len(ok):
+        return out
+    rel = (z - z[ok[0]]) / storey_height_m
+    level = 0
+    for i in range(len(z)):
+        if np.isfinite(rel[i]) and abs(rel[i] - np.rint(rel[i])) <= band:  # inside a floor's band
+            level = int(np.rint(rel[i]))
+        out[i] = level
+    return out
 
 
 #: decision L127: at most this many level strides between two stair strides of one climb (a landing and its U-turn)
@@ -280,6 +288,18 @@ def _climb_parts(steps: pd.DataFrame):
     for a, b in zip(edges[::2], edges[1::2], strict=True):
         sign[a:b] = int(np.sign(walk[a:b].sum()))
     return ride, kind, sign
+
+
+def climb_inputs(result) -> tuple:
+    """``(dz, bridge, parts, slope_rows)`` that L127's per-climb floor count reads from a track ``result``'s steps
+    (:func:`_climb_dz`; decisions L374-L376's parts, L394's rides after the last step, L337's slope rows); ``dz``
+    None where the floors are counted on the altitude instead. One reading for the summary's floors and
+    trajectory.csv's ``floor`` (decision L631)."""
+    dz, bridge = _climb_dz(result.steps)
+    parts = _climb_parts(result.steps) if dz is not None else None  # decisions L374-L376
+    dz, parts, slope_rows = _with_after(result.steps, result.info, dz, parts,  # decision L394
+                                        climb_slope_rows(result.steps, result.info))  # decision L337
+    return dz, bridge, parts, slope_rows
 
 
 def _with_after(steps: pd.DataFrame, info: dict | None, dz, parts, slope_rows):
@@ -527,8 +547,8 @@ def backward_travel(steps: pd.DataFrame) -> np.ndarray | None:
     from pdrlearn.track.gait import sideways_rows
 
     units = set(steps["unit"].astype(str)) if len(steps) and "unit" in steps else set()
-    # L203 amended: a replayed table (`pdrlearn run`) has no raw length; its signed ``length_m`` (negative only for a
-    # stride classed backward, thesis eq. 61's sign) counts instead
+    # L203 amended: a replayed table (`pdrlearn run`) has no raw length; its signed ``length_m`` (the measured travel's
+    # sign, decision L654) counts instead
     column = "raw_length_m" if "raw_length_m" in steps else "length_m"
     if units != {"foot"} or column not in steps:
         return None
@@ -650,6 +670,11 @@ def _basic(result: TrackResult, out: dict) -> None:
         out["final_position"].update(lat=float(last["lat"]), lon=float(last["lon"]))
     # the tracked altitude change, with or without ground truth (session 14 trial finding 2)
     out["altitude_change_m"] = float(tr["z"].iloc[-1] - tr["z"].iloc[0]) if len(tr) and "z" in tr else 0.0
+    from pdrlearn.track.floor_column import ride_change
+
+    # decision L630: with the rides a foot track's z leaves out (rides.csv: a lift while the feet stand)
+    out["altitude_change_rides_m"] = out["altitude_change_m"] + (
+        ride_change(result, float(tr["t"].iloc[0]), float(tr["t"].iloc[-1])) if len(tr) else 0.0)
     # decision L66: median stride time, cadence and speed of a table with the gait columns (foot pipeline)
     from pdrlearn.track.gait import gait_summary
 
@@ -686,18 +711,16 @@ def _basic(result: TrackResult, out: dict) -> None:
     from pdrlearn.track.walk_test import t25fw, ten_metre_walk
 
     # decisions L312, L313: the 10 m walk test's middle 10 m; L522: --ten-m-walk's walkway; L524: every trial
-    out.update(ten_metre_walk(result.steps, result.info.get("ten_m_walk_m")))
+    calibrated = result.info.get("params_source") == "calibrated"  # decision L649
+    out.update(ten_metre_walk(result.steps, result.info.get("ten_m_walk_m"), calibrated))
     # decision L387: the timed 25-foot walk from standing; L552: a long bout only on a declared walkway
-    out.update(t25fw(result.steps, walkway=result.info.get("ten_m_walk_m") is not None))
+    out.update(t25fw(result.steps, walkway=result.info.get("ten_m_walk_m") is not None, calibrated=calibrated))
     from pdrlearn.track.stair_flights import flight_summary
 
     out.update(flight_summary(result.steps))  # decision L432: stairs.csv's flights up and down
     # decisions L64, L127: the storeys the track climbed and descended (storeys of storey_height_m, set by
     # evaluate_track)
-    dz, bridge = _climb_dz(result.steps)
-    parts = _climb_parts(result.steps) if dz is not None else None  # decisions L374-L376
-    dz, parts, slope_rows = _with_after(result.steps, result.info, dz, parts,  # decision L394
-                                        climb_slope_rows(result.steps, result.info))  # decision L337
+    dz, bridge, parts, slope_rows = climb_inputs(result)
     _floors(tr["z"].to_numpy(float) if len(tr) and "z" in tr else [], out, dz=dz, bridge=bridge,
             slope_rows=slope_rows, parts=parts)
     out["n_rides"] = len(result.info["rides"]) if result.info.get("rides") is not None else None  # decision L377
@@ -985,7 +1008,7 @@ def _altitude(result: TrackResult, session: Session, out: dict) -> None:
                                      max([float(tr["t"].iloc[-1])] + [float(r["end_s"]) for r in rides]))
     if z_ref is not None:  # decision L64: the reference's storeys, counted by the same rule
         _floors(z_ref, out, "_ref")  # L64's count on the reference altitude
-    est = out["altitude_change_m"]
+    est = out["altitude_change_rides_m"]  # decision L630: a foot track's rides are the walker's height too
     out["altitude_change_ref_m"] = ref
     out["altitude_ref_source"] = source
     out["final_altitude_error_m"] = abs(est - ref)
@@ -1261,9 +1284,9 @@ from pdrlearn.kernels.barometer_check import (  # noqa: E402, F401 (decision E23
     BAROMETER_DRIFT_M_PER_H,
     _climb_miss,
     _closed_by_floors,
-    _ridden,
     barometer_keys,
     barometer_warning,
+    ridden_climbs,
 )
 
 #: decision L172: a barometric track's altitude change that its climbs do not explain by more than this (m; twice
@@ -1386,13 +1409,18 @@ def ramps_need_fused_warning(summary: dict) -> str | None:
 
     up = float(summary.get("barometer_ascent_m") or 0.0)
     down = float(summary.get("barometer_descent_m") or 0.0)
-    left_up = up - float(summary.get("flights_rise_m") or 0.0)  # decision L602
-    left_down = down - float(summary.get("flights_drop_m") or 0.0)
+    ridden = ridden_climbs(summary) or {"ascent": 0.0, "descent": 0.0}  # decision L632: rides.csv's lifts
+    left_up = up - ridden["ascent"] - float(summary.get("flights_rise_m") or 0.0)  # decision L602
+    left_down = down - ridden["descent"] - float(summary.get("flights_drop_m") or 0.0)
     if (not summary.get("barometer_unused") or summary.get("grade_source") is not None
-            or not max(left_up, left_down) > ASCENT_BAND_BARO_M):
+            or not max(left_up, left_down) > ASCENT_BAND_BARO_M
+            or barometer_warning(summary) is not None):  # decision L632: one line, L145's, names ramps too
         return None
-    flights = ("" if not (summary.get("flights_rise_m") or summary.get("flights_drop_m")) else
-               f" ({max(left_up, 0.0):.2f} m / {max(left_down, 0.0):.2f} m more than stairs.csv's flights, L602)")
+    what = " and ".join(w for w, on in (("stairs.csv's flights", summary.get("flights_rise_m")
+                                         or summary.get("flights_drop_m")),
+                                        ("rides.csv's rides", ridden["ascent"] or ridden["descent"])) if on)
+    flights = ("" if not what else f" ({max(left_up, 0.0):.2f} m / {max(left_down, 0.0):.2f} m more than {what}, "
+               "L602, L632)")
     return (f"the waist barometer climbed {up:.2f} m and descended {down:.2f} m{flights}, but ramps.csv is empty and "
             "steps.csv has no grade_pct: ramps / grades need --altitude fused (L300) - a foot track's own height "
             "levels every stride under 0.10 m (L39), a 1:12 ramp's at strides under 1.2 m (decision L574)")

@@ -141,7 +141,8 @@ def clinical_tables(result, bouts) -> dict:
             out["tug_trials.csv"] = trials
     from pdrlearn.track.walk_test import ten_metre_walk_trials
 
-    trials = ten_metre_walk_trials(result.steps, result.info.get("ten_m_walk_m"))  # decision L524: every 10MWT trial
+    trials = ten_metre_walk_trials(result.steps, result.info.get("ten_m_walk_m"),  # decision L524: every trial
+                                   result.info.get("params_source") == "calibrated")  # L649
     if len(trials):
         out["ten_m_walk_trials.csv"] = trials
     if result.info.get("flights") is not None:  # decision W417: each unit's flight phases, with a jump height
@@ -175,6 +176,9 @@ def write_folder(dest: Path, tracked: dict) -> tuple[dict, bool]:
             traj[c] = float("nan")
     if "pos_sigma_m" in traj:  # decision L128: appended after the columns trajectory.csv always had
         traj = traj[[c for c in traj.columns if c != "pos_sigma_m"] + ["pos_sigma_m"]]
+    from pdrlearn.track.floor_column import with_floor_columns
+
+    traj = with_floor_columns(traj, result, summary.get("storey_height_m"))  # decisions L630, L631
     if result.info.get("rides"):  # decision L623: the rows a ride's line reaches (not walked), last; only with a ride
         from pdrlearn.track.rides import trajectory_rides
 

@@ -166,13 +166,22 @@ def feature_geometry(t, lat, lon, ele, t0: float, t1: float) -> list[list[float]
     return [[round(v, COORD_DECIMALS if k < 2 else ELE_DECIMALS) for k, v in enumerate(p)] for p in pts]
 
 
+def elevation(trajectory) -> np.ndarray | None:
+    """Decision L630: the elevation of each row, trajectory.csv's ride-inclusive ``z_rides`` (a lift's height is the
+    walker's) where written, else ``z``; None without either."""
+    for c in ("z_rides", "z"):
+        if c in trajectory:
+            return trajectory[c].to_numpy(float)
+    return None
+
+
 def route_feature_parts(trajectory, features: list[dict], *, with_ele: bool, start: datetime | None,
                         session: str) -> tuple[list[dict], list[dict]]:
     """Decision L570: the GeoJSON Features and GPX waypoints of ``features``
     (:func:`pdrlearn.track.ramp_audit.route_features`) on ``trajectory``; a feature without a position at both ends
     is left out."""
     t, lat, lon = (trajectory[c].to_numpy(float) for c in ("t", "lat", "lon"))
-    ele = trajectory["z"].to_numpy(float) if with_ele and "z" in trajectory else None
+    ele = elevation(trajectory) if with_ele else None
     geo, wpts = [], []
     for f in features:
         coords = feature_geometry(t, lat, lon, ele, f["start_s"], f["end_s"])
@@ -203,7 +212,7 @@ def write_geo_files(dest: Path, trajectory, *, session: str, pipeline: str | Non
     pieces = geo_pieces(lat, lon)
     if not pieces:
         return ()
-    ele = trajectory["z"].to_numpy(float) if with_ele and "z" in trajectory else None
+    ele = elevation(trajectory) if with_ele else None
     times = utc_times(start, trajectory["t"].to_numpy(float), where=session) if "t" in trajectory else None
     marks, wpts = (route_feature_parts(trajectory, features, with_ele=ele is not None, start=start, session=session)
                    if features and "t" in trajectory else ([], []))  # decision L570

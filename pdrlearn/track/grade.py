@@ -210,7 +210,8 @@ def ramp_runs(length, dz, window: int = 1, min_grade_pct: float = RAMP_MIN_GRADE
     be on stairs whatever their grade - a lower-back track's W108 climbs, whose pendulum lengths read a stair's
     riser over a long step - are stair rows. ``lone_stair_joins`` (decision W464, the lower back's): a stair row with
     no stair row next to it does not keep two runs of one sign from joining (a lower-back step's barometric change
-    is noise of several %, L300: one step of 0.15 m over 0.7 m split T3's 1:12 ramp in three)."""
+    is noise of several %, L300: one step of 0.15 m over 0.7 m split T3's 1:12 ramp in three). Decision L633: a ramp
+    between two stair rows of its own direction is a stair's landing and left out."""
     length = np.nan_to_num(np.abs(np.asarray(length, dtype=float)))
     dz = np.nan_to_num(np.asarray(dz, dtype=float))
     n = len(length)
@@ -238,6 +239,8 @@ def ramp_runs(length, dz, window: int = 1, min_grade_pct: float = RAMP_MIN_GRADE
         ramps.append([r])
     out = []
     for rs in ramps:
+        if _stair_landing(stair, dz, rs[0][0] - 1, rs[-1][1] + 1, rs[0][2]):  # decision L633
+            continue
         rows = np.concatenate([np.arange(a, b + 1) for a, b, _ in rs])
         run_l, rise = float(length[rows].sum()), float(dz[rows].sum())
         grades = [100.0 * dz[a:b + 1].sum() / length[a:b + 1].sum() for a, b, _ in rs]
@@ -251,6 +254,14 @@ def ramp_runs(length, dz, window: int = 1, min_grade_pct: float = RAMP_MIN_GRADE
                     "max_run_grade_pct": float(max(grades, key=abs)), "n_steps": int(rs[-1][1] - rs[0][0] + 1),
                     "max_run_rise_m": max(rises, key=abs)})
     return out
+
+
+def _stair_landing(stair: np.ndarray, dz: np.ndarray, before: int, after: int, sign: int) -> bool:
+    """Decision L633: a ramp whose rows ``before`` and ``after`` it are both stair rows climbing its own way (``sign``)
+    is one stair's landing (the strides onto and off it carry a stair's part), not a ramp."""
+    if before < 0 or after >= len(stair):
+        return False
+    return bool(stair[before] and stair[after] and np.sign(dz[before]) == sign == np.sign(dz[after]))
 
 
 def _lone(mask: np.ndarray) -> np.ndarray:

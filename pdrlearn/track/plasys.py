@@ -75,7 +75,7 @@ from pdrlearn.kernels.distance import (
 )
 from pdrlearn.kernels.first_walk import FirstWalk
 from pdrlearn.kernels.foot_rhythm import foot_period
-from pdrlearn.kernels.pedal import closed_loop_strides, pedal_line, seated_strides, unrested_strides
+from pdrlearn.kernels.pedal import closed_loop_strides, pedal_line, ride_strides, seated_strides, unrested_strides
 from pdrlearn.kernels.window import (
     BRIDGE_GAP_S,
     GAP_TOL_S,
@@ -1023,22 +1023,43 @@ def _no_strides_hint(session) -> str:
 
 
 def _without_pedalling(fd: FootDisplacement, fd_kw: dict, foot, strides: pd.DataFrame, stance: np.ndarray,
-                       transfers, g_rest: float) -> tuple[FootDisplacement, pd.DataFrame, str | None]:
+                       transfers, g_rest: float, foot_gaps=None) -> tuple[FootDisplacement, pd.DataFrame, str | None]:
     """Decisions L611 / L612: the strides whose raw heights go up and down in a closed loop (cycling), or that lie in
     a span the lower-back unit's chair ``transfers`` call seated, are not walking: their detections are left out and the
-    rest integrated again (nothing changes without them); ``g_rest``: the foot's rest reading (L621). Returns (fd,
-    strides, warning line or None)."""
+    rest integrated again (nothing changes without them); ``g_rest``: the foot's rest reading (L621). Decision L639:
+    so is a stride longer than ``RIDE_STRIDE_CAPS`` of the foot's stride cap (L605), with every detection inside it,
+    unless it overlaps one of ``foot_gaps`` (B11's 0 m row). Returns (fd, strides, warning line or None)."""
     from pdrlearn.track.pedalling import pedal_loops
 
     loop = pedal_loops(fd, foot, g_rest)  # decision L611 (L625: shared with `pdrlearn steps`)
     seated, seats = seated_strides(fd.start_s_, fd.end_s_, transfers)
-    if not (loop | seated).any():
+    windows = fd.end_s_ - fd.start_s_
+    cap = stride_cap_s(foot_period(foot.gyr, foot.fs), float(np.median(windows)) if len(windows) else np.nan)
+    ride = ride_strides(fd.start_s_, fd.end_s_, cap) & ~overlaps_gaps(
+        pd.DataFrame({"start_s": fd.start_s_, "end_s": fd.end_s_}), foot_gaps)  # decision L639
+    if not (loop | seated | ride).any():
         return fd, strides, None
-    line = pedal_line(loop, seated, fd.start_s_, fd.end_s_, seats)
-    kept = strides.drop(index=strides.index[np.unique(np.asarray(fd.rows_)[loop | seated])]).reset_index(drop=True)
+    line = pedal_line(loop, seated, fd.start_s_, fd.end_s_, seats, ride, cap)
+    kept = strides.drop(index=strides.index[_making_only(fd, fd_kw, foot, strides, stance, loop | seated | ride)])
+    kept = kept.reset_index(drop=True)
     if not len(kept):
         return fd, kept, line
     return FootDisplacement(**fd_kw).estimate(foot, kept, stance=stance), kept, line
+
+
+def _making_only(fd: FootDisplacement, fd_kw: dict, foot, strides: pd.DataFrame, stance: np.ndarray,
+                 removed: np.ndarray) -> np.ndarray:
+    """Decision L641: the rows of ``strides`` (positions) every one of whose rest-to-rest strides (C51's
+    ``stride_bounds`` pairs) is one of ``fd``'s ``removed`` strides: left out, none of them makes it again (a stride
+    joining several detections kept the others, L611's first mechanism); a row that also makes a kept stride stays."""
+    s0, s1, rows = FootDisplacement(**fd_kw).stride_bounds(foot, strides, stance=stance)
+    gone = np.column_stack([fd.start_s_[removed], fd.end_s_[removed]])
+    hit = (np.isclose(s0[:, None], gone[None, :, 0]) & np.isclose(s1[:, None], gone[None, :, 1])).any(axis=1)
+    made = np.zeros(len(strides), dtype=bool)
+    made[rows] = True
+    keeps = np.zeros(len(strides), dtype=bool)
+    np.logical_or.at(keeps, rows[~hit], True)
+    return np.flatnonzero(made & ~keeps)
 
 
 def _contact_cadence(seen: dict, table: pd.DataFrame, t: np.ndarray, stance: np.ndarray) -> float | None:
@@ -1339,7 +1360,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     if transfers:
         add_trunk_transfers(trunk, session)
     fd, strides, pedal_warning = _without_pedalling(fd, fd_kw, foot, strides, stance, trunk.info.get("transfers"),
-                                                    foot_rest_gravity(session))  # decision L621
+                                                    foot_rest_gravity(session), foot_gaps)  # decisions L621, L639
     if not len(strides):
         raise NoStridesError(f"{session.where}: no walking strides: {pedal_warning}{_no_strides_hint(session)}")
     fd_warnings = list(fd.warnings_) + ([pedal_warning] if pedal_warning else [])
@@ -1684,8 +1705,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     if start is not None:
         ll = geodetic_track(start, length, head)
         traj["lat"], traj["lon"] = ll[:, 0], ll[:, 1]
-    # decision L65: a negative length only with a backward class (else |length| along heading + pi, same path)
-    rep_length, rep_head = SK.travel_sign(length, head, table["direction"].to_numpy(dtype=object),
+    # decision L654 (amends L65): length_m's sign is the measured travel (|length| along heading + pi, same path)
+    rep_length, rep_head = SK.travel_sign(length, head, table["raw_length_m"].to_numpy(float),
                                           table["sideways"].to_numpy(dtype=bool),  # decision C137
                                           table["turn_angle_rad"].to_numpy(float))  # decision L578
     side_class_warning(table, warnings, trained_side_strides(model))  # decisions C137, C161
@@ -1733,8 +1754,11 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     logged = len(warnings)  # apply_altitude logs its own lines
     apply_altitude(res, session, altitude,  # decision L154 (L292: rewrites L69's line; L564 / L565: an option)
                    raw_dz=climb_dz if fused_climb else None)
-    foot_rides(res, session, ride_vibration)  # decision L378: the rides, from the waist barometer (offline only, as
-    # run's files); L615 / L616: the foot's vibration tells a vehicle
+    from pdrlearn.track.units import with_left_out_units
+
+    # decision L378: the rides, from the waist barometer (offline only, as run's files); L615 / L616: the foot's
+    # vibration tells a vehicle; L634: `--units foot` leaves the waist's motion out, not its barometer
+    foot_rides(res, with_left_out_units(session), ride_vibration)
     res.steps.insert(res.steps.columns.get_loc("terrain") + 1, "terrain_dz",  # decision L424: beside the class
                      KD.terrain_from_dz(res.steps["dz_m"], stride_rows(res.steps)))
     for w in warnings[:logged]:
@@ -2154,9 +2178,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     for c in classes.columns:
         if not c.startswith("ood_feature_"):
             table[c] = classes[c].to_numpy()
-    # decision L65 (as the runtime's Step): a negative length only with a backward class; the path is the same
-    rep_length, rep_head = SK.travel_sign(length, head, table["direction"].to_numpy(dtype=object)
-                                          if "direction" in table else None, sideways,  # decision C137
+    # decision L654 (as the runtime's Step): length_m's sign is the measured travel; the path is the same
+    rep_length, rep_head = SK.travel_sign(length, head, raw_disp[:, 0], sideways,  # decision C137
                                           np.angle(np.exp(1j * turn)))  # decision L578: E51's wrapped own turn
     table.insert(3, "length_m", rep_length)
     table.insert(5, "heading_rad", wrap_angle(rep_head))
@@ -2165,8 +2188,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     table["impossible"] = impossible & ~in_gap  # decision L97: the strides L94 moved 0 m (no gait values)
     table["gap_s"] = np.where(in_gap, longest_gap_in(table["start_s"], table["end_s"], foot_gaps), 0.0)  # E37, L67
     table["sideways"] = sideways  # decision L243 (L228's column, decided stride by stride as the runtime's)
-    side_class_warning(table, warnings, trained_side_strides(model))  # decisions C137, C161
     table["unit"] = "foot"
+    side_class_warning(table, warnings, trained_side_strides(model))  # decisions C137, C161, L652 (a foot table)
     traj = pd.DataFrame({"t": np.concatenate([[table["start_s"].iloc[0]], table["end_s"].to_numpy()]),
                          "x": xyz[:, 0], "y": xyz[:, 1], "z": xyz[:, 2] + start_alt})  # L157: z from alt
     if start is not None:

@@ -21,6 +21,10 @@ CLIMB_COLOURS = {"ramp": "tab:orange", "stairs": "tab:purple"}
 CLIMB_WIDTHS = {"ramp": 2.0, "stairs": 4.0}
 #: decision L592: the x label that names the elevation-vs-distance panel
 DISTANCE_PANEL_XLABEL = "distance along the path [m]"
+#: decision L655: path.png's markers at the end of a foot track's backward and side strides (steps.csv travel,
+#: L412), coloured as ``plot --shade travel`` shades them: (travel labels, marker, colour, legend label)
+TRAVEL_MARKERS = ((("backward",), "v", "#de2d26", "backward strides (steps.csv travel)"),
+                  (("left", "right", "side"), "D", "#31a354", "side strides (steps.csv travel left / right / side)"))
 
 
 def plot_paths(paths: dict[str, TrackResult], out: Path, *, session: Session | None = None,
@@ -95,6 +99,7 @@ def path_figure(paths: dict[str, TrackResult], *, session: Session | None = None
     for label, _, x, y, _, style in lines:
         ax.plot(*broken_at(x, y, rides.get(label)), label=label, **style)
     draw_rides(ax, lines, rides)
+    draw_travel(ax, paths)  # decision L655
     if any(spans.values()):
         draw_climbs(ax, axes[-1], paths, spans)
     box = path_box([(x, y) for _, _, x, y, _, _ in lines])
@@ -156,6 +161,33 @@ def draw_rides(ax, lines, rides: dict) -> None:
         for i in rides.get(name, ()):
             ax.plot(x[i - 1:i + 1], y[i - 1:i + 1], ls=":", lw=1.0, color="0.5", label=label)
             label = None
+
+
+def draw_travel(ax, paths: dict[str, TrackResult]) -> None:
+    """Decision L655: a marker (:data:`TRAVEL_MARKERS`) at the end of each backward and each side stride of every
+    drawn foot track (its steps' travel labels, L412's :func:`pdrlearn.track.travel.travel_labels`), at the
+    trajectory's position at the stride's ``end_s``; one legend entry per kind drawn. Nothing for a lower-back
+    track or a walk of forward strides only."""
+    from pdrlearn.track.travel import travel_labels
+
+    labelled = set()
+    for r in paths.values():
+        st, tr = r.steps, r.trajectory
+        if st is None or not len(st) or "end_s" not in st or tr is None or len(tr) < 2:
+            continue
+        travel = travel_labels(st)  # L412, idempotent: the offline tracker's left / right kept
+        if travel is None:
+            continue
+        t = tr["t"].to_numpy(float)
+        for kinds, marker, colour, label in TRAVEL_MARKERS:
+            rows = np.isin(travel, kinds)
+            if not rows.any():
+                continue
+            end = st["end_s"].to_numpy(float)[rows]
+            x, y = (np.interp(end, t, tr[c].to_numpy(float)) for c in ("x", "y"))
+            ax.plot(x, y, ls="none", marker=marker, ms=5, color=colour, zorder=3,
+                    label=None if label in labelled else label)
+            labelled.add(label)
 
 
 def climb_spans(result: TrackResult) -> list[tuple[str, int, int]]:

@@ -117,7 +117,8 @@ def side_class_warning(steps: pd.DataFrame, warnings: list[str], trained_side: i
     on the spot (own turn of ``BACKWARD_MAX_TURN_DEG`` or more, travel = turn) the model classed backward. Appended
     to ``warnings``; nothing without a model. Decision C161: the side-step line says what the model was trained on -
     ``trained_side`` side-step strides (:func:`pdrlearn.classify.uncovered.trained_side_strides`; 0: none, None: its
-    manifest does not say)."""
+    manifest does not say). Decision L652: the same line for the strides whose ``travel`` is forward
+    (:func:`travel_labels`: measured forward, no side step, no turn on the spot) the model classed backward."""
     if "direction" not in steps:
         return
     from pdrlearn.kernels.stride import _turns_on_the_spot
@@ -144,6 +145,19 @@ def side_class_warning(steps: pd.DataFrame, warnings: list[str], trained_side: i
                                  "a pivot stride's short chord points anywhere, so the class does not say the walker "
                                  "went backward; their length_m is counted positive, steps.csv direction keeps the "
                                  "model's class", "L578")
+        if line:
+            warnings.append(line)
+    travel = travel_labels(steps)  # decision L652: a stride measured travelling forward, classed backward
+    if travel is not None:
+        measured = pd.to_numeric(steps["raw_length_m" if "raw_length_m" in steps else "length_m"], errors="coerce")
+        with np.errstate(invalid="ignore"):
+            ahead = (travel == "forward") & (measured.to_numpy(float) > 0)  # measured ahead
+        line = _classed_backward(steps, ahead, "strides travelling forward (steps.csv travel forward)",
+                                 "their measured displacement points forward (raw_length_m positive, no side step, "
+                                 "no turn on the spot), against the class - a stride unlike the calibration's "
+                                 "forward strides (e.g. one long stride from standing to standing) can read backward; "
+                                 "their length_m is positive (its sign is the measured travel, L654), steps.csv "
+                                 "direction keeps the model's class", "L652")
         if line:
             warnings.append(line)
 

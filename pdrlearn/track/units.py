@@ -1,9 +1,10 @@
 """Which body unit a track follows, and whether it covers the walk the session recorded (decisions B126, B127).
 
 ``track --units foot`` tracks the foot unit alone (the waist files left out, as ``pdrlearn run --units foot``,
-E26), ``--units waist`` the lower back alone. A session holding both units whose tracked unit starts or stops
-more than :data:`~pdrlearn.io.plasys.SPAN_TOLERANCE_S` inside the other's recording is refused (B126): the other
-unit shows that the walk went on, and the track (and a ``--window``) would describe only part of it.
+E26; decision L634: the foot track still reads the waist barometer for its rides, through
+:func:`with_left_out_units`), ``--units waist`` the lower back alone. A session holding both units whose tracked
+unit starts or stops more than :data:`~pdrlearn.io.plasys.SPAN_TOLERANCE_S` inside the other's recording is refused
+(B126): the other unit shows that the walk went on, and the track (and a ``--window``) would describe only part of it.
 """
 
 from __future__ import annotations

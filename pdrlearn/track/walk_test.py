@@ -31,10 +31,33 @@ STRAIGHT_MIN = 0.9
 #: ends (a run-out; a foot track of a 14 m walkway read 13.84 m in the session 32 trial: 1.1 % short, inside the foot's
 #: distance error); the walk is still not timed (L313: no zone shortened, nothing extrapolated)
 RUN_OUT_M = 1.0
-#: decision L313: why a lower-back track gives no 10 m walk time (measured, experiments/step_length_l310.py)
-LOWER_BACK_NOTE = ("not given on the lower back: its step lengths read slow walkers' short steps long, so the 2 m "
-                   "and 12 m marks are passed early (simulated 0.45-1.0 m/s walkers, waist-pendulum without "
-                   "calibration: speed +34 to +164 %, decision L313); time the walk with a foot unit")
+#: decision L649: the calibrated lower back's walk from standing, measured and not adopted
+#: (experiments/walk_test_calibrated_l649.py, users 12462-12470: the T25FW's speed error median +9.11 %, max 14.13 %)
+CALIBRATED_FROM_STANDING = "speed +9.1 % median, up to +14.1 %"
+
+
+def lower_back_note(accel: float, timed: float, calibrated: bool = False, what: str = "the walk") -> str | None:
+    """Decisions L313, L649: why a lower-back track's walk timed over ``timed`` metres after ``accel`` metres is not
+    timed, naming the marks asked; None when it is timed - a calibrated lower back (``calibrate``'s parameters) with
+    an acceleration zone (L649 measured the 10 m walk's speed within 2.31 %, trial T1's 1,7.62,3.38 within 2.58 %).
+    From standing (``accel`` 0) a calibrated one reads fast (:data:`CALIBRATED_FROM_STANDING`): its first contact
+    comes after the body begins to move."""
+    marks = f"the {accel:g} m and {accel + timed:g} m marks are" if accel > 0 else f"the {timed:g} m mark is"
+    if calibrated and accel > 0:
+        return None
+    if calibrated:
+        return (f"not given on the calibrated lower back from standing: its first contact comes after the body "
+                f"begins to move, so {what} reads fast (simulated calibrated walkers' timed 25-foot walk from "
+                f"standing: {CALIBRATED_FROM_STANDING}, decision L649); give the walkway an acceleration zone (e.g. "
+                "--ten-m-walk 1,7.62,3.38: timed on a calibrated lower back, L649) or time it with a foot unit")
+    return (f"not given on the uncalibrated lower back: its step lengths read slow walkers' short steps long, so "
+            f"{marks} passed early (simulated 0.45-1.0 m/s walkers, waist-pendulum without calibration: speed +34 to "
+            "+164 %, decision L313); calibrate the wearer (pdrlearn calibrate on a walk of known length, then track "
+            "--params: timed with an acceleration zone, L649) or time it with a foot unit")
+
+
+#: decision L313: why an uncalibrated lower-back track gives no 10 m walk time on L312's walkway (L649: the marks)
+LOWER_BACK_NOTE = lower_back_note(2.0, 10.0)
 #: decision L552 (our choice, no document gives one): with no walkway declared (no ``track --ten-m-walk``), a walking
 #: bout longer than this (m) is not a walkway test - a march or a long walk (trial T3 finding 9: "10 m walk test
 #: 5.30 s" on a 9 km march) - and the automatic 10 m walk and T25FW skip it. 100 m: ten 10 m walk tests, as
@@ -77,10 +100,9 @@ def trials_text(summary: dict) -> str:
 T25FW_M = 7.62
 #: the summary keys :func:`t25fw` gives (decision L387)
 T25FW_KEYS = ("t25fw_time_s", "t25fw_speed_mps", "t25fw_note")
-#: decision L387: the lower back gets no T25FW for L313's reason (its step lengths move the 7.62 m mark)
-T25FW_LOWER_BACK_NOTE = ("not given on the lower back, as the 10 m walk (decision L313: its step lengths read slow "
-                         "walkers' short steps long, so the 7.62 m mark is passed early); time the walk with a foot "
-                         "unit (decision L387)")
+#: decision L387: the uncalibrated lower back gets no T25FW for L313's reason (its step lengths move the 7.62 m
+#: mark); L649: nor a calibrated one (from standing)
+T25FW_LOWER_BACK_NOTE = lower_back_note(0.0, 7.62, what="the timed 25-foot walk")
 
 
 def _path(st: pd.DataFrame) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -105,7 +127,8 @@ def _bout_limit(zones) -> float | None:
     return None if zones else WALKWAY_BOUT_MAX_M
 
 
-def ten_metre_walk(steps: pd.DataFrame, zones: tuple[float, float, float] | None = None) -> dict:
+def ten_metre_walk(steps: pd.DataFrame, zones: tuple[float, float, float] | None = None,
+                   calibrated: bool = False) -> dict:
     """Decision L312: :data:`KEYS` of a tracked step table: the first walking bout (L104's bouts,
     :func:`pdrlearn.track.clinical.bout_rows`) whose path reaches ZONE_M + TIMED_M + ZONE_M = 14 m is timed over
     its middle 10 m (module docstring); ``ten_m_walk_note`` says why there is no time (decision L313: a walk shorter
@@ -113,14 +136,16 @@ def ten_metre_walk(steps: pd.DataFrame, zones: tuple[float, float, float] | None
     14 m or whose rows there lack a length; nor a lower-back track, :data:`LOWER_BACK_NOTE`), else None.
     ``zones`` (decision L522, ``track --ten-m-walk``): the walkway's (acceleration, timed, deceleration) metres
     instead of (2, 10, 2). Decision L524: :data:`TRIAL_KEYS` count every timed bout (:func:`ten_metre_walk_trials`).
-    Decision L552: without ``zones`` a bout over :data:`WALKWAY_BOUT_MAX_M` is not timed."""
+    Decision L552: without ``zones`` a bout over :data:`WALKWAY_BOUT_MAX_M` is not timed. Decision L649:
+    ``calibrated`` (a lower-back track with ``calibrate``'s parameters) times the lower back when the walkway has an
+    acceleration zone (:func:`lower_back_note`)."""
     accel, timed, decel = zones or (ZONE_M, TIMED_M, ZONE_M)
-    out = timed_walk(steps, accel, timed, KEYS, LOWER_BACK_NOTE,
+    out = timed_walk(steps, accel, timed, KEYS, lower_back_note(accel, timed, calibrated),
                      lambda longest, need: short_walk_note(longest, need, (accel, timed, decel)), decel_m=decel,
                      max_bout_m=_bout_limit(zones))
-    trials = ten_metre_walk_trials(steps, zones)
+    trials = ten_metre_walk_trials(steps, zones, calibrated)
     out["n_ten_m_walk_trials"] = len(trials)  # decision L524
-    missed = _near_misses(steps, accel + timed + decel)
+    missed = _near_misses(steps, accel + timed + decel, lower_back_note(accel, timed, calibrated) is None)
     if out["ten_m_walk_time_s"] is not None and missed:  # decision L524: a trial lost to L349's few cm is said
         out["ten_m_walk_note"] = "; ".join(filter(None, [out["ten_m_walk_note"], (  # L535's note kept before it
             "; ".join(f"walking bout {n} tracked {math.floor(m * 100.0 + 1e-6) / 100.0:.2f} m, short of "
@@ -138,14 +163,18 @@ TRIAL_COLUMNS = ("trial", "start_s", "end_s", "time_s", "speed_mps")
 TRIAL_KEYS = ("n_ten_m_walk_trials", "ten_m_walk_max_speed_mps", "ten_m_walk_zones_m")
 
 
-def ten_metre_walk_trials(steps: pd.DataFrame, zones: tuple[float, float, float] | None = None) -> pd.DataFrame:
+def ten_metre_walk_trials(steps: pd.DataFrame, zones: tuple[float, float, float] | None = None,
+                          calibrated: bool = False) -> pd.DataFrame:
     """Decision L524: ``ten_m_walk_trials.csv``: every walking bout timed as L312 times the first one (its
     acceleration zone, timed metres, deceleration zone reached, straight, level, every length known; L313's
     refusals skip a bout), one row each (:data:`TRIAL_COLUMNS`: ``start_s`` / ``end_s`` where the path passes the
-    timed stretch's start and end). A self-selected and a fast trial in one recording are two rows."""
+    timed stretch's start and end). A self-selected and a fast trial in one recording are two rows. Decision L649:
+    ``calibrated`` as :func:`ten_metre_walk`'s."""
     accel, timed, decel = zones or (ZONE_M, TIMED_M, ZONE_M)
     rows = []
-    if len(steps) and {"start_s", "end_s", "length_m"} <= set(steps.columns) and not _is_lower_back(steps):
+    lower_back_ok = lower_back_note(accel, timed, calibrated) is None  # decision L649
+    if len(steps) and {"start_s", "end_s", "length_m"} <= set(steps.columns) and (
+            lower_back_ok or not _is_lower_back(steps)):
         for a, b in bout_rows(steps):
             got = _time_bout(steps, a, b, accel, timed, decel, _bout_limit(zones))  # L552
             if isinstance(got, tuple):
@@ -153,22 +182,26 @@ def ten_metre_walk_trials(steps: pd.DataFrame, zones: tuple[float, float, float]
     return pd.DataFrame(rows, columns=list(TRIAL_COLUMNS))
 
 
-def _near_misses(steps: pd.DataFrame, need: float) -> list[tuple[int, float]]:
+def _near_misses(steps: pd.DataFrame, need: float, lower_back_ok: bool = False) -> list[tuple[int, float]]:
     """Decisions L349, L524: (bout number from 1, tracked metres) of each walking bout short of ``need`` by less than
-    :data:`RUN_OUT_M` - a walk of the walkway's length that tracked a few cm short."""
-    if not len(steps) or not {"start_s", "end_s", "length_m"} <= set(steps.columns) or _is_lower_back(steps):
+    :data:`RUN_OUT_M` - a walk of the walkway's length that tracked a few cm short (L649: on the lower back only when
+    ``lower_back_ok``)."""
+    if not len(steps) or not {"start_s", "end_s", "length_m"} <= set(steps.columns) or (
+            _is_lower_back(steps) and not lower_back_ok):
         return []
     got = [(n, _time_bout(steps, a, b, 0.0, need, 0.0)) for n, (a, b) in enumerate(bout_rows(steps), start=1)]
     return [(n, m) for n, m in got if isinstance(m, float) and need - RUN_OUT_M <= m < need]
 
 
-def t25fw(steps: pd.DataFrame, walkway: bool = False) -> dict:
+def t25fw(steps: pd.DataFrame, walkway: bool = False, calibrated: bool = False) -> dict:
     """Decision L387: :data:`T25FW_KEYS` of a tracked step table: the timed 25-foot walk from a standing start - the
     first walking bout whose path reaches :data:`T25FW_M` is timed from its first row's start to where its path
     passes 7.62 m (no zone: the test starts from standing, L312's kernel with a zone of 0 m); a shorter, turning or
     lower-back walk is not timed (L313's rules), ``t25fw_note`` says why. Decision L552: unless ``walkway`` (a
-    walkway declared, ``track --ten-m-walk``) a bout over :data:`WALKWAY_BOUT_MAX_M` is not timed."""
-    return timed_walk(steps, 0.0, T25FW_M, T25FW_KEYS, T25FW_LOWER_BACK_NOTE,
+    walkway declared, ``track --ten-m-walk``) a bout over :data:`WALKWAY_BOUT_MAX_M` is not timed. Decision L649: a
+    calibrated lower back is not timed either (from standing it reads fast), its note says so."""
+    return timed_walk(steps, 0.0, T25FW_M, T25FW_KEYS,
+                      lower_back_note(0.0, T25FW_M, calibrated, what="the timed 25-foot walk"),
                       lambda longest, need: (f"no walking bout of {need:g} m (25 ft, from standing; the longest "
                                              f"{math.floor(longest * 100.0 + 1e-6) / 100.0:.2f} m; decision L387): "
                                              "a shorter walk is not timed"), max_bout_m=_bout_limit(walkway))
@@ -240,7 +273,7 @@ def timed_walk(steps: pd.DataFrame, zone_m: float, timed_m: float, keys: tuple[s
     if not len(steps) or not {"start_s", "end_s", "length_m"} <= set(steps.columns):
         out[note_key] = "no steps"
         return out
-    if _is_lower_back(steps):  # decision L313
+    if _is_lower_back(steps) and lower_back_note is not None:  # decision L313 (L649: None, a calibrated one timed)
         out[note_key] = lower_back_note
         return out
     longest, refused = 0.0, None

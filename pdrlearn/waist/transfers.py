@@ -63,6 +63,10 @@ HEIGHT_HALF_S: float | None = None
 #: keywords (a slow transfer's trunk flexes at under MOVING_DPS near its top), kept only with a still trunk within
 #: ``seated_rest_s`` on its seated side
 W450_CANDIDATE = {"top_s": 1.0, "seated_rest_s": 1.0}
+#: decision L648: a slow rise read at the walk's start ends at most this (s) before its first contact, a slow sit at its
+#: end starts at most this after its last (a TUG walks off once up and sits once back; HAPT's protocol holds each
+#: posture for seconds: candidate 1 without it added a false rise there)
+SLOW_EDGE_WALK_S = 5.0
 SIT_TO_STAND, STAND_TO_SIT = "sit-to-stand", "stand-to-sit"
 #: transfers.csv's columns (decision W182), in order
 TRANSFER_COLUMNS = ("transfer", "kind", "start_s", "end_s", "duration_s", "peak_s", "peak_tilt_deg",
@@ -188,6 +192,37 @@ def transfers_from_tilt(imu: WaistIMU, tilt: np.ndarray, *, slow_bounds: dict | 
     return pd.DataFrame(rows, columns=list(TRANSFER_COLUMNS))
 
 
+def with_slow_edges(imu: WaistIMU, tilt: np.ndarray, rows: pd.DataFrame, contacts: np.ndarray) -> pd.DataFrame:
+    """Decision L648: W182's ``rows`` with the session's first rise and last sit of W450's candidate C reading
+    (:data:`W450_CANDIDATE`: a slow 3-6 s transfer's wider bounds, kept only with a still trunk on its seated side)
+    where W182 has none: the last sit-to-stand starting before the first of ``contacts`` (s) when no W182 row starts
+    before it, the first stand-to-sit ending after the last contact when no W182 row ends after it, each within
+    :data:`SLOW_EDGE_WALK_S` of the walk - a TUG's slow
+    rise and sit (trial T1: 4 of 6 slow TUGs untimed). Nothing else of that reading is taken (W450's false transfers
+    in daily life stay out). Rows renumbered in time order."""
+    if not len(contacts):
+        return rows
+    first, last = float(np.min(contacts)), float(np.max(contacts))
+    need_rise = not (rows["start_s"].astype(float) < first).any() if len(rows) else True
+    need_sit = not (rows["end_s"].astype(float) > last).any() if len(rows) else True
+    if not (need_rise or need_sit):
+        return rows
+    slow = transfers_from_tilt(imu, tilt, slow_bounds=W450_CANDIDATE)
+    added = []
+    rise = slow[(slow["kind"] == SIT_TO_STAND) & (slow["start_s"] < first)] if need_rise else slow.iloc[:0]
+    if len(rise) and float(rise["end_s"].iloc[-1]) >= first - SLOW_EDGE_WALK_S:  # a TUG walks off once up
+        added.append(rise.iloc[[-1]])
+    sit = slow[(slow["kind"] == STAND_TO_SIT) & (slow["end_s"] > last)] if need_sit else slow.iloc[:0]
+    if len(sit) and float(sit["start_s"].iloc[0]) <= last + SLOW_EDGE_WALK_S:  # ... and sits once back
+        added.append(sit.iloc[[0]])
+    if not added:
+        return rows
+    out = pd.concat([rows, *added], ignore_index=True) if len(rows) else pd.concat(added, ignore_index=True)
+    out = out.sort_values("start_s", kind="stable").reset_index(drop=True)
+    out["transfer"] = np.arange(1, len(out) + 1)
+    return out[list(TRANSFER_COLUMNS)]
+
+
 def _empty() -> pd.DataFrame:
     return pd.DataFrame([], columns=list(TRANSFER_COLUMNS))
 
@@ -239,8 +274,12 @@ def chair_transfers_upright(imu: WaistIMU, steps: pd.DataFrame) -> tuple[pd.Data
     if walking_is_reliable(walking):
         up = walking_upright(contact_directions(imu.t, imu.up_body, ev), steps["has_next"].to_numpy(bool)
                              if "has_next" in steps else np.ones(len(ev), bool))
-        return transfers_from_tilt(imu, _tilt_deg(imu, up)), up, "walking"
+        tilt = _tilt_deg(imu, up)
+        # decision L648: a slow rise before the first contact / sit after the last one (a TUG's) by W450's bounds
+        return with_slow_edges(imu, tilt, transfers_from_tilt(imu, tilt), ev), up, "walking"
     rows, up = still if still is not None else still_upright_transfers(imu)
+    if up is not None:  # decision L648: W277's upright, the same slow rise / sit at the walk's ends
+        rows = with_slow_edges(imu, _tilt_deg(imu, up), rows, ev)
     return rows, up, "still" if up is not None else "none"
 
 
@@ -290,7 +329,30 @@ def transfer_summary(transfers, steps: pd.DataFrame | None = None, *, turns: pd.
     if out["tug_time_s"] is None and pair and out["sts5_time_s"] is None:
         out["tug_time_note"] = (trials_note(tr, trials) if trials else  # W445: seat-to-seat walks, no TUG among them
                                 chair_walks_note(tr, pairs) if pairs else tug_note(tr, contacts))
+    if out["tug_time_s"] is None and out["tug_time_note"] is None and out["sts5_time_s"] is None:
+        out["tug_time_note"] = one_sided_tug_note(tr, contacts)  # decision L648
     return out
+
+
+def one_sided_tug_note(tr: pd.DataFrame, contacts: np.ndarray) -> str | None:
+    """Decision L648: why a walk of at most :data:`TUG_MAX_S` with a rise before its first contact and no sit after
+    its last (or a sit after it and no rise before) - a TUG with one transfer missed - has no ``tug_time_s``; None
+    otherwise (no walk, a longer one, both ends or neither found)."""
+    c = np.asarray(contacts, dtype=float)
+    if not c.size or c.max() - c.min() > TUG_MAX_S:
+        return None
+    rise = tr[(tr["kind"] == SIT_TO_STAND) & (tr["start_s"].astype(float) < c.min())]
+    sit = tr[(tr["kind"] == STAND_TO_SIT) & (tr["end_s"].astype(float) > c.max())]
+    if bool(len(rise)) == bool(len(sit)):
+        return None
+    if len(rise):
+        found = f"a sit-to-stand at {float(rise['start_s'].iloc[-1]):.1f} s before the walk"
+        missing = f"no stand-to-sit after its last step at {c.max():.1f} s"
+    else:
+        found = f"a stand-to-sit ending at {float(sit['end_s'].iloc[0]):.1f} s after the walk"
+        missing = f"no sit-to-stand before its first step at {c.min():.1f} s"
+    return (f"no TUG time: {found} but {missing}: a slow (3-6 s) transfer is often missed (W450, L648); if this was "
+            "a TUG, time it by hand or from transfers.csv and the steps")
 
 
 def walked_between(contacts, t0: float, t1: float) -> bool:
