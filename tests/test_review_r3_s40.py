@@ -122,10 +122,10 @@ def test_compass_keep_on_a_session_without_a_magnetometer_says_it_changes_nothin
     bare = tmp_path / "bare"
     shutil.copytree(walk, bare)
     (bare / "wMagneticField.csv").unlink()
-    for value, said in (("keep", True), ("auto", False)):
+    for value, said in (("keep", True), ("off", True), ("auto", False)):  # decision L657: off as keep
         assert _quiet(["track", bare, "--compass", value, "--no-plot", "--out", tmp_path / value]) == 0
         warned = json.loads((tmp_path / value / "summary.json").read_text())["info"]["warnings"]
-        assert (COMPASS_UNUSED in warned) is said
+        assert (COMPASS_UNUSED.format(value=value) in warned) is said
 
 
 # --- D42 -------------------------------------------------------------------------------------------------

@@ -126,16 +126,20 @@ ALTITUDE_OPT = typer.Option(None, "--altitude", help="plasys: the altitude from 
                             "read; an option, decision L154 - the barometer's wander moves a level walk by up to "
                             "~0.4 m and a stair climb by a few cm; docs/localization.md).")
 #: decision L545: ``--compass``'s values: auto = L182's check and L226's fallback to the waist gyroscope when it
-#: warns (the default); keep = the fused heading keeps the compass (L17) even when the check warns
-COMPASS_CHOICES = ("auto", "keep")
-#: decision L556: ``--compass keep`` on a session without the waist magnetometer (it reads no compass)
-COMPASS_UNUSED = ("--compass keep chooses the fused heading's compass, but the session has no waist magnetometer "
-                  "(wMagneticField.csv), so the heading reads no compass and --compass keep changes nothing "
+#: warns (the default); keep = the fused heading keeps the compass (L17) even when the check warns; decision L657:
+#: off = the session tracked as without its waist magnetometer (the gyroscopes' relative heading, L98)
+COMPASS_CHOICES = ("auto", "keep", "off")
+#: decision L556: ``--compass keep`` (L657: or off) on a session without the waist magnetometer (it reads no compass)
+COMPASS_UNUSED = ("--compass {value} chooses the fused heading's compass, but the session has no waist magnetometer "
+                  "(wMagneticField.csv), so the heading reads no compass and --compass {value} changes nothing "
                   "(decision L556)")
 COMPASS_OPT = typer.Option("auto", "--compass", help="plasys, offline, foot + waist (the fused heading): auto = "
                            "when the compass check warns (decision L182), follow the waist gyroscope turned to the "
                            "compass (L226); keep = keep the compass (L17) all the same, e.g. outdoors, away from "
-                           "steel, where the compass is trusted (decision L545).")
+                           "steel, where the compass is trusted (decision L545); off = read no compass, as if the "
+                           "session had no wMagneticField.csv: the waist and foot gyroscopes' heading, relative, "
+                           "so --initial-heading DEG sets its start direction, e.g. indoors near steel or VR gear "
+                           "(decision L657).")
 DPI_OPT = typer.Option(None, "--dpi", min=20, max=600, help=DPI_HELP)
 NO_PLOT_OPT = typer.Option(False, "--no-plot", help=NO_PLOT_HELP)  # decision L533
 COMMON_SPAN_OPT = typer.Option(False, "--common-span", help="A sensor file of a unit is over 1 s shorter than the "
@@ -744,10 +748,10 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                             f"{units} leaves out: add waist to --units (--units foot,waist) or drop --altitude")
     if compass not in COMPASS_CHOICES:  # decision L545: before any session
         raise DataError(f"--compass {compass}: give auto (fall back to the waist gyroscope when the compass check "
-                        "warns, the default) or keep (keep the compass)")
+                        "warns, the default), keep (keep the compass) or off (read no compass, decision L657)")
     if compass != "auto" and streaming:
-        raise DataError("track: --compass keep chooses the offline fused heading's source; the --streaming kernel "
-                        "heads by the waist gyroscope and reads no compass: drop --streaming or --compass")
+        raise DataError(f"track: --compass {compass} chooses the offline fused heading's source; the --streaming "
+                        "kernel heads by the waist gyroscope and reads no compass: drop --streaming or --compass")
     if compass != "auto" and "waist" not in (parse_units(units) or ("waist",)):  # decision L556, as --altitude fused
         raise DataError(f"track: --compass {compass} chooses the fused heading's source, the waist unit's "
                         f"compass, which --units {units} leaves out: add waist to --units (--units foot,waist) or "
@@ -910,7 +914,7 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
         resolve_pipeline,
     )
     from pdrlearn.track.evaluate import track_summary
-    from pdrlearn.track.units import check_tracked_span, keep_units, tracked_unit
+    from pdrlearn.track.units import check_tracked_span, keep_units, tracked_unit, without_streams
 
     o = settings
     pipeline, method, model, streaming, toe_off = o["pipeline"], o["method"], o["model"], o["streaming"], o["toe_off"]
@@ -945,6 +949,11 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
         logging.getLogger("pdrlearn.cli").warning("%s", unknown)
     content_id = session.content_id()  # decision C20: track-all names two sessions holding the same recording
     session = keep_units(session, o.get("units"))  # decision B127: --units foot leaves the waist files out
+    compass_lines = []
+    if o.get("compass", "auto") in ("keep", "off") and not session.has("wMagneticField"):  # decision L556: said
+        compass_lines.append(COMPASS_UNUSED.format(value=o["compass"]))
+    if o.get("compass", "auto") == "off":  # decision L657: tracked as without wMagneticField.csv
+        session = without_streams(session, ("wMagneticField",))
     # decision W474: a lower-back parameters file (on a session with a waist unit) asks for the lower back as well,
     # unless a foot-only option asks for the foot (W478: then one line naming both)
     waist_file = lower_back_params(session, par)
@@ -1064,7 +1073,6 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
     heading0 = o.get("initial_heading_rad")
     if heading0 is not None:  # decision L98: every pipeline's API takes it (ENU rad)
         kw["initial_heading"] = heading0
-    compass_lines = []
     if pipeline == "plasys":
         kw["method"] = method
         if streaming:
@@ -1088,8 +1096,6 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
             kw["align"] = True  # with --streaming refused by track_settings, before any session
         if o.get("compass", "auto") == "keep":  # decision L545
             kw["compass_fallback"] = False
-            if not session.has("wMagneticField"):  # decision L556: said, not ignored silently
-                compass_lines.append(COMPASS_UNUSED)
         if o.get("ignore_force"):  # decision L366 (offline only: plasys refuses it with streaming=True)
             kw["ignore_force"] = True
         if toe_off:  # decision L73

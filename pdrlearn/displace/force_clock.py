@@ -22,6 +22,9 @@ L390_OFFSET_MAX_S = 0.05
 #: L390 (amended in session 33 by the lead): the bound is at least this many foot sample periods - both events
 #: are dated to a whole sample, so a clean 20 Hz session (scenario A, user 1) read +53 ms over the 50 ms bound
 OFFSET_MIN_SAMPLES = 2
+#: decision B449: the offset is estimated from at least this many forward strides' pairs (L123's fewest straight
+#: strides for a speed); T2's turn-on-the-spot session read +269 ms from a median of 4 strides, mostly pivots
+MIN_OFFSET_STRIDES = 5
 
 
 def clock_offset(force_ic, imu_ic, *, max_pair_s: float = PAIR_MAX_S) -> tuple[float, int]:
@@ -74,13 +77,15 @@ def force_events(session, *, detected=None):
 
 
 def offset_check(session, fev, names: list[str], *, table=None, tc_gyro=None, bound: float | None = None,
-                 warn: bool = True) -> tuple[float | None, str | None]:
+                 warn: bool = True, forward=None) -> tuple[float | None, str | None]:
     """Decisions L389 / L390 / B297: (the force-to-IMU clock offset in s, rounded to 1 ms, or None; the warning line
     when ``warn`` (on since L390; ``force_offset_s`` is reported either way) and it exceeds ``bound``, else None).
     ``bound`` None: :data:`L390_OFFSET_MAX_S`. ``fev``: :func:`force_events`' table; ``names``: the force streams.
     L390 (adopted): the force drop-offs inside the strides of ``table`` against their gyroscope toe-offs ``tc_gyro``
     (B,). L389's force onsets against the accelerometer detector's impacts were not adopted (two of six clean users
-    read -58 / -67 ms) and are removed (decision L584)."""
+    read -58 / -67 ms) and are removed (decision L584). Decision B449: ``forward`` (B,) bool, the strides W415's kinds
+    class forward (None: all), are the only ones paired, and fewer than :data:`MIN_OFFSET_STRIDES` pairs give
+    (None, None) (a pivot's push-off is not a forward toe-off)."""
     if fev is None:
         return None, None
     if bound is None:
@@ -90,15 +95,19 @@ def offset_check(session, fev, names: list[str], *, table=None, tc_gyro=None, bo
             bound = max(bound, OFFSET_MIN_SAMPLES * foot.period_s)  # stream (a clean 20 Hz scenario A read +53 ms)
     if table is None or tc_gyro is None:  # decision L390
         return None, None
-    off, n = clock_offset(toe_offs_in(fev["start_s"], table["start_s"], table["event_s"]), tc_gyro)
+    tf = toe_offs_in(fev["start_s"], table["start_s"], table["event_s"])
+    if forward is not None:  # decision B449: forward strides only
+        tf = np.where(np.asarray(forward, bool), tf, np.nan)
+    off, n = clock_offset(tf, tc_gyro)
     what = "force drop-off - gyroscope toe-off, decision L390"
-    if not n:
+    if n < MIN_OFFSET_STRIDES:  # decision B449 (L390 took any number)
         return None, None
     off = round(off, 3)
     if not warn or abs(off) <= bound:
         return off, None
     files = ", ".join(f"{n_}.csv" for n_ in names)
-    line = (f"{files} run {off * 1000:+.0f} ms against the foot IMU's own events (median of {n} strides, {what}; "
+    line = (f"{files} run {off * 1000:+.0f} ms against the foot IMU's own events (median of {n} forward strides, "
+            f"{what}, B449; "
             f"more than {bound * 1000:.0f} ms): the insoles' clock is not the "
             f"IMU's - shift the insole file's timestamps by about {-off * 1000:+.0f} ms and import it again "
             "(`pdrlearn import ... --merge`), or pass --ignore-force; the force data was not shifted (B297)")

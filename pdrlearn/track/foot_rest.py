@@ -198,16 +198,20 @@ SLOW_RHYTHM_DISTANCE = ("-16.64 to +14.03 % at 1.6-2.0 s steps of 0.2-0.45 m, +2
                         "(a gyroscope rate error grows over such long strides, L606), simulated")
 
 
-def slow_rhythm_line(period: float, cap_s: float | None = None) -> str | None:
+def slow_rhythm_line(period: float, cap_s: float | None = None, window_s: float | None = None) -> str | None:
     """Decision L599: one line when the foot's own stride period ``period`` (s;
     :func:`~pdrlearn.kernels.foot_rhythm.foot_period`) is longer than L80's
     :data:`~pdrlearn.kernels.contact.MAX_STRIDE_S`: the strides are found (L597); with the track's stride cap
     ``cap_s`` over 3 s (decision L605, :func:`~pdrlearn.kernels.contact.stride_cap_s`) their stride times are given
-    up to it, else every stride time, and so the cadence, speed and bouts, treats each stride as a stop. None
-    otherwise."""
-    from pdrlearn.kernels.contact import MAX_STRIDE_S, RHYTHM_CAP_PERIODS
+    up to it, else every stride time, and so the cadence, speed and bouts, treats each stride as a stop. Decision
+    L658: None when the strides' median rest-to-rest window ``window_s`` (s, None: not judged) fills less than L605's
+    :data:`~pdrlearn.kernels.contact.RHYTHM_CAP_MIN_FILL` of the period (that rhythm is a stop-and-go cycle of
+    short bouts, not the strides'). None otherwise."""
+    from pdrlearn.kernels.contact import MAX_STRIDE_S, RHYTHM_CAP_MIN_FILL, RHYTHM_CAP_PERIODS
 
     if not np.isfinite(period) or period <= MAX_STRIDE_S:
+        return None
+    if window_s is not None and not window_s >= RHYTHM_CAP_MIN_FILL * period:  # decision L658 (L605's gate)
         return None
     head = (f"the foot's strides take {period:.1f} s (its gyroscope's rhythm, about {120 / period:.0f} steps/min; "
             "decision L596), longer than ")

@@ -778,8 +778,9 @@ def compass_check(session: Session, strides: pd.DataFrame, psi: np.ndarray,
             f"{int(ok.sum())} straight strides{over}, more than a hard-iron offset explains (over "
             f"{COMPASS_DISAGREE_DEG:g} deg warns, decision L182): one of the two headings is wrong and the check "
             "cannot tell which (a magnetic disturbance turns the compass; the foot's own yaw drifts over a walk; "
-            "decision L336); track with `--streaming` (the waist gyroscope's heading) or `--units foot` (the foot's "
-            "own) if it is the compass: this offline track's heading follows the compass (L17)"), info
+            "decision L336); track with `--compass off` (the gyroscopes' heading, decision L657), `--streaming` (the "
+            "waist gyroscope's) or `--units foot` (the foot's own) if it is the compass: this offline track's heading "
+            "follows the compass (L17)"), info
 
 
 def check_angle(mf: np.ndarray, ml: np.ndarray, psi: np.ndarray, t: np.ndarray, *, windowed: bool,
@@ -1387,8 +1388,10 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                                "between steps): their displacement is unreliable")
     # decision L605: L80's stride cap, or 1.5 of a slow foot's own rhythm (L596) where its strides fill half of it
     windows, period = (fd.end_s_ - fd.start_s_)[~in_gap], foot_period(foot.gyr, foot.fs)
-    stride_cap = stride_cap_s(period, float(np.median(windows)) if len(windows) else np.nan)
-    slow_line = slow_rhythm_line(period, stride_cap)  # decision L599: a rhythm over 3 s is named
+    window = float(np.median(windows)) if len(windows) else np.nan
+    stride_cap = stride_cap_s(period, window)
+    slow_line = slow_rhythm_line(period, stride_cap, window)  # decision L599: a rhythm over 3 s is named (L658: the
+    # strides' own, filling half of it)
     if slow_line:
         fd_warnings = [w for w in fd_warnings if "stride(s) longer than" not in w] + [slow_line]
     warnings += fd_warnings
@@ -1550,8 +1553,12 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             head = relative + initial_heading - foot_walk_reference(  # decisions L494, L510
                 relative + side_extra, disp, lateral, fd.yaw_change_)
         else:
-            compass_line, compass_info = compass_check(  # decision L182: straight strides (L79), no foot gap
-                work, strides, relative, straight)
+            from pdrlearn.track.stride_kinds import disp_kind_labels
+
+            # decision L182: straight strides (L79), no foot gap; L656: none W415 classes side or backward
+            kinds = disp_kind_labels(disp, fd.yaw_change_)
+            compass_line, compass_info = compass_check(work, strides, relative,
+                                                       straight & ~np.isin(kinds, ("side", "backward")))
         warnings += [compass_line] if compass_line else []
         fallback = (hsrc == "fused" and compass_line is not None
                     and (COMPASS_GYRO_FALLBACK if compass_fallback is None else compass_fallback))
@@ -1626,7 +1633,10 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     # decisions L389 / L390 / B297: the insoles' clock against the IMU's own events; steps 75: not on one channel,
     # whose drop-off is the heel's when it is a heel (user 10138: -210 ms against the toe-off, a false clock line)
     if fev is not None and len(force_names) == 2:
-        force_offset, clock_line = offset_check(session, fev, force_names, table=table, tc_gyro=tc_gyro)
+        from pdrlearn.track.stride_kinds import disp_kind_labels
+
+        force_offset, clock_line = offset_check(session, fev, force_names, table=table, tc_gyro=tc_gyro,
+                                                forward=disp_kind_labels(disp, fd.yaw_change_) == "forward")  # B449
         if clock_line:  # B297: L161's waist-vs-foot line compares with the insoles' contacts, so it says so
             warnings[:] = [w + INSOLE_CLOCK_NOTE if "decision L161" in w else w for w in warnings]
             warnings.append(clock_line)

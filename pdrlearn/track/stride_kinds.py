@@ -29,13 +29,31 @@ def stride_kinds(angle, length, turn=None) -> dict[str, int]:
     ``length`` (m) over L219's :data:`SIDE_MIN_STRIDE_M`, by the travel ``angle`` (rad from the foot's facing) against
     L219's :data:`SIDE_ANGLE_DEG`; ``turn`` (rad, the foot's heading change over each stride) over L400's
     :data:`SIDE_MAX_TURN_DEG` leaves a stride out."""
+    kind = stride_kind_labels(angle, length, turn)
+    return {k: int((kind == k).sum()) for k in ("forward", "side", "backward")}
+
+
+def stride_kind_labels(angle, length, turn=None) -> np.ndarray:
+    """Decision W415 per stride: (n,) object, ``forward`` / ``side`` / ``backward`` as :func:`stride_kinds` counts
+    them, ``""`` for a stride it leaves out (not over 0.15 m, or turning over 30 deg). Decisions L656 / B449 pick the
+    strides of L182's compass check and of L390's insole clock offset by it."""
     a = np.degrees(np.abs(np.asarray(angle, float)))
     judged = np.asarray(length, float) > SIDE_MIN_STRIDE_M
     if turn is not None:
         judged &= ~(np.degrees(np.abs(np.asarray(turn, float))) > SIDE_MAX_TURN_DEG)
     lo, hi = SIDE_ANGLE_DEG
-    return {"forward": int((judged & (a < lo)).sum()), "side": int((judged & (a >= lo) & (a <= hi)).sum()),
-            "backward": int((judged & (a > hi)).sum())}
+    out = np.full(len(a), "", dtype=object)
+    out[judged & (a < lo)] = "forward"
+    out[judged & (a >= lo) & (a <= hi)] = "side"
+    out[judged & (a > hi)] = "backward"
+    return out
+
+
+def disp_kind_labels(disp, turn) -> np.ndarray:
+    """:func:`stride_kind_labels` of strides given by their displacement ``disp`` ``(n, >=2)`` in the foot's frame (m,
+    x forward, y left) and the foot's heading change ``turn`` (rad) over each."""
+    d = np.asarray(disp, float)
+    return stride_kind_labels(np.arctan2(d[:, 1], d[:, 0]), np.hypot(d[:, 0], d[:, 1]), turn)
 
 
 def foot_stride_kinds(session, span: tuple[float, float] | None = None) -> dict[str, int] | None:

@@ -43,6 +43,14 @@ def keep_units(session: Session, units: tuple[str, ...] | None) -> Session:
     return dataclasses.replace(session, streams=streams, _left_out={**session._left_out, **left_out})
 
 
+def without_streams(session: Session, names: tuple[str, ...]) -> Session:
+    """The session without the sensor streams ``names`` (decision L657: ``track --compass off`` reads it as without
+    wMagneticField.csv); not put back by :func:`with_left_out_units`. The session itself when it has none of them."""
+    if not any(n in session.streams for n in names):
+        return session
+    return dataclasses.replace(session, streams={k: s for k, s in session.streams.items() if k not in names})
+
+
 def with_left_out_units(session: Session) -> Session:
     """Decision W253: the session with the streams ``--units`` left out (:func:`keep_units`) put back, for the
     checks that read another unit's cues (W173's backward, L219's sideways warnings of a waist track); the session
