@@ -52,7 +52,7 @@ def test_the_option_counts_with_the_locked_rhythm_w504(slow):
     followed = get_pipeline("waist-pll")(slow, params=FOLLOW)
     assert abs(len(followed.steps) - truth) <= 0.1 * truth  # measured: 27 for 28 (the default 42)
     err = [abs(float(r.steps["length_m"].sum()) - 8.0) / 8.0 for r in (res, followed)]
-    assert err[1] < 0.6 < err[0]  # measured: +234.06 % -> -48.56 % (the step length, seed 000's line at 0.5 Hz, reads short)
+    assert err[1] < 0.6 < err[0]  # measured: +234.06 % -> -48.56 % (seed 000's line at 0.5 Hz reads short)
     moving = followed.steps["has_next"].to_numpy(bool)
     assert moving.sum() >= truth - 3  # the walking sequence holds across 2 s steps (MAX_STEP_S alone ends each)
 
