@@ -39,7 +39,7 @@ from pdrlearn.kernels.freeze import inside_episodes
 from pdrlearn.kernels.lying_heading import long_axis_yaw_rate, stop_pieces  # decision W269
 from pdrlearn.kernels.rest_heading import rest_rotation  # decision L296
 from pdrlearn.kernels.step_events import EDGE_LOCK_VALUES  # decision W358
-from pdrlearn.kernels.waist import TURN_BRIDGE_SIDE  # decision W384
+from pdrlearn.kernels.waist import TURN_BRIDGE_SIDE, pll_slow_band  # decisions W384, W475
 from pdrlearn.runtime.detector_line import OWN_DETECTOR  # decision W479 (W483: shared with the runtime)
 from pdrlearn.settings import Rule, broken, broken_line
 from pdrlearn.steps import PLLStepDetector
@@ -101,6 +101,7 @@ from pdrlearn.waist.pelvic_rhythm import (
     SLOW_PERIOD_S,
     median_step_period,
     merge_dropped,
+    pelvic_step_period_s,
     read_once,
     rhythm_keep,
 )
@@ -172,20 +173,62 @@ def _sequences(steps: pd.DataFrame) -> list[np.ndarray]:
 
 
 def _pll_steps(session: Session, imu: WaistIMU, walk_threshold: float, *, refine_ic: bool = True,
-               rhythm: bool = True, edge_lock: bool | str = False) -> pd.DataFrame:
+               rhythm: bool = True, edge_lock: bool | str = False,
+               followed: tuple[pd.DataFrame, float] | None = None) -> pd.DataFrame:
     """Step events of seed 000: the peaks of :class:`pdrlearn.steps.PLLStepDetector` while walking,
     moved to the initial contact next to them when ``refine_ic`` (decision W11); ``edge_lock``: the detector's
-    W356 option (a gated run's first / last peak only when the loop is locked; W358's "trailing": its last only;
-    W367's "walk-end": its last only where the walk ends; W372's "walk-edges": also its first where it starts)."""
-    # the PLL's own walking gate is a variance; use the same threshold as our motion gate (W4)
-    st = PLLStepDetector(gate_var=walk_threshold ** 2, relative_gate=False,  # the gate is track's
-                         edge_lock=edge_lock, slow_band=False).detect(session)  # W475: not on this path (measured)
+    W356 option (a gated run's first / last peak only when the loop is locked at them; W358's "trailing": its last only;
+    W367's "walk-end": its last only where the walk ends; W372's "walk-edges": also its first where it starts).
+    ``followed`` (decision W504, the option ``pll_slow_follow``): :func:`slow_follow_pll`'s peaks and walking-sequence
+    bound instead of the PLL's own at W117's range and the track's gate (None: those)."""
+    if followed is not None:
+        st, max_step_s = followed
+    else:  # the PLL's own gate is a variance; use the same threshold as our motion gate (W4)
+        st = PLLStepDetector(gate_var=walk_threshold ** 2, relative_gate=False,  # the gate is track's
+                             edge_lock=edge_lock, slow_band=False).detect(session)  # W475: not on this path (measured)
+        max_step_s = MAX_STEP_S
     ev = np.sort(st["event_s"].to_numpy(float)) if len(st) else np.zeros(0)
     idx = np.clip(np.searchsorted(imu.t, ev), 0, len(imu.t) - 1)
     idx = idx[walking_gate(imu, walk_threshold=walk_threshold)[idx]]
     if refine_ic:
         idx = refine_to_contacts(imu, idx, walk_threshold=walk_threshold, rhythm=rhythm)
-    return steps_from_events(imu.t, idx, max_step_s=MAX_STEP_S, detector="pll+ic" if refine_ic else "pll")
+    return steps_from_events(imu.t, idx, max_step_s=max_step_s, detector="pll+ic" if refine_ic else "pll")
+
+
+def slow_follow_pll(session: Session, walk_threshold: float, edge_lock: bool | str, gyro_s: np.ndarray | None
+                    ) -> tuple[pd.DataFrame, float] | None:
+    """Decision W504: where W475's band applies (:func:`pdrlearn.kernels.waist.pll_slow_band` of the session's
+    pelvic-gyro step period: a rhythm under 70 steps/min), the PLL's peaks with that band and the detector's own gate
+    (W481's events) and the walking-sequence bound ``max(MAX_STEP_S, 1.5 T)``, T the median of the PLL's own locked
+    period (1 / ``step_freq_hz``; 1.5 periods: L605's ``RHYTHM_CAP_PERIODS``); None elsewhere. ``gyro_s``: the
+    session's pelvic-gyro steps (:func:`pdrlearn.waist.pelvic_rhythm.read_once`; None: no waist gyroscope)."""
+    if gyro_s is None or pll_slow_band(pelvic_step_period_s(session, gyro_s)) is None:
+        return None
+    st = PLLStepDetector(gate_var=walk_threshold ** 2, edge_lock=edge_lock).detect(session)  # W475's band, own gate
+    f = st["step_freq_hz"].to_numpy(float) if len(st) else np.zeros(0)
+    f = f[np.isfinite(f) & (f > 0)]
+    period = float(np.median(1.0 / f)) if f.size else 0.0
+    return st, max(MAX_STEP_S, SLOW_FOLLOW_PERIODS * period)
+
+
+#: decision W504: a slow walker's walking sequence ends after this many of the PLL's locked periods (L605's
+#: ``RHYTHM_CAP_PERIODS`` for the foot: half a step more than the rhythm before it is a stop)
+SLOW_FOLLOW_PERIODS = 1.5
+#: decision W505: waist-pll's contacts over this many times W504's count at a slow rhythm get one line (W99 / W208's
+#: 30 % count disagreement)
+SLOW_FOLLOW_EXCESS = 1.3
+
+
+def slow_harmonic_line(steps: pd.DataFrame, followed: pd.DataFrame) -> str | None:
+    """Decision W505: one line when waist-pll's own contacts (``steps``) are over :data:`SLOW_FOLLOW_EXCESS` x the
+    ones W504's option gives (``followed``, where W475's slow band applies), else None."""
+    if not len(steps) > SLOW_FOLLOW_EXCESS * len(followed):
+        return None
+    return (f"waist-pll counted {len(steps)} contacts where its PLL locked at this walker's slow rhythm (pelvic "
+            f"rhythm under 70 steps/min) counts {len(followed)}: its own PLL follows a harmonic here, so its step "
+            "count and distance read long; track with --params holding {\"options\": {\"pll_slow_follow\": true}} to "
+            "count with the locked rhythm (its step length, seed 000's line below its validated 1.5 Hz, may read "
+            "short; waist-pendulum adds contacts at this gait too) (decisions W504, W505)")
 
 
 def _start(start, initial_heading: float) -> tuple[float, float, float, tuple[float, float] | None, float]:
@@ -645,6 +688,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "realtime_sit_veto": False,  # W200: the causal sit veto of realtime tracks
                    "short_step_check": False,  # W207: measured, not adopted for waist-pendulum (W208: pll always)
                    "freeze_veto": False,  # W214
+                   "pll_slow_follow": False,  # W504: measured, not adopted (distance short); W505's line names it
                    "pll_edge_lock": "walk-edges",  # W356 / W367 / W372: waist-pll's edge peaks where the walk ends
                    # (starts) only when the loop is locked at them; W368: "walk-end" adopted; W373: "walk-edges"
                    "foot_rest_veto": True,  # W336: the contacts while the foot unit makes no stride (W337 adopted)
@@ -691,6 +735,8 @@ SCOPED_OPTIONS = {
                            lambda pl, rt, m, det, stops: not rt),
     "pll_edge_lock": ("waist-pll with its own PLL detector (W356)",
                       lambda pl, rt, m, det, stops: pl == "waist-pll" and not det),
+    "pll_slow_follow": ("the offline waist-pll with its own PLL detector (W504)",
+                        lambda pl, rt, m, det, stops: pl == "waist-pll" and not det and not rt),
     "vault_veto": ("the offline waist-pendulum (W119)",
                    lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt),
     "realtime_sit_veto": ("realtime tracks (offline tracks apply the sit veto on the whole recording; W200)",
@@ -1034,6 +1080,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "rest_frame": None,  # W285: a PARAMS.json option only
              "pll_slow_check": None,  # W289: a PARAMS.json option only
              "pll_slow_cadence_check": None,  # W313: a PARAMS.json option only
+             "pll_slow_follow": None,  # W504: a PARAMS.json option only
              "side_at_contact": side_at_contact, "fast_fill": fast_fill, "ap_above_mean": ap_above_mean,
              "turn_bridge": turn_bridge}
     return _track_waist(session, pipeline, params, start, given, detector, length_model, gate=gate)
@@ -1112,6 +1159,7 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
     thr, sigma, gate_source = gate_threshold(imu, p.walk_threshold_mps2,
                                              relative=bool(o["relative_gate"]) and not realtime)
     det_given = det is not None
+    pelvic = None  # waist-pll's own PLL: [the pelvic-gyro steps], read once (W485, W504)
     if det is not None:  # E85: a waist detector's contacts, as they are
         steps = detector_steps(det, session, imu, thr if gate else None)  # W473: gated at the track's threshold
         method = heading or ("gyro" if pipeline == "waist-pendulum" else "ahe")
@@ -1120,8 +1168,14 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
         steps = det.steps_
         method = heading or "gyro"
     else:
-        steps = _pll_steps(session, imu, thr, refine_ic=refine_ic, rhythm=bool(o["rhythm"]),
-                           edge_lock=o["pll_edge_lock"])
+        pelvic = None if realtime else [read_once(None, session)]  # W485: read once (W440, W441 below)
+        followed = None if realtime else slow_follow_pll(session, thr, o["pll_edge_lock"], pelvic[0])  # W504
+        own = functools.partial(_pll_steps, session, imu, thr, refine_ic=refine_ic, rhythm=bool(o["rhythm"]),
+                                edge_lock=o["pll_edge_lock"])
+        steps = own(followed=followed if o["pll_slow_follow"] else None)
+        if followed is not None and not o["pll_slow_follow"]:  # decision W505
+            line = slow_harmonic_line(steps, own(followed=followed))
+            warnings += [line] if line else []
         method = heading or "ahe"
     if method not in (*HARMONIC_METHODS, "gyro"):
         raise DataError(f"heading method '{method}' is not one of {', '.join((*HARMONIC_METHODS, 'gyro'))}")
@@ -1201,7 +1255,7 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
         carried += ride_spans(steps["event_s"].to_numpy(float), foot_runs)
         steps = drop_contacts(steps, foot_rest_keep(len(steps), foot_runs), "n_foot_rest")
     # W440, W441: read once, offline; W485: the ones --detector pll read for its band, if it did
-    gyro_s = functools.cache(lambda: None if realtime else read_once(det, session))
+    gyro_s = functools.cache(lambda: None if realtime else pelvic[0] if pelvic else read_once(det, session))
     n_ride = 0
     if not realtime and len(steps) and gyro_s() is not None:  # decision W486: no pelvic rhythm, a vibration: a ride?
         ev_ride = steps["event_s"].to_numpy(float)  # named, not dropped (W486's drop rule was not met)
