@@ -14,6 +14,7 @@ import pytest
 
 from pdrlearn.cli import main
 from pdrlearn.errors import DataError
+from pdrlearn.io.meta_keys import unknown_meta_keys
 from pdrlearn.report.time_course import rest_table
 from pdrlearn.track.corridor import END_TOL_S, corridor_laps, corridor_line
 from pdrlearn.track.rests import rest_seconds
@@ -122,3 +123,8 @@ def test_a_go_before_the_window_is_one_error_line_l661(walk_to_start, tmp_path, 
     err = [x for x in text.splitlines() if x.startswith("error")]
     assert len(err) == 1 and "outside --window 20,90" in err[0] and "Traceback" not in text
     assert not (tmp_path / "o").exists()
+
+
+def test_meta_json_walk_test_start_s_is_a_key_pdrlearn_reads_l642():
+    """L642 reads meta.json ``walk_test_start_s``; B262's line called it "not read by pdrlearn (a typo ...)"."""
+    assert unknown_meta_keys({"walk_test_start_s": 37.1, "walk_test_startt_s": 1.0}) == ["walk_test_startt_s"]
