@@ -264,12 +264,12 @@ PER_OPT = typer.Option(None, "--per", help="Totals per period in OUT/periods.csv
                        "turns, the position sigma at the period's end (decisions L275, L277). With --window: the "
                        "window cut into periods from its start (decision L381).")
 PER_ALIGN_OPT = typer.Option(None, "--per-align", help="Where --per's periods begin: start (default: at the "
-                             "recording's start, or the --window's), first-step (at the first tracked step: a walk "
-                             "test's minutes from 'go'; decision L381; the default with --walk-test-duration, "
-                             "decision C178) or clock (at whole multiples of the period on "
-                             "the recording's clock, 1h = the clock hours; the first and last periods partial). clock "
-                             "needs the session's start (meta.json recording_start or a date-time import; decision "
-                             "L299).")
+                             "recording's start, or the --window's), first-step (at the first tracked step, decision "
+                             "L381; with --walk-test-duration at the walk test's 'go', walk_test_start_s: the test's "
+                             "minutes; the default with --walk-test-duration, decision C178) or clock (at whole "
+                             "multiples of the period on the recording's clock, 1h = the clock hours; the first and "
+                             "last periods partial). clock needs the session's start (meta.json recording_start or a "
+                             "date-time import; decision L299).")
 SEGMENTS_OPT = typer.Option(None, "--segments", metavar="LEGS.csv", help="Totals per trip leg in OUT/segments.csv "
                             "from one track: LEGS.csv has columns start_s,end_s (seconds from the session start, as "
                             "--window takes them) and an optional label, one leg a row, sorted and not overlapping; "
@@ -1273,9 +1273,10 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
         # decision L381: the window's span (its first step's with first-step), else the recording's
         first_step = o.get("per_align") == "first-step"
         in_window = (summary["window_start_s"], summary["window_end_s"]) if win is not None else None
-        go = summary.get("walk_test_start_s") if o.get("per_align_auto") and first_step else None
+        go = summary.get("walk_test_start_s") if first_step else None
         try:
             if go is not None:  # the lead's merge of C178 with L642: the test's minutes from its go, not its first step
+                # (C178 amended, review R2 finding 5: an explicit --per-align first-step too)
                 whole_span = period_span(whole, session, unit, in_window)
                 span = (max(whole_span[0], float(go)), whole_span[1])
             else:

@@ -16,6 +16,7 @@ READ = frozenset({
     "duplicate_of", "note", "protocol_stats",
     "belt_speed_mps",  # decision L321: a declared treadmill's belt speed
     "belt_incline_pct",  # decision L442: a declared treadmill's incline
+    "walk_test_start_s",  # decision L642: a session's timed walk test's "go" (s)
 })
 #: keys the simulator and the importers write as provenance (read by people, not by the pipelines)
 WRITTEN = frozenset({

@@ -65,6 +65,10 @@ NOT_CORRIDOR_FRAC = 0.5
 STOP_MIN_S = 10.0
 #: decision L645: a final partial lap scaled to at least this fraction of the corridor reached the cone (ours)
 LAST_LAP_REACHED_FRAC = 0.95
+#: decision L659 (amends L644's 1e-6 s): a data end at most this short (s) of "go" + the duration is the test's end:
+#: a recording stopped at the end beep misses the lag of L642's go (the first step) behind the spoken "go" (trial T1's
+#: P06: 0.8 s) and the hand's stop; ours: over twice that lag, about one slow walker's stride, far under STOP_MIN_S
+END_TOL_S = 2.0
 #: decision L644: the names of the timed tests by their duration (s; the 2- and 6-minute walk tests)
 TEST_LABELS = {120.0: "2MWT", 360.0: "6MWT"}
 #: decision L383: the summary keys :func:`corridor_walk_test` gives
@@ -123,8 +127,12 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
         if go_line:
             warnings.append(go_line)
         end = t_end if span is not None else data_end  # decision L644: the data's end (the recording's or window's)
-        t_end = t0 + float(duration_s) if end is None else min(t0 + float(duration_s), float(end))
-        if end is not None and float(end) < t0 + float(duration_s) - 1e-6:
+        go_inside(t0, start, span, end)  # decision L661
+        full = t0 + float(duration_s)
+        # decision L659: a data end within END_TOL_S of the test's end is its end (the full minutes counted, L399's
+        # "no step after the last one adds 0 m"); further short, L644's incomplete test
+        t_end = float(end) if end is not None and full - float(end) > END_TOL_S else full
+        if t_end < full:
             warnings.append(coded(f"corridor walk test: the {'window' if span is not None else 'recording'} ends "
                                   f"{t_end - t0:.0f} s after the test's start, before the {duration_s:g} s test: the "
                                   f"test is incomplete; walk_test_duration_s is the {t_end - t0:.0f} s recorded "
@@ -193,7 +201,8 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
     scale = corridor_m / singles[-1][2] if singles else 1.0  # L383: the last single lap's corridor / tracked
     rows, known = [], [(lap_t0, 0.0)]  # known: (time, corridor distance) at each stretch's end
     a, b, m, _ = stretches[-1]
-    if m * scale >= LAST_LAP_REACHED_FRAC * corridor_m:  # decision L645: the final lap reached the cone
+    # decision L645: the final lap reached the cone; L660: not after an L517 short lap (the walk back to the chair)
+    if short is None and m * scale >= LAST_LAP_REACHED_FRAC * corridor_m:
         stretches[-1] = (a, b, m, 1)
     for i, (a, b, m, c) in enumerate(stretches, start=1):
         dist = c * corridor_m if c > 0 else min(m * scale, corridor_m)
@@ -290,6 +299,24 @@ def go_time(st: pd.DataFrame, t: np.ndarray, d: np.ndarray, mids: np.ndarray,
                           f"line and the wait for 'go'?); the {before:.1f} m walked before it are not scored; "
                           "give --walk-test-start SECONDS (or first-step, or meta.json walk_test_start_s) to set "
                           "it (decision L642)", "L642")
+
+
+def go_inside(t0: float, start: float | str, span: tuple[float, float] | None, end: float | None) -> None:
+    """Decision L661: one :class:`DataError` line when the timed test's "go" ``t0`` is not before the data's ``end``
+    (the window's or the recording's) or, given (``start`` a time: ``--walk-test-start`` / meta.json
+    ``walk_test_start_s``), before the window's start - a test the window (``span``) does not hold."""
+    given = not isinstance(start, str)
+    if not (given and span is not None and t0 < float(span[0])) and (end is None or t0 < float(end)):
+        return
+    from pdrlearn.errors import DataError
+
+    what = "--walk-test-start or meta.json walk_test_start_s" if given else "its first step"
+    if span is not None:
+        raise DataError(f"the walk test's start {t0:g} s ({what}) is outside --window {float(span[0]):g},"
+                        f"{float(span[1]):g}: give the test's 'go' inside the window, or a --window that holds the "
+                        "test (decision L661)")
+    raise DataError(f"the walk test's start {t0:g} s ({what}) is not before the recording's end ({float(end):.1f} s): "
+                    "give the test's 'go' in seconds of the session's clock, inside the recording (decision L661)")
 
 
 def not_a_corridor(tracked: np.ndarray, durations: np.ndarray, corridor_m: float) -> str | None:

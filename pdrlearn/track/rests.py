@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from pdrlearn.track.clinical import PAUSE_MIN_S
+from pdrlearn.track.clinical import PAUSE_MIN_S, walked_turns
 
 #: decision L647 (L386's, L104's pause): a gap's time outside turns shorter than this is no rest (s)
 REST_MIN_S = PAUSE_MIN_S
@@ -31,9 +31,11 @@ def step_interval_s(bouts: pd.DataFrame | None) -> float:
 
 
 def _turning(turns: pd.DataFrame | None, widen_s: float) -> np.ndarray:
-    """(K, 2) the turns' spans (turns.csv ``start_s`` / ``end_s``) widened by ``widen_s`` on each side."""
+    """(K, 2) the walker's turns' spans (turns.csv ``start_s`` / ``end_s``) widened by ``widen_s`` on each side;
+    decision L662: a turn made seated or riding (L622's ``carried``) is no walker's turn, its time stays rest."""
     if turns is None or not len(turns) or not {"start_s", "end_s"} <= set(turns.columns):
         return np.zeros((0, 2))
+    turns = walked_turns(turns)
     a = pd.to_numeric(turns["start_s"], errors="coerce").to_numpy(float) - widen_s
     b = pd.to_numeric(turns["end_s"], errors="coerce").to_numpy(float) + widen_s
     ok = np.isfinite(a) & np.isfinite(b)
