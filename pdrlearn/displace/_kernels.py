@@ -125,7 +125,8 @@ def level_rotation(g_body: np.ndarray) -> Rotation:
 
 def strapdown(acc: np.ndarray, gyr: np.ndarray, dt: float | np.ndarray, idx: np.ndarray, mask: np.ndarray,
               g_body: np.ndarray, gyro_bias: np.ndarray | None = None,
-              init: Rotation | None = None, q: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+              init: Rotation | None = None, q: np.ndarray | None = None, *,
+              coning: float | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Rotate each stride's specific force into its navigation frame and remove gravity.
 
     Parameters
@@ -138,6 +139,8 @@ def strapdown(acc: np.ndarray, gyr: np.ndarray, dt: float | np.ndarray, idx: np.
     gyro_bias : (B, 3) rate offset removed during each stride (ZARU), or None
     init : initial attitude per stride (overrides the one from ``g_body``)
     q : (B, L, 4) attitude of every stride sample from :func:`stride_attitude` (computed when None)
+    coning : the coning coefficient of that attitude (decision L626; None: the default, 0.0: the former rule, which
+        the checks that integrate at a unit's native rate keep - the lead's amendment of L626)
 
     Returns
     -------
@@ -149,7 +152,7 @@ def strapdown(acc: np.ndarray, gyr: np.ndarray, dt: float | np.ndarray, idx: np.
     if B == 0:
         return a_nav, np.zeros(0)
     if q is None:
-        q = stride_attitude(gyr, dt, idx, mask, g_body, gyro_bias, init)
+        q = stride_attitude(gyr, dt, idx, mask, g_body, gyro_bias, init, coning=coning)
     a_nav[:] = _qrotate(q, acc[idx])
     a_nav[:, :, 2] -= np.linalg.norm(g_body, axis=1)[:, None]
     a_nav[~mask] = 0.0
@@ -159,14 +162,15 @@ def strapdown(acc: np.ndarray, gyr: np.ndarray, dt: float | np.ndarray, idx: np.
 
 
 def stride_attitude(gyr: np.ndarray, dt: float | np.ndarray, idx: np.ndarray, mask: np.ndarray, g_body: np.ndarray,
-                    gyro_bias: np.ndarray | None = None, init: Rotation | None = None) -> np.ndarray:
+                    gyro_bias: np.ndarray | None = None, init: Rotation | None = None, *,
+                    coning: float | None = None) -> np.ndarray:
     """Attitude (B, L, 4) quaternions [w, x, y, z] body -> navigation frame of every stride sample:
     the gravity (or ``init``) attitude at the stride start propagated with the gyroscope (midpoint rate,
     ``gyro_bias`` (B, 3) rad/s removed). Arguments as :func:`strapdown`; padded samples repeat the
     stride's last attitude."""
     rot = level_rotation(g_body) if init is None else init
     xyzw = rot.as_quat()
-    return stride_quaternions(xyzw[:, [3, 0, 1, 2]], gyr, dt, idx, mask, gyro_bias)
+    return stride_quaternions(xyzw[:, [3, 0, 1, 2]], gyr, dt, idx, mask, gyro_bias, coning=coning)
 
 
 def _qmul(p: np.ndarray, q: np.ndarray) -> np.ndarray:

@@ -334,7 +334,7 @@ def foot_axes(acc: np.ndarray, gyr: np.ndarray, fs: float, i0: np.ndarray, i1: n
     AA = np.tile(A, (n_p, 1))
     GG = np.einsum("pij,nj->pni", PERMUTATIONS, G).reshape(-1, 3)  # every permutation of every sample
     idx, mask = stride_index(starts, ends)
-    a_nav, _ = strapdown(AA, GG, k / fs, idx, mask, AA[starts])
+    a_nav, _ = strapdown(AA, GG, k / fs, idx, mask, AA[starts], coning=0.0)  # the lead's amendment of L626
     v = zupt_velocity(a_nav, mask, k / fs, zupt_end=False)
     e = np.log(np.maximum(np.linalg.norm(v[np.arange(len(starts)), mask.sum(axis=1) - 1], axis=1), 1e-9))
     e = e.reshape(n_p, len(sel))
@@ -378,7 +378,7 @@ def waist_handedness(acc: np.ndarray, gyr: np.ndarray, fs: float, *, ratio: bool
     idx, mask = stride_index(starts, starts + L - 1)
     e = []
     for sign in (1.0, -1.0):
-        a_nav, _ = strapdown(acc, sign * gyr, 1.0 / fs, idx, mask, acc[starts])
+        a_nav, _ = strapdown(acc, sign * gyr, 1.0 / fs, idx, mask, acc[starts], coning=0.0)  # amended L626
         e.append(_detrended_energy(a_nav, mask, fs))
     r = np.log(np.maximum(e[1], 1e-12) / np.maximum(e[0], 1e-12))
     return Handedness("waist", float(np.median(r)), int(len(r)), **turn)

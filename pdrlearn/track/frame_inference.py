@@ -249,7 +249,9 @@ def stride_motion(acc: np.ndarray, gyr: np.ndarray, fs: float, stance: np.ndarra
         return np.zeros((0, 3)), np.zeros(0)
     idx, mask = stride_index(i0, i1)
     g_body = acc[i0]
-    a_nav, yaw = strapdown(acc, gyr, 1.0 / fs, idx, mask, g_body)
+    # the lead's amendment of L626: a check at the unit's native rate keeps the former rule (no coning term: at 20 Hz
+    # a swinging foot turns ~15 deg a sample, outside the term's small-angle range; the track integrates on L628's grid)
+    a_nav, yaw = strapdown(acc, gyr, 1.0 / fs, idx, mask, g_body, coning=0.0)
     disp = double_integrate(a_nav, mask, 1.0 / fs)
     return level_rotation(g_body).inv().apply(disp), np.asarray(yaw, float)
 
