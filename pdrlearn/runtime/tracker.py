@@ -1199,7 +1199,9 @@ class Tracker(OwnGuard, FixInput):
             if self.speculative:
                 self._speculate()
         elif self._latest - self._oldest > 2.0 * self.buffer_s:
-            self._trim()
+            # the lead's merge of E280 with E63: a stride held for L611's verdict may be older than buffer_s when
+            # it is returned; its window stays readable in the push that returns it (E63's documented use)
+            self._trim(min(st.start_s for st in steps) - _LOOK_BACK_S)
         if self._carry:  # decision L134: the steps the restart state's samples completed come first
             steps, self._carry = [*self._carry, *steps], []
         return steps
@@ -2302,13 +2304,15 @@ class Tracker(OwnGuard, FixInput):
         keep = min([*marks, min(foot)]) - _LOOK_BACK_S
         return max(keep, self._latest - self.max_gap_s - _LOOK_BACK_S) if math.isfinite(self.max_gap_s) else keep
 
-    def _trim(self) -> None:
-        """Drop samples older than both the last step boundary (minus a margin) and ``buffer_s``."""
+    def _trim(self, keep_before: float = math.inf) -> None:
+        """Drop samples older than both the last step boundary (minus a margin) and ``buffer_s``, and than
+        ``keep_before`` (s: the steps this push returns, whose windows E63 lets the caller read)."""
         if not self._buf:
             return
         keep_from = self._latest - self.buffer_s
         if self.segmenter.last_boundary is not None:  # the next step starts at the last boundary
             keep_from = max(keep_from, self.segmenter.last_boundary - _LOOK_BACK_S)
+        keep_from = min(keep_from, keep_before)
         if self._pending:  # keep what the waiting steps need
             keep_from = min(keep_from, self._pending[0][0] - _LOOK_BACK_S)
         prev_end = self._restart_from[0]  # decision E280: a restart state re-measures the held strides from there
