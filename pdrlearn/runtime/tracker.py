@@ -24,6 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from pdrlearn.errors import DataError, InternalError, ModelError, VerticalAxisError
+from pdrlearn.kernels import carried_yaw as _carried_yaw
 from pdrlearn.kernels import distance as _distance
 from pdrlearn.kernels import first_walk as _first_walk
 from pdrlearn.kernels import pedal as _pedal
@@ -52,6 +53,7 @@ from pdrlearn.kernels.stride import (
     FINE_PAD_S,
     GAP_YAW_MAX_S,
     HEADING_SOURCES,
+    WAIST_PLACE,
     StanceSegmenter,
     advance_xyz,
     fine_spec,
@@ -2066,6 +2068,11 @@ class Tracker(OwnGuard, FixInput):
                                        waist=self.waist_gap_yaw)
         else:  # decisions L31 / L61: the heading unit's turn between strides (track --streaming's call)
             dyaw += stride_gap_yaw(lev, self.heading_source, self._stream, prev, t0, waist=self.waist_gap_yaw)
+            started = _carried_yaw.carried_turn(self._stream, lev, self.heading_source, prev, t0, t1,
+                                                 self.waist_gap_yaw)  # decision E285 (track --streaming's call)
+            if started is not None:
+                turn, dyaw = started[:2]
+                lev = {**lev, WAIST_PLACE: started[2]}  # decision L651: where the stride is placed
         if self._stop_bias is not None and not headed_by_foot(lev, self.heading_source):  # decision E272
             self._stop_bias.update(self._stream, prev, t0)
             lo = prev if pause_gap and self._bridged() else waist_gap_from(prev, t0, self.waist_gap_yaw)
@@ -2307,10 +2314,14 @@ class Tracker(OwnGuard, FixInput):
         if not self._buf:
             return
         keep_from = self._latest - self.buffer_s
+        # decision E285: a waist-headed stride reads the waist's samples from CARRY_BACK_S before its start
+        back = _LOOK_BACK_S + (_carried_yaw.CARRY_BACK_S if "waist" in self.units and self.heading_source != "foot"
+                               else 0.0)
         if self.segmenter.last_boundary is not None:  # the next step starts at the last boundary
             keep_from = max(keep_from, self.segmenter.last_boundary - _LOOK_BACK_S)
+            keep_from = min(keep_from, self.segmenter.last_boundary - back)
         if self._pending:  # keep what the waiting steps need
-            keep_from = min(keep_from, self._pending[0][0] - _LOOK_BACK_S)
+            keep_from = min(keep_from, self._pending[0][0] - back)
         prev_end = self._restart_from[0]  # decision E280: a restart state re-measures the held strides from there
         if self._loops.held:
             keep_from = min(keep_from, self._loops.held[0][0][0] - _LOOK_BACK_S)
@@ -2319,8 +2330,10 @@ class Tracker(OwnGuard, FixInput):
         elif prev_end is not None and self.waist_gap_yaw and "waist" in self.units \
                 and waist_gap_max_s(prev_end, self._latest) > GAP_YAW_MAX_S:  # decision L498: a stop up to 60 s
             keep_from = min(keep_from, prev_end - _LOOK_BACK_S)  # keeps its samples for the waist's gap yaw
-        if self._stop_bias is not None and prev_end is not None:  # decision E272: a stop's last KEEP_S seconds
-            keep_from = min(keep_from, max(prev_end, self._latest - _stop_bias.KEEP_S) - _LOOK_BACK_S)
+        if self._stop_bias is not None and (prev_end is not None or "wAccelerometer" in self._buf):  # decision E272:
+            # a stop's last KEEP_S seconds (E286: also the waist's rest before the first stride)
+            start = -math.inf if prev_end is None else prev_end
+            keep_from = min(keep_from, max(start, self._latest - _stop_bias.KEEP_S) - _LOOK_BACK_S)
         keep_from = min(keep_from, self._foot_silent_keep())  # decision E113
         if keep_from <= self._drop_at:  # nothing to drop (the common case between two steps)
             return
