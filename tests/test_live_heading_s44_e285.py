@@ -103,7 +103,7 @@ def _live(walk: Path, chunk_s: float = 0.1):
 
 def test_live_track_keeps_its_heading_over_stops_and_turns_e285_e286_l651(stop_and_turn_walk):
     """Through the live Tracker (0.1 s pushes, the shipped bundle): the track ends within 1 m of the simulator's
-    position (0.41 m; main before E285 / E286 / L651: 2.12 m); E286 read the bias on the first 12 s stand."""
+    position (0.30 m; main before E285 / E286 / L651: 2.12 m); E286 read the bias on the first 12 s stand."""
     tracker, steps = _live(stop_and_turn_walk)
     truth = pd.read_csv(stop_and_turn_walk / "trajectory.csv")
     te = steps[-1].end_s * 1e3

@@ -19,8 +19,8 @@ from collections.abc import Callable
 import numpy as np
 
 from pdrlearn.kernels.rotation import rotvec_to_matrix
-from pdrlearn.kernels.stride import headed_by_foot, waist_gap_from, yaw_change
-from pdrlearn.kernels.window import interp, segment
+from pdrlearn.kernels.stride import WAIST_GAP_S, headed_by_foot, waist_gap_from, yaw_change
+from pdrlearn.kernels.window import TIE_S, interp, segment
 
 #: decision E285: the vertical is the mean specific force over the stride and this many seconds (s) before its start
 #: (or the gap L498 counts, when longer): a start's speed change v leans it by v / (g W), ~1.4 deg at 1.2 m/s over 5 s
@@ -43,7 +43,13 @@ def carried_yaw(stream: Stream, lo: float, t0: float, t1: float) -> tuple[float,
     i0 = int(np.searchsorted(tg, a, side="left"))
     i0 = max(i0 - 1, 0) if i0 < len(tg) and tg[i0] > a else i0  # the sample at or before the window's start
     tg, gyr = tg[i0:], np.asarray(gyr, dtype=float)[i0:, :3]
-    if len(ta) < 2 or len(tg) < 2 or not tg[-1] >= t1:
+    gaps = np.flatnonzero(np.diff(tg) > WAIST_GAP_S)  # E114's waist gap: no rotation is known across it
+    if len(gaps):
+        tg, gyr = tg[gaps[-1] + 1:], gyr[gaps[-1] + 1:]
+        a = float(tg[0]) if len(tg) else a
+        if not a <= lo:  # the gap L61 / L498 count has no carried vertical: the caller keeps the old reading
+            return None
+    if len(ta) < 2 or len(tg) < 2 or not tg[-1] >= t1 - TIE_S or tg[0] > t0:  # E35: a sample within TIE_S is on it
         return None
     f = np.column_stack([interp(tg, ta, np.asarray(acc, dtype=float)[:, k]) for k in range(3)])  # gyro's clock
     # frame j+1 -> frame j by the gyroscope's mean rate over the interval; c[j]: frame j -> frame 0
