@@ -1,6 +1,6 @@
 """Trial T2 (session 44): `pdrlearn run` prints `track --streaming`'s C137 / L578 class lines (F4, decision E287),
 run.json holds the steps' data latency next to the compute time (F2, decision E288), and `run --heading-source`
-(E285) passes the Tracker's heading source."""
+passes the Tracker's heading source (F1, decision E285's "what run exposes")."""
 
 from __future__ import annotations
 

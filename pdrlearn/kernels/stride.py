@@ -557,11 +557,6 @@ def stride_motion(levelled: Levelled, heading_source: str = "auto", *, t0: float
     return disp, dpsi  # the foot's attitude change from rest to rest (the rate's vertical integral is not)
 
 
-#: decision L651: the key of a levelled-units dict holding a waist-headed stride's placement offset (rad; the mean of
-#: its heading over the stride less the heading at its end, :func:`pdrlearn.kernels.carried_yaw.carried_turn`)
-WAIST_PLACE = "waist_place"
-
-
 def placement_offset(levelled: Levelled, heading_source: str, disp: np.ndarray) -> float:
     """Decision L34: the direction (rad) a stride is placed along, relative to the heading after it. A
     stride headed by the foot goes along the foot's heading at its start (the heading after it less its own
@@ -570,7 +565,7 @@ def placement_offset(levelled: Levelled, heading_source: str, disp: np.ndarray) 
     the heading after it (0). ``disp`` (3,) in the step frame (:func:`stride_motion`); the lateral angle is
     signed with the stride's x, like the length's sign."""
     if not headed_by_foot(levelled, heading_source):
-        return float(levelled.get(WAIST_PLACE, 0.0))  # decision L651: the carried mean heading's, when measured
+        return 0.0
     foot = levelled["foot"]
     direction = foot[5] if len(foot) > 5 else 0.0
     dx, dy = float(disp[0]), float(disp[1])
