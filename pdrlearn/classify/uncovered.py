@@ -129,5 +129,6 @@ def trained_side_strides(model) -> int | None:
     the simulator labels them); None without a model, without a direction task, or when its manifest does not say
     (trained before C161, or on sessions without ``kind``)."""
     tm = getattr(model, "tasks", {}).get("direction") if model is not None else None
-    counts = getattr(tm, "trained_kinds", None)
+    counts = tm.get("trained_kinds") if isinstance(tm, dict) else getattr(tm, "trained_kinds", None)  # E287: a
+    # bundle's manifest (``Bundle.manifest``'s ``tasks``) records them since decision E287
     return None if not counts else counts.get("side")

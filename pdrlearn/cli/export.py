@@ -357,6 +357,12 @@ def run(
                                          "length against 0.8 / 1.2 x the median of the session's such strides so "
                                          "far, after 10 (thesis ch.6.3's per-pedestrian classes; decision C117, not "
                                          "the default: C118); the distance is unchanged."),
+    heading_source: str = typer.Option("auto", "--heading-source", metavar="auto|foot|waist-gyro",
+                                       help="What turns the streamed heading (the Tracker's heading_source, decision "
+                                       "E6): auto = the waist gyroscope when the waist unit streams, else the foot; "
+                                       "foot = the foot's attitude change from rest to rest; waist-gyro = the waist "
+                                       "gyroscope always. For stop-and-turn sessions (VR, rehab) foot kept the "
+                                       "heading better on simulated ones (decision E285; docs/deploying.md)."),
 ) -> None:
     """Replay a recorded session (or a Bluetooth capture) through the streaming runtime.
 
@@ -433,6 +439,11 @@ def run(
         if dpi is not None and out is None:  # decision L70: it would be ignored
             raise DataError(f"run: --dpi {dpi} sets the resolution of path.png, which only --out writes; add --out "
                             "FOLDER or drop --dpi")
+        from pdrlearn.kernels.stride import HEADING_SOURCES
+
+        if heading_source not in HEADING_SOURCES:  # decision E285: run exposes the Tracker's heading_source
+            raise DataError(f"run: --heading-source {heading_source!r} is not one of {', '.join(HEADING_SOURCES)} "
+                            "(auto: the waist gyroscope when the waist unit streams, else the foot)")
         if out is not None:
             out_folder(out, "run", force=force, inputs=(bundle_dir, session_dir))
         from pdrlearn.runtime.bundle import WAIST_SCHEMA_NAME, bundle_kind
@@ -449,6 +460,7 @@ def run(
                                                          ("--drop-neighbour", drop_neighbour),
                                                          ("--stair-rise", stair_rise is not None),
                                                          ("--length-reference", length_reference != "model"),
+                                                         ("--heading-source", heading_source != "auto"),  # E285
                                                          ("--stair-grade", stair_grade is not None))
                                           if v]
             if given:
@@ -471,6 +483,9 @@ def run(
         bundle = load_bundle(bundle_dir)  # verified before any output
         methods = bundle.choose_methods(method) if method is not None else None  # decision E52, before any work
         steps, lat, protocol_stats, session = [], [], None, None  # session: ground truth (a capture has none)
+        from pdrlearn.runtime.latency import DataLatency
+
+        data_lat = DataLatency()  # decision E288: the steps' data latency (a capture's pushes: not measured)
         if protocol is not None and common_span:  # decision B230: a capture has one unit's streams, on one clock
             raise DataError(f"run: --common-span cuts a session's files to the time all of them cover; the --protocol "
                             f"capture {protocol} has no files: drop --common-span")
@@ -493,7 +508,8 @@ def run(
             if need:
                 raise DataError(f"bundle {bundle.path} needs {', '.join(need)}, which the foot unit's "
                                 "Bluetooth protocol does not carry; replay the foot unit alone (--units foot)")
-            tracker = Tracker(bundle, frames={**bundle.manifest["frames"], "foot": THESIS_FOOT_FRAME.to_dict()},
+            tracker = Tracker(bundle, heading_source=heading_source,  # decision E285
+                              frames={**bundle.manifest["frames"], "foot": THESIS_FOOT_FRAME.to_dict()},
                               resample=resample_mode(resample, no_resample), rules=rules, min_confidence=min_confidence,
                               units=use, start=(0.0, 0.0, start_alt), contacts=contacts, heading_rad=heading0,
                               methods=methods, drop_neighbour=drop_neighbour,  # E101
@@ -598,7 +614,8 @@ def run(
             # before its end is in a gap, which the steps wait for (E22/E23: chunk sizes give the same steps)
             # decision L177: run checked the clocks on the recording above (L170), the same numbers: no second line
             # decision E230: run said the intervals of dropped samples when it read the session (L77): not again
-            tracker = Tracker(bundle, frames=_frames_of(session, bundle, use), clock_check=False, stream_checks=False,
+            tracker = Tracker(bundle, heading_source=heading_source,  # decision E285
+                              frames=_frames_of(session, bundle, use), clock_check=False, stream_checks=False,
                               resample=resample_mode(resample, no_resample), rules=rules, min_confidence=min_confidence,
                               input_rates_hz=rates, units=use,
                               sensors=[n for n, st in session.streams.items() if len(st)],
@@ -639,11 +656,14 @@ def run(
                     if new:
                         lat.append((time.perf_counter() - t0) / len(new))
                     steps += new
-                    reached(max((float(t[-1]) for t, _ in chunk.values() if len(t)), default=0.0))
+                    data_s = max((float(t[-1]) for t, _ in chunk.values() if len(t)), default=0.0)
+                    data_lat.add(new, data_s)  # decision E288
+                    reached(data_s)
                 steps += tracker.flush()
             _warn_short_streams(session, tracker, steps)
             source = f"session {session.name}"
         result = _result(steps, start_ll, start_alt)
+        _side_class_lines(result.steps, bundle, source if session is None else session.name)  # decision E287
         from pdrlearn.track.position_sigma import add_position_sigma
 
         # decisions L128/L150, as `track --streaming`: the waist gyroscope's heading when the tracker uses the waist
@@ -674,7 +694,8 @@ def run(
             summary["protocol"] = protocol_stats
         keep_warnings(summary, logged, session)  # decision E154
         if out is not None:  # decision E157: the push times in run.json, not summary.json
-            _write(out, result, summary, session, source, dpi=dpi, record=record(latency_ms_per_step=_latency(lat)),
+            _write(out, result, summary, session, source, dpi=dpi, record=record(latency_ms_per_step=_latency(lat),
+                   data_latency_ms=data_lat.report(None if protocol is not None else chunk_s)),  # decision E288
                    bouts=table, with_ele=start_ele, redact=redact, plot=plot)  # decision L533
         if as_json:
             print_json(redacted(json_safe(summary), redact))
@@ -1046,6 +1067,21 @@ def keep_warnings(summary: dict, logged: list[str], session=None) -> None:
     from pdrlearn.warning_lines import machine_summary
 
     machine_summary(summary, logged, [] if session is None else [session.where, session.name])
+
+
+def _side_class_lines(steps, bundle, name: str) -> None:
+    """Decision E287: ``track --streaming``'s C137 / L578 lines (side-step and turn-on-the-spot strides the direction
+    model classed backward, :func:`pdrlearn.track.travel.side_class_warning`) on run's steps table, logged as run's
+    other warnings (so also in summary.json, E154); C161's count of trained side steps from the bundle's manifest."""
+    import logging
+
+    from pdrlearn.classify.uncovered import trained_side_strides
+    from pdrlearn.track.travel import side_class_warning
+
+    lines: list[str] = []
+    side_class_warning(steps, lines, trained_side_strides(bundle))
+    for line in lines:
+        logging.getLogger("pdrlearn.cli").warning("%s: %s", name, line)
 
 
 def _latency(lat: list[float]) -> dict:

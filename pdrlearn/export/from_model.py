@@ -447,6 +447,8 @@ def export_model(
             "classes": list(tm.classes),
             "chosen": exp_chosen,
             "methods": entries,
+            # decision E287: C161's side / turn strides in the training data, for run's C137 line (as track's)
+            **({"trained_kinds": dict(tm.trained_kinds)} if getattr(tm, "trained_kinds", None) else {}),
             # decision E26: what a foot-only replay (`pdrlearn run --units foot`) classifies with, as track
             **({"foot_only": {"method": foot_only[0], "unit": "foot"}}
                if foot_only is not None and foot_only[1] in entries.get(foot_only[0], {}) else {}),

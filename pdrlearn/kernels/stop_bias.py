@@ -43,9 +43,16 @@ def stop_yaw_bias(stream: Stream, prev_end: float | None, t0: float) -> float | 
     ``prev_end`` and the one starting at ``t0`` (s): the rate on the mean specific force's direction (as the gap yaw
     reads it, L31 / L61), averaged over the still samples (L296's test, :func:`still_from_magnitudes`, and its block
     mean, :func:`block_bias`) of ``[max(prev_end, t0 - LEAD_S - WINDOW_S), t0 - LEAD_S]``. None when there is no
-    such stop (``prev_end`` None or the stop under :data:`STOP_MIN_S`), no waist accelerometer / gyroscope, or no
-    second of still samples. ``stream(name)`` -> ``(t, values)`` of a buffered stream."""
-    if prev_end is None or not t0 - prev_end >= STOP_MIN_S:
+    such stop (the stop under :data:`STOP_MIN_S`), no waist accelerometer / gyroscope, or no second of still samples.
+    Decision E286: ``prev_end`` None (no stride yet) reads the rest before the first stride, from the stream's first
+    sample (the docs' "stand still 10 s before a walk"; before, it was never read). ``stream(name)`` -> ``(t,
+    values)`` of a buffered stream."""
+    if prev_end is None:  # decision E286: the rest before the first stride counts from the stream's first sample
+        try:
+            prev_end = float(stream("wAccelerometer")[0][0])
+        except (KeyError, IndexError):
+            return None
+    if not t0 - prev_end >= STOP_MIN_S:
         return None
     a, b = max(float(prev_end), float(t0) - LEAD_S - WINDOW_S), float(t0) - LEAD_S
     try:

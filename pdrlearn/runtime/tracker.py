@@ -2323,8 +2323,10 @@ class Tracker(OwnGuard, FixInput):
         elif prev_end is not None and self.waist_gap_yaw and "waist" in self.units \
                 and waist_gap_max_s(prev_end, self._latest) > GAP_YAW_MAX_S:  # decision L498: a stop up to 60 s
             keep_from = min(keep_from, prev_end - _LOOK_BACK_S)  # keeps its samples for the waist's gap yaw
-        if self._stop_bias is not None and prev_end is not None:  # decision E272: a stop's last KEEP_S seconds
-            keep_from = min(keep_from, max(prev_end, self._latest - _stop_bias.KEEP_S) - _LOOK_BACK_S)
+        if self._stop_bias is not None and (prev_end is not None or "wAccelerometer" in self._buf):  # decision E272:
+            # a stop's last KEEP_S seconds (E286: also the waist's rest before the first stride)
+            start = -math.inf if prev_end is None else prev_end
+            keep_from = min(keep_from, max(start, self._latest - _stop_bias.KEEP_S) - _LOOK_BACK_S)
         keep_from = min(keep_from, self._foot_silent_keep())  # decision E113
         if keep_from <= self._drop_at:  # nothing to drop (the common case between two steps)
             return
