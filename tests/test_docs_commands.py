@@ -275,6 +275,7 @@ def _validators() -> dict[tuple[str, str], object]:
     from pdrlearn.io.sensors import PLACEMENTS
     from pdrlearn.kernels.bayes import RULES
     from pdrlearn.kernels.relative_length import LENGTH_REFERENCES
+    from pdrlearn.kernels.stride import HEADING_SOURCES
     from pdrlearn.kernels.window import BOUNDARIES
     from pdrlearn.plots import SHADE_COLOURS
     from pdrlearn.plugins import parse_spec
@@ -347,6 +348,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("track", "ten_m_walk"): parse_ten_m_walk,  # decision L522
         ("track", "walk_test_start"): lambda v: check_walk_test_start(v, 360.0),  # decision L642
         ("track", "per_align"): _one_of(PER_ALIGNS),  # decision L299
+        ("run", "heading_source"): _one_of(HEADING_SOURCES),  # decision E285
         ("steps", "time_origin"): _one_of(TIME_ORIGINS),  # decision E173
         **{(c, "bout_rule"): _one_of(BOUT_PRESETS, case=False) for c in ("track", "track-all", "run")},  # decision L163
         ("track", "units"): parse_units,  # decision B127
