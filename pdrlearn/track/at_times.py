@@ -6,8 +6,10 @@ A times file is a CSV with one column ``t`` (seconds on the session's clock, fro
 numeric columns at that instant: a row holds until the next step starts, then linear to that step's end (a pause
 holds its place); the start pose from the session's first sample up to the first step (the standstill before the
 first stride, where the walker stands at the start); the last row from there to the recording's end. A floor (an
-integer column, or one named ``floor`` / ``*_floor``) takes the row at or before the time. A time outside the
-recording is one ``error:`` line naming the file, the row and the span, before any tracking.
+integer column, or one named ``floor`` / ``*_floor``) takes the row at or before the time; trajectory.csv's
+``z_rides`` and ``floor`` (L630, L631) are computed at the time itself (review R1 F2). A time outside the recording
+(with ``--window``, outside the window as tracked: review R1 F4) is one ``error:`` line naming the file, the row and
+the span, before any tracking.
 """
 
 from __future__ import annotations
