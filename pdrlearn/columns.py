@@ -1573,9 +1573,10 @@ AT_TIMES: tuple[Column, ...] = (
     ("lat", "deg", "number", "trajectory.csv's lat at t, as x; only when the track has lat/lon"),
     ("lon", "deg", "number", "trajectory.csv's lon at t, as x; only when the track has lat/lon"),
     ("pos_sigma_m", "m", "number", "trajectory.csv's pos_sigma_m at t, as x; not with fixes"),
-    ("z_rides", "m", "number", "trajectory.csv's z_rides at t, as x (the altitude with the rides, decision L630)"),
-    ("floor", "storeys", "integer", "trajectory.csv's floor at t: its row at or before t (decision L631; the "
-                                    "lead's merge of L638 with L631, session 44)"),
+    ("z_rides", "m", "number", "z at t plus the rides ended by t (decision L630; computed at t, not held from a "
+                               "row: review R1 F2)"),
+    ("floor", "storeys", "integer", "the storey at t: the summary's climbs and rides ended by t (decision L631; the "
+                                    "lead's merge of L638 with L631, session 44; computed at t: review R1 F2)"),
     ("x_pdr", "m", "number", "with fixes: the PDR-only x at t (trajectory.csv's x_pdr)"),
     ("y_pdr", "m", "number", "with fixes: the PDR-only y at t"),
     ("x_rt", "m", "number", "with fixes: the causal (real-time) x at t (trajectory.csv's x_rt)"),

@@ -215,11 +215,12 @@ def report(session, table, *, name: str, unit: str, tolerance: float, out: Path 
     # decision steps 52: a detector that reads no force (accel) counts on the foot IMU's own rests; a force-reading
     # one, or a table of unknown origin (score-steps), on track's checked force stance (L365)
     force = reads_force(detector)
+    detections = table  # review R1 F1: L611 / L639 judge the strides of the detector's whole table, as track does
     if unit == "foot" and len(table) and per_stride:  # decision steps 34: one row per rest-to-rest stride, as `track`
         table, merged, spanned = one_per_stride_counted(table, session, force=force)
     pedalled = pedalled_rest = 0
     if unit == "foot" and per_stride and pedalling is not None:  # decision L625: L611's pedalling, as track
-        table, pedalled, pedalled_rest = _pedalling(session, table, pedalling == "keep")
+        table, pedalled, pedalled_rest = _pedalling(session, table, detections, pedalling == "keep", force)
         if pedalled_rest:  # the rests the left-out rows covered are no merged strides
             spanned -= pedalled_rest - pedalled
     result: dict = {"session": session.name, "detector": name, "unit": unit, "count": int(len(table))}
@@ -345,15 +346,16 @@ def report(session, table, *, name: str, unit: str, tolerance: float, out: Path 
             typer.echo(str(path))
 
 
-def _pedalling(session, table, keep: bool):
+def _pedalling(session, table, detections, keep: bool, force: bool):
     """Decision L625: ``(table, rows, rest)``: a foot table without L611's pedalling strides (``keep``: with them,
     marked in a ``pedalling`` column), how many rows were pedalling and the rest-to-rest strides they cover (0 with
-    ``keep``: nothing left out); their one line logged."""
+    ``keep``: nothing left out); their one line logged. ``detections``: the detector's whole table, ``force``: on
+    track's force stance (review R1 F1)."""
     import logging
 
     from pdrlearn.track.pedalling import pedalling_rows
 
-    rows, rest, line = pedalling_rows(session, table, kept=keep)
+    rows, rest, line = pedalling_rows(session, table, detections, kept=keep, force=force)
     if line:
         logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, line)
     if keep:

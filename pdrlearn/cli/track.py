@@ -1026,6 +1026,10 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
         from pdrlearn.track.window import check_window
 
         win = check_window(o["window"], session, tracked_unit(pipeline))  # B126: the tracked unit's recording
+        if at_t is not None:  # review R1 F4: the track covers the window only; a time outside it is not placed
+            from pdrlearn.track.at_times import check_span
+
+            at_t = check_span(at_t, win, o["at_times"], "the --window as tracked")
     legs = None
     if o.get("legs") is not None:  # decision L618: the legs inside the tracked unit's recording, before tracking
         from pdrlearn.track.segments import check_legs
@@ -1244,7 +1248,7 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
         from pdrlearn.track.floor_column import with_floor_columns
 
         traj = with_floor_columns(result.trajectory, result, summary.get("storey_height_m"))  # L630, L631: the floor
-        at_times_out = at_times_table(traj, at_t, start, result.steps)
+        at_times_out = at_times_table(traj, at_t, start, result.steps, result, summary.get("storey_height_m"))
     laps = None  # before periods.csv: C178 starts the test's minutes at its go (L642)
     if o.get("corridor_m") is not None:  # decisions L383, L384: the corridor walk test of the track (or its window)
         from pdrlearn.track.corridor import corridor_laps

@@ -36,7 +36,8 @@ def restart_state(tracker) -> dict:
     [[...], ...]}}, "waist_clock_offset_s", "foot_clock_offset_s", "stop_bias"}`` with the samples the tracker buffers
     (on its clock: already moved by the offsets), the offsets it applies now (a ``rebase_clock`` included; E237) and
     E272's waist gyroscope bias read at the last stop (``{"rps", "n_stops"}``, None without the waist unit; E281) and
-    the last L611 rows judged (``pedal_history``, E280). Strides held for their L611 verdict (E280) are not in it:
+    the last L611 rows judged (``pedal_history``, E280) and L621's live foot rest reading (``foot_rest``: ``{"readings",
+    "n_still"}``, review R1 F3). Strides held for their L611 verdict (E280) are not in it:
     ``last_end_s`` and the bias are those before the first held one, which the new tracker measures again. A
     tracker that resamples (``resample=True``, E22) is refused in one line (decision L140): its buffer holds
     resampled samples, and its low-pass filter holds the last raw ones (its delay, 0.84 s from 50 to 20 Hz), which
@@ -50,7 +51,7 @@ def restart_state(tracker) -> dict:
                         "track at the data's own rate (resample='native', the default) to restart whole "
                         "(decision L140)")
     kept = tracker._kept
-    prev_end, stop = tracker._restart_from  # decision E280: strides held for L611's verdict are measured again
+    prev_end, stop, rest = tracker._restart_from  # decision E280: strides held for L611's verdict are measured again
     return {
         "version": STATE_VERSION,
         "position": [float(v) for v in tracker.position],
@@ -63,6 +64,7 @@ def restart_state(tracker) -> dict:
         **{k: float(getattr(tracker, k)) for k in _CLOCKS},  # decision E237
         "stop_bias": None if stop is None else {"rps": float(stop[0]), "n_stops": int(stop[1])},  # decision E281
         "pedal_history": [list(r) for r in tracker._loops.history],  # decision E280: the verdicts' neighbours
+        "foot_rest": {"readings": [float(v) for v in rest[0]], "n_still": int(rest[1])},  # review R1 F3 (L621)
     }
 
 
@@ -92,18 +94,22 @@ def resume(tracker, state: dict) -> list:
                    for n, s in state["samples"].items()}
         clocks = {k: float(state[k]) for k in keys if k in _CLOCKS}
         stop = state.get("stop_bias") if version == STATE_VERSION else None  # decision E281
-        stop = None if stop is None else (float(stop["rps"]), int(stop["n_stops"]))
+        stop = None if stop is None else (float(stop["rps"]), float(stop["n_stops"]))
         history = [(float(a), float(b), float(dz), bool(u), float(d), bool(j))  # decision E280
                    for a, b, dz, u, d, j in (state["pedal_history"] if version == STATE_VERSION else [])]
+        rest = state.get("foot_rest") if version == STATE_VERSION else None  # review R1 F3: absent = not read yet
+        rest = None if rest is None else ([float(v) for v in rest["readings"]], float(rest["n_still"]))
     except (TypeError, ValueError, KeyError) as exc:
-        raise DataError(f"{where}: the state's position, heading_rad, last_end_s, samples, clock offsets, "
-                        f"stop_bias or pedal_history are malformed ({exc}); give what Tracker.restart_state() returned "
-                        "(decision L134)") from None
+        raise DataError(f"{where}: the state's position, heading_rad, last_end_s, samples, clock offsets, foot_rest, "
+                        f"stop_bias or pedal_history are malformed ({exc}); give what "
+                        "Tracker.restart_state() returned (decision L134)") from None
     if not (np.isfinite(position).all() and math.isfinite(heading) and all(map(math.isfinite, clocks.values()))
-            and (stop is None or math.isfinite(stop[0]))):
+            and (stop is None or (math.isfinite(stop[0]) and _count(stop[1])))
+            and all(math.isfinite(v) for r in history for v in (r[0], r[1], r[2], r[4]))
+            and (rest is None or (all(math.isfinite(v) and v > 0 for v in rest[0]) and _count(rest[1])))):
         raise DataError(f"{where}: the state's position {position.tolist()}, heading {heading}, clock offsets "
-                        f"{clocks} or stop_bias {stop} are not finite; give what Tracker.restart_state() returned "
-                        "(decision L134)")
+                        f"{clocks}, stop_bias {stop}, pedal_history or foot_rest are not finite (or a count is not a "
+                        "whole number >= 0); give what Tracker.restart_state() returned (decision L134, review R1 F5)")
     tracker.position = position
     tracker._init_fixes(position[:2])
     tracker.heading = heading
@@ -116,7 +122,9 @@ def resume(tracker, state: dict) -> list:
                                              tuple(map(float, ls[3])))
     tracker.n_steps = int(state["n_steps"])
     if stop is not None and tracker._stop_bias is not None:  # decision E281: the bias read at the old one's last stop
-        tracker._stop_bias.rps, tracker._stop_bias.n_stops = stop
+        tracker._stop_bias.rps, tracker._stop_bias.n_stops = stop[0], int(stop[1])
+    if rest is not None:  # review R1 F3: L621's reading before the first held stride, which is measured again
+        tracker._foot_rest.readings, tracker._foot_rest.n_still = rest[0], int(rest[1])
     tracker._loops.history, tracker._loops.seen = history, len(history)  # decision E280
     for k, v in clocks.items():  # decision E237: the state's clock wins; a different given value is said
         if v != getattr(tracker, k):
@@ -130,6 +138,11 @@ def resume(tracker, state: dict) -> list:
     finally:
         for k, v in {**kept, **clocks}.items():
             setattr(tracker, k, v)
+
+
+def _count(v: float) -> bool:
+    """Review R1 F5: a state's count (``n_stops``, ``n_still``) is a finite whole number >= 0."""
+    return math.isfinite(v) and v >= 0 and v == int(v)
 
 
 def drop_measured(pending: list, last_end: float | None) -> list:

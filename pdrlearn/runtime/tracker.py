@@ -1611,9 +1611,10 @@ class Tracker(OwnGuard, FixInput):
 
     def _before(self) -> tuple:
         """Decision E280: the measuring state before a stride (the last stride's end, E272's bias): a restart state
-        taken while strides are held (L611's verdict pending) restarts from the first held one's."""
-        stop = self._stop_bias
-        return self._prev_end, None if stop is None else (stop.rps, stop.n_stops)
+        taken while strides are held (L611's verdict pending) restarts from the first held one's. Review R1 F3: and
+        L621's live foot rest reading (its readings and still-sample count), which measuring the stride adds to."""
+        stop, rest = self._stop_bias, self._foot_rest
+        return self._prev_end, None if stop is None else (stop.rps, stop.n_stops), (list(rest.readings), rest.n_still)
 
     @property
     def _restart_from(self) -> tuple:

@@ -6,8 +6,10 @@ A times file is a CSV with one column ``t`` (seconds on the session's clock, fro
 numeric columns at that instant: a row holds until the next step starts, then linear to that step's end (a pause
 holds its place); the start pose from the session's first sample up to the first step (the standstill before the
 first stride, where the walker stands at the start); the last row from there to the recording's end. A floor (an
-integer column, or one named ``floor`` / ``*_floor``) takes the row at or before the time. A time outside the
-recording is one ``error:`` line naming the file, the row and the span, before any tracking.
+integer column, or one named ``floor`` / ``*_floor``) takes the row at or before the time; trajectory.csv's
+``z_rides`` and ``floor`` (L630, L631) are computed at the time itself (review R1 F2). A time outside the recording
+(with ``--window``, outside the window as tracked: review R1 F4) is one ``error:`` line naming the file, the row and
+the span, before any tracking.
 """
 
 from __future__ import annotations
@@ -78,15 +80,16 @@ def session_seconds(times: pd.DataFrame, path, start: datetime | None, where: st
     return out
 
 
-def check_span(t, span: tuple[float, float], path="--at-times") -> np.ndarray:
+def check_span(t, span: tuple[float, float], path="--at-times", what: str = "the recording") -> np.ndarray:
     """The times ``t`` (session s) inside the recording ``span`` (first and last sample, s), or one line naming the
-    first row outside it (decision L638; checked before tracking)."""
+    first row outside it (decision L638; checked before tracking). ``what`` names the span (review R1 F4: a
+    ``--window``'s, which is all the track covers)."""
     t = np.asarray(t, dtype=float)
     lo, hi = span
     out_of = np.flatnonzero((t < lo - 1e-9) | (t > hi + 1e-9))
     if out_of.size:
         k = int(out_of[0])
-        raise DataError(f"--at-times {path}: row {k + 2} ({t[k]:.3f} s) lies outside the recording ({lo:.3f} to "
+        raise DataError(f"--at-times {path}: row {k + 2} ({t[k]:.3f} s) lies outside {what} ({lo:.3f} to "
                         f"{hi:.3f} s on the session's clock); {out_of.size} time(s) outside - drop them or fix the "
                         "times")
     return t
@@ -131,12 +134,18 @@ def times_in_session(times: pd.DataFrame, path, session, start: datetime | None)
 
 
 def at_times_table(trajectory: pd.DataFrame, t, start: datetime | None, steps: pd.DataFrame | None = None,
-                   ) -> pd.DataFrame:
+                   result=None, storey_height_m: float | None = None) -> pd.DataFrame:
     """OUT/at_times.csv (decision L638): ``t`` (:func:`times_in_session`) in the file's order, the trajectory's
-    columns there (held until each of ``steps`` starts), and ``time`` (L298's form) with a recording start."""
+    columns there (held until each of ``steps`` starts), and ``time`` (L298's form) with a recording start. With the
+    track's ``result`` and a trajectory with ``z_rides`` / ``floor`` (L630, L631), those two are computed at the times
+    themselves (review R1 F2: a ride before the first stride or after the last counts from its end, not the row's)."""
     from pdrlearn.track.clock import clock_texts
 
     out = positions_at(trajectory, t, (-np.inf, np.inf), step_starts=None if steps is None else steps["start_s"])
+    if result is not None and {"z_rides", "floor", "z"} <= set(out.columns):
+        from pdrlearn.track.floor_column import floor_at_times
+
+        out["z_rides"], out["floor"] = floor_at_times(trajectory, out["t"], out["z"], result, storey_height_m)
     if start is not None:
         out["time"] = clock_texts(start, out["t"])
     return out

@@ -98,19 +98,42 @@ def with_floor_columns(traj: pd.DataFrame, result, storey_height_m: float | None
     ``floor``: storeys of ``storey_height_m`` (``--storey-height``; L64's assumed 3.0 m without it) from the start's,
     reached by the summary's climbs (:func:`floor_changes`), else L64's band rule on ``z_rides``. A window's rows keep
     the counts of its own steps."""
-    from pdrlearn.track.evaluate import STOREY_HEIGHT_M, floor_levels
-
-    storey_height_m = STOREY_HEIGHT_M if storey_height_m is None else float(storey_height_m)
     if not len(traj) or "z" not in traj or "t" not in traj:
         return traj
     out = traj.copy()
-    t, z = out["t"].to_numpy(float), out["z"].to_numpy(float)
-    out["z_rides"] = ride_altitude(t, z, _z_rides(result))  # decision L630
-    changes = floor_changes(result, storey_height_m)
-    out["floor"] = (climb_floor(t, out["z_rides"].to_numpy(float), changes, storey_height_m)  # decision L631
-                    if changes is not None
-                    else floor_levels(out["z_rides"].to_numpy(float), storey_height_m))
+    out["z_rides"], out["floor"] = floor_values(out["t"], out["z"], result, storey_height_m)
     return out
+
+
+def floor_values(t, z, result, storey_height_m: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """``z_rides`` and ``floor`` (decisions L630, L631) at times ``t`` (s, ascending) of heights ``z`` (m): the rides
+    counted from their ends and the climbs from :func:`floor_changes` at those times (:func:`with_floor_columns`)."""
+    from pdrlearn.track.evaluate import STOREY_HEIGHT_M, floor_levels
+
+    storey_height_m = STOREY_HEIGHT_M if storey_height_m is None else float(storey_height_m)
+    t = np.asarray(t, dtype=float)
+    z_rides = ride_altitude(t, z, _z_rides(result))  # decision L630
+    changes = floor_changes(result, storey_height_m)
+    floor = (climb_floor(t, z_rides, changes, storey_height_m) if changes is not None  # decision L631
+             else floor_levels(z_rides, storey_height_m))
+    return z_rides, floor
+
+
+def floor_at_times(traj: pd.DataFrame, t, z, result, storey_height_m: float | None = None,
+                   ) -> tuple[np.ndarray, np.ndarray]:
+    """Review R1 F2 (decision L638): ``z_rides`` and ``floor`` at the given times ``t`` (s, any order) with heights
+    ``z`` there, not the trajectory row's held: a ride that ends after a time before the first row does not lift it,
+    one that ends before a time after the last row does. Judged among the trajectory's rows (``traj``'s ``t``, ``z``:
+    a walking climb's start height and L64's band read them), the given times' values returned."""
+    t, z = np.asarray(t, dtype=float), np.asarray(z, dtype=float)
+    rows = len(traj) if "t" in traj and "z" in traj else 0
+    at = np.r_[traj["t"].to_numpy(float) if rows else [], t]
+    order = np.argsort(at, kind="stable")  # a row before a given time at the same instant
+    zr, fl = floor_values(at[order], np.r_[traj["z"].to_numpy(float) if rows else [], z][order], result,
+                          storey_height_m)
+    back = np.empty(len(at), dtype=int)
+    back[order] = np.arange(len(at))
+    return zr[back][rows:], fl[back][rows:]
 
 
 def rides_altitude_phrase(summary: dict) -> str:

@@ -25,30 +25,42 @@ STEPS_REMOVED = "left out of the count (pass --keep-pedalling to count them)"
 STEPS_KEPT = "counted, as --keep-pedalling asks (--out's pedalling column marks them)"
 
 
-def pedalling_rows(session, table: pd.DataFrame, kept: bool = False) -> tuple[np.ndarray, int, str | None]:
+def pedalling_rows(session, table: pd.DataFrame, detections: pd.DataFrame | None = None,
+                   kept: bool = False, force: bool = False) -> tuple[np.ndarray, int, str | None]:
     """Decision L625: ``(rows, n_rest, line)``: (R,) bool, the rows of a foot detector's table (``start_s`` /
-    ``end_s``, one per pair of rests) whose stride L611 calls pedalling, each integrated by the default track's engine
-    (M3's ZUPT Kalman strides) on the foot IMU's own rests (a row spanning several rests is cut there, as track cuts
-    it: ``n_rest`` those rest-to-rest strides), and the one line naming the rows (None: none); ``kept``: the line
-    says they are counted (``--keep-pedalling``), else left out. L612's seated spans are the track's only (they need
-    W418's chair transfers)."""
-    from pdrlearn.displace import inertial_stance
+    ``end_s``, one per pair of rests) that make only strides L611 calls pedalling or L639 a ride, the strides
+    integrated by the default track's engine (M3's ZUPT Kalman strides) on the foot IMU's own rests (``force``: a
+    detector reading the force sensors, on track's checked force stance, L365, as steps 34 cuts; review R1 F1);
+    ``n_rest`` the rest-to-rest strides those rows make; the one line naming the strides (None: none); ``kept``: the
+    line says they are counted (``--keep-pedalling``), else left out. Review R1 F1: the strides are judged as
+    ``track`` judges them, made from the detector's whole table ``detections`` (before steps 34's one row per
+    stride; None: ``table``), and a row is dropped when all of its strides are (L641's
+    :func:`~pdrlearn.track.plasys.making_only`). L612's seated spans are the track's only (they need W418's chair
+    transfers)."""
     from pdrlearn.displace.foot import FootDisplacement
+    from pdrlearn.displace.force_check import checked_stance
     from pdrlearn.orient import unit_data
     from pdrlearn.track.foot_rest import foot_rest_gravity
-    from pdrlearn.track.plasys import METHODS
+    from pdrlearn.track.gaps import long_gaps
+    from pdrlearn.track.plasys import METHODS, long_ride_strides, making_only
 
     rows = np.zeros(len(table), dtype=bool)
-    if len(table) < 3:  # L611 judges a stride on its neighbours
+    detections = table if detections is None else detections
+    if len(detections) < 3 or not len(table):  # L611 judges a stride on its neighbours
         return rows, 0, None
     foot = unit_data(session, "foot", purpose="the pedalling check (decision L611)")
-    fd = FootDisplacement(**{k: METHODS["M3"][k] for k in ("integrator", "zupt_end", "gyro_bias", "attitude")}
-                          ).estimate(foot, table.reset_index(drop=True),
-                                     stance=inertial_stance(foot.acc, foot.gyr, foot.fs))
+    fd_kw = {k: METHODS["M3"][k] for k in ("integrator", "zupt_end", "gyro_bias", "attitude")}
+    stance = checked_stance(session, foot, use_force=force)[0]  # steps 52: a force detector's is track's
+    fd = FootDisplacement(**fd_kw).estimate(foot, detections.reset_index(drop=True), stance=stance)
     loop = pedal_loops(fd, foot, foot_rest_gravity(session))
-    if not loop.any():
+    ride, cap = long_ride_strides(fd, foot, long_gaps(session, ("fAccelerometer", "fGyroscope")))  # decision L639
+    if not (loop | ride).any():
         return rows, 0, None
-    rows[np.unique(np.asarray(fd.rows_)[loop])] = True
-    line = pedal_line(rows, np.zeros(len(rows), dtype=bool), table["start_s"].to_numpy(float),
-                      table["end_s"].to_numpy(float), removed=STEPS_KEPT if kept else STEPS_REMOVED)
-    return rows, int(loop.sum()), line
+    table = table.reset_index(drop=True)
+    rows[making_only(fd, fd_kw, foot, table, stance, loop | ride)] = True  # decision L641
+    if not rows.any():
+        return rows, 0, None
+    made = FootDisplacement(**fd_kw).stride_bounds(foot, table, stance=stance)[2]
+    line = pedal_line(loop, np.zeros(len(loop), dtype=bool), fd.start_s_, fd.end_s_, ride=ride, cap_s=cap,
+                      removed=STEPS_KEPT if kept else STEPS_REMOVED)
+    return rows, int(np.isin(made, np.flatnonzero(rows)).sum()), line
