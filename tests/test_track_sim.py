@@ -56,14 +56,15 @@ def test_stairs_altitude_and_m2_flat_rule(scen_d):
 
 
 def test_rules_follow_the_classes(scen_b):
-    """A stride labelled backward is negative; a clamp to a wrong class moves the length to its bound."""
+    """A stride labelled backward keeps the sign of its measured travel (decision L654, amending L65: the class no
+    longer sets it; here it walked forward); a clamp to a wrong class moves the length to its bound."""
     s = scen_b.copy()
     s.steps = s.steps.copy()
     s.steps.loc[s.steps.index[5], "direction"] = "backward"
     s.steps.loc[s.steps.index[6], "length_class"] = "short"
     res = track_plasys(s, method="M3", model="oracle", steps="labels")
     lo, hi = s.meta["length_class_bounds_m"]
-    assert res.steps["length_m"].iloc[5] < 0
+    assert res.steps["length_m"].iloc[5] > 0 and res.steps["direction"].iloc[5] == "backward"
     assert res.steps["length_m"].iloc[6] == pytest.approx(lo)
 
 
