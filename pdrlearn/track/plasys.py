@@ -1025,15 +1025,17 @@ def _no_strides_hint(session) -> str:
 
 
 def _without_pedalling(fd: FootDisplacement, fd_kw: dict, foot, strides: pd.DataFrame, stance: np.ndarray,
-                       transfers, g_rest: float, foot_gaps=None) -> tuple[FootDisplacement, pd.DataFrame, str | None]:
+                       transfers, g_rest: float, foot_gaps=None,
+                       session=None) -> tuple[FootDisplacement, pd.DataFrame, str | None]:
     """Decisions L611 / L612: the strides whose raw heights go up and down in a closed loop (cycling), or that lie in
     a span the lower-back unit's chair ``transfers`` call seated, are not walking: their detections are left out and the
     rest integrated again (nothing changes without them); ``g_rest``: the foot's rest reading (L621). Decision L639:
     so is a stride longer than ``RIDE_STRIDE_CAPS`` of the foot's stride cap (L605), with every detection inside it,
-    unless it overlaps one of ``foot_gaps`` (B11's 0 m row). Returns (fd, strides, warning line or None)."""
+    unless it overlaps one of ``foot_gaps`` (B11's 0 m row). ``session``: L611 stands down when its foot unit is not
+    on the foot (B134; L611's amendment, session 44, FM). Returns (fd, strides, warning line or None)."""
     from pdrlearn.track.pedalling import pedal_loops
 
-    loop = pedal_loops(fd, foot, g_rest)  # decision L611 (L625: shared with `pdrlearn steps`)
+    loop = pedal_loops(fd, foot, g_rest, session)  # decision L611 (L625: shared with `pdrlearn steps`)
     seated, seats = seated_strides(fd.start_s_, fd.end_s_, transfers)
     ride, cap = long_ride_strides(fd, foot, foot_gaps)  # decision L639
     if not (loop | seated | ride).any():
