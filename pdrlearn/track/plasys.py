@@ -1385,7 +1385,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     if transfers:
         add_trunk_transfers(trunk, session)
     fd, strides, pedal_warning = _without_pedalling(fd, fd_kw, foot, strides, stance, trunk.info.get("transfers"),
-                                                    foot_rest_gravity(session), foot_gaps)  # decisions L621, L639
+                                                    foot_rest_gravity(session), foot_gaps,
+                                                    session)  # decisions L621, L639; L611 amended (FM): B134
     if not len(strides):
         raise NoStridesError(f"{session.where}: no walking strides: {pedal_warning}{_no_strides_hint(session)}")
     fd_warnings = list(fd.warnings_) + ([pedal_warning] if pedal_warning else [])
