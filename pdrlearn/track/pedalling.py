@@ -10,27 +10,14 @@ import pandas as pd
 from pdrlearn.kernels.pedal import closed_loop_strides, pedal_line, unrested_strides
 
 
-def not_on_the_foot(session) -> bool:
-    """L611's amendment (session 44, FM): True when B134's check fires on the session's foot unit (it walks but never
-    swings like a foot, W415's side-shuffle drills excepted: :func:`~pdrlearn.track.foot_rest.foot_placement_line`,
-    the summary's own test): its "strides" are no foot's, so L611's rests and loops say nothing about pedalling."""
-    from pdrlearn.track.foot_rest import foot_placement_line, foot_rest_stats
-
-    return foot_placement_line(session, foot_rest_stats(session), "") is not None
-
-
-def pedal_loops(fd, foot, g_rest: float, session=None) -> np.ndarray:
+def pedal_loops(fd, foot, g_rest: float) -> np.ndarray:
     """Decision L611: (B,) bool over the strides of ``fd`` (a fitted
     :class:`~pdrlearn.displace.foot.FootDisplacement`) that go round a closed loop: their raw heights reverse, or
     they are unrested (:func:`~pdrlearn.kernels.pedal.closed_loop_strides`), on the foot unit ``foot``; ``g_rest``:
-    the foot's rest reading (L621). L611's amendment (session 44, FM): none when ``session``'s foot unit is not on
-    the foot (:func:`not_on_the_foot`, B134: its own line tells the user, and a waist's strides are all "unrested")."""
-    loop = closed_loop_strides(fd.disp_[:, 2], fd.start_s_, fd.end_s_,
+   the foot's rest reading (L621)."""
+    return closed_loop_strides(fd.disp_[:, 2], fd.start_s_, fd.end_s_,
                                unrested_strides(foot.t, foot.acc, fd.start_s_, fd.end_s_, g_rest),
                                np.hypot(fd.disp_[:, 0], fd.disp_[:, 1]))
-    if session is not None and loop.any() and not_on_the_foot(session):
-        return np.zeros(len(loop), dtype=bool)
-    return loop
 
 
 #: decision L625: what ``pdrlearn steps`` does with the pedalling rows, for the line
@@ -71,7 +58,7 @@ def pedalling_rows(session, table: pd.DataFrame, detections: pd.DataFrame | None
     fd_kw = {k: METHODS["M3"][k] for k in ("integrator", "zupt_end", "gyro_bias", "attitude")}
     stance = checked_stance(session, foot, use_force=force)[0]  # steps 52: a force detector's is track's
     fd = FootDisplacement(**fd_kw).estimate(foot, detections.reset_index(drop=True), stance=stance)
-    loop = pedal_loops(fd, foot, foot_rest_gravity(session), session)  # L611's amendment (FM): not on a foot, none
+    loop = pedal_loops(fd, foot, foot_rest_gravity(session))
     ride, cap = long_ride_strides(fd, foot, long_gaps(session, ("fAccelerometer", "fGyroscope")))  # decision L639
     if not (loop | ride).any():
         return rows, 0, None

@@ -1024,18 +1024,27 @@ def _no_strides_hint(session) -> str:
             "foot strides: track it with --units waist (decision B268)")
 
 
+def _placement_clause(session) -> str:
+    """B134's amendment (session 44, FM): when L611 / L612 / L639 leave no stride, B134's line ("is this unit on the
+    foot?") joins the NoStridesError if it fires: a unit that walks but never swings (waist data in the foot files) and
+    a crank alone both read as unrested loops and as B134's unit, so the refusal names both causes, B134's first
+    ("" when B134 does not fire)."""
+    from pdrlearn.track.foot_rest import foot_placement_line, foot_rest_stats
+
+    line = foot_placement_line(session, foot_rest_stats(session), "")
+    return f"{line}; or " if line else ""
+
+
 def _without_pedalling(fd: FootDisplacement, fd_kw: dict, foot, strides: pd.DataFrame, stance: np.ndarray,
-                       transfers, g_rest: float, foot_gaps=None,
-                       session=None) -> tuple[FootDisplacement, pd.DataFrame, str | None]:
+                       transfers, g_rest: float, foot_gaps=None) -> tuple[FootDisplacement, pd.DataFrame, str | None]:
     """Decisions L611 / L612: the strides whose raw heights go up and down in a closed loop (cycling), or that lie in
     a span the lower-back unit's chair ``transfers`` call seated, are not walking: their detections are left out and the
     rest integrated again (nothing changes without them); ``g_rest``: the foot's rest reading (L621). Decision L639:
     so is a stride longer than ``RIDE_STRIDE_CAPS`` of the foot's stride cap (L605), with every detection inside it,
-    unless it overlaps one of ``foot_gaps`` (B11's 0 m row). ``session``: L611 stands down when its foot unit is not
-    on the foot (B134; L611's amendment, session 44, FM). Returns (fd, strides, warning line or None)."""
+    unless it overlaps one of ``foot_gaps`` (B11's 0 m row). Returns (fd, strides, warning line or None)."""
     from pdrlearn.track.pedalling import pedal_loops
 
-    loop = pedal_loops(fd, foot, g_rest, session)  # decision L611 (L625: shared with `pdrlearn steps`)
+    loop = pedal_loops(fd, foot, g_rest)  # decision L611 (L625: shared with `pdrlearn steps`)
     seated, seats = seated_strides(fd.start_s_, fd.end_s_, transfers)
     ride, cap = long_ride_strides(fd, foot, foot_gaps)  # decision L639
     if not (loop | seated | ride).any():
@@ -1385,10 +1394,10 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     if transfers:
         add_trunk_transfers(trunk, session)
     fd, strides, pedal_warning = _without_pedalling(fd, fd_kw, foot, strides, stance, trunk.info.get("transfers"),
-                                                    foot_rest_gravity(session), foot_gaps,
-                                                    session)  # decisions L621, L639; L611 amended (FM): B134
+                                                    foot_rest_gravity(session), foot_gaps)  # decisions L621, L639
     if not len(strides):
-        raise NoStridesError(f"{session.where}: no walking strides: {pedal_warning}{_no_strides_hint(session)}")
+        raise NoStridesError(f"{session.where}: no walking strides: {_placement_clause(session)}{pedal_warning}"
+                             f"{_no_strides_hint(session)}")
     fd_warnings = list(fd.warnings_) + ([pedal_warning] if pedal_warning else [])
     raw_disp = disp = fd.disp_
     if len(fd.rows_) < len(strides):
