@@ -2126,8 +2126,9 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     pedal &= ~unjudged
     pedal_warning = pedal_line(pedal, np.zeros(len(pedal), dtype=bool), strides[:, 0], strides[:, 1])
     warnings += [pedal_warning] if pedal_warning else []
-    if (posture | pedal).all():  # as offline: no stride is left to track (B318's exit code 4)
-        raise NoStridesError(f"{session.where}: no walking strides: {pedal_warning}{_no_strides_hint(session)}")
+    if (posture | pedal).all():  # as offline: no stride is left to track (B318's exit code 4); B134 first (FM)
+        raise NoStridesError(f"{session.where}: no walking strides: {_placement_clause(session)}{pedal_warning}"
+                             f"{_no_strides_hint(session)}")
     skipped_posture, posture = posture, posture | pedal
     raw_disp, disp = disp, apply_level_gain(disp, gain)  # decision L26 (the runtime: E14)
     if (method == "M3" and use_bounds is not None and "length_class" in classes
