@@ -48,6 +48,13 @@ def test_waist_data_in_the_foot_files_is_warned_b134():
         s.streams[f] = Stream(f, s.streams[w].t, s.streams[w].values)
     for w in ("wAccelerometer", "wGyroscope"):
         del s.streams[w]
-    (line,) = _placement_warnings(s)
-    assert _placement_warnings(s, "looks like running") == []  # L95's guess gives way to B134's line
-    assert "no foot-flat rests found" in line and "pocket/waist/shank placements are not supported" in line
+    # B134 amended (session 44, FM): L611's unrested rule (with L640) calls every "stride" of a unit that never rests
+    # pedalling, as it calls a crank alone (which B134's test cannot tell from a waist), so the track stops with a
+    # NoStridesError; B134's line leads it, so the user still learns the foot files hold no foot's data
+    from pdrlearn.errors import NoStridesError
+
+    with pytest.raises(NoStridesError) as err:
+        get_pipeline("plasys")(s)
+    line = str(err.value).split("no walking strides: ", 1)[1]
+    assert line.startswith("no foot-flat rests found") and "pocket/waist/shank placements are not supported" in line
+    assert "decision B134); or not walking" in line and "looks like running" not in line

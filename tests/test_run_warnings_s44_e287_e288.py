@@ -44,7 +44,9 @@ def test_run_says_the_side_step_class_line_e287(side_walk, tmp_path):
     lat = run["data_latency_ms"]
     assert set(run["latency_ms_per_step"]) == {"p50", "p99"}
     assert lat["replay_chunk_s"] == 0.05 and lat["after_contact"] is None  # no --contacts
-    assert 150.0 < lat["after_stride_end"]["p50"] <= lat["after_stride_end"]["p95"] < 1500.0, lat
+    # p95 up to about 3 strides: a stride held for L611's verdict (E280, REACH = 3 since L640) comes later (the
+    # lead's merge: p50 370 / p95 1724 ms here, chunk 0.05 s)
+    assert 150.0 < lat["after_stride_end"]["p50"] <= lat["after_stride_end"]["p95"] < 3000.0, lat
 
 
 def test_bundle_manifest_trained_kinds_are_read_e287():

@@ -35,6 +35,7 @@ SCRIPT = textwrap.dedent("""
                 tr = Tracker(bundle, tasks=[task], methods={task: method + "/" + unit}, contacts=True,  # E49-E51
                              check_domain=True)  # decision E105: the out-of-domain scores, numpy only too
                 steps = tr.push({n: (z[n + "_t"], z[n + "_v"]) for n in names})
+                steps += tr.flush()  # decision E280: the strides held for L611's verdict (numpy only too)
                 n_ood += tr.domain_report() is not None
                 n_steps[f"{task} {method}/{unit}"] = len(steps)
                 n_ic += sum(st.event_s == st.event_s for st in steps)  # the contacts ran (decision E49)

@@ -14,7 +14,7 @@ def pedal_loops(fd, foot, g_rest: float) -> np.ndarray:
     """Decision L611: (B,) bool over the strides of ``fd`` (a fitted
     :class:`~pdrlearn.displace.foot.FootDisplacement`) that go round a closed loop: their raw heights reverse, or
     they are unrested (:func:`~pdrlearn.kernels.pedal.closed_loop_strides`), on the foot unit ``foot``; ``g_rest``:
-    the foot's rest reading (L621)."""
+   the foot's rest reading (L621)."""
     return closed_loop_strides(fd.disp_[:, 2], fd.start_s_, fd.end_s_,
                                unrested_strides(foot.t, foot.acc, fd.start_s_, fd.end_s_, g_rest),
                                np.hypot(fd.disp_[:, 0], fd.disp_[:, 1]))
@@ -23,6 +23,10 @@ def pedal_loops(fd, foot, g_rest: float) -> np.ndarray:
 #: decision L625: what ``pdrlearn steps`` does with the pedalling rows, for the line
 STEPS_REMOVED = "left out of the count (pass --keep-pedalling to count them)"
 STEPS_KEPT = "counted, as --keep-pedalling asks (--out's pedalling column marks them)"
+#: L625's amendment (session 44, FM): the line when the foot's axis frame is not known (counting needs none, C142)
+NO_FRAME = ("pedalling not checked (decision L625): the foot unit's axis frame is neither declared nor fixed by its "
+            "data, and a stride's height needs it; every stride is counted (declare meta.json \"frames\" for the "
+            "foot to leave a bike ride's strokes out)")
 
 
 def pedalling_rows(session, table: pd.DataFrame, detections: pd.DataFrame | None = None,
@@ -48,6 +52,8 @@ def pedalling_rows(session, table: pd.DataFrame, detections: pd.DataFrame | None
     detections = table if detections is None else detections
     if len(detections) < 3 or not len(table):  # L611 judges a stride on its neighbours
         return rows, 0, None
+    if not session.has_frame("foot"):  # L625's amendment (session 44, FM): the strides' heights need the foot's axes
+        return rows, 0, NO_FRAME
     foot = unit_data(session, "foot", purpose="the pedalling check (decision L611)")
     fd_kw = {k: METHODS["M3"][k] for k in ("integrator", "zupt_end", "gyro_bias", "attitude")}
     stance = checked_stance(session, foot, use_force=force)[0]  # steps 52: a force detector's is track's

@@ -1024,6 +1024,17 @@ def _no_strides_hint(session) -> str:
             "foot strides: track it with --units waist (decision B268)")
 
 
+def _placement_clause(session) -> str:
+    """B134's amendment (session 44, FM): when L611 / L612 / L639 leave no stride, B134's line ("is this unit on the
+    foot?") joins the NoStridesError if it fires: a unit that walks but never swings (waist data in the foot files) and
+    a crank alone both read as unrested loops and as B134's unit, so the refusal names both causes, B134's first
+    ("" when B134 does not fire)."""
+    from pdrlearn.track.foot_rest import foot_placement_line, foot_rest_stats
+
+    line = foot_placement_line(session, foot_rest_stats(session), "")
+    return f"{line}; or " if line else ""
+
+
 def _without_pedalling(fd: FootDisplacement, fd_kw: dict, foot, strides: pd.DataFrame, stance: np.ndarray,
                        transfers, g_rest: float, foot_gaps=None) -> tuple[FootDisplacement, pd.DataFrame, str | None]:
     """Decisions L611 / L612: the strides whose raw heights go up and down in a closed loop (cycling), or that lie in
@@ -1385,7 +1396,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     fd, strides, pedal_warning = _without_pedalling(fd, fd_kw, foot, strides, stance, trunk.info.get("transfers"),
                                                     foot_rest_gravity(session), foot_gaps)  # decisions L621, L639
     if not len(strides):
-        raise NoStridesError(f"{session.where}: no walking strides: {pedal_warning}{_no_strides_hint(session)}")
+        raise NoStridesError(f"{session.where}: no walking strides: {_placement_clause(session)}{pedal_warning}"
+                             f"{_no_strides_hint(session)}")
     fd_warnings = list(fd.warnings_) + ([pedal_warning] if pedal_warning else [])
     raw_disp = disp = fd.disp_
     if len(fd.rows_) < len(strides):
@@ -2114,8 +2126,9 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     pedal &= ~unjudged
     pedal_warning = pedal_line(pedal, np.zeros(len(pedal), dtype=bool), strides[:, 0], strides[:, 1])
     warnings += [pedal_warning] if pedal_warning else []
-    if (posture | pedal).all():  # as offline: no stride is left to track (B318's exit code 4)
-        raise NoStridesError(f"{session.where}: no walking strides: {pedal_warning}{_no_strides_hint(session)}")
+    if (posture | pedal).all():  # as offline: no stride is left to track (B318's exit code 4); B134 first (FM)
+        raise NoStridesError(f"{session.where}: no walking strides: {_placement_clause(session)}{pedal_warning}"
+                             f"{_no_strides_hint(session)}")
     skipped_posture, posture = posture, posture | pedal
     raw_disp, disp = disp, apply_level_gain(disp, gain)  # decision L26 (the runtime: E14)
     if (method == "M3" and use_bounds is not None and "length_class" in classes
