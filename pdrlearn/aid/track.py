@@ -17,7 +17,7 @@ from pdrlearn.aid.sporadic import SporadicFixFusion
 from pdrlearn.decision_refs import decision_ref
 from pdrlearn.errors import DataError
 from pdrlearn.io.session import Session
-from pdrlearn.kernels.fixes import FIX_TIME_HINT, initial_fix_sigma, sigma_from_accuracy
+from pdrlearn.kernels.fixes import FIX_TIME_HINT, initial_fix_sigma, sigma_from_accuracy, start_fixes
 from pdrlearn.track.base import TrackResult
 
 log = logging.getLogger(__name__)
@@ -161,15 +161,6 @@ def _load(path, session: Session, offset_s: float | None = None) -> tuple[FixLog
         "recording_start with a UTC offset, nor utc_start_s), so the first fix is taken at the session start; "
         "if the receiver's first fix came later, pass --gnss-time-offset S (its seconds after the session "
         "start) or write recording_start in meta.json (decision D38)"]
-
-
-def start_fixes(fix_t, session_start_s: float, first_step_s: float) -> np.ndarray:
-    """Decision D50: indices of the fixes (times ``fix_t``, session s) from the session start up to the track's first
-    stride (``first_step_s``, the trajectory's first row), which D14 / D38 meant as start fixes: the last of them
-    gives the track's start position (a foot track starts at its first stride, after the standstill, so a start fix
-    at t = 0 had been "outside the track's steps")."""
-    ft = np.asarray(fix_t, dtype=float)
-    return np.flatnonzero((ft >= session_start_s) & (ft <= first_step_s))
 
 
 def _file_stats(stats: dict) -> dict:

@@ -362,6 +362,16 @@ class StepFixState:
         self._seg_n, self._seg_sum = 0, np.zeros(2)
 
 
+def start_fixes(fix_t, session_start_s: float, first_step_s: float) -> np.ndarray:
+    """Decision D50: indices of the fixes (times ``fix_t``, session s) from the session start up to the track's first
+    stride (``first_step_s``, the trajectory's first row), which D14 / D38 meant as start fixes: the last of them
+    gives the track's start position (a foot track starts at its first stride, after the standstill, so a start fix
+    at t = 0 had been "outside the track's steps"). Shared by ``aid_track`` and the live trackers' :class:`LiveFixes`
+    (the live session start: the first pushed sample)."""
+    ft = np.asarray(fix_t, dtype=float)
+    return np.flatnonzero((ft >= session_start_s) & (ft <= first_step_s))
+
+
 class LiveFixes:
     """Position fixes for a live tracker (decisions D19-D21): :meth:`add` a fix as it arrives, :meth:`step` each
     step the tracker reports. Every fix is used at the step whose interval ``(previous step end, step end]`` holds
@@ -372,8 +382,10 @@ class LiveFixes:
     def __init__(self, cfg, *, start_xy=(0.0, 0.0), initial_sigma_m: float | None = None):
         self.cfg = cfg
         #: the track's start time (s): offline ``aid_track``'s ``t_start`` (the trajectory's first row); None: the
-        #: first step's start (a fix before it is outside the track)
+        #: first step's start (a fix before it is outside the track, or a start fix: D50)
         self.t_start: float | None = None
+        #: decision D50: the session start (s), the first pushed sample; None: no start fixes
+        self.t_first: float | None = None
         self._start = np.asarray(start_xy, float)
         self._sigma0 = cfg.initial_sigma_m if initial_sigma_m is None else float(initial_sigma_m)
         self.state: StepFixState | None = None
@@ -396,6 +408,18 @@ class LiveFixes:
             # decision E121: the live estimate reads no stretched rows, so the segment is kept as a few sums
             compact = self.cfg.yaw_feedback in ("chord", "last", None) and not self.cfg.scale_feedback
             self.state = StepFixState(self.cfg, self._start, self._sigma0, t0, segment=not compact)
+            # decision D50 (as aid_track): the fixes from the first pushed sample up to the track's start are start
+            # fixes, the last of them the start position with its own sigma, the earlier ones superseded
+            ft = np.array([f[0] for f in self._pending])
+            pre = [] if self.t_first is None or not len(ft) else start_fixes(ft, self.t_first, t0)
+            if len(pre):
+                order = pre[np.argsort(ft[pre], kind="stable")]  # as aid_track's table, sorted by t
+                _, xy0, sigma0 = self._pending[int(order[-1])]
+                self.state = StepFixState(self.cfg, xy0, sigma0, t0, segment=not compact)
+                self.used += 1
+                self.superseded += len(pre) - 1
+                drop = set(pre.tolist())
+                self._pending = [f for i, f in enumerate(self._pending) if i not in drop]
             outside = [f for f in self._pending if f[0] < t0]  # before the track: never used (D17)
             self._pending = [f for f in self._pending if f[0] >= t0]
             self.outside_before = len(outside)

@@ -123,6 +123,8 @@ class FixInput:
         """The step's fused position (x, y), or None while no fix has been used (the step keeps its PDR position,
         which the filter's estimate equals to rounding until then)."""
         n_rejected = len(self._fixes.rejected)
+        if self._fixes.state is None:  # decision D50: start fixes from the first pushed sample on, as track --fixes
+            self._fixes.t_first = self._pushed_from()
         xy, _ = self._fixes.step(start_s, end_s, length, heading)
         if len(self._fixes.rejected) > n_rejected:  # decision D31: each rejected fix named as it is rejected
             from pdrlearn.kernels.fixes import rejected_phrase
