@@ -313,7 +313,7 @@ def test_rest_boundary_windows_equal_training_side(trained_rest):
 
     s = trained_rest["test"]
     tr = Tracker(trained_rest["root"] / "bundle")
-    tr._trim = lambda: None  # keep the whole session buffered, to cut every step's window afterwards
+    tr._trim = lambda *a: None  # keep the whole session buffered, to cut every step's window afterwards
     assert tr.boundaries == "rest" and tr.bundle.manifest["features"]["boundaries"] == "rest"
     steps = replay(tr, s)
     table = pd.DataFrame({"start_s": [st.start_s for st in steps], "end_s": [st.end_s for st in steps]})
