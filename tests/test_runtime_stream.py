@@ -79,7 +79,7 @@ def _assert_levelled_close(tr: Tracker, steps, atol=1e-12):
 def test_push_time_levelling_streams_the_same_steps(bundle, chunk_s):
     s = synthetic_session(40, seed=11, turn_rad_per_step=0.05)
     inc = Tracker(bundle, buffer_s=1e9)
-    inc._trim = lambda: None  # keep the session to cut every window again afterwards
+    inc._trim = lambda *a: None  # keep the session to cut every window again afterwards
     got = _stream(inc, s, chunk_s)
     assert inc._foot is not None and inc._foot.ok
     _assert_same_steps(got, _stream(Tracker(bundle, incremental=False), s, chunk_s))
@@ -90,7 +90,7 @@ def test_running_product_reanchors_without_drift(bundle):
     """A small buffer forces the running product to restart many times; windows stay within 1e-12."""
     s = synthetic_session(40, seed=3)
     tr = Tracker(bundle, buffer_s=1e9)
-    tr._trim = lambda: None
+    tr._trim = lambda *a: None
     tr._foot = FootLevelling(tr.forward["foot"], capacity=8)  # grows to hold the session, re-anchoring each time
     got = _stream(tr, s, None)
     assert len(tr._foot) == len(s.streams["fAccelerometer"].t)
