@@ -242,6 +242,7 @@ def test_positions_at_holds_the_start_steps_a_floor_and_refuses_outside_l638():
     ("x\n1\n", "exactly one column t"),
     ("t\n1\nabc\n", "row 3 t 'abc' is not a finite"),
     ("t\n", "at least one row"),
+    ("", "cannot read it as a CSV"),  # an empty file
 ])
 def test_bad_times_file_is_one_line_before_tracking_l638(walk, capsys, text, said):
     bad = walk / "bad_times.csv"
@@ -249,6 +250,12 @@ def test_bad_times_file_is_one_line_before_tracking_l638(walk, capsys, text, sai
     assert main(["track", str(walk / "walk"), "--at-times", str(bad), "--out", str(walk / "bad_at")]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and err[0].startswith("error:") and said in err[0]
+
+
+def test_a_missing_times_file_is_one_line_l638(walk, capsys):
+    assert main(["track", str(walk / "walk"), "--at-times", str(walk / "nope.csv"), "--out", str(walk / "no_at")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "nope.csv: no such file" in err[0] and not (walk / "no_at").exists()
 
 
 def test_iso_times_need_a_recording_start_l638(walk, capsys):
