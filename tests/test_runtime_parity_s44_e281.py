@@ -8,39 +8,24 @@ waist's up axis from the stand on."""
 from __future__ import annotations
 
 import json
-import shutil
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from pdrlearn.cli import main
 from pdrlearn.errors import DataError
+from tests.test_stop_bias_s43_e272 import BIAS_RPS, walks  # noqa: F401 (the shared walk fixture)
 
 ROOT = Path(__file__).resolve().parents[1]
 SHIPPED = ROOT / "models" / "plasys-sim-default"
-BIAS_RPS = 0.01  # E272's test's bias (meta.json frames: waist y = up)
 
 
 @pytest.fixture(scope="module")
-def biased(tmp_path_factory):
-    root = tmp_path_factory.mktemp("e281")
-    clean = root / "clean"
-    assert main(["simulate", "--route", "straight:20, stand:25, straight:20, turn:90, straight:10", "-u", "12076",
-                 "--no-noise", "-o", str(clean)]) == 0
-    steps = np.genfromtxt(clean / "steps.csv", delimiter=",", names=True)
-    ends = np.sort(steps[steps.dtype.names[1]]) / 1000.0
-    stop_at = float(ends[np.argmax(np.diff(ends))])  # the last step before the stand
-    out = root / "biased"
-    shutil.copytree(clean, out)
-    lines = (out / "wGyroscope.csv").read_text().splitlines()
-    rows = [lines[0]]
-    for line in lines[1:]:
-        t, x, y, z = (float(v) for v in line.split(","))
-        rows.append(f"{t:.17g},{x:.17g},{y + (BIAS_RPS if t / 1000.0 >= stop_at else 0.0):.17g},{z:.17g}")
-    (out / "wGyroscope.csv").write_text("\n".join(rows) + "\n")
-    return out, stop_at
-
+def biased(walks):  # noqa: F811 (pytest passes the imported fixture)
+    """E272's walk (user 12076, a 25 s stand), its waist gyro biased after the stand: test_stop_bias_s43_e272's
+    fixture, shared."""
+    _, session, stop_at = walks
+    return session, stop_at
 
 def _replay(session, restart_at: float | None = None, strip=None):
     """The steps of ``pdrlearn run``'s replay (1 s chunks); with ``restart_at`` a new Tracker resumed from the old
