@@ -15,20 +15,11 @@ import numpy as np
 import pytest
 
 from pdrlearn.kernels.pedal import CHAIN_PAUSE_S, REACH, LiveLoops, closed_loop_strides
-from tests.sim_helpers import quiet_walk
-from tests.test_pedal_s43_l611 import _pedal  # L611's crank model (T3's splicer's)
+from tests import test_pedal_s43_l611
 
 ROOT = Path(__file__).resolve().parents[1]
+ride = test_pedal_s43_l611.ride  # L611's 40 rpm ride: its fixture, shared
 DIST_TOL_M = 1e-9  # the same strides, placed by the same arithmetic: rounding only
-
-
-@pytest.fixture(scope="module")
-def ride():
-    s = quiet_walk("stand:3, straight:8, stand:2, sit:40, stand:2, straight:8, stand:3", 12020, 12020, rate_hz=20.0)
-    tr = s.extras["transfers"]
-    a, b = float(tr["seated_s"].iloc[0]) + 5, float(tr["rise_s"].iloc[0]) - 5
-    _pedal(s, a, b, 40.0)
-    return s, a, b
 
 
 def _live(session, restart_at: float | None = None):
