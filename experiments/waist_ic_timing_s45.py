@@ -17,6 +17,8 @@ every contact of that side; (B) one constant, minus the simulator's mean error o
 added to every contact, judged on users 12745-12749 (seed 0) and on the real recordings.
 
     PYTHONPATH=$PWD .venv/bin/python experiments/waist_ic_timing_s45.py [--external datasets/external] [--candidates]
+
+Its printed output with ``--candidates`` is committed as experiments/results/waist_ic_timing_s45.txt.
 """
 
 from __future__ import annotations
@@ -211,7 +213,7 @@ def candidates_sim() -> tuple[float, pd.DataFrame]:
                 for label, st in (("none", steps), ("A per-user side offset", shifted(steps, off)),
                                   ("B simulator constant", shifted(steps, {"": constant_s}))):
                     e = contact_errors(*_contacts(st), s.extras["ics"])
-                    rows.append({"candidate": label, "user": u, "speed": sp, "length_m": length, "n": len(e),
+                    rows.append({"candidate": label, "user": u, "speed": sp, "length_m": length, "n_matched": len(e),
                                  "n_true": len(s.extras["ics"]), "n_det": len(st), "err": e.err_ms.to_list()})
     return constant_s, pd.DataFrame(rows)
 
@@ -230,8 +232,8 @@ def candidates(ext: Path) -> str:
     g = f1.groupby(["test", "candidate"])[["tp", "n_detected", "n_reference"]].sum()
     g["step_f1_pooled"] = (2 * g.tp / (g.n_detected + g.n_reference)).round(4)
     out.append(g.to_markdown() + "\n")
-    sim_f1 = sim.groupby("candidate")[["n", "n_det", "n_true"]].sum()
-    sim_f1["f1"] = (2 * sim_f1.n / (sim_f1.n_det + sim_f1.n_true)).round(4)
+    sim_f1 = sim.groupby("candidate")[["n_matched", "n_det", "n_true"]].sum()
+    sim_f1["f1"] = (2 * sim_f1.n_matched / (sim_f1.n_det + sim_f1.n_true)).round(4)
     out.append("Simulator, users 12745-12749 (seed 0 walks; A calibrated on a 30 m seed-1 walk):\n")
     out.append(_pool(sim, ["candidate"]).join(sim_f1).to_markdown() + "\n")
     out.append(_pool(sim, ["candidate", "speed"]).to_markdown() + "\n")
