@@ -6,7 +6,8 @@ at 1.5 Hz constant below it, measured against W510's rule (written and committed
     `bounce="pendulum"`, `rocker="smooth"`, 100 Hz, seed 0 (W504's walks), uncalibrated waist-pll with
     `pll_slow_follow`: distance error vs the nominal 8 m (W504's measure);
 (b) users 12740-12749, scenario A at `slow` and `normal`, 100 Hz, uncalibrated waist-pll: `distance_error_pct`;
-(c) the mobgap recordings, experiments/waist.py's external protocol for `waist-pll (A-HE)`: pooled median bout errors.
+(c) the mobgap recordings, experiments/waist.py's external protocol for `waist-pll (A-HE)`: pooled median bout errors;
+(d) read after the rule's measurement, not judged: the slow walkers calibrated on a 12 m walk of their own pace.
 
     PYTHONPATH=$PWD .venv/bin/python experiments/waist_pll_slow_end_s45.py [--external datasets/external]
 
@@ -65,12 +66,12 @@ def candidate(on: bool):
         sl_mod.frequency_lengths, lengths_mod.frequency_lengths = ORIGINAL, ORIGINAL
 
 
-def slow_walk(user: int, step_s: float):
+def slow_walk(user: int, step_s: float, *, seed: int = 0, metres: float = WALK_M):
     u = UserProfile.from_seed(user)
     f_len, f_time = SPEED_FACTORS["normal"]
     u = dataclasses.replace(u, step_length_m=0.3 / f_len, class_step_length_m=u.step_length_m,
                             step_time_s=step_s / f_time)
-    return simulate_path([Stand(3), Straight(WALK_M), Stand(3)], u, speed="normal", rate_hz=100.0, seed=0,
+    return simulate_path([Stand(3), Straight(metres), Stand(3)], u, speed="normal", rate_hz=100.0, seed=seed,
                          bounce="pendulum", rocker="smooth")
 
 
@@ -88,6 +89,25 @@ def part_a() -> pd.DataFrame:
                     f"err_{label}_pct": round(100 * (d - WALK_M) / WALK_M, 2),
                     f"median_step_{label}_m": round(float(walking["length_m"].median()), 4)}
         rows.append(row)
+    return pd.DataFrame(rows)
+
+
+def part_d() -> pd.DataFrame:
+    """Read after W510's measurement, not judged: each slow walker calibrated (`waist-pll`, `pll_slow_follow`) on a
+    12 m walk of its own at the same pace (seed 1) and tracked on part (a)'s walk (seed 0), today's line."""
+    from pdrlearn.waist.calibration import calibrate
+    from pdrlearn.waist.params import resolve_params
+
+    rows = []
+    for u, step_s in SLOW_WALKS:
+        cal, test = slow_walk(u, float(step_s), seed=1, metres=12.0), slow_walk(u, float(step_s))
+        base, _ = resolve_params(cal, None)
+        base.options = dict(FOLLOW["options"])
+        p = calibrate([cal], "waist-pll", distances=[12.0], params=base)
+        r = get_pipeline("waist-pll")(test, params=p)
+        d = float(r.steps["length_m"].sum())
+        rows.append({"user": u, "step_s": step_s, "contacts": len(r.steps), "a_walk": round(p.a_walk, 3),
+                     "b_walk": round(p.b_walk, 3), "err_pct": round(100 * (d - WALK_M) / WALK_M, 2)})
     return pd.DataFrame(rows)
 
 
@@ -137,6 +157,8 @@ def main(argv: list[str] | None = None) -> None:
               f"{g.err_after_pct.abs().median():.3f} %")
     rc = part_c(a.external)
     print("\n(c) mobgap, waist-pll (A-HE), pooled\n" + rc.to_markdown(index=False))
+    print("\n(d, read after the rule's measurement, not judged) calibrated on a 12 m walk at the same pace\n"
+          + part_d().to_markdown(index=False))
 
 
 if __name__ == "__main__":
