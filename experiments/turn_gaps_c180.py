@@ -5,8 +5,9 @@ C180 (rule in docs/decisions/cohort.md): fresh users 12720-12729, slow and asymm
 12720-12724 a 6MWT route (30 m corridor), 12725-12729 a 2MWT route (12 m corridor), 5 laps each with a 10 s stand at
 the cone after lap 2; cone turns ``turn:180`` (even users) or ``curve:180:0.5`` (odd). Tracked with ``track --units
 waist --corridor L`` (uncalibrated waist-pendulum); bouts today = :func:`detected_bouts` of the written steps.csv
-without turn gaps (L104 / L119 alone), C180 = the written bouts.csv. Truth: the simulator's contacts (ics.csv), the
-stand the longest gap between them.
+without turn gaps (L104 / L119 alone), C182 = the written bouts.csv (``--corridor``: the cone turns fill their
+gaps; session 45's first run, C180's general rule at 90 deg, wrote the same rows: every filled gap was a cone
+turn). Truth: the simulator's contacts (ics.csv), the stand the longest gap between them.
 
 C181 (ii) reads the same tracks' ``n_laps`` (truth 5) and turns.csv's ``carried``; (i) user 12731 on a 12 m
 corridor, 4 laps, a 20 s sit mid-lap 3 with a 180 deg swivel spliced into the seated yaw rate (L622's splice):
@@ -76,9 +77,9 @@ def overlaps(bouts: pd.DataFrame, stand: tuple[float, float]) -> bool:
 
 
 def c180(work: Path) -> None:
-    n2 = {"today": 0, "C180": 0}
-    stand_ok = {"today": 0, "C180": 0}
-    errs = {"today": [], "C180": []}
+    n2 = {"today": 0, "C182": 0}
+    stand_ok = {"today": 0, "C182": 0}
+    errs = {"today": [], "C182": []}
     laps_ok, carried_cones = 0, 0
     for u in USERS:
         r, length = route(u)
@@ -92,7 +93,7 @@ def c180(work: Path) -> None:
         ics_s = np.sort(pd.read_csv(sim / "ics.csv")["ic_ms"].to_numpy(float) / 1000.0)
         stand, _ = truth_bouts(ics_s)
         steps = pd.read_csv(out / "steps.csv")
-        tables = {"today": detected_bouts(steps), "C180": pd.read_csv(out / "bouts.csv")}
+        tables = {"today": detected_bouts(steps), "C182": pd.read_csv(out / "bouts.csv")}
         summary = json.loads((out / "summary.json").read_text())
         turns = pd.read_csv(out / "turns.csv")
         cones = turns[turns["angle_deg"].abs() >= 135]
@@ -106,10 +107,11 @@ def c180(work: Path) -> None:
             stand_ok[key] += not overlaps(t, stand)
             parts.append(f"{key} {len(t)} bouts (cadence error {' / '.join(f'{x:+.1f}' for x in e)} %)")
         say(f"user {u} ({r.split(', ')[1]}, {length:g} m): stand {stand[0]:.1f}-{stand[1]:.1f} s; " + "; ".join(parts)
-            + f"; n_laps {summary['n_laps']} (truth 5), cone turns {len(cones)}, carried "
+            + f"; n_laps {summary['n_laps']} (truth 5), walk_test_distance_m {summary['walk_test_distance_m']:.2f}, "
+              f"cone turns {len(cones)}, carried "
               f"{int(cones['carried'].astype(bool).sum())}; n_walking_bouts {summary['n_walking_bouts']}, n_pauses "
               f"{summary['n_pauses']}")
-    for key in ("today", "C180"):
+    for key in ("today", "C182"):
         e = np.abs(errs[key])
         say(f"C180 {key}: n_bouts == 2 on {n2[key]} of {len(USERS)}; the stand ends a bout on {stand_ok[key]} of "
             f"{len(USERS)}; bouts' median |cadence error| {np.median(e):.2f} % (n={len(e)}, max {e.max():.2f} %)")

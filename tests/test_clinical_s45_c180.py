@@ -1,7 +1,9 @@
-"""Decision C180 (session 45): a stepless turn inside a walk does not end its walking bout. A lower back sees no step
-in a slow turn on the spot (W331), so L104 / L119's pause rule split a slow walker's corridor test into one bout per
-lap; an interval a walker's (not carried) yaw-rate turn of >= 90 deg fills - no rest left beside the turn widened by
-a step interval, no chair transfer in it - is no pause under the default rule. mobgap's contact rule is unchanged."""
+"""Decisions C180 / C182 (session 45): a stepless turn inside a walk does not end its walking bout. A lower back sees
+no step in a slow turn on the spot (W331), so L104 / L119's pause rule split a slow walker's corridor test into one
+bout per lap. C180's mechanism: an interval a walker's (not carried) yaw-rate turn fills - no rest left beside the
+turn widened by a step interval, no chair transfer in it - is no break under the ``rhythm`` gap; at 90 deg it joined
+real daily-life walks INDIP keeps apart, so it is an option (``BoutRule.turn_fill_min_deg``); C182: ``--corridor``
+turns it on for the cone turns (135 deg). mobgap's contact rule and L104's n_walking_bouts are unchanged."""
 from __future__ import annotations
 
 import json
@@ -10,10 +12,10 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from pdrlearn.track.bouts import bout_rule, detected_bouts
+from pdrlearn.errors import DataError
+from pdrlearn.track.bouts import BoutRule, bout_rule, corridor_rule, detected_bouts
 from pdrlearn.track.clinical import clinical_summary, turn_filled
 from pdrlearn.track.turn_gaps import TURN_GAP_MIN_DEG, TurnGaps, filled_intervals
-
 from tests.test_clinical_s44_l647 import walk  # noqa: F401  (the L647 walk: two stepless cone turns, an 8 s stand)
 
 
@@ -75,12 +77,29 @@ def test_a_rest_beside_the_turn_still_ends_the_bout():
     assert len(detected_bouts(st, turn_gaps=TurnGaps.of({"yaw_turns": [TURN]}))) == 2
 
 
+def test_the_rule_carries_the_fill_angle_and_corridor_sets_the_cone_turn_c182():
+    assert BoutRule().turn_gaps({"yaw_turns": [TURN]}) is None  # off by default (C180's (d) failed)
+    assert len(BoutRule(turn_fill_min_deg=90.0).turn_gaps({"yaw_turns": [TURN]}).turns) == 1
+    cone = corridor_rule(None, 30.0)
+    assert cone.turn_fill_min_deg == 135.0 and cone.record()["turn_fill_min_deg"] == 135.0
+    assert len(cone.turn_gaps({"yaw_turns": [_yaw(21.2, 25.9, deg=120.0)]}).turns) == 0  # a corner: no cone turn
+    assert "turn_fill_min_deg" not in BoutRule().record()
+    assert corridor_rule(None, None) == BoutRule()  # no corridor: L104's rule as it was
+    mobgap = bout_rule(preset="mobgap")
+    assert corridor_rule(mobgap, 30.0) == mobgap and mobgap.turn_gaps({"yaw_turns": [TURN]}) is None
+    with pytest.raises(DataError, match="turn_fill_min_deg"):
+        BoutRule(turn_fill_min_deg=0.0)
+
+
 def test_the_l647_walk_reads_the_stand_as_the_only_break(walk):  # noqa: F811
-    """User 12442 (T1's P05 gait on a 12 m corridor): two stepless cone turns and an 8 s stand. Before C180: 4 bouts
-    (each cone turn split the walk); now 2, split at the stand; the summary's walking bouts and pauses agree."""
+    """User 12442 (T1's P05 gait, `track --corridor 12`): two stepless cone turns and an 8 s stand. Before C182: 4
+    bouts (each cone turn split the walk); now 2, split at the stand. L104's walking bouts and pauses are unchanged
+    (their fixed 1 s rule, as with --bout-break-s)."""
     bouts, turns = pd.read_csv(walk / "bouts.csv"), pd.read_csv(walk / "turns.csv")
     summary = json.loads((walk / "summary.json").read_text())
-    assert len(bouts) == 2 and summary["n_bouts"] == summary["n_walking_bouts"] == 2 and summary["n_pauses"] == 1
+    assert len(bouts) == 2 and summary["n_bouts"] == 2
+    assert summary["bout_definition"] == {"break_s": 1.0, "min_strides": 0, "gap": "rhythm", "turn_fill_min_deg": 135.0}
+    assert (summary["n_walking_bouts"], summary["n_pauses"]) == (4, 3)
     for _, t in turns.iterrows():  # each cone turn lies inside one bout
         assert ((bouts["start_s"] < t["start_s"]) & (bouts["end_s"] > t["end_s"])).sum() == 1
     assert (bouts["longest_contact_gap_s"] > 6.0).all()  # the turn's gap is in the bout, and said

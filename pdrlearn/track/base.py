@@ -55,11 +55,8 @@ class TrackResult:
         track's detected bouts, :func:`pdrlearn.track.bouts.detected_bouts`)."""
         from pdrlearn.track.bouts import detected_bouts
         from pdrlearn.track.clinical import turn_table
-        from pdrlearn.track.turn_gaps import TurnGaps
 
-        if bouts is None:  # decision C180: as bouts.csv, a walker's turn fills a lower back's pause
-            bouts = detected_bouts(self.steps, turn_gaps=TurnGaps.of(self.info))
-        return turn_table(self.steps, bouts,
+        return turn_table(self.steps, detected_bouts(self.steps) if bouts is None else bouts,
                           yaw_turns=self.info.get("yaw_turns"))
 
     def summary(self, session, *, pipeline: str | None = None) -> dict:

@@ -133,6 +133,10 @@ class BoutRule:
     #: decision W495: a lower-back bout (found and kept by the rule above) runs from its second contact to its
     #: last-but-one, its measures from the steps between (:func:`edge_trimmed`)
     trim_edges: bool = False
+    #: decisions C180 / C182: under the ``rhythm`` gap an interval a walker's yaw-rate turn of at least this |angle|
+    #: (deg) fills ends no bout (:mod:`pdrlearn.track.turn_gaps`); None: off (the default: C180's 90 deg failed on
+    #: real daily life, an option); ``--corridor`` sets L383's cone turn, 135 deg (C182, :func:`corridor_rule`)
+    turn_fill_min_deg: float | None = None
 
     def __post_init__(self):
         if not (np.isfinite(self.break_s) and self.break_s > 0):
@@ -143,13 +147,41 @@ class BoutRule:
                             "e.g. 4 (mobgap's Mobilise-D rule)")
         if self.gap not in GAP_KINDS:
             raise DataError(f"bout rule gap {self.gap!r}: give one of {', '.join(GAP_KINDS)}")
+        if self.turn_fill_min_deg is not None and not (np.isfinite(self.turn_fill_min_deg)
+                                                       and 0 < self.turn_fill_min_deg <= 360):
+            raise DataError(f"bout rule turn_fill_min_deg {self.turn_fill_min_deg!r}: give a turn angle in deg "
+                            "(0-360], e.g. 135 (a corridor's cone turn, decision C182), or None (off)")
 
     def record(self) -> dict:
-        """The definition as summary.json's ``bout_definition`` (``trim_edges`` only when on, W495)."""
+        """The definition as summary.json's ``bout_definition`` (``trim_edges`` only when on, W495;
+        ``turn_fill_min_deg`` only when set, C182)."""
         out = asdict(self)
         if not self.trim_edges:
             out.pop("trim_edges")
+        if self.turn_fill_min_deg is None:
+            out.pop("turn_fill_min_deg")
         return out
+
+    def turn_gaps(self, info: dict | None) -> TurnGaps | None:
+        """Decisions C180 / C182: the turns that fill a track's pauses under this rule (``info``: the track's, its
+        ``yaw_turns`` and ``transfers``); None when the rule fills none (off, or the ``contact`` gap)."""
+        if self.turn_fill_min_deg is None or self.gap != "rhythm":
+            return None
+        return TurnGaps.of(info, min_deg=self.turn_fill_min_deg)
+
+
+def corridor_rule(rule: BoutRule | None, corridor_m: float | None) -> BoutRule | None:
+    """Decision C182: with ``--corridor`` (``corridor_m`` given) the bout rule whose ``rhythm`` gap a cone turn
+    (L383's :data:`~pdrlearn.track.corridor.CONE_TURN_MIN_DEG`) fills; ``rule`` unchanged without a corridor, with
+    the ``contact`` gap (mobgap's literal rule) or with a fill angle given."""
+    from dataclasses import replace
+
+    from pdrlearn.track.corridor import CONE_TURN_MIN_DEG
+
+    rule = rule or BoutRule()
+    if corridor_m is None or rule.gap != "rhythm" or rule.turn_fill_min_deg is not None:
+        return rule
+    return replace(rule, turn_fill_min_deg=CONE_TURN_MIN_DEG)
 
 
 def bout_rule(break_s: float | None = None, min_strides: int | None = None, preset: str | None = None) -> BoutRule:
@@ -234,10 +266,12 @@ def session_leg_m(session) -> float | None:
 def track_bouts(result, session, rule: BoutRule | None = None) -> pd.DataFrame:
     """A written track's bouts.csv rows (track, run, the folder writer): :func:`detected_bouts` of ``result.steps``
     keyed by ``session`` (decision L165), each bout's walking range scaled to its leg (L195), the cadence withheld
-    where W476 withholds the track's step count (W480), a gap its walker's turn fills no break (C180)."""
+    where W476 withholds the track's step count (W480), a gap the walker's turn fills no break under a rule that
+    says so (C180 / C182: ``--corridor``)."""
+    rule = rule or BoutRule()
     return detected_bouts(result.steps, rule, **session_key(session), leg_m=session_leg_m(session),
                           withhold_cadence=bool(result.info.get("step_count_unusable")),
-                          turn_gaps=TurnGaps.of(result.info))
+                          turn_gaps=rule.turn_gaps(result.info))
 
 
 def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session: str | None = None,
@@ -281,7 +315,7 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
     (a lower-back track whose contacts W442 finds no step count, ``info["step_count_unusable"]``) leaves
     ``cadence_spm`` NaN, as summary.json's median cadence (W476), and the bouts' range is judged on the speed.
     Decision C180: ``turn_gaps`` (a lower-back track's :class:`~pdrlearn.track.turn_gaps.TurnGaps`,
-    ``TurnGaps.of(result.info)``): under the ``rhythm`` gap an interval a walker's turn fills ends no bout; the bout
+    ``rule.turn_gaps(result.info)``): under the ``rhythm`` gap an interval a walker's turn fills ends no bout; the bout
     keeps its time (duration, speed, ``longest_contact_gap_s``) but ``contact_span_s`` / ``n_step_intervals`` and so
     ``cadence_spm`` leave it out (its turning steps were not detected, W331)."""
     from pdrlearn.track.evaluate import travel_masks

@@ -203,8 +203,10 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
     scale = corridor_m / singles[-1][2] if singles else 1.0  # L383: the last single lap's corridor / tracked
     rows, known = [], [(lap_t0, 0.0)]  # known: (time, corridor distance) at each stretch's end
     a, b, m, _ = stretches[-1]
-    # decision L645: the final lap reached the cone; L660: not after an L517 short lap (the walk back to the chair)
-    if short is None and m * scale >= LAST_LAP_REACHED_FRAC * corridor_m:
+    # decision L645: the final lap reached the cone; L660: not after an L517 short lap (the walk back to the chair);
+    # C181: with the half cone turn it did not walk (a lap between two turns' middles holds two halves)
+    if short is None and (m + 0.5 * cone_turn_m(cone, t, d, lap_t0, lap_end)) * scale >= (
+            LAST_LAP_REACHED_FRAC * corridor_m):
         stretches[-1] = (a, b, m, 1)
     for i, (a, b, m, c) in enumerate(stretches, start=1):
         dist = c * corridor_m if c > 0 else min(m * scale, corridor_m)
@@ -238,6 +240,17 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
     out["walk_test_distance_per_minute_m"] = per_minute
     out["fatigue_index"] = per_minute[-1] / per_minute[0] if len(per_minute) >= 2 and per_minute[0] > 0 else None
     return laps, out, warnings
+
+
+def cone_turn_m(cone: pd.DataFrame, t: np.ndarray, d: np.ndarray, t0: float, t1: float) -> float:
+    """Decision C181: the median tracked metres (``d`` over times ``t``) inside the cone turns of ``cone`` (from its
+    ``start_s`` to its ``end_s``) whose middle lies in ``(t0, t1)``: the arc of a turn stepped round the cone, ~0 for
+    a turn on the spot; 0 without one."""
+    if not len(cone):
+        return 0.0
+    a, b = cone["start_s"].to_numpy(float), cone["end_s"].to_numpy(float)
+    inside = ((a + b) / 2 > t0) & ((a + b) / 2 < t1)
+    return float(np.median(np.interp(b[inside], t, d) - np.interp(a[inside], t, d))) if inside.any() else 0.0
 
 
 def clock_text(seconds: float) -> str:

@@ -680,11 +680,9 @@ def _basic(result: TrackResult, out: dict) -> None:
 
     out.update(gait_summary(result.steps))
     from pdrlearn.track.clinical import clinical_summary, leg_summary, turn_summary, turn_table, walked_turns
-    from pdrlearn.track.turn_gaps import TurnGaps
     from pdrlearn.waist.transfers import transfer_summary
 
-    # decision L104: pauses, walking bouts, turns, stride-time CV; C180: a walker's turn fills a lower back's pause
-    out.update(clinical_summary(result.steps, turn_gaps=TurnGaps.of(result.info)))
+    out.update(clinical_summary(result.steps))  # decision L104: pauses, walking bouts, turns, stride-time CV
     out.update(leg_summary(result.steps))  # decision W228: steps per leg, the lower back's step-time asymmetry
     # decision L200: each turn's duration, angle, peak rate (L210: a lower-back track's yaw-rate turns)
     table = turn_table(result.steps, yaw_turns=result.info.get("yaw_turns"))
@@ -1517,8 +1515,7 @@ def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts
 
 def _evaluate_track(result: TrackResult, session: Session | None, *, bouts, bout_table, storey_height_m) -> dict:
     """:func:`evaluate_track`'s metrics, taken in the incline scope it opened."""
-    from pdrlearn.track.bouts import bouts_summary
-    from pdrlearn.track.turn_gaps import TurnGaps
+    from pdrlearn.track.bouts import BoutRule, bouts_summary
 
     if not (np.isfinite(storey_height_m) and storey_height_m > 0):
         raise ValueError(f"storey height {storey_height_m!r} m: give a positive number of metres (e.g. 3.0)")
@@ -1564,7 +1561,7 @@ def _evaluate_track(result: TrackResult, session: Session | None, *, bouts, bout
             result.info["warnings"] = [*result.info.get("warnings", []), line]
     # decision L124: bouts.csv's rows and their definition; L195: the bouts above the (leg-scaled) walking range
     out.update(bouts_summary(result.steps, bouts, bout_table, leg_m=out.get("leg_length_m"),
-                             turn_gaps=TurnGaps.of(result.info)))  # decision C180
+                             turn_gaps=(bouts or BoutRule()).turn_gaps(result.info)))  # decisions C180 / C182
     if session is not None:  # decision W493: the detected bouts against the reference WBs (wb_scores.csv)
         _wb_scores(result, session, bouts, bout_table, out)
     if "pos_sigma_m" in result.trajectory and len(result.trajectory):  # decision L128: position uncertainty
@@ -1581,7 +1578,6 @@ def _wb_scores(result: TrackResult, session: Session, bouts, bout_table, out: di
     recall / F1 and the per-WB DMO errors in the summary. Nothing without reference WBs."""
     from pdrlearn.steps.reference_clock import waist_clock_labels
     from pdrlearn.track.bouts import BoutRule, detected_bouts
-    from pdrlearn.track.turn_gaps import TurnGaps
     from pdrlearn.track.wb_scores import outside_spans, wb_evaluation
     from pdrlearn.waist.evaluate import reference_wbs
 
@@ -1589,8 +1585,9 @@ def _wb_scores(result: TrackResult, session: Session, bouts, bout_table, out: di
     if ref is None:
         return
     if bout_table is None:
-        bout_table = detected_bouts(result.steps, bouts or BoutRule(), leg_m=out.get("leg_length_m"),
-                                    turn_gaps=TurnGaps.of(result.info))  # decision C180, as bouts.csv
+        rule = bouts or BoutRule()
+        bout_table = detected_bouts(result.steps, rule, leg_m=out.get("leg_length_m"),
+                                    turn_gaps=rule.turn_gaps(result.info))  # decisions C180 / C182, as bouts.csv
     # decision W499: a --window drops the reference WBs it cuts; the detected bouts of those walks are left out too
     table, keys = wb_evaluation(outside_spans(bout_table, result.info.get("window_cut_wbs")), ref)
     result.info["wb_scores"] = table.to_dict("records")

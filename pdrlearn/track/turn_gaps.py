@@ -1,7 +1,8 @@
 """Row-to-row intervals a walker's turn fills (decision C180, docs/decisions/cohort.md): no pause, no bout break.
 
 A lower back sees no step in a slow turn on the spot (W331), so L104 / L119's pause rule reads a slow walker's cone
-turn as a pause and splits a 6MWT into one walking bout per lap. Decision C180: an interval that is a pause is none
+turn as a pause and splits a 6MWT into one walking bout per lap. Decision C180 (an option of the bout rule,
+``BoutRule.turn_fill_min_deg``; C182: on by ``--corridor`` for the cone turns): an interval that is a pause is none
 when a turn fills it - a yaw-rate turn (a lower-back track's ``info["yaw_turns"]``, L210) of at least
 :data:`TURN_GAP_MIN_DEG` that is not ``carried`` (W488 / L622) overlaps it, the interval outside those turns (each
 widened by one step interval, L647's turning time) leaves less than the pause's break (no rest), and no chair
@@ -38,13 +39,14 @@ class TurnGaps:
     sits: np.ndarray
 
     @classmethod
-    def of(cls, info: dict | None) -> TurnGaps | None:
-        """A track's turn gaps from its ``info`` (``yaw_turns``, ``transfers``); None without yaw-rate turns (a foot
-        track, or no info): no interval is filled."""
+    def of(cls, info: dict | None, min_deg: float = TURN_GAP_MIN_DEG) -> TurnGaps | None:
+        """A track's turn gaps from its ``info`` (``yaw_turns``, ``transfers``), the turns of at least ``min_deg``
+        (C180's 90 deg; C182: a corridor's cone turns, 135); None without yaw-rate turns (a foot track, or no info):
+        no interval is filled."""
         if not info or info.get("yaw_turns") is None:
             return None
         turns = _spans(info["yaw_turns"], lambda r: r.get(CARRIED) is not True
-                       and abs(float(r.get("angle_deg") or 0.0)) >= TURN_GAP_MIN_DEG)
+                       and abs(float(r.get("angle_deg") or 0.0)) >= min_deg)
         return cls(turns=turns[np.argsort(turns[:, 0])], sits=_spans(info.get("transfers")))
 
 
