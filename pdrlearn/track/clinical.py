@@ -1274,8 +1274,9 @@ def clinical_summary(steps: pd.DataFrame, *, contact_scatter_max_s: float | None
     ``stride_time_cv_withheld`` says why - ``{"cause", "reason", ...}``, ``cause`` one of
     :data:`CV_WITHHELD_CAUSES` (too few strides: ``n_cv_strides``, ``needed``, and L215's ``n_straight_strides`` /
     ``n_not_level``, the straight strides and those L188's level criterion drops). Decision C180: ``turn_gaps``
-    (a lower-back track's :class:`~pdrlearn.track.turn_gaps.TurnGaps`): an interval a walker's turn fills is no
-    pause (the pauses and walking bouts as bouts.csv's)."""
+    (a lower-back track's :class:`~pdrlearn.track.turn_gaps.TurnGaps`, an option: ``track`` passes none, so L104's
+    pauses and walking bouts keep the fixed 1 s rule; C182's corridor fill is bouts.csv's): an interval a walker's
+    turn fills is no pause."""
     limit = CONTACT_SCATTER_MAX_S if contact_scatter_max_s is None else float(contact_scatter_max_s)
     out: dict = {"n_pauses": 0, "pause_time_s": 0.0, "longest_pause_s": None, "n_walking_bouts": 0,
                  "turn_count": 0, "turn_count_min_deg": TURN_COUNT_MIN_DEG, "stride_time_cv_pct": None,
