@@ -27,6 +27,7 @@ import numpy as np
 import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+import _results as R  # noqa: E402  (the shared options and tables, E294)
 import waist as W  # noqa: E402
 import waist_calibration_speed as CS  # noqa: E402  (W211's walkways)
 import waist_pivot_steps as PV  # noqa: E402  (W150's protocol: its _track and turning route)
@@ -150,8 +151,7 @@ def simulated(users: list[int], csv: Path | None = None) -> pd.DataFrame:
 
 
 def sim_table(sim: pd.DataFrame) -> None:
-    g = sim.assign(a=sim.dist_err_pct.abs()).groupby(["scenario", "config"]).a.median().unstack("config")
-    g["change"] = g[_candidate()] - g["defaults"]
+    g = R.change_table(sim, _candidate())
     print(f"\n(e) simulated users {sim.user.min()}-{sim.user.max()} ({sim.user.nunique()}), {PIPELINE} calibrated: "
           "median |distance error| (%):")
     print(g.round(3).to_string())
@@ -159,11 +159,7 @@ def sim_table(sim: pd.DataFrame) -> None:
 
 def main() -> None:
     ap = argparse.ArgumentParser()
-    ap.add_argument("--external", type=Path, default=W.ROOT / "datasets" / "external")
-    ap.add_argument("--users", default="5860-5919")
-    ap.add_argument("--no-sim", action="store_true")
-    ap.add_argument("--no-real", action="store_true")
-    ap.add_argument("--csv", type=Path, default=None, help="write the simulated rows here after each user")
+    R.add_sim_real(ap, "5860-5919", W.ROOT / "datasets" / "external")
     ap.add_argument("--from-csv", type=Path, default=None, help="print (e) from rows written by --csv")
     ap.add_argument("--candidate", choices=sorted(CANDIDATES), default="law",
                     help="law: W240's cadence_law true; steady: W261's cadence_law \"steady\"")
@@ -178,8 +174,7 @@ def main() -> None:
     if args.from_csv is not None:
         sim_table(pd.read_csv(args.from_csv))
     elif not args.no_sim:
-        a, b = (int(x) for x in args.users.split("-"))
-        sim_table(simulated(list(range(a, b + 1)), args.csv))
+        sim_table(simulated(list(R.user_range(args.users)), args.csv))
 
 
 if __name__ == "__main__":

@@ -25,6 +25,7 @@ import numpy as np
 import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+import _results as R  # noqa: E402  (the shared options and tables, E294)
 import waist as W  # noqa: E402
 
 from pdrlearn.io import read_session  # noqa: E402
@@ -119,8 +120,7 @@ def simulated(users: list[int], csv: Path | None = None) -> pd.DataFrame:
 
 
 def sim_table(sim: pd.DataFrame) -> None:
-    g = sim.assign(a=sim.dist_err_pct.abs()).groupby(["scenario", "config"]).a.median().unstack("config")
-    g["change"] = g["pivot_steps"] - g["defaults"]
+    g = R.change_table(sim, "pivot_steps")
     n = sim.user.nunique()
     print(f"\n(d) simulated users {sim.user.min()}-{sim.user.max()} ({n}), waist-pendulum calibrated: median "
           "|distance error| (%):")
@@ -129,11 +129,7 @@ def sim_table(sim: pd.DataFrame) -> None:
 
 def main() -> None:
     ap = argparse.ArgumentParser()
-    ap.add_argument("--external", type=Path, default=W.ROOT / "datasets" / "external")
-    ap.add_argument("--users", default="2760-2819")
-    ap.add_argument("--no-sim", action="store_true")
-    ap.add_argument("--no-real", action="store_true")
-    ap.add_argument("--csv", type=Path, default=None, help="write the simulated rows here after each user")
+    R.add_sim_real(ap, "2760-2819", W.ROOT / "datasets" / "external")
     args = ap.parse_args()
     logging.basicConfig(level=logging.ERROR)
     pd.set_option("display.width", 220)
@@ -141,8 +137,7 @@ def main() -> None:
         real_tables(real(args.external))
         demo(args.external)
     if not args.no_sim:
-        a, b = (int(x) for x in args.users.split("-"))
-        sim_table(simulated(list(range(a, b + 1)), args.csv))
+        sim_table(simulated(list(R.user_range(args.users)), args.csv))
 
 
 if __name__ == "__main__":
