@@ -32,10 +32,8 @@ import waist as W  # noqa: E402
 import waist_calibration_speed as CS  # noqa: E402  (W211's walkways)
 import waist_pivot_steps as PV  # noqa: E402  (W150's protocol: its _track and turning route)
 
-from pdrlearn.io import read_session  # noqa: E402
 from pdrlearn.track import get_pipeline  # noqa: E402
 from pdrlearn.waist.calibration import calibrate  # noqa: E402
-from pdrlearn.waist.evaluate import distance_metrics  # noqa: E402
 from pdrlearn.waist.params import WaistParams, resolve_params  # noqa: E402
 from pdrlearn.waist.steplength import steady_steps  # noqa: E402
 
@@ -62,29 +60,16 @@ def _gate_counts(res) -> dict:
 
 
 def real(ext: Path) -> pd.DataFrame:
-    """One row per (config, run, calibrated?, bout) with the bout's errors."""
-    runs = W.external_runs(ext)
-    cache: dict[str, object] = {}
-
-    def sess(n):
-        if n not in cache:
-            cache[n] = read_session(ext / n)
-        return cache[n]
-
+    """One row per (config, run, calibrated?, bout) with the bout's errors (W150's protocol, PV.tracked_runs)."""
     rows = []
-    for label, opts in CONFIGS.items():
-        for cal_names, name in runs:
-            test = sess(name)
-            for calibrated in (True, False) if "_Test11_" in name else (True,):
-                res = PV._track(PIPELINE, opts, test, [sess(c) for c in cal_names] if calibrated else None)
-                d = distance_metrics(res.steps, test)
-                gate = _gate_counts(res)
-                for b in d["bouts"]:
-                    rows.append({"config": label, "subject": name.split("_")[1], "test": name,
-                                 "cal": "+".join(cal_names), "calibrated": calibrated,
-                                 "run_error_pct": d["distance_error_pct"], "err_L": b["error_pct"],
-                                 "err_strides": b.get("error_strides_pct", np.nan), "bout_s": b.get("start_s"),
-                                 **gate})
+    for _, label, cal_names, name, calibrated, res, d in PV.tracked_runs(ext, (PIPELINE,), CONFIGS):
+        gate = _gate_counts(res)
+        for b in d["bouts"]:
+            rows.append({"config": label, "subject": name.split("_")[1], "test": name,
+                         "cal": "+".join(cal_names), "calibrated": calibrated,
+                         "run_error_pct": d["distance_error_pct"], "err_L": b["error_pct"],
+                         "err_strides": b.get("error_strides_pct", np.nan), "bout_s": b.get("start_s"),
+                         **gate})
     return pd.DataFrame(rows)
 
 

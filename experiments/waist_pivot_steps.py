@@ -48,8 +48,10 @@ def _track(pipeline: str, opts: dict, test, cal=None, distances=None):
     return get_pipeline(pipeline)(test, params=params, **opts)
 
 
-def real(ext: Path) -> pd.DataFrame:
-    """One row per (pipeline, config, run, calibrated?) with its bouts' errors."""
+def tracked_runs(ext: Path, pipelines, configs: dict):
+    """W150's real protocol (experiments/waist.py's runs of ``ext``): per pipeline, config (label, options), run and
+    calibration (a Test11 run calibrated on its subject's Test5 walks and not; a Test5 run on the other trial),
+    ``(pipeline, label, cal_names, name, calibrated, result, distance_metrics)``; each recording read once."""
     runs = W.external_runs(ext)
     cache: dict[str, object] = {}
 
@@ -58,18 +60,23 @@ def real(ext: Path) -> pd.DataFrame:
             cache[n] = read_session(ext / n)
         return cache[n]
 
-    rows = []
-    for pipeline in PIPELINES:
-        for label, opts in CONFIGS.items():
+    for pipeline in pipelines:
+        for label, opts in configs.items():
             for cal_names, name in runs:
                 test = sess(name)
                 for calibrated in (True, False) if "_Test11_" in name else (True,):
                     res = _track(pipeline, opts, test, [sess(c) for c in cal_names] if calibrated else None)
-                    d = distance_metrics(res.steps, test)
-                    for b in d["bouts"]:
-                        rows.append({"pipeline": pipeline, "config": label, "test": name, "cal": "+".join(cal_names),
-                                     "calibrated": calibrated, "run_error_pct": d["distance_error_pct"],
-                                     "err_L": b["error_pct"], "err_strides": b.get("error_strides_pct", np.nan)})
+                    yield pipeline, label, cal_names, name, calibrated, res, distance_metrics(res.steps, test)
+
+
+def real(ext: Path) -> pd.DataFrame:
+    """One row per (pipeline, config, run, calibrated?) with its bouts' errors."""
+    rows = []
+    for pipeline, label, cal_names, name, calibrated, _, d in tracked_runs(ext, PIPELINES, CONFIGS):
+        for b in d["bouts"]:
+            rows.append({"pipeline": pipeline, "config": label, "test": name, "cal": "+".join(cal_names),
+                         "calibrated": calibrated, "run_error_pct": d["distance_error_pct"],
+                         "err_L": b["error_pct"], "err_strides": b.get("error_strides_pct", np.nan)})
     return pd.DataFrame(rows)
 
 
