@@ -675,8 +675,8 @@ def gait_line(summary: dict, streamed: bool | None = None) -> str:
             # decision L204: the streamed strides' cadence needs their initial contacts (E51's option)
             + ("; no cadence or stride time: the streamed strides have no initial contact without --contacts "
                "(decisions E51, L204)" if cad is None and streamed else "")
-            + (NO_STANCE_CLAUSE + force_toe_off_note(summary) if no_toe_off(summary) else stance_clause(summary))
-            + asymmetry_clause(summary))
+            + asymmetry_clause(summary)  # decision L671, before the stance clause (whose hints close the line)
+            + (NO_STANCE_CLAUSE + force_toe_off_note(summary) if no_toe_off(summary) else stance_clause(summary)))
 
 
 #: decision L671: an index under this many standard errors (L490's) is within noise: its two-sided 95 % interval

@@ -228,7 +228,8 @@ def side_keys(res: dict, session) -> dict:
     from pdrlearn.track.bilateral import session_foot
 
     out = {"step_time_asymmetry_se_points": float(res["standard_error_points"])}
-    side = session_foot(session.meta if isinstance(session.meta, dict) else {})
+    meta = getattr(session, "meta", None)
+    side = session_foot(meta if isinstance(meta, dict) else {})
     if side is not None:
         other = "left" if side == "right" else "right"
         out[f"step_time_s_{side}"] = float(res["step_time_s_instrumented"])
