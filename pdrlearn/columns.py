@@ -336,11 +336,16 @@ SESSIONS: tuple[Column, ...] = (
     ("step_time_asymmetry_raw_pct", "%", "number", "lower back: that index however small; under 20 % no finding "
                                                    "either way (symmetric simulated walkers read up to 18.8 %, L121)"),
     ("step_time_asymmetry_reason", _ID, "text", "why step_time_asymmetry_pct is given or empty (L121, L216, W228)"),
+    ("step_time_asymmetry_se_points", "points", "number", "a foot track with the lower-back unit too: the standard "
+                                                          "error of step_time_asymmetry_pct (L490); an index under "
+                                                          "1.96 x it is within noise (L671); empty otherwise"),
     ("step_time_s_left", "s", "number", "lower back: mean step time onto the left foot (the step ending at a left "
-                                        "contact, W129's side; as gait's step_time_s_left; W250); empty on a foot "
-                                        "track"),
-    ("step_time_s_right", "s", "number", "lower back: mean step time onto the right foot (W250); empty on a foot "
-                                         "track"),
+                                        "contact, W129's side; as gait's step_time_s_left; W250; turning steps "
+                                        "and steps over 1.5 median steps left out, W512); a foot track with the "
+                                        "lower-back unit too and meta.json's foot: L416's step onto the left foot "
+                                        "(L671); else empty on a foot track"),
+    ("step_time_s_right", "s", "number", "lower back: mean step time onto the right foot (W250, W512); a foot track "
+                                         "with the lower-back unit too: as step_time_s_left (L671)"),
     ("step_time_s_ratio", "ratio", "number", "lower back: step_time_s_left / step_time_s_right, > 1 the left steps "
                                              "longer (gait's ratio L/R; W250); no finding where "
                                              "step_time_asymmetry_pct is empty"),

@@ -675,7 +675,28 @@ def gait_line(summary: dict, streamed: bool | None = None) -> str:
             # decision L204: the streamed strides' cadence needs their initial contacts (E51's option)
             + ("; no cadence or stride time: the streamed strides have no initial contact without --contacts "
                "(decisions E51, L204)" if cad is None and streamed else "")
+            + asymmetry_clause(summary)  # decision L671, before the stance clause (whose hints close the line)
             + (NO_STANCE_CLAUSE + force_toe_off_note(summary) if no_toe_off(summary) else stance_clause(summary)))
+
+
+#: decision L671: an index under this many standard errors (L490's) is within noise: its two-sided 95 % interval
+#: reaches 0 (the normal quantile)
+WITHIN_NOISE_SE = 1.96
+
+
+def asymmetry_clause(summary: dict) -> str:
+    """Decision L671: what the gait line adds when the summary gives ``step_time_asymmetry_pct``: the index, with
+    its standard error (a foot track with the lower-back unit too, L490) and "within noise" under
+    :data:`WITHIN_NOISE_SE` of them, or, from the lower back alone, that its size is misread (L121); "" without."""
+    pct = summary.get("step_time_asymmetry_pct")
+    if pct is None:
+        return ""
+    se = summary.get("step_time_asymmetry_se_points")
+    if se is not None:
+        noise = ", within noise" if pct < WITHIN_NOISE_SE * se else ""
+        return f"; step-time asymmetry {pct:.1f} % (standard error {se:.1f} points{noise}; decisions L416, L671)"
+    return (f"; step-time asymmetry {pct:.1f} % (the lower back alone misreads its size: summary.json "
+            "step_time_asymmetry_reason; decisions L121, L671)")
 
 
 def stance_clause(summary: dict) -> str:

@@ -129,9 +129,9 @@ def window_offsets(f: np.ndarray, w: np.ndarray, *, window_s: float, max_offset_
         if fw.size < MIN_WINDOW_EVENTS:
             continue
         tc = float(fw.mean())
-        if not o_acc:  # the recording's start: the units were started together (the old rule)
+        if not o_acc:  # the recording's start: the units were started together (the old rule; L670's twin)
             heads = _grid_heads(fw, w, 0.0, max_offset_s, step_s, tolerance_s)
-            o = float(heads[np.argmin(np.abs(heads))])
+            o = toward_zero(fw, w, float(heads[np.argmin(np.abs(heads))]), step_s, tolerance_s)
         else:
             lo, dr, ref = _line(np.array(t_acc), np.array(o_acc), np.array(n_acc), fit_drift, min_span_s)
             pred = lo + dr * (tc - ref)
@@ -146,6 +146,34 @@ def window_offsets(f: np.ndarray, w: np.ndarray, *, window_s: float, max_offset_
     line = _line(np.array(t_acc), np.array(o_acc), np.array(n_acc), fit_drift, min_span_s) if t_acc else None
     return {"t": np.array(t_acc), "offset": np.array(o_acc), "n": np.array(n_acc), "inconsistent": bad,
             "line": line}
+
+
+#: decision L670: a step twin's local optimum is searched over the twin +- this (s): the waist's step period is a
+#: median, so the optimum one period away lies within a few grid steps of it
+TWIN_SEARCH_S = 0.1
+
+
+def toward_zero(f: np.ndarray, w: np.ndarray, o: float, step_s: float, tolerance_s: float) -> float:
+    """Decision L670: ``o`` (the candidate closest to 0 of :func:`_grid_heads`) or, while its step twin one waist
+    step period toward and past 0 (:func:`step_twin`) is closer to 0 and locks, that twin: its local optimum over
+    :data:`TWIN_SEARCH_S`, refined as the estimate is (no drift), matching at least :data:`MIN_LOCK_PAIRS` and
+    :data:`MIN_MATCHED_FRACTION` of the foot events ``f`` with a residual SD of at most
+    :data:`LOCK_MAX_RESIDUAL_SD_S` (L183 / L446's bars for applying an estimate). A walk's periodic steps cannot
+    tell the two apart (E228), so L161's prior, the units started together, decides."""
+    period = step_period(w)
+    while np.isfinite(period):
+        twin = step_twin(o, period)
+        if not abs(twin) < abs(o):
+            break
+        heads = _grid_heads(f, w, twin, TWIN_SEARCH_S, step_s, tolerance_s)
+        cand = float(heads[np.argmin(np.abs(heads - twin))])
+        c, _, _, pf, pw = _refine(f, w, cand, 0.0, float(f[0]), tolerance_s, False, np.inf)
+        sd = float(np.std(pw - pf - c)) if pf.size > 1 else float("nan")
+        if not (pf.size >= max(MIN_LOCK_PAIRS, MIN_MATCHED_FRACTION * f.size) and sd <= LOCK_MAX_RESIDUAL_SD_S
+                and abs(cand) < abs(o)):
+            break
+        o = cand
+    return o
 
 
 def step_period(w: np.ndarray) -> float:
@@ -201,9 +229,9 @@ def align_events(foot_times, waist_times, *, max_offset_s: float = 2.0, step_s: 
                               tolerance_s=tolerance_s, fit_drift=fit_drift, min_span_s=min_span_s)
     if window_s is not None and wins is not None and wins["line"] is not None:
         o, drift, ref = wins["line"]
-    else:  # one window: the offset closest to 0 of the most matches (ties -> the smallest mean distance)
+    else:  # one window: the offset closest to 0 of the most matches (ties -> the smallest mean distance; L670)
         heads = _grid_heads(f, w, 0.0, max_offset_s, step_s, tolerance_s)
-        o, drift, ref = float(heads[np.argmin(np.abs(heads))]), 0.0, float(f[0])
+        o, drift, ref = toward_zero(f, w, float(heads[np.argmin(np.abs(heads))]), step_s, tolerance_s), 0.0, float(f[0])
     o, drift, ref, pairs_f, pairs_w = _refine(f, w, o, drift, ref, tolerance_s, fit_drift, min_span_s)
     resid = (pairs_w - pairs_f) - (o + drift * (pairs_f - ref)) if pairs_f.size else np.zeros(0)
     n_win = 1 if wins is None else int(wins["offset"].size + wins["inconsistent"])

@@ -1189,9 +1189,7 @@ def step_time_asymmetry_report(steps: pd.DataFrame) -> dict:
                          "decision L259) or a lower-back unit (pdrlearn track DIR --pipeline waist-pendulum; "
                          "decision L316)")
         return out
-    from pdrlearn.track.gait import waist_step_times
-
-    pct, n = step_time_asymmetry(*waist_step_times(steps))
+    pct, n = step_time_asymmetry(*rhythm_step_times(steps))  # decision W512: the gait's steady steps
     out["raw_pct"], out["n_step_times"] = pct, n
     if pct is None:
         out["reason"] = (f"no walking sequence with {ASYMMETRY_MIN_STEPS} step times of each foot")
@@ -1216,7 +1214,26 @@ def step_time_asymmetry_report(steps: pd.DataFrame) -> dict:
 #: by ``side`` (W129's sway side; ``""`` undecided) and :func:`step_time_asymmetry_report`'s figures
 LEG_KEYS = ("n_steps_left", "n_steps_right", "n_steps_side_undecided", "step_time_asymmetry_pct",
             "step_time_asymmetry_raw_pct", "n_step_time_asymmetry_steps", "step_time_asymmetry_reason",
-            "step_time_s_left", "step_time_s_right", "step_time_s_ratio")  # W250: the asymmetry's direction
+            "step_time_s_left", "step_time_s_right", "step_time_s_ratio",  # W250: the asymmetry's direction
+            "step_time_asymmetry_se_points")  # L671: L490's standard error of a foot + lower-back index
+
+
+def rhythm_step_times(steps: pd.DataFrame) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Decision W512: :func:`pdrlearn.track.gait.waist_step_times` of a lower-back table with the steps that are
+    not the gait's rhythm NaN: a turning step (the pipeline's ``turning`` flag, W70's straight steps) and one over
+    :data:`~pdrlearn.track.labelled_asymmetry.MAX_STRIDE_FACTOR` x the median step time (a stop, or the step out
+    of a turn on the spot, which lands on the same foot at every turn of one direction). The feet's parity inside a
+    sequence is kept (NaN, as a W27 fragment's)."""
+    from pdrlearn.track.gait import waist_step_times
+    from pdrlearn.track.labelled_asymmetry import MAX_STRIDE_FACTOR
+
+    step_s, has_next, touched = waist_step_times(steps)
+    keep = np.isfinite(step_s)
+    if keep.any():
+        keep &= step_s <= MAX_STRIDE_FACTOR * float(np.median(step_s[keep]))
+    if "turning" in steps:
+        keep &= pd.to_numeric(steps["turning"], errors="coerce").fillna(0).to_numpy(float) == 0
+    return np.where(keep, step_s, np.nan), has_next, touched
 
 
 def side_step_times(steps: pd.DataFrame) -> dict:
@@ -1226,12 +1243,10 @@ def side_step_times(steps: pd.DataFrame) -> dict:
     ``_right`` (the step landing on that foot, L259; means, as gait's) and ``step_time_s_ratio`` = left / right
     (Patterson et al. 2010, gait's convention). Each side's mean needs :data:`ASYMMETRY_MIN_STEPS` step times, else
     None; the ratio is given only with both."""
-    from pdrlearn.track.gait import waist_step_times
-
     out = {"step_time_s_left": None, "step_time_s_right": None, "step_time_s_ratio": None}
     if len(steps) < 2 or "side" not in steps:
         return out
-    step_s, _, _ = waist_step_times(steps)
+    step_s, _, _ = rhythm_step_times(steps)  # decision W512: the gait's steady steps
     onto = steps["side"].fillna("").astype(str).to_numpy()[1:]  # the step from contact k - 1 lands at contact k
     prev = step_s[:-1]
     for s in ("left", "right"):

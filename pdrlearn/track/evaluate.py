@@ -1198,11 +1198,29 @@ def _foot_stride_f1(result: TrackResult, session: Session, out: dict) -> None:
     # first stride from standing starts a stance early, so its middle fell before the first IC's interval
     mid = est[["start_s", "end_s"]].to_numpy(float).mean(axis=1)
     scored = in_intervals(mid, ref.intervals)
-    scored[list(used_est)] = True
-    precision = len(used_est) / int(scored.sum()) if scored.any() else 0.0
+    # steps decision 86: a tracked stride whose initial contact (event_s) `pdrlearn steps`' own matching pairs with a
+    # reference contact (match_events, the reference's tolerance) is a hit there, so it is no false positive here
+    # (the stride onto a chain's first labelled contact, pre_ic_s, has no labelled stride of its own)
+    correct = used_est | _event_hits(est, ref)
+    scored[list(correct)] = True
+    precision = len(correct) / int(scored.sum()) if scored.any() else 0.0
     recall = tp / len(st)
     out["step_precision"], out["step_recall"] = float(precision), float(recall)
     out["step_f1"] = float(2 * precision * recall / (precision + recall)) if tp else 0.0
+
+
+def _event_hits(est: pd.DataFrame, ref) -> set[int]:
+    """Steps decision 86: the rows of the tracked strides ``est`` whose ``event_s`` :func:`pdrlearn.steps.evaluate.
+    match_events` pairs one-to-one with a contact of the reference ``ref`` (``reference_events``): the detections
+    `pdrlearn steps` counts as true positives. Empty without ``event_s``."""
+    from pdrlearn.steps.evaluate import match_events
+
+    if "event_s" not in est:
+        return set()
+    ev = pd.to_numeric(est["event_s"], errors="coerce").to_numpy(float)
+    ok = np.flatnonzero(np.isfinite(ev))
+    i_det, _ = match_events(ev[ok], ref.times, ref.tolerance_s)
+    return {int(i) for i in ok[i_det]}
 
 
 def _waist_references(result: TrackResult, session: Session, out: dict) -> None:

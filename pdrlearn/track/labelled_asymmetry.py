@@ -212,5 +212,27 @@ def track_asymmetry(session, steps, warnings=(), alignment: dict | None = None) 
             reason += ("; uncertain: over 3 points, the lower back's contacts scatter too much about the foot's at "
                        "these short fast steps (e.g. a child's; trial T1 read 5-21 % on symmetric children), so a "
                        "longer walk or a unit on each foot (pdrlearn gait LEFT_DIR RIGHT_DIR) times it better")
-    return {"step_time_asymmetry_pct": res["step_time_asymmetry_pct"],
-            "n_step_time_asymmetry_steps": 2 * res["n_strides"], "step_time_asymmetry_reason": reason}
+    out = {"step_time_asymmetry_pct": res["step_time_asymmetry_pct"],
+           "n_step_time_asymmetry_steps": 2 * res["n_strides"], "step_time_asymmetry_reason": reason}
+    if res["step_time_asymmetry_pct"] is not None:
+        out.update(side_keys(res, session))
+    return out
+
+
+def side_keys(res: dict, session) -> dict:
+    """Decision L671: :func:`labelled_step_asymmetry`'s result ``res`` (an index given) as the summary's
+    ``step_time_asymmetry_se_points`` (L490's standard error) and, when ``session``'s meta.json names the
+    instrumented foot (L260's keys), ``step_time_s_left`` / ``_right`` (the step landing on that foot:
+    ``step_time_s_instrumented``, on the other ``step_time_s_other``, as W250's) and ``step_time_s_ratio`` = left /
+    right; without the side those stay empty (a foot unit does not know which foot it is on)."""
+    from pdrlearn.track.bilateral import session_foot
+
+    out = {"step_time_asymmetry_se_points": float(res["standard_error_points"])}
+    meta = getattr(session, "meta", None)
+    side = session_foot(meta if isinstance(meta, dict) else {})
+    if side is not None:
+        other = "left" if side == "right" else "right"
+        out[f"step_time_s_{side}"] = float(res["step_time_s_instrumented"])
+        out[f"step_time_s_{other}"] = float(res["step_time_s_other"])
+        out["step_time_s_ratio"] = out["step_time_s_left"] / out["step_time_s_right"]
+    return out
