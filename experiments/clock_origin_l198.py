@@ -10,7 +10,8 @@ from __future__ import annotations
 import argparse
 import logging
 
-from experiments.live_clock_check_l177 import BUNDLE, live, shifted
+from experiments.live_clock_check_l177 import BUNDLE, live
+from experiments.unit_offset_l161 import shifted
 from pdrlearn.io.session import Stream
 from pdrlearn.kernels.align import unit_offset_message
 from pdrlearn.sim import simulate

@@ -28,6 +28,7 @@ import pandas as pd
 from typer.testing import CliRunner
 
 import pdrlearn.io.plasys as P
+from experiments._results import add_users, user_range, write_result, write_table
 from pdrlearn.cli import app
 
 ROUTES = {"straight": ["--scenario", "walk", "--length-m", "20"],
@@ -86,9 +87,9 @@ def simulate_walk(root: Path, u: int, route: str, spec, rate: float, drop: float
                "dropped": sim.get("dropped_samples", 0), "truth_m": sim["distance_m"]}
 
 
-def walks(lo: int, hi: int, root: Path):
-    """(folder, row) of every simulated walk of users ``lo``-``hi``: ROUTES x RATES x DROPS."""
-    for u in range(lo, hi + 1):
+def walks(users: range, root: Path):
+    """(folder, row) of every simulated walk of ``users`` (``--users``' seeds): ROUTES x RATES x DROPS."""
+    for u in users:
         for route, spec in ROUTES.items():
             for rate in RATES:
                 for drop in DROPS:
@@ -118,16 +119,15 @@ def by_rate_route(df: pd.DataFrame, tags=()):
 
 def main() -> None:
     ap = argparse.ArgumentParser()
-    ap.add_argument("--users", default="31-36")
+    add_users(ap, "31-36")
     ap.add_argument("--out", default="/tmp/drops")
     ap.add_argument("--no-real", action="store_true")
     a = ap.parse_args()
-    lo, hi = (int(x) for x in a.users.split("-"))
     root = Path(a.out)
     root.mkdir(parents=True, exist_ok=True)
     logging.disable(logging.INFO)
     rows = []
-    for d, row in walks(lo, hi, root):
+    for d, row in walks(user_range(a.users), root):
         for tag, bridge, streaming in (("off", False, False), ("on", True, False),
                                        ("stream_off", False, True), ("stream_on", True, True)):
             s = track(d, root / f"{d.name}_{tag}", bridge, streaming)
@@ -146,8 +146,7 @@ def main() -> None:
             track(d, root / f"real_{d.name}_on", True)
             real.append((d.name, same(root / f"real_{d.name}_off", root / f"real_{d.name}_on")))
             print(real[-1], flush=True)
-    res = Path(__file__).resolve().parent / "results"
-    df.to_csv(res / f"drops_{a.users}.csv", index=False)
+    write_table(f"drops_{a.users}", df)
     lines = [f"# Dropped samples (decision B64), users {a.users}", "",
              "Distance error % of `pdrlearn track` (no model) vs the simulated truth; off/on = bridging off/on "
              "(offline), stream = `track --streaming`. Median |error| over the walks per drop rate.", "",
@@ -167,8 +166,7 @@ def main() -> None:
     if real:
         lines += ["", "Real recordings (datasets/real), steps.csv and trajectory.csv byte-identical off vs on: "
                   + ", ".join(f"{n} {ok}" for n, ok in real)]
-    (res / f"drops_{a.users}.md").write_text("\n".join(lines) + "\n")
-    print("\n".join(lines))
+    write_result(f"drops_{a.users}", lines)
 
 
 if __name__ == "__main__":

@@ -20,6 +20,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from experiments._results import add_users, write_result, write_table
 from experiments.drops import REAL, by_drop, by_rate_route, same
 from experiments.drops_timestamps import track, track_walks
 
@@ -29,13 +30,12 @@ EXTERNAL = REAL.parent / "external"
 
 def main() -> None:
     ap = argparse.ArgumentParser()
-    ap.add_argument("--users", default="43-54")
+    add_users(ap, "43-54")
     ap.add_argument("--out", default="/tmp/drops_runs")
     a = ap.parse_args()
     root = Path(a.out)
     df, par = track_walks(a.users, root, TAGS, ("fixed", "runs"), lambda x, y: {"identical": same(x, y)})
-    res = Path(__file__).resolve().parent / "results"
-    df.to_csv(res / f"drops_runs_{a.users}.csv", index=False)
+    write_table(f"drops_runs_{a.users}", df)
     real = []
     folders = sorted(p for p in REAL.iterdir() if p.is_dir()) + sorted(EXTERNAL.glob("gaitmap_*"))
     for d in folders:
@@ -65,8 +65,7 @@ def main() -> None:
                      f"{g.err_runs.median():+.3f} | {w['ts'].max():+.3f} | {w['runs'].max():+.3f} | user {w['runs'].idxmax()[0]} |")
     lines += ["", "Foot recordings, default vs candidate, steps.csv and trajectory.csv byte-identical: "
               + ", ".join(f"{n} {ok}" for n, ok in real)]
-    (res / f"drops_runs_{a.users}.md").write_text("\n".join(lines) + "\n")
-    print("\n".join(lines))
+    write_result(f"drops_runs_{a.users}", lines)
 
 
 if __name__ == "__main__":

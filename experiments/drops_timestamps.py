@@ -26,6 +26,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from experiments._results import add_users, user_range, write_result, write_table
 from experiments.drops import REAL, by_drop, by_rate_route, cli_json, walks
 
 TAGS = {"fixed": {"timestamps": False}, "ts": {"timestamps": True}}  # --params of each configuration
@@ -52,7 +53,6 @@ def track_walks(users: str, root: Path, tags: dict[str, dict], pair: tuple[str, 
     """Every walk of ``users`` ("lo-hi", ``walks``) tracked in ``root`` with each tag's ``--params``: a row a walk
     (printed as it comes) with ``err_<tag>`` and ``f1_<tag>`` and the columns ``columns(a, b)`` gives for the
     outputs of the two tags of ``pair``; the rows and the params file of each tag."""
-    lo, hi = (int(x) for x in users.split("-"))
     root.mkdir(parents=True, exist_ok=True)
     logging.disable(logging.INFO)
     par = {}
@@ -60,7 +60,7 @@ def track_walks(users: str, root: Path, tags: dict[str, dict], pair: tuple[str, 
         par[tag] = root / f"params_{tag}.json"
         par[tag].write_text(json.dumps(p))
     rows = []
-    for d, row in walks(lo, hi, root):
+    for d, row in walks(user_range(users), root):
         for tag in tags:
             s = track(d, root / f"{d.name}_{tag}", par[tag])
             row[f"err_{tag}"] = s.get("distance_error_pct")
@@ -73,7 +73,7 @@ def track_walks(users: str, root: Path, tags: dict[str, dict], pair: tuple[str, 
 
 def main() -> None:
     ap = argparse.ArgumentParser()
-    ap.add_argument("--users", default="37-42")
+    add_users(ap, "37-42")
     ap.add_argument("--out", default="/tmp/drops_ts")
     a = ap.parse_args()
     root = Path(a.out)
@@ -89,8 +89,7 @@ def main() -> None:
             track(d, root / f"real_{d.name}_{tag}", par[tag])
         real.append((d.name, *compare(root / f"real_{d.name}_fixed", root / f"real_{d.name}_ts")))
         print(real[-1], flush=True)
-    res = Path(__file__).resolve().parent / "results"
-    df.to_csv(res / f"drops_timestamps_{a.users}.csv", index=False)
+    write_table(f"drops_timestamps_{a.users}", df)
     lines = [f"# Offline foot on the timestamps (decision L83), users {a.users}", "",
              "Distance error % of `pdrlearn track` (no model, bridging off) vs the simulated truth; fixed = "
              "`timestamps: false` (dt = 1 / rate), ts = `timestamps: true`. Median |error| over the walks.", "",
@@ -108,8 +107,7 @@ def main() -> None:
         lines.append(f"| {drop:g} | {rate:g} | {route} | {g.err_fixed.median():+.3f} | {g.err_ts.median():+.3f} | {w['ts'].max():+.3f} |")
     lines += ["", "Real recordings (datasets/real), fixed vs ts: steps.csv identical, max trajectory.csv difference (m): "
               + ", ".join(f"{n} {ok}" + (f" {diff:.3g}" if ok != "no foot unit" else "") for n, ok, diff in real)]
-    (res / f"drops_timestamps_{a.users}.md").write_text("\n".join(lines) + "\n")
-    print("\n".join(lines))
+    write_result(f"drops_timestamps_{a.users}", lines)
 
 
 if __name__ == "__main__":

@@ -11,22 +11,13 @@ import argparse
 import logging
 from pathlib import Path
 
-from pdrlearn.io.session import Stream
+from experiments._results import add_users, user_range
+from experiments.unit_offset_l161 import rule_met, sessions
 from pdrlearn.runtime import Tracker, load_bundle
 from pdrlearn.runtime.replay import replay_chunks
-from pdrlearn.sim import simulate
 from pdrlearn.steps.align import align_units
 
 BUNDLE = Path(__file__).resolve().parents[1] / "models" / "plasys-sim-default"
-
-
-def shifted(session, dt: float):
-    """The session with every waist stream's clock read ``dt`` s later (``t_w + dt``)."""
-    s = session.copy()
-    for n, st in list(s.streams.items()):
-        if st.placement == "waist":
-            s.streams[n] = Stream(n, st.t + dt, st.values)
-    return s
 
 
 def live(session, bundle, chunk_s: float):
@@ -39,19 +30,18 @@ def live(session, bundle, chunk_s: float):
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__)
-    ap.add_argument("--users", default="2980-2999", help="first-last simulated user seeds")
+    add_users(ap, "2980-2999", "first-last simulated user seeds")
     ap.add_argument("--shift", type=float, default=0.3, help="waist clock shift (s) of the warned sessions")
     ap.add_argument("--chunk-s", type=float, default=1.0, help="replay chunk (s), run's default")
     a = ap.parse_args()
-    lo, hi = (int(v) for v in a.users.split("-"))
+    users = user_range(a.users)
     logging.disable(logging.WARNING)
     bundle = load_bundle(BUNDLE)
     warned = {"clean": 0, "shifted": 0}
     worst = 0.0
-    for u in range(lo, hi + 1):
-        s = simulate("D", u, rate_hz=100.0)
+    for u, pair in sessions(users, a.shift):
         row = [f"user {u}"]
-        for kind, sess in (("clean", s), ("shifted", shifted(s, a.shift))):
+        for kind, sess in pair:
             offline, _ = align_units(sess)
             tr, lines = live(sess, bundle, a.chunk_s)
             est = tr.clock_offset
@@ -61,11 +51,11 @@ def main() -> None:
             said = lines[0].split(" s from")[0].rsplit(" ", 1)[-1] if lines else "-"
             row.append(f"{kind} offline {offline:+.3f} live final {fin:+.3f} warned {int(bool(lines))} ({said})")
         print(" | ".join(row), flush=True)
-    n = hi - lo + 1
+    n = len(users)
     print(f"clean warned {warned['clean']}/{n}; +{a.shift:g} s warned {warned['shifted']}/{n}; "
           f"largest |live final - offline| {worst:.2e} s")
-    adopted = warned["clean"] == 0 and warned["shifted"] >= 15 * n / 20
-    print("L177 rule:", "ADOPTED (clock_check on by default)" if adopted else "NOT adopted (clock_check stays off)")
+    print("L177 rule:", "ADOPTED (clock_check on by default)" if rule_met(warned, n)
+          else "NOT adopted (clock_check stays off)")
 
 
 if __name__ == "__main__":

@@ -16,12 +16,11 @@ from __future__ import annotations
 
 import argparse
 import logging
-from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
-from experiments.position_sigma import users
+from experiments._results import add_users, user_range, write_result, write_table
 from pdrlearn.io import Stream
 from pdrlearn.sim.simulate import simulate
 from pdrlearn.track.evaluate import evaluate_track
@@ -62,11 +61,11 @@ def run(session, arm: str | None):
 
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("--users", default="2210-2249")
+    add_users(p, "2210-2249")
     a = p.parse_args()
     logging.getLogger("pdrlearn").setLevel(logging.ERROR)
     rows, same = [], 0
-    for u in users(a.users):
+    for u in user_range(a.users):
         clean = walk(u)
         c = {arm: run(clean, arm) for arm in ARMS}
         same += int(c["before"].steps.equals(c["L167"].steps) and c["before"].trajectory.equals(c["L167"].trajectory))
@@ -84,8 +83,7 @@ def main() -> None:
                   f"{row['dist_err_L167']:+.2f} offline {row['dist_err_offline']:+.2f} | altitude m before "
                   f"{row['alt_before']:+.2f} L167 {row['alt_L167']:+.2f} (clean {alt0:+.2f})", flush=True)
     df = pd.DataFrame(rows)
-    res = Path(__file__).resolve().parent / "results"
-    df.to_csv(res / f"stream_drops_{a.users}.csv", index=False)
+    write_table(f"stream_drops_{a.users}", df)
     n = df.user.nunique()
     lines = [f"# L167: streamed strides across dropped foot samples, users {a.users} ({n} flat 400 m walks, 100 Hz)",
              "", "`experiments/stream_drops.py`; M2 without a model; |altitude - clean| against the clean copy's "
@@ -98,8 +96,7 @@ def main() -> None:
         lines.append(f"| {loss:g} | {db.median():.3f} / {dl.median():.3f} ({do.median():.3f}) | "
                      f"{ab.median():.3f} / {al.median():.3f} | {db.max():.3f} / {dl.max():.3f} |")
     lines += ["", f"clean copies with identical steps and trajectory in both arms: {same} of {n}"]
-    (res / f"stream_drops_{a.users}.md").write_text("\n".join(lines) + "\n")
-    print("\n".join(lines))
+    write_result(f"stream_drops_{a.users}", lines)
 
 
 if __name__ == "__main__":

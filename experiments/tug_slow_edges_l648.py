@@ -6,10 +6,12 @@ Trial T1's TUG command (``simulate --route "straight:3, turn:180, straight:3, tu
 transfers.csv) against ``tug_time_s`` today (W182 alone: ``with_slow_edges`` as the identity) and with L648, and the
 transfers.csv rows L648 adds that overlap no true transfer of their kind.
 
-Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/tug_slow_edges_l648.py LO HI U0 U1 TMPDIR
+Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/tug_slow_edges_l648.py LO HI U0 U1 TMPDIR [w506]
+(w506: L648 against decision W506's candidate, the sit side's window from the turn in front of the chair)
 """
 from __future__ import annotations
 
+import functools
 import logging
 import sys
 from pathlib import Path
@@ -25,6 +27,9 @@ from pdrlearn.track.evaluate import track_summary
 
 ROUTE = "straight:3, turn:180, straight:3, turn:180"
 L648 = T.with_slow_edges
+#: decision W506 (session 45): with a 6th argument ``w506`` the comparison is L648 (``final_turn`` off) against W506's
+#: candidate (the sit side's window from the end of the turn in front of the chair) instead of today against L648
+W506 = len(sys.argv) > 6 and sys.argv[6] == "w506"
 
 
 def truth(folder: Path) -> tuple[float, list[tuple[str, float, float]]]:
@@ -36,7 +41,10 @@ def truth(folder: Path) -> tuple[float, list[tuple[str, float, float]]]:
 
 
 def track(folder: Path, l648: bool) -> tuple[float | None, pd.DataFrame]:
-    T.with_slow_edges = L648 if l648 else (lambda imu, tilt, rows, contacts: rows)
+    if W506:
+        T.with_slow_edges = functools.partial(L648, final_turn=l648)
+    else:
+        T.with_slow_edges = L648 if l648 else (lambda imu, tilt, rows, contacts: rows)
     s = read_session(folder)
     r = get_pipeline("waist-pendulum")(s)
     return track_summary(r, s, pipeline="waist-pendulum").get("tug_time_s"), pd.DataFrame(r.info["transfers"] or [])
@@ -67,14 +75,15 @@ def run(lo: float, hi: float, users: range, tmp: Path) -> None:
                 continue
             if not any(k == r.kind and r.start_s < b and r.end_s > a for k, a, b in kinds):
                 false_added += 1
-        print(f"user {u}: truth {true_s:.2f} s, today {t0 if t0 is None else round(t0, 2)}, "
-              f"L648 {t1 if t1 is None else round(t1, 2)}", flush=True)
+        print(f"user {u}: truth {true_s:.2f} s, {'L648' if W506 else 'today'} {t0 if t0 is None else round(t0, 2)}, "
+              f"{'W506' if W506 else 'L648'} {t1 if t1 is None else round(t1, 2)}", flush=True)
     n = len(users)
-    for key, name in ((False, "today"), (True, "L648")):
+    for key, name in (((False, "L648"), (True, "W506")) if W506 else ((False, "today"), (True, "L648"))):
         e = np.asarray(errs[key])
         print(f"transfer-time {lo:g}:{hi:g} users {users.start}-{users.stop - 1} {name}: timed {len(e)} of {n}, "
               f"within 1.0 s {within[key]}, median error {np.median(e) if len(e) else float('nan'):+.2f} s")
-    print(f"L648: today's times changed on {changed}; rows added matching no true transfer {false_added}")
+    print(f"{'W506: L648' if W506 else 'L648: today'}'s times changed on {changed}; rows added matching no true "
+          f"transfer {false_added}")
 
 
 if __name__ == "__main__":

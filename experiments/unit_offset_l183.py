@@ -14,7 +14,8 @@ import logging
 import tempfile
 from pathlib import Path
 
-from experiments.live_clock_check_l177 import BUNDLE, live, shifted
+from experiments.live_clock_check_l177 import BUNDLE, live
+from experiments.unit_offset_l161 import shifted
 from pdrlearn.io import read_session
 from pdrlearn.kernels.align import offset_locked, unit_offset_message
 from pdrlearn.sim import simulate

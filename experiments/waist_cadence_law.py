@@ -27,14 +27,13 @@ import numpy as np
 import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+import _results as R  # noqa: E402  (the shared options and tables, E294)
 import waist as W  # noqa: E402
 import waist_calibration_speed as CS  # noqa: E402  (W211's walkways)
 import waist_pivot_steps as PV  # noqa: E402  (W150's protocol: its _track and turning route)
 
-from pdrlearn.io import read_session  # noqa: E402
 from pdrlearn.track import get_pipeline  # noqa: E402
 from pdrlearn.waist.calibration import calibrate  # noqa: E402
-from pdrlearn.waist.evaluate import distance_metrics  # noqa: E402
 from pdrlearn.waist.params import WaistParams, resolve_params  # noqa: E402
 from pdrlearn.waist.steplength import steady_steps  # noqa: E402
 
@@ -61,29 +60,16 @@ def _gate_counts(res) -> dict:
 
 
 def real(ext: Path) -> pd.DataFrame:
-    """One row per (config, run, calibrated?, bout) with the bout's errors."""
-    runs = W.external_runs(ext)
-    cache: dict[str, object] = {}
-
-    def sess(n):
-        if n not in cache:
-            cache[n] = read_session(ext / n)
-        return cache[n]
-
+    """One row per (config, run, calibrated?, bout) with the bout's errors (W150's protocol, PV.tracked_runs)."""
     rows = []
-    for label, opts in CONFIGS.items():
-        for cal_names, name in runs:
-            test = sess(name)
-            for calibrated in (True, False) if "_Test11_" in name else (True,):
-                res = PV._track(PIPELINE, opts, test, [sess(c) for c in cal_names] if calibrated else None)
-                d = distance_metrics(res.steps, test)
-                gate = _gate_counts(res)
-                for b in d["bouts"]:
-                    rows.append({"config": label, "subject": name.split("_")[1], "test": name,
-                                 "cal": "+".join(cal_names), "calibrated": calibrated,
-                                 "run_error_pct": d["distance_error_pct"], "err_L": b["error_pct"],
-                                 "err_strides": b.get("error_strides_pct", np.nan), "bout_s": b.get("start_s"),
-                                 **gate})
+    for _, label, cal_names, name, calibrated, res, d in PV.tracked_runs(ext, (PIPELINE,), CONFIGS):
+        gate = _gate_counts(res)
+        for b in d["bouts"]:
+            rows.append({"config": label, "subject": name.split("_")[1], "test": name,
+                         "cal": "+".join(cal_names), "calibrated": calibrated,
+                         "run_error_pct": d["distance_error_pct"], "err_L": b["error_pct"],
+                         "err_strides": b.get("error_strides_pct", np.nan), "bout_s": b.get("start_s"),
+                         **gate})
     return pd.DataFrame(rows)
 
 
@@ -150,8 +136,7 @@ def simulated(users: list[int], csv: Path | None = None) -> pd.DataFrame:
 
 
 def sim_table(sim: pd.DataFrame) -> None:
-    g = sim.assign(a=sim.dist_err_pct.abs()).groupby(["scenario", "config"]).a.median().unstack("config")
-    g["change"] = g[_candidate()] - g["defaults"]
+    g = R.change_table(sim, _candidate())
     print(f"\n(e) simulated users {sim.user.min()}-{sim.user.max()} ({sim.user.nunique()}), {PIPELINE} calibrated: "
           "median |distance error| (%):")
     print(g.round(3).to_string())
@@ -159,11 +144,7 @@ def sim_table(sim: pd.DataFrame) -> None:
 
 def main() -> None:
     ap = argparse.ArgumentParser()
-    ap.add_argument("--external", type=Path, default=W.ROOT / "datasets" / "external")
-    ap.add_argument("--users", default="5860-5919")
-    ap.add_argument("--no-sim", action="store_true")
-    ap.add_argument("--no-real", action="store_true")
-    ap.add_argument("--csv", type=Path, default=None, help="write the simulated rows here after each user")
+    R.add_sim_real(ap, "5860-5919", W.ROOT / "datasets" / "external")
     ap.add_argument("--from-csv", type=Path, default=None, help="print (e) from rows written by --csv")
     ap.add_argument("--candidate", choices=sorted(CANDIDATES), default="law",
                     help="law: W240's cadence_law true; steady: W261's cadence_law \"steady\"")
@@ -178,8 +159,7 @@ def main() -> None:
     if args.from_csv is not None:
         sim_table(pd.read_csv(args.from_csv))
     elif not args.no_sim:
-        a, b = (int(x) for x in args.users.split("-"))
-        sim_table(simulated(list(range(a, b + 1)), args.csv))
+        sim_table(simulated(list(R.user_range(args.users)), args.csv))
 
 
 if __name__ == "__main__":

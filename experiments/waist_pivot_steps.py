@@ -25,6 +25,7 @@ import numpy as np
 import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+import _results as R  # noqa: E402  (the shared options and tables, E294)
 import waist as W  # noqa: E402
 
 from pdrlearn.io import read_session  # noqa: E402
@@ -47,8 +48,10 @@ def _track(pipeline: str, opts: dict, test, cal=None, distances=None):
     return get_pipeline(pipeline)(test, params=params, **opts)
 
 
-def real(ext: Path) -> pd.DataFrame:
-    """One row per (pipeline, config, run, calibrated?) with its bouts' errors."""
+def tracked_runs(ext: Path, pipelines, configs: dict):
+    """W150's real protocol (experiments/waist.py's runs of ``ext``): per pipeline, config (label, options), run and
+    calibration (a Test11 run calibrated on its subject's Test5 walks and not; a Test5 run on the other trial),
+    ``(pipeline, label, cal_names, name, calibrated, result, distance_metrics)``; each recording read once."""
     runs = W.external_runs(ext)
     cache: dict[str, object] = {}
 
@@ -57,18 +60,23 @@ def real(ext: Path) -> pd.DataFrame:
             cache[n] = read_session(ext / n)
         return cache[n]
 
-    rows = []
-    for pipeline in PIPELINES:
-        for label, opts in CONFIGS.items():
+    for pipeline in pipelines:
+        for label, opts in configs.items():
             for cal_names, name in runs:
                 test = sess(name)
                 for calibrated in (True, False) if "_Test11_" in name else (True,):
                     res = _track(pipeline, opts, test, [sess(c) for c in cal_names] if calibrated else None)
-                    d = distance_metrics(res.steps, test)
-                    for b in d["bouts"]:
-                        rows.append({"pipeline": pipeline, "config": label, "test": name, "cal": "+".join(cal_names),
-                                     "calibrated": calibrated, "run_error_pct": d["distance_error_pct"],
-                                     "err_L": b["error_pct"], "err_strides": b.get("error_strides_pct", np.nan)})
+                    yield pipeline, label, cal_names, name, calibrated, res, distance_metrics(res.steps, test)
+
+
+def real(ext: Path) -> pd.DataFrame:
+    """One row per (pipeline, config, run, calibrated?) with its bouts' errors."""
+    rows = []
+    for pipeline, label, cal_names, name, calibrated, _, d in tracked_runs(ext, PIPELINES, CONFIGS):
+        for b in d["bouts"]:
+            rows.append({"pipeline": pipeline, "config": label, "test": name, "cal": "+".join(cal_names),
+                         "calibrated": calibrated, "run_error_pct": d["distance_error_pct"],
+                         "err_L": b["error_pct"], "err_strides": b.get("error_strides_pct", np.nan)})
     return pd.DataFrame(rows)
 
 
@@ -119,8 +127,7 @@ def simulated(users: list[int], csv: Path | None = None) -> pd.DataFrame:
 
 
 def sim_table(sim: pd.DataFrame) -> None:
-    g = sim.assign(a=sim.dist_err_pct.abs()).groupby(["scenario", "config"]).a.median().unstack("config")
-    g["change"] = g["pivot_steps"] - g["defaults"]
+    g = R.change_table(sim, "pivot_steps")
     n = sim.user.nunique()
     print(f"\n(d) simulated users {sim.user.min()}-{sim.user.max()} ({n}), waist-pendulum calibrated: median "
           "|distance error| (%):")
@@ -129,11 +136,7 @@ def sim_table(sim: pd.DataFrame) -> None:
 
 def main() -> None:
     ap = argparse.ArgumentParser()
-    ap.add_argument("--external", type=Path, default=W.ROOT / "datasets" / "external")
-    ap.add_argument("--users", default="2760-2819")
-    ap.add_argument("--no-sim", action="store_true")
-    ap.add_argument("--no-real", action="store_true")
-    ap.add_argument("--csv", type=Path, default=None, help="write the simulated rows here after each user")
+    R.add_sim_real(ap, "2760-2819", W.ROOT / "datasets" / "external")
     args = ap.parse_args()
     logging.basicConfig(level=logging.ERROR)
     pd.set_option("display.width", 220)
@@ -141,8 +144,7 @@ def main() -> None:
         real_tables(real(args.external))
         demo(args.external)
     if not args.no_sim:
-        a, b = (int(x) for x in args.users.split("-"))
-        sim_table(simulated(list(range(a, b + 1)), args.csv))
+        sim_table(simulated(list(R.user_range(args.users)), args.csv))
 
 
 if __name__ == "__main__":

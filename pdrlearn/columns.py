@@ -359,7 +359,8 @@ SESSIONS: tuple[Column, ...] = (
     ("per_s", "s", "number", "--per only: the period of periods.csv (L277)"),
     ("corridor_m", "m", "number", "--corridor only: the corridor walk test's course length (L383)"),
     ("n_laps", "count", "integer", "--corridor only: the corridor lengths walked between cone turns (laps.csv's "
-                                   "corridor_laps summed; a missed turn counts 2, L384)"),
+                                   "corridor_laps summed; a missed turn counts 2, L384; the walker's turns only, "
+                                   "not L622's carried, C181)"),
     ("walk_test_distance_m", "m", "number", "--corridor only: n_laps x corridor_m + the final partial lap (its tracked "
                                             "distance x the last lap's corridor / tracked ratio, at most corridor_m; "
                                             "ATS 2002 as recalled, L383)"),
@@ -724,12 +725,15 @@ BOUTS: tuple[Column, ...] = (
     ("speed_mps", "m/s", "number", "distance_m / duration_s (speed_m_s before E98)"),
     ("stride_length_m", "m", "number", "mean stride length: foot distance_m / n_strides; lower back 2 x "
                                        "distance_m / (n_steps - 1), 2 x the mean step (L166)"),
-    ("contact_span_s", "s", "number", "first initial contact to the last (L164)"),
-    ("n_step_intervals", "count", "integer", "steps between those contacts: contacts - 1 (foot: 2 per stride; L164)"),
+    ("contact_span_s", "s", "number", "first initial contact to the last (L164); with --corridor less the gaps its "
+                                      "stepless cone turns fill (C182: their steps were not detected, W331)"),
+    ("n_step_intervals", "count", "integer", "steps between those contacts: contacts - 1 (foot: 2 per stride; L164); "
+                                             "with --corridor less the cone turns' gaps (C182)"),
     ("cadence_spm", "steps/min", "number", "60 x n_step_intervals / contact_span_s (L164); empty on a lower-back "
                                            "track whose contacts are no step count (step_count_withheld, W480)"),
     ("longest_contact_gap_s", "s", "number", "longest time between two consecutive contacts in the bout; may "
-                                             "exceed --bout-break-s under --bout-rule pdrlearn (L163)"),
+                                             "exceed --bout-break-s under --bout-rule pdrlearn (L163; with "
+                                             "--corridor a stepless cone turn's gap, which ends no bout: C182)"),
     ("data_gap_s", "s", "number", "foot-data gaps (L67's gap rows) inside the bout, summed; a gap longer than "
                                   "--bout-break-s ends the bout instead (L269)"),
     ("n_turns", "count", "integer", f"turns of >= {TURN_COUNT_MIN_DEG:g} deg in the bout (L104)"),

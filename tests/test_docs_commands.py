@@ -445,14 +445,20 @@ def _value_error(cmd_name: str, param, value: str, validators) -> str | None:
 @functools.cache
 def _script_options(path: Path) -> frozenset[str] | None:
     """Every option a script can read: the string constants of its source that look like one (``"--users"``
-    of ``add_argument`` or of a hand-made ``sys.argv`` parser); None when the script does not exist."""
+    of ``add_argument`` or of a hand-made ``sys.argv`` parser), and those of experiments/_results.py when it imports
+    that shared set-up (decision E294: ``add_users``, ``add_sim_real``); None when the script does not exist."""
     import ast
 
     if not path.is_file():
         return None
     tree = ast.parse(path.read_text(encoding="utf-8"))
-    return frozenset(n.value for n in ast.walk(tree) if isinstance(n, ast.Constant) and isinstance(n.value, str)
-                     and re.match(r"^--?[A-Za-z][\w-]*$", n.value))
+    own = frozenset(n.value for n in ast.walk(tree) if isinstance(n, ast.Constant) and isinstance(n.value, str)
+                    and re.match(r"^--?[A-Za-z][\w-]*$", n.value))
+    shared = ROOT / "experiments" / "_results.py"
+    uses = any(isinstance(n, ast.ImportFrom) and (n.module or "").split(".")[-1] == "_results"
+               or isinstance(n, ast.Import) and any(a.name.split(".")[-1] == "_results" for a in n.names)
+               for n in ast.walk(tree))
+    return own | _script_options(shared) if uses and path != shared else own
 
 
 def _check_script(c: Command) -> list[str]:

@@ -663,6 +663,11 @@ def run(
             _warn_short_streams(session, tracker, steps)
             source = f"session {session.name}"
         result = _result(steps, start_ll, start_alt)
+        if session is not None and "foot" in tracker.units:  # decision E293: track's rides (L378, L624), rides.csv
+            from pdrlearn.track.rides import foot_rides
+            from pdrlearn.track.units import with_left_out_units
+
+            foot_rides(result, with_left_out_units(session))  # L615's vibration reading on, as track's default
         _side_class_lines(result.steps, bundle, source if session is None else session.name)  # decision E287
         from pdrlearn.track.position_sigma import add_position_sigma
 
@@ -1155,6 +1160,9 @@ def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: i
         from pdrlearn.track.floor_column import with_floor_columns
 
         traj = with_floor_columns(result.trajectory, result, summary.get("storey_height_m"))  # L630, L631
+        from pdrlearn.track.rides import with_ride_column
+
+        traj = with_ride_column(traj, result.info)  # decisions L623, E293: as track's trajectory.csv
         write_table_csv(traj, tmp / "trajectory.csv")
         # L124 (E98), L200, L202: bouts.csv, turns.csv ... as track; E144: its clock columns
         tables = event_tables(result, bouts, start=start)

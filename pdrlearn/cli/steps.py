@@ -499,10 +499,14 @@ def score_steps_command(
     events_out: Path = typer.Option(None, "--events-out", help=EVENTS_OUT_HELP),
     force: bool = typer.Option(False, "--force", help=FORCE_HELP),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object."),
+    keep_pedalling: bool = typer.Option(False, "--keep-pedalling", help="A foot table: score the strides that go "
+                                        "round a closed loop (cycling?) as steps, which score-steps leaves out by "
+                                        "default, as steps does (decisions L611, L625, steps 85)."),
 ) -> None:
     """Score an existing detections CSV (your own detector's, or `pdrlearn steps --out`'s) against a session's
     labels, with the rules of `pdrlearn steps` (decision steps 39): a foot table is first reduced to one row per
-    rest-to-rest stride (pdrlearn.steps.one_per_stride) unless --all-rows.
+    rest-to-rest stride (pdrlearn.steps.one_per_stride) unless --all-rows, and its pedalling strides (a bike ride's
+    crank turns, L611) are left out with one line unless --keep-pedalling (decision steps 85).
 
     Examples:
 
@@ -521,9 +525,14 @@ def score_steps_command(
     check_ref_offset(ref_offset, "--ref-offset")  # decision B333
     events_out = _events_file(events_out, None, force)
     table, unit = read_detections(detections, unit=unit, per_stride=not all_rows)
+    if keep_pedalling and (unit != "foot" or all_rows):  # decision steps 85: L611 judges a foot's strides
+        raise DataError(f"--keep-pedalling: {detections} " + ("holds lower-back steps, and the pedalling check "
+                        "(decision L611) reads a foot unit's strides" if unit != "foot" else "is scored row by row "
+                        "with --all-rows, which judges no pedalling") + "; leave --keep-pedalling out")
     session = read_session(session_dir)
     report(session, table, name=detections.name, unit=unit, tolerance=tolerance, as_json=as_json,
-           per_stride=not all_rows, ref_offset=ref_offset, events_out=events_out)
+           per_stride=not all_rows, ref_offset=ref_offset, events_out=events_out,
+           pedalling="keep" if keep_pedalling else "drop")  # decision steps 85: as steps (L625)
 
 
 def read_detections(path: Path, *, unit: str | None = None, per_stride: bool = True):

@@ -630,6 +630,9 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
     from pdrlearn.track.corridor import corridor_length
 
     corridor_m = corridor_length(corridor)  # decision B293: before any session
+    from pdrlearn.track.bouts import corridor_rule
+
+    bouts = corridor_rule(bouts, corridor_m)  # decision C182: a corridor test's cone turns end no walking bout
     from pdrlearn.track.corridor import walk_test_duration as check_walk_test_duration
 
     walk_test_s = check_walk_test_duration(walk_test_duration, corridor_m)  # decision B396: before any session

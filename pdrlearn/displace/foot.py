@@ -91,7 +91,7 @@ def inertial_stance(acc: np.ndarray, gyr: np.ndarray, fs: float, *, window_s: fl
     return rest
 
 
-def stance_runs(t: np.ndarray, stance: np.ndarray, *, merge_s: float = 0.1) -> np.ndarray:
+def stance_runs(t: np.ndarray, stance: np.ndarray, *, merge_s: float = SK.STANCE_MERGE_S) -> np.ndarray:
     """(k, 2) start/stop indices (stop exclusive) of stance runs, runs closer than ``merge_s`` merged."""
     merged: list[list[int]] = []
     for a, b in runs(stance):

@@ -24,3 +24,12 @@ def between_rows(start, end, *, edges: tuple[float, float] | None = None,
     if edges is None:
         return e[:-1], s[1:]
     return np.concatenate([[edges[0]], e]), np.concatenate([s, [edges[1]]])
+
+
+def pieces_outside(start: float, end: float, spans) -> list[tuple[float, float]]:
+    """The pieces of ``[start, end]`` (s) outside every ``(a, b)`` of ``spans`` (any order; they may overlap):
+    a gap's time that no turn covers (decisions L647, C180)."""
+    pieces = [(float(start), float(end))]
+    for a, b in spans:
+        pieces = [p for s, e in pieces for p in ((s, min(e, a)), (max(s, b), e)) if p[1] > p[0]]
+    return pieces

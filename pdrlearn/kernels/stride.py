@@ -92,6 +92,14 @@ STANCE_L27_DEFAULTS = {"stance_floor_factor": 2.0, "stance_floor_window_s": 1.0,
 #: decision L120's option (not adopted as the default: its rule failed on the 0.1 m/s walks): give
 #: ``{"stance_gap_swing_frac": STANCE_GAP_SWING_FRAC_OPTION}`` (bundle ``displacement``, ``track --streaming --params``)
 STANCE_GAP_SWING_FRAC_OPTION = 0.35
+#: Offline's stance runs closer than this (s) are one stance (``displace.foot.stance_runs``; L27 notes it): decision
+#: L667's cap of L120's gap in :data:`STANCE_SIDE_STEP_OPTION`
+STANCE_MERGE_S = 0.1
+#: decision L667's option (measured, not adopted: a real instep walk's streamed distance moved 1.28 %, over its
+#: rule's 1 %): L120's swing-relative gap capped at offline's merge, which keeps a side step's landing (a still
+#: terminal swing, the impact, the foot-flat) in one stance; give it as ``track --streaming --params`` or a bundle's
+#: ``displacement``
+STANCE_SIDE_STEP_OPTION = {"stance_gap_swing_frac": STANCE_GAP_SWING_FRAC_OPTION, "stance_gap_max_s": STANCE_MERGE_S}
 
 
 def stance_gyro_threshold(floor: np.ndarray | float, base: float, *, factor: float = 2.0,

@@ -39,8 +39,10 @@ from pdrlearn.track.clinical import (
     split_at_data_gaps,
     steady_rows,
     steady_stride_lengths,
+    turn_filled,
     turn_rows,
 )
+from pdrlearn.track.turn_gaps import TurnGaps
 from pdrlearn.waist.gait_quality import QUALITY_COLUMNS
 
 #: bouts.csv's columns, in order (docs/columns.md; decision L165: ``session`` / ``subject`` first, the join key;
@@ -131,6 +133,10 @@ class BoutRule:
     #: decision W495: a lower-back bout (found and kept by the rule above) runs from its second contact to its
     #: last-but-one, its measures from the steps between (:func:`edge_trimmed`)
     trim_edges: bool = False
+    #: decisions C180 / C182: under the ``rhythm`` gap an interval a walker's yaw-rate turn of at least this |angle|
+    #: (deg) fills ends no bout (:mod:`pdrlearn.track.turn_gaps`); None: off (the default: C180's 90 deg failed on
+    #: real daily life, an option); ``--corridor`` sets L383's cone turn, 135 deg (C182, :func:`corridor_rule`)
+    turn_fill_min_deg: float | None = None
 
     def __post_init__(self):
         if not (np.isfinite(self.break_s) and self.break_s > 0):
@@ -141,13 +147,41 @@ class BoutRule:
                             "e.g. 4 (mobgap's Mobilise-D rule)")
         if self.gap not in GAP_KINDS:
             raise DataError(f"bout rule gap {self.gap!r}: give one of {', '.join(GAP_KINDS)}")
+        if self.turn_fill_min_deg is not None and not (np.isfinite(self.turn_fill_min_deg)
+                                                       and 0 < self.turn_fill_min_deg <= 360):
+            raise DataError(f"bout rule turn_fill_min_deg {self.turn_fill_min_deg!r}: give a turn angle in deg "
+                            "(0-360], e.g. 135 (a corridor's cone turn, decision C182), or None (off)")
 
     def record(self) -> dict:
-        """The definition as summary.json's ``bout_definition`` (``trim_edges`` only when on, W495)."""
+        """The definition as summary.json's ``bout_definition`` (``trim_edges`` only when on, W495;
+        ``turn_fill_min_deg`` only when set, C182)."""
         out = asdict(self)
         if not self.trim_edges:
             out.pop("trim_edges")
+        if self.turn_fill_min_deg is None:
+            out.pop("turn_fill_min_deg")
         return out
+
+    def turn_gaps(self, info: dict | None) -> TurnGaps | None:
+        """Decisions C180 / C182: the turns that fill a track's pauses under this rule (``info``: the track's, its
+        ``yaw_turns`` and ``transfers``); None when the rule fills none (off, or the ``contact`` gap)."""
+        if self.turn_fill_min_deg is None or self.gap != "rhythm":
+            return None
+        return TurnGaps.of(info, min_deg=self.turn_fill_min_deg)
+
+
+def corridor_rule(rule: BoutRule | None, corridor_m: float | None) -> BoutRule | None:
+    """Decision C182: with ``--corridor`` (``corridor_m`` given) the bout rule whose ``rhythm`` gap a cone turn
+    (L383's :data:`~pdrlearn.track.corridor.CONE_TURN_MIN_DEG`) fills; ``rule`` unchanged without a corridor, with
+    the ``contact`` gap (mobgap's literal rule) or with a fill angle given."""
+    from dataclasses import replace
+
+    from pdrlearn.track.corridor import CONE_TURN_MIN_DEG
+
+    rule = rule or BoutRule()
+    if corridor_m is None or rule.gap != "rhythm" or rule.turn_fill_min_deg is not None:
+        return rule
+    return replace(rule, turn_fill_min_deg=CONE_TURN_MIN_DEG)
 
 
 def bout_rule(break_s: float | None = None, min_strides: int | None = None, preset: str | None = None) -> BoutRule:
@@ -188,12 +222,16 @@ def _contact_bouts(st: pd.DataFrame, break_s: float) -> list[tuple[int, int]]:
     return split_at_data_gaps(st, list(zip(cuts[:-1], cuts[1:], strict=True)), break_s)  # decision L269
 
 
-def bout_ranges(steps: pd.DataFrame, rule: BoutRule | None = None) -> list[tuple[int, int]]:
+def bout_ranges(steps: pd.DataFrame, rule: BoutRule | None = None, turn_gaps=None) -> list[tuple[int, int]]:
     """The walking bouts of ``steps`` (sorted by ``start_s``) under ``rule`` as ``(first, last + 1)`` row ranges,
-    short ones included (:func:`detected_bouts` leaves those under ``min_strides`` out)."""
+    short ones included (:func:`detected_bouts` leaves those under ``min_strides`` out). Decision C180: under the
+    ``rhythm`` gap an interval a walker's turn of ``turn_gaps`` (:class:`~pdrlearn.track.turn_gaps.TurnGaps`) fills
+    ends no bout; the ``contact`` gap (mobgap's literal rule, L163) does not read it."""
     rule = rule or BoutRule()
     st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
-    return _contact_bouts(st, rule.break_s) if rule.gap == "contact" else bout_rows(st, min_s=rule.break_s)
+    if rule.gap == "contact":
+        return _contact_bouts(st, rule.break_s)
+    return bout_rows(st, min_s=rule.break_s, turn_gaps=turn_gaps)
 
 
 def session_key(session) -> dict:
@@ -228,14 +266,17 @@ def session_leg_m(session) -> float | None:
 def track_bouts(result, session, rule: BoutRule | None = None) -> pd.DataFrame:
     """A written track's bouts.csv rows (track, run, the folder writer): :func:`detected_bouts` of ``result.steps``
     keyed by ``session`` (decision L165), each bout's walking range scaled to its leg (L195), the cadence withheld
-    where W476 withholds the track's step count (W480)."""
+    where W476 withholds the track's step count (W480), a gap the walker's turn fills no break under a rule that
+    says so (C180 / C182: ``--corridor``)."""
+    rule = rule or BoutRule()
     return detected_bouts(result.steps, rule, **session_key(session), leg_m=session_leg_m(session),
-                          withhold_cadence=bool(result.info.get("step_count_unusable")))
+                          withhold_cadence=bool(result.info.get("step_count_unusable")),
+                          turn_gaps=rule.turn_gaps(result.info))
 
 
 def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session: str | None = None,
                    subject: str | None = None, visit: str | None = None, leg_m: float | None = None,
-                   withhold_cadence: bool = False) -> pd.DataFrame:
+                   withhold_cadence: bool = False, turn_gaps=None) -> pd.DataFrame:
     """One row per detected walking bout of a track's step table (:data:`BOUT_COLUMNS`, module docstring).
 
     ``session`` / ``subject`` / ``visit``: the session's name and meta.json's subject (decision L165) and visit
@@ -272,7 +313,11 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
     :data:`~pdrlearn.track.clinical.CV_BOUT_MIN_STRIDES` (L196's minimum), ``stride_time_cv_pct`` and
     ``stride_length_cv_pct`` (100 x SD / mean, SD with n - 1); NaN with fewer. Decision W480: ``withhold_cadence``
     (a lower-back track whose contacts W442 finds no step count, ``info["step_count_unusable"]``) leaves
-    ``cadence_spm`` NaN, as summary.json's median cadence (W476), and the bouts' range is judged on the speed."""
+    ``cadence_spm`` NaN, as summary.json's median cadence (W476), and the bouts' range is judged on the speed.
+    Decision C180: ``turn_gaps`` (a lower-back track's :class:`~pdrlearn.track.turn_gaps.TurnGaps`,
+    ``rule.turn_gaps(result.info)``): under the ``rhythm`` gap an interval a walker's turn fills ends no bout; the bout
+    keeps its time (duration, speed, ``longest_contact_gap_s``) but ``contact_span_s`` / ``n_step_intervals`` and so
+    ``cadence_spm`` leave it out (its turning steps were not detected, W331)."""
     from pdrlearn.track.evaluate import travel_masks
     from pdrlearn.track.gait import bout_range_flags
 
@@ -284,7 +329,7 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
     foot = is_foot_table(st)
     if rule.trim_edges:  # decision W495: each bout's edge contacts left out
         return edge_trimmed(st, rule, session=session, subject=subject, visit=visit, leg_m=leg_m,
-                            withhold_cadence=withhold_cadence)
+                            withhold_cadence=withhold_cadence, turn_gaps=turn_gaps)
     gap_len = data_gap_lengths(st)  # decision L269: a bout's own (shorter) data gaps, summed as data_gap_s
     gap = gap_len > 0
     length = st["length_m"].abs().to_numpy(float) if "length_m" in st else np.zeros(len(st))
@@ -298,8 +343,11 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
     stride_len = np.full(len(st), np.nan)
     stride_len[steady] = steady_stride_lengths(st, steady)
     masks = travel_masks(st)  # decisions L331 / L581: the strides' travelled direction (L203, L270); None: lower back
+    # decision C180: the intervals a walker's turn fills (no break under the rhythm gap; out of the bout's cadence)
+    filled = (turn_filled(st, min_s=rule.break_s, turn_gaps=turn_gaps) if rule.gap == "rhythm"
+              else np.zeros(max(len(st) - 1, 0), dtype=bool))
     rows = []
-    for a, b in bout_ranges(st, rule):
+    for a, b in bout_ranges(st, rule, turn_gaps):
         n_strides = int((~gap[a:b]).sum()) if foot else max(b - a - 2, 0)
         if n_strides < rule.min_strides:
             continue
@@ -310,6 +358,10 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
         c = ic[a:b][np.isfinite(ic[a:b])]
         span = float(c[-1] - c[0]) if len(c) >= 2 else 0.0
         intervals = (2 if foot else 1) * max(len(c) - 1, 0)
+        if filled[a:b - 1].any():  # decision C180: the turn-filled intervals are out of the cadence's terms
+            step = np.diff(ic[a:b])
+            keep = ~filled[a:b - 1] & np.isfinite(step)
+            span, intervals = float(step[keep].sum()), (2 if foot else 1) * int(keep.sum())
         n_len = n_strides if foot else n_steps - 1  # L166: a foot row is a stride; a lower-back row a step
         rows.append({"session": session, "subject": subject, "visit": visit, "bout": len(rows) + 1, "start_s": t0,
                      "end_s": t1,
@@ -362,7 +414,7 @@ def edge_trimmed(st: pd.DataFrame, rule: BoutRule, **keys) -> pd.DataFrame:
         raise DataError(FOOT_TRIM_LINE)
     inner = replace(rule, min_strides=0, trim_edges=False)
     parts = []
-    for a, b in bout_ranges(st, rule):
+    for a, b in bout_ranges(st, rule, keys.get("turn_gaps")):
         if max(b - a - 2, 0) < rule.min_strides:  # the rule keeps or drops the bout as found (its n_strides)
             continue
         sub = st.iloc[a + 1:b - 1].copy()
@@ -429,15 +481,16 @@ def bout_totals(table: pd.DataFrame) -> dict:
 
 
 def bouts_summary(steps: pd.DataFrame, rule: BoutRule | None = None, table: pd.DataFrame | None = None, *,
-                  leg_m: float | None = None) -> dict:
+                  leg_m: float | None = None, turn_gaps=None) -> dict:
     """summary.json's keys (decision L124): ``n_bouts`` (the rows :func:`detected_bouts` gives) and
     ``bout_definition``; decision L195: ``n_bouts_out_of_range`` and ``bouts_out_of_range`` (bout, start_s, end_s,
     cadence_spm, speed_mps of each bout whose ``gait_out_of_range`` is true). ``table``: :func:`detected_bouts`'s
     table of ``steps`` under ``rule`` when the caller has it already (``track`` and ``run`` write it as bouts.csv;
-    decision E73: the bouts are detected once); ``leg_m`` scales the range when the table is detected here."""
+    decision E73: the bouts are detected once); ``leg_m`` scales the range and ``turn_gaps`` (C180) fills pauses
+    when the table is detected here."""
     rule = rule or BoutRule()
     if table is None:
-        table = detected_bouts(steps, rule, leg_m=leg_m)
+        table = detected_bouts(steps, rule, leg_m=leg_m, turn_gaps=turn_gaps)
     flagged = (table[table["gait_out_of_range"].eq(True)] if "gait_out_of_range" in table and len(table)
                else table.iloc[0:0])
     keys = ("bout", "start_s", "end_s", "cadence_spm", "speed_mps")

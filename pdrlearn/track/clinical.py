@@ -59,6 +59,7 @@ import pandas as pd
 from pdrlearn.kernels.rests import between_rows
 from pdrlearn.kernels.yaw_turns import TURN_TIMING_FRACTIONS as _TURN_TIMING_FRACTIONS
 from pdrlearn.track.flags import flag_values
+from pdrlearn.track.turn_gaps import filled_intervals
 from pdrlearn.waist.turn_steps import CARRIED
 
 #: a pause is at least this much (s) longer than the walk's median row-to-row interval
@@ -124,36 +125,39 @@ def _valid(steps: pd.DataFrame) -> np.ndarray:
     return (steps["gap_s"].to_numpy(float) == 0) if "gap_s" in steps else np.ones(len(steps), bool)
 
 
-def pauses(steps: pd.DataFrame, *, min_s: float = PAUSE_MIN_S) -> np.ndarray:
-    """(P,) the lengths (s) of the walk's pauses (module docstring), in time order."""
+def pauses(steps: pd.DataFrame, *, min_s: float = PAUSE_MIN_S, turn_gaps=None) -> np.ndarray:
+    """(P,) the lengths (s) of the walk's pauses (module docstring), in time order; ``turn_gaps`` (decision C180,
+    :class:`~pdrlearn.track.turn_gaps.TurnGaps`): an interval a walker's turn fills is no pause."""
     if len(steps) < 2:
         return np.zeros(0)
-    excess, is_pause = _intervals(steps.sort_values("start_s", kind="stable").reset_index(drop=True), min_s)
+    excess, is_pause = _intervals(steps.sort_values("start_s", kind="stable").reset_index(drop=True), min_s,
+                                  turn_gaps)
     return excess[is_pause]
 
 
-def pause_spans(steps: pd.DataFrame, *, min_s: float = PAUSE_MIN_S) -> np.ndarray:
+def pause_spans(steps: pd.DataFrame, *, min_s: float = PAUSE_MIN_S, turn_gaps=None) -> np.ndarray:
     """(P, 2) each pause's time span (s, the session's clock): the last ``excess`` seconds before the row that
     ends it starts - the standing before the walker sets off again (decision L110: the time
-    ``walking_speed_mps`` leaves out). Its length is :func:`pauses`'s."""
+    ``walking_speed_mps`` leaves out). Its length is :func:`pauses`'s (``turn_gaps``: decision C180, as there)."""
     if len(steps) < 2:
         return np.zeros((0, 2))
     st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
-    excess, is_pause = _intervals(st, min_s)
+    excess, is_pause = _intervals(st, min_s, turn_gaps)
     t_next = st["start_s"].to_numpy(float)[1:][is_pause]
     return np.column_stack([t_next - excess[is_pause], t_next])
 
 
-def bout_rows(steps: pd.DataFrame, *, min_s: float = PAUSE_MIN_S) -> list[tuple[int, int]]:
+def bout_rows(steps: pd.DataFrame, *, min_s: float = PAUSE_MIN_S, turn_gaps=None) -> list[tuple[int, int]]:
     """The walk's walking bouts (module docstring: the rows between pauses of at least ``min_s``) as
     ``(first, last + 1)`` row ranges of the table in ``start_s`` order (decision L124's per-bout table); decision
-    L269: a foot-data gap row longer than ``min_s`` ends a bout too (:func:`split_at_data_gaps`)."""
+    L269: a foot-data gap row longer than ``min_s`` ends a bout too (:func:`split_at_data_gaps`); decision C180:
+    an interval a walker's turn of ``turn_gaps`` fills ends none (:func:`turn_filled`)."""
     if not len(steps):
         return []
     st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
     if len(st) < 2:
         return split_at_data_gaps(st, [(0, 1)], min_s)
-    _, is_pause = _intervals(st, min_s)
+    _, is_pause = _intervals(st, min_s, turn_gaps)
     cuts = [0, *(np.flatnonzero(is_pause) + 1).tolist(), len(st)]
     return split_at_data_gaps(st, list(zip(cuts[:-1], cuts[1:], strict=True)), min_s)
 
@@ -185,9 +189,9 @@ def split_at_data_gaps(st: pd.DataFrame, ranges: list[tuple[int, int]], break_s:
     return out
 
 
-def _intervals(st: pd.DataFrame, min_s: float = PAUSE_MIN_S) -> tuple[np.ndarray, np.ndarray]:
+def _intervals(st: pd.DataFrame, min_s: float = PAUSE_MIN_S, turn_gaps=None) -> tuple[np.ndarray, np.ndarray]:
     """(N - 1,) each row-to-row interval's excess over the median interval (s) and whether it is a pause; rows
-    in time order."""
+    in time order; decision C180: an interval a walker's turn of ``turn_gaps`` fills is no pause."""
     t = st["start_s"].to_numpy(float)
     ok = _valid(st)
     lo, hi = between_rows(t, t)  # start to start (np.diff's intervals)
@@ -202,7 +206,21 @@ def _intervals(st: pd.DataFrame, min_s: float = PAUSE_MIN_S) -> tuple[np.ndarray
             # decision L372: at most the interval's time that was not still (a still stretch is standing)
             allow = np.minimum(dh / TURN_ON_SPOT_MIN_DPS, np.maximum(d - still_before(st)[1:], 0.0))
             excess = excess - np.where(dh >= PAUSE_MAX_TURN_DEG, allow, 0.0)
-    return excess, pair & (excess >= min_s)
+    is_pause = pair & (excess >= min_s)
+    if turn_gaps is not None and is_pause.any():  # decision C180: a turn fills the interval: walking, no pause
+        is_pause &= ~filled_intervals(lo, hi, turn_gaps, rhythm_s(st, d, pair), min_s)
+    return excess, is_pause
+
+
+def turn_filled(steps: pd.DataFrame, *, min_s: float = PAUSE_MIN_S, turn_gaps=None) -> np.ndarray:
+    """Decision C180: (N - 1,) for the rows in ``start_s`` order, whether each row-to-row interval is one that
+    L104 / L119 read as a pause and a walker's turn of ``turn_gaps`` fills (so no pause: bouts.csv's cadence leaves
+    it out); all False without ``turn_gaps``."""
+    st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
+    if turn_gaps is None or len(st) < 2:
+        return np.zeros(max(len(st) - 1, 0), dtype=bool)
+    plain = _intervals(st, min_s)[1]
+    return plain & ~_intervals(st, min_s, turn_gaps)[1]
 
 
 def rhythm_s(st: pd.DataFrame, d: np.ndarray, pair: np.ndarray) -> float:
@@ -1246,7 +1264,7 @@ def leg_summary(steps: pd.DataFrame) -> dict:
     return out
 
 
-def clinical_summary(steps: pd.DataFrame, *, contact_scatter_max_s: float | None = None) -> dict:
+def clinical_summary(steps: pd.DataFrame, *, contact_scatter_max_s: float | None = None, turn_gaps=None) -> dict:
     """Decision L104: :data:`CLINICAL_KEYS` of a tracked step table (module docstring): ``n_pauses``,
     ``pause_time_s`` (summed), ``longest_pause_s``, ``n_walking_bouts``, ``turn_count`` (turns of at least
     ``turn_count_min_deg``), ``stride_time_cv_pct`` over ``n_cv_strides`` straight strides, withheld (decision
@@ -1255,7 +1273,10 @@ def clinical_summary(steps: pd.DataFrame, *, contact_scatter_max_s: float | None
     lengths (not withheld by L113: no contact timing in a length). Decision L214: with no stride-time CV,
     ``stride_time_cv_withheld`` says why - ``{"cause", "reason", ...}``, ``cause`` one of
     :data:`CV_WITHHELD_CAUSES` (too few strides: ``n_cv_strides``, ``needed``, and L215's ``n_straight_strides`` /
-    ``n_not_level``, the straight strides and those L188's level criterion drops)."""
+    ``n_not_level``, the straight strides and those L188's level criterion drops). Decision C180: ``turn_gaps``
+    (a lower-back track's :class:`~pdrlearn.track.turn_gaps.TurnGaps`, an option: ``track`` passes none, so L104's
+    pauses and walking bouts keep the fixed 1 s rule; C182's corridor fill is bouts.csv's): an interval a walker's
+    turn fills is no pause."""
     limit = CONTACT_SCATTER_MAX_S if contact_scatter_max_s is None else float(contact_scatter_max_s)
     out: dict = {"n_pauses": 0, "pause_time_s": 0.0, "longest_pause_s": None, "n_walking_bouts": 0,
                  "turn_count": 0, "turn_count_min_deg": TURN_COUNT_MIN_DEG, "stride_time_cv_pct": None,
@@ -1264,10 +1285,11 @@ def clinical_summary(steps: pd.DataFrame, *, contact_scatter_max_s: float | None
                  "stride_length_cv_within_segments_pct": None, "n_cv_segments": 0, "stride_time_cv_direction": None}
     if not len(steps) or "start_s" not in steps:
         return out
-    p = pauses(steps)
+    p = pauses(steps, turn_gaps=turn_gaps)
     out["n_pauses"], out["pause_time_s"] = int(len(p)), float(p.sum())
     out["longest_pause_s"] = float(p.max()) if len(p) else None
-    out["n_walking_bouts"] = len(bout_rows(steps))  # n_pauses + 1 without a data gap (L269: a long gap ends one)
+    # n_pauses + 1 without a data gap (L269: a long gap ends one)
+    out["n_walking_bouts"] = len(bout_rows(steps, turn_gaps=turn_gaps))
     out["turn_count"] = int((np.abs(turns(steps)) >= TURN_COUNT_MIN_DEG).sum())
     if _is_lower_back(steps):  # decision L214: L104 gives no CV on the lower back; the summary says why
         out["stride_time_cv_withheld"] = {"cause": "lower_back", "reason": LOWER_BACK_CV_REASON}

@@ -3,7 +3,8 @@ docs/decisions/localization.md).
 
 A timed walk up and down a corridor of known length (the ATS 2002 six-minute walk test: 30 m, cones at both ends)
 is scored as the laps completed x the course length + the final partial lap (ATS 2002 guideline, as recalled). From
-a track: the laps are the stretches between cone turns (turns.csv rows of at least :data:`CONE_TURN_MIN_DEG`); each
+a track: the laps are the stretches between cone turns (turns.csv rows of at least :data:`CONE_TURN_MIN_DEG`, the
+walker's: decision C181 leaves out L622's ``carried`` turns, made seated or riding); each
 stretch that ends at a cone turn counts its corridor lengths, the final one its tracked distance scaled by the last
 lap's corridor / tracked ratio. Pure functions of the step table, the turn table and the bouts table.
 """
@@ -13,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from pdrlearn.track.clinical import _is_lower_back, data_gap_lengths
+from pdrlearn.track.clinical import _is_lower_back, data_gap_lengths, walked_turns
 from pdrlearn.track.rests import rest_seconds
 from pdrlearn.track.walk_test import _path
 from pdrlearn.warning_lines import coded
@@ -119,7 +120,8 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
     t, d = _distance_in_time(st)
     t0, t_end = (float(t[0]), float(st["end_s"].max())) if span is None else (float(span[0]), float(span[1]))
     turns = turns if turns is not None else pd.DataFrame(columns=["start_s", "end_s", "angle_deg"])
-    cone = turns[np.abs(turns["angle_deg"].to_numpy(float)) >= CONE_TURN_MIN_DEG] if len(turns) else turns
+    walked = walked_turns(turns)  # decision C181: a turn made seated or riding (L622's carried) ends no lap
+    cone = walked[np.abs(walked["angle_deg"].to_numpy(float)) >= CONE_TURN_MIN_DEG] if len(walked) else walked
     mids = ((cone["start_s"].to_numpy(float) + cone["end_s"].to_numpy(float)) / 2.0) if len(cone) else np.array([])
     warnings: list[str] = []
     if duration_s is not None:  # decision L516: the 6MWT's minutes from "go" (ATS 2002); L642: "go" found or given
@@ -201,8 +203,10 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
     scale = corridor_m / singles[-1][2] if singles else 1.0  # L383: the last single lap's corridor / tracked
     rows, known = [], [(lap_t0, 0.0)]  # known: (time, corridor distance) at each stretch's end
     a, b, m, _ = stretches[-1]
-    # decision L645: the final lap reached the cone; L660: not after an L517 short lap (the walk back to the chair)
-    if short is None and m * scale >= LAST_LAP_REACHED_FRAC * corridor_m:
+    # decision L645: the final lap reached the cone; L660: not after an L517 short lap (the walk back to the chair);
+    # C181: with the half cone turn it did not walk (a lap between two turns' middles holds two halves)
+    if short is None and (m + 0.5 * cone_turn_m(cone, t, d, lap_t0, lap_end)) * scale >= (
+            LAST_LAP_REACHED_FRAC * corridor_m):
         stretches[-1] = (a, b, m, 1)
     for i, (a, b, m, c) in enumerate(stretches, start=1):
         dist = c * corridor_m if c > 0 else min(m * scale, corridor_m)
@@ -236,6 +240,17 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
     out["walk_test_distance_per_minute_m"] = per_minute
     out["fatigue_index"] = per_minute[-1] / per_minute[0] if len(per_minute) >= 2 and per_minute[0] > 0 else None
     return laps, out, warnings
+
+
+def cone_turn_m(cone: pd.DataFrame, t: np.ndarray, d: np.ndarray, t0: float, t1: float) -> float:
+    """Decision C181: the median tracked metres (``d`` over times ``t``) inside the cone turns of ``cone`` (from its
+    ``start_s`` to its ``end_s``) whose middle lies in ``(t0, t1)``: the arc of a turn stepped round the cone, ~0 for
+    a turn on the spot; 0 without one."""
+    if not len(cone):
+        return 0.0
+    a, b = cone["start_s"].to_numpy(float), cone["end_s"].to_numpy(float)
+    inside = ((a + b) / 2 > t0) & ((a + b) / 2 < t1)
+    return float(np.median(np.interp(b[inside], t, d) - np.interp(a[inside], t, d))) if inside.any() else 0.0
 
 
 def clock_text(seconds: float) -> str:

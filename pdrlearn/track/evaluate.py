@@ -1515,7 +1515,7 @@ def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts
 
 def _evaluate_track(result: TrackResult, session: Session | None, *, bouts, bout_table, storey_height_m) -> dict:
     """:func:`evaluate_track`'s metrics, taken in the incline scope it opened."""
-    from pdrlearn.track.bouts import bouts_summary
+    from pdrlearn.track.bouts import BoutRule, bouts_summary
 
     if not (np.isfinite(storey_height_m) and storey_height_m > 0):
         raise ValueError(f"storey height {storey_height_m!r} m: give a positive number of metres (e.g. 3.0)")
@@ -1560,7 +1560,8 @@ def _evaluate_track(result: TrackResult, session: Session | None, *, bouts, bout
             logging.getLogger("pdrlearn.track").warning("%s: %s", session.where, line)
             result.info["warnings"] = [*result.info.get("warnings", []), line]
     # decision L124: bouts.csv's rows and their definition; L195: the bouts above the (leg-scaled) walking range
-    out.update(bouts_summary(result.steps, bouts, bout_table, leg_m=out.get("leg_length_m")))
+    out.update(bouts_summary(result.steps, bouts, bout_table, leg_m=out.get("leg_length_m"),
+                             turn_gaps=(bouts or BoutRule()).turn_gaps(result.info)))  # decisions C180 / C182
     if session is not None:  # decision W493: the detected bouts against the reference WBs (wb_scores.csv)
         _wb_scores(result, session, bouts, bout_table, out)
     if "pos_sigma_m" in result.trajectory and len(result.trajectory):  # decision L128: position uncertainty
@@ -1584,7 +1585,9 @@ def _wb_scores(result: TrackResult, session: Session, bouts, bout_table, out: di
     if ref is None:
         return
     if bout_table is None:
-        bout_table = detected_bouts(result.steps, bouts or BoutRule(), leg_m=out.get("leg_length_m"))
+        rule = bouts or BoutRule()
+        bout_table = detected_bouts(result.steps, rule, leg_m=out.get("leg_length_m"),
+                                    turn_gaps=rule.turn_gaps(result.info))  # decisions C180 / C182, as bouts.csv
     # decision W499: a --window drops the reference WBs it cuts; the detected bouts of those walks are left out too
     table, keys = wb_evaluation(outside_spans(bout_table, result.info.get("window_cut_wbs")), ref)
     result.info["wb_scores"] = table.to_dict("records")

@@ -179,10 +179,9 @@ def write_folder(dest: Path, tracked: dict) -> tuple[dict, bool]:
     from pdrlearn.track.floor_column import with_floor_columns
 
     traj = with_floor_columns(traj, result, summary.get("storey_height_m"))  # decisions L630, L631
-    if result.info.get("rides"):  # decision L623: the rows a ride's line reaches (not walked), last; only with a ride
-        from pdrlearn.track.rides import trajectory_rides
+    from pdrlearn.track.rides import with_ride_column
 
-        traj["ride"] = trajectory_rides(traj, result.info["rides"])
+    traj = with_ride_column(traj, result.info)  # decision L623: the rows a ride's line reaches (not walked), last
     if aided and plot:
         from pdrlearn.aid import plot_aided
 

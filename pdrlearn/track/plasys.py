@@ -1323,6 +1323,10 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             log.warning("%s: %s", session.where, insole)
         if transfers and session.has("wAccelerometer", "wGyroscope"):  # W418's transfers are offline only (`run`
             res.info["trunk_note"] = STREAMED_TRUNK_NOTE.format(where=session.where)  # writes none); W431: say so
+        from pdrlearn.track.units import with_left_out_units
+
+        # decision E293: the rides as offline (L378, L615, L624), and as `run` reads them (E6: one computation)
+        foot_rides(res, with_left_out_units(session), ride_vibration)
         return res
     refusal = reads_force_refusal(steps) if ignore_force else None  # decision B299
     if refusal:
@@ -1791,7 +1795,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                    raw_dz=climb_dz if fused_climb else None)
     from pdrlearn.track.units import with_left_out_units
 
-    # decision L378: the rides, from the waist barometer (offline only, as run's files); L615 / L616: the foot's
+    # decision L378: the rides, from the waist barometer (streamed and `run` too since E293); L615 / L616: the foot's
     # vibration tells a vehicle; L634: `--units foot` leaves the waist's motion out, not its barometer
     foot_rides(res, with_left_out_units(session), ride_vibration)
     res.steps.insert(res.steps.columns.get_loc("terrain") + 1, "terrain_dz",  # decision L424: beside the class

@@ -14,6 +14,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from pdrlearn.kernels.rests import pieces_outside
 from pdrlearn.track.clinical import PAUSE_MIN_S, walked_turns
 
 #: decision L647 (L386's, L104's pause): a gap's time outside turns shorter than this is no rest (s)
@@ -45,9 +46,7 @@ def _turning(turns: pd.DataFrame | None, widen_s: float) -> np.ndarray:
 def rest_pieces(start: float, end: float, turns: pd.DataFrame | None, widen_s: float) -> list[tuple[float, float]]:
     """Decision L647: the rest of one gap ``[start, end]`` between walking bouts: its pieces outside every turn
     (widened by ``widen_s``), none when they sum to under :data:`REST_MIN_S`."""
-    pieces = [(float(start), float(end))]
-    for a, b in _turning(turns, widen_s):
-        pieces = [p for s, e in pieces for p in ((s, min(e, a)), (max(s, b), e)) if p[1] > p[0]]
+    pieces = pieces_outside(start, end, _turning(turns, widen_s))
     return pieces if sum(e - s for s, e in pieces) >= REST_MIN_S else []
 
 

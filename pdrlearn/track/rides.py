@@ -357,6 +357,14 @@ def trajectory_rides(traj: pd.DataFrame, records: list[dict] | None) -> pd.Serie
     return pd.Series(out, index=traj.index, name="ride")
 
 
+def with_ride_column(traj: pd.DataFrame, info: dict) -> pd.DataFrame:
+    """Decision L623: ``traj`` with trajectory.csv's ``ride`` column (:func:`trajectory_rides`) when ``info["rides"]``
+    holds a ride; unchanged otherwise (no column without a ride). ``track`` and ``run`` (decision E293) write it."""
+    if not info.get("rides"):
+        return traj
+    return traj.assign(ride=trajectory_rides(traj, info["rides"]))
+
+
 def ride_table(info: dict) -> pd.DataFrame:
     """Decision L377: rides.csv from a track's ``info["rides"]`` (:func:`ride_rows`' records); the header alone
     without rides (a foot track, no barometer)."""

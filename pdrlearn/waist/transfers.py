@@ -65,7 +65,7 @@ HEIGHT_HALF_S: float | None = None
 W450_CANDIDATE = {"top_s": 1.0, "seated_rest_s": 1.0}
 #: decision L648: a slow rise read at the walk's start ends at most this (s) before its first contact, a slow sit at its
 #: end starts at most this after its last (a TUG walks off once up and sits once back; HAPT's protocol holds each
-#: posture for seconds: candidate 1 without it added a false rise there)
+#: posture for seconds: candidate 1 without it added a false rise there); W506: or after the turn in front of the chair
 SLOW_EDGE_WALK_S = 5.0
 SIT_TO_STAND, STAND_TO_SIT = "sit-to-stand", "stand-to-sit"
 #: transfers.csv's columns (decision W182), in order
@@ -192,14 +192,19 @@ def transfers_from_tilt(imu: WaistIMU, tilt: np.ndarray, *, slow_bounds: dict | 
     return pd.DataFrame(rows, columns=list(TRANSFER_COLUMNS))
 
 
-def with_slow_edges(imu: WaistIMU, tilt: np.ndarray, rows: pd.DataFrame, contacts: np.ndarray) -> pd.DataFrame:
+def with_slow_edges(imu: WaistIMU, tilt: np.ndarray, rows: pd.DataFrame, contacts: np.ndarray, *,
+                    final_turn: bool = True) -> pd.DataFrame:
     """Decision L648: W182's ``rows`` with the session's first rise and last sit of W450's candidate C reading
     (:data:`W450_CANDIDATE`: a slow 3-6 s transfer's wider bounds, kept only with a still trunk on its seated side)
     where W182 has none: the last sit-to-stand starting before the first of ``contacts`` (s) when no W182 row starts
     before it, the first stand-to-sit ending after the last contact when no W182 row ends after it, each within
     :data:`SLOW_EDGE_WALK_S` of the walk - a TUG's slow
     rise and sit (trial T1: 4 of 6 slow TUGs untimed). Nothing else of that reading is taken (W450's false transfers
-    in daily life stay out). Rows renumbered in time order."""
+    in daily life stay out). Rows renumbered in time order. ``final_turn`` (decision W506, adopted; False: L648
+    alone): when no such
+    sit starts within :data:`SLOW_EDGE_WALK_S` of the last contact, the window is counted from the end of a pelvis
+    yaw-rate turn of at least C180's 90 deg that starts at most :data:`SLOW_EDGE_WALK_S` after the last contact and
+    ends after it (the stepless turn in front of the chair, W331)."""
     if not len(contacts):
         return rows
     first, last = float(np.min(contacts)), float(np.max(contacts))
@@ -215,12 +220,26 @@ def with_slow_edges(imu: WaistIMU, tilt: np.ndarray, rows: pd.DataFrame, contact
     sit = slow[(slow["kind"] == STAND_TO_SIT) & (slow["end_s"] > last)] if need_sit else slow.iloc[:0]
     if len(sit) and float(sit["start_s"].iloc[0]) <= last + SLOW_EDGE_WALK_S:  # ... and sits once back
         added.append(sit.iloc[[0]])
+    elif len(sit) and final_turn and float(sit["start_s"].iloc[0]) <= _final_turn_end(imu, last) + SLOW_EDGE_WALK_S:
+        added.append(sit.iloc[[0]])  # decision W506: ... once back and turned about in front of the chair
     if not added:
         return rows
     out = pd.concat([rows, *added], ignore_index=True) if len(rows) else pd.concat(added, ignore_index=True)
     out = out.sort_values("start_s", kind="stable").reset_index(drop=True)
     out["transfer"] = np.arange(1, len(out) + 1)
     return out[list(TRANSFER_COLUMNS)]
+
+
+def _final_turn_end(imu: WaistIMU, last: float) -> float:
+    """Decision W506: the end (s) of the first pelvis yaw-rate turn (L210) of at least C180's
+    :data:`~pdrlearn.track.turn_gaps.TURN_GAP_MIN_DEG` that starts at most :data:`SLOW_EDGE_WALK_S` after ``last``
+    (the last contact) and ends after it; ``last`` without one."""
+    from pdrlearn.track.turn_gaps import TURN_GAP_MIN_DEG
+    from pdrlearn.waist.heading import yaw_turns
+
+    ends = [float(y["end_s"]) for y in yaw_turns(imu) if abs(float(y["angle_deg"])) >= TURN_GAP_MIN_DEG
+            and float(y["start_s"]) <= last + SLOW_EDGE_WALK_S and float(y["end_s"]) > last]
+    return ends[0] if ends else last
 
 
 def _empty() -> pd.DataFrame:
