@@ -148,12 +148,11 @@ def strapdown(acc: np.ndarray, gyr: np.ndarray, dt: float | np.ndarray, idx: np.
     yaw_change : (B,) change of the foot's heading over the stride (rad, CCW)
     """
     B, L = idx.shape
-    a_nav = np.zeros((B, L, 3))
     if B == 0:
-        return a_nav, np.zeros(0)
+        return np.zeros((B, L, 3)), np.zeros(0)
     if q is None:
         q = stride_attitude(gyr, dt, idx, mask, g_body, gyro_bias, init, coning=coning)
-    a_nav[:] = _qrotate(q, acc[idx])
+    a_nav = _qrotate(q, np.asarray(acc, dtype=float)[idx])  # decision L663: no zeroed copy
     a_nav[:, :, 2] -= np.linalg.norm(g_body, axis=1)[:, None]
     a_nav[~mask] = 0.0
     n = mask.sum(axis=1) - 1
@@ -271,7 +270,7 @@ def zupt_velocity(a_nav: np.ndarray, mask: np.ndarray, dt: float | np.ndarray, *
                 frac = np.minimum(tau / np.maximum(tau[np.arange(B), n - 1], 1e-300)[:, None], 1.0)
             v = v - frac[:, :, None] * v_end[:, None, :]
         else:
-            v = v - _interp_between(v, zupt & mask, clock)
+            _interp_between(v, zupt & mask, clock, remove=True)
     v[~mask] = 0.0
     return v
 
@@ -345,10 +344,11 @@ def error_clock(a_nav: np.ndarray, mask: np.ndarray, *, r: float, scale_error: f
     return np.cumsum(w, axis=1)
 
 
-def _interp_between(v: np.ndarray, known: np.ndarray, clock: np.ndarray | None = None) -> np.ndarray:
+def _interp_between(v: np.ndarray, known: np.ndarray, clock: np.ndarray | None = None, *,
+                    remove: bool = False) -> np.ndarray:
     """Per row b, values of ``v[b]`` (L, k) at the ``known`` samples, linearly interpolated in between
     (held after the last known sample) along ``clock`` (B, L) (default: the sample index). Every row's
-    first sample must be known."""
+    first sample must be known. ``remove`` (decision L663): subtract them from ``v`` in place and return ``v``."""
     B, L = known.shape
     j = np.arange(L)
     tau = np.broadcast_to(j[None, :].astype(float), (B, L)) if clock is None else clock
@@ -356,10 +356,20 @@ def _interp_between(v: np.ndarray, known: np.ndarray, clock: np.ndarray | None =
     nxt = np.flip(np.minimum.accumulate(np.flip(np.where(known, j, L), axis=1), axis=1), axis=1)
     nxt = np.where(nxt >= L, prev, nxt)
     rows = np.arange(B)[:, None]
-    vp, vn = v[rows, prev], v[rows, nxt]
     span = np.maximum(tau[rows, nxt] - tau[rows, prev], 1e-300)
-    w = np.where(nxt > prev, (tau - tau[rows, prev]) / span, 0.0)[:, :, None]
-    return vp + w * (vn - vp)
+    w = np.where(nxt > prev, (tau - tau[rows, prev]) / span, 0.0)
+    out = v if remove else np.empty(v.shape, dtype=np.result_type(v, w))
+    for a in range(v.shape[2]):  # decision L663: vp + w (vn - vp) one axis at a time (no (B, L, k) temporaries)
+        va = v[:, :, a]
+        vp, d = va[rows, prev], va[rows, nxt]
+        d -= vp
+        d *= w
+        d += vp
+        if remove:
+            va -= d
+        else:
+            out[:, :, a] = d
+    return out
 
 
 def wnj_matrices(dt: float, sw: float) -> tuple[np.ndarray, np.ndarray]:
@@ -389,7 +399,7 @@ def _inv3_sym(M: np.ndarray) -> np.ndarray:
 
 def wnj_kalman(a_meas: np.ndarray, mask: np.ndarray, dt: float | np.ndarray, *, sw: float = 1.8, r: float = 0.01,
                zupt: bool = True, zupt_at: np.ndarray | None = None, r_zupt: float = 1e-6,
-               smooth: bool = True, q_vel: np.ndarray | None = None) -> np.ndarray:
+               smooth: bool = True, q_vel: np.ndarray | None = None, final: bool = False) -> np.ndarray:
     """White-noise-jerk Kalman filter (state [d, v, a], thesis eq. 44-55) on a batch of signals.
 
     Parameters
@@ -407,6 +417,8 @@ def wnj_kalman(a_meas: np.ndarray, mask: np.ndarray, dt: float | np.ndarray, *, 
     smooth : run the RTS smoother (offline); ``False`` returns the causal filter
     q_vel : (N, L) extra velocity process noise (m/s)^2 added in the prediction to sample j (decision
         L21: velocity errors proportional to the acceleration); None = the white-noise-jerk model only
+    final : decision L663: return only the state at each row's last valid sample, (N, 3) or (N, A, 3) (the
+        filter's, which the RTS pass leaves as it is), without keeping the (N, L, ...) history
 
     Returns
     -------
@@ -417,73 +429,102 @@ def wnj_kalman(a_meas: np.ndarray, mask: np.ndarray, dt: float | np.ndarray, *, 
     am = a_meas[:, :, None] if squeeze else a_meas
     N, L, A = am.shape
     steps = np.ndim(dt) != 0  # decision L83: one interval per row and step (N, L - 1), from the timestamps
-    if steps and smooth:
+    if steps and smooth and not final:
         raise ValueError("wnj_kalman: per-step intervals are supported by the filter only (smooth=False)")
+    smooth = smooth and not final  # the smoothed state at the last sample is the filtered one
     if not steps:
         F, Q = wnj_matrices(dt, sw)
         T, h = dt, dt * dt / 2
         q00, q01, q02, q11, q12, q22 = Q[0, 0], Q[0, 1], Q[0, 2], Q[1, 1], Q[1, 2], Q[2, 2]
-    # state (N, A, 3); covariance kept as its six distinct elements, each (N,), shared by the A axes
-    x = np.zeros((N, A, 3))
-    x[:, :, 2] = am[:, 0]
-    one = np.ones(N)
-    p = {"00": 1e-12 * one, "01": 0 * one, "02": 0 * one, "11": (1e-12 if zupt else 1e-4) * one,
-         "12": 0 * one, "22": r * one}
     last = mask.sum(axis=1) - 1
     if zupt_at is None:
         zupt_at = np.zeros((N, L), dtype=bool)
         zupt_at[np.arange(N), last] = True
-    xf = np.zeros((N, L, A, 3))
-    xf[:, 0] = x
-    Pf = np.zeros((N, L, 6)) if smooth else None
-    keys = ("00", "01", "02", "11", "12", "22")
+    # decision L663: the rows longest first (by their last valid sample), so the rows still running at sample j are
+    # the first ``alive[j]`` (views); a finished row keeps its state, as the masked update of every row did
+    end = np.where(mask.any(axis=1), L - 1 - np.argmax(mask[:, ::-1], axis=1), 0)
+    order = np.argsort(-end, kind="stable")
+    alive = N - np.searchsorted(np.sort(end), np.arange(L), side="left")
+    amT = np.ascontiguousarray(np.moveaxis(am[order], 1, 0))  # (L, N, A)
+    actT = np.ascontiguousarray(mask[order].T)
+    zupT = np.ascontiguousarray((mask & zupt_at)[order].T) if zupt else None
+    qvT = None if q_vel is None else np.ascontiguousarray(np.asarray(q_vel, dtype=float)[order].T)
+    dtT = np.ascontiguousarray(np.asarray(dt, dtype=float)[order].T) if steps else None
+    # state x[c] (N, A) for its components c = d, v, a; covariance kept as its six distinct elements P[0..5] = 00, 01,
+    # 02, 11, 12, 22, each (N,), shared by the A axes
+    x = np.zeros((3, N, A))
+    x[2] = amT[0]
+    P = np.zeros((6, N))
+    P[0], P[3], P[5] = 1e-12, (1e-12 if zupt else 1e-4), r
+    xf = None if final else np.zeros((L, 3, N, A))
+    if xf is not None:
+        xf[0] = x
+    Pf = np.zeros((L, 6, N)) if smooth else None
     if smooth:
-        Pf[:, 0] = np.column_stack([p[k] for k in keys])
+        Pf[0] = P
+    col_of = ((0, 1, 2), (1, 3, 4), (2, 4, 5))  # P[:, i, comp] for comp = 0, 1, 2
+    ki, kj = [0, 0, 0, 1, 1, 2], [0, 1, 2, 1, 2, 2]  # P[key] -= k_i col_j for key = ij
 
-    def update(comp: int, z: np.ndarray, var: float, act: np.ndarray) -> None:
-        nonlocal x
-        col = [p[f"{min(i, comp)}{max(i, comp)}"] for i in range(3)]  # P[:, i, comp]
-        sden = col[comp] + var
-        k = np.where(act[:, None], np.column_stack(col) / sden[:, None], 0.0)
-        x = x + k[:, None, :] * (z - x[:, :, comp])[:, :, None]
-        for key in keys:
-            i, j = int(key[0]), int(key[1])
-            p[key] = p[key] - k[:, i] * col[j]
+    def update(m: int, comp: int, z, var: float, act: np.ndarray | None) -> None:
+        col = P[list(col_of[comp]), :m]  # a copy (fancy index): the values before this update
+        k = col / (col[comp] + var)
+        if act is not None:
+            k = np.where(act[None, :], k, 0.0)
+        xs = x[:, :m]
+        xs += k[:, :, None] * (z - xs[comp])[None]
+        P[:, :m] -= k[ki] * col[kj]
 
+    Tc, hc = (None, None) if steps else (T, h)
     for j in range(1, L):
-        act = mask[:, j]
+        m = int(alive[j])
+        if m == 0:
+            if final:
+                break
+            xf[j] = x
+            if smooth:
+                Pf[j] = P
+            continue
+        act = actT[j, :m]
+        some = None if act.all() else act  # padded samples inside a row (none in a rest-to-rest stride)
+        xs = x[:, :m]
+        p00, p01, p02, p11, p12, p22 = P[:, :m]
         # predict: x = F x, P = F P F^T + Q (thesis eq. 53/54), written out for the 3x3 F
         if steps:  # F and Q of each row's own interval (thesis eq. 53/54 with T = t_j - t_{j-1})
-            T = np.asarray(dt[:, j - 1], dtype=float)
+            T = dtT[j - 1, :m]
             h = T * T / 2
             q00, q01, q02 = sw * T ** 5 / 20, sw * T ** 4 / 8, sw * T ** 3 / 6
             q11, q12, q22 = sw * T ** 3 / 3, sw * T ** 2 / 2, sw * T
             Tc, hc = T[:, None], h[:, None]
-            xn = np.stack([x[:, :, 0] + Tc * x[:, :, 1] + hc * x[:, :, 2], x[:, :, 1] + Tc * x[:, :, 2],
-                           x[:, :, 2]], axis=2)
-        else:
-            xn = x @ F.T
-        x = np.where(act[:, None, None], xn, x)
-        a00 = p["00"] + T * p["01"] + h * p["02"]
-        a01 = p["01"] + T * p["11"] + h * p["12"]
-        a02 = p["02"] + T * p["12"] + h * p["22"]
-        a11 = p["11"] + T * p["12"]
-        a12 = p["12"] + T * p["22"]
-        new = {"00": a00 + T * a01 + h * a02 + q00, "01": a01 + T * a02 + q01, "02": a02 + q02,
-               "11": a11 + T * a12 + q11 + (0.0 if q_vel is None else q_vel[:, j]), "12": a12 + q12,
-               "22": p["22"] + q22}
-        for key in keys:
-            p[key] = np.where(act, new[key], p[key])
-        update(2, am[:, j], r, act)  # thesis eq. 55: the acceleration is measured
+        d_new = xs[0] + Tc * xs[1] + hc * xs[2]
+        v_new = xs[1] + Tc * xs[2]
+        xs[0] = d_new if some is None else np.where(some[:, None], d_new, xs[0])
+        xs[1] = v_new if some is None else np.where(some[:, None], v_new, xs[1])
+        a00 = p00 + T * p01 + h * p02
+        a01 = p01 + T * p11 + h * p12
+        a02 = p02 + T * p12 + h * p22
+        a11 = p11 + T * p12
+        a12 = p12 + T * p22
+        new = np.stack([a00 + T * a01 + h * a02 + q00, a01 + T * a02 + q01, a02 + q02,
+                        a11 + T * a12 + q11 + (0.0 if qvT is None else qvT[j, :m]), a12 + q12, p22 + q22])
+        P[:, :m] = new if some is None else np.where(some[None, :], new, P[:, :m])
+        update(m, 2, amT[j, :m], r, some)  # thesis eq. 55: the acceleration is measured
         if zupt:
-            update(1, np.zeros((N, A)), r_zupt, act & zupt_at[:, j])
-        xf[:, j] = x
+            zj = zupT[j, :m]
+            if zj.any():  # a row without a ZUPT at j keeps its state (a zero gain)
+                update(m, 1, 0.0, r_zupt, None if zj.all() else zj)
+        if xf is not None:
+            xf[j] = x
         if smooth:
-            Pf[:, j] = np.column_stack([p[k] for k in keys])
+            Pf[j] = P
+    inv = np.argsort(order)
+    if final:
+        x = np.transpose(x, (1, 2, 0))[inv]  # (N, A, 3)
+        return x[:, 0] if squeeze else x
+    xf = np.transpose(xf, (2, 0, 3, 1))[inv]  # (N, L, A, 3)
     if not smooth:
         return xf[:, :, 0] if squeeze else xf
     idx = [[0, 1, 2], [1, 3, 4], [2, 4, 5]]
-    Pm = Pf[..., idx]  # (N, L, 3, 3)
+    Pm = np.transpose(Pf, (2, 0, 1))[inv][..., idx]  # (N, L, 3, 3)
     xs = xf.copy()
     for j in range(L - 2, -1, -1):
         act = mask[:, j + 1]
@@ -501,11 +542,13 @@ def wnj_displacement(a_nav: np.ndarray, mask: np.ndarray, dt: float | np.ndarray
     B = a_nav.shape[0]
     if B == 0:
         return np.zeros((0, 3))
-    # the smoothed state at the last sample equals the filtered one (RTS), so the filter suffices here
+    # the smoothed state at the last sample equals the filtered one (RTS), so the filter suffices here; decision
+    # L663: without its history
     kw.setdefault("smooth", False)
-    states = wnj_kalman(a_nav, mask, dt, **kw)
-    last = mask.sum(axis=1) - 1
-    return states[np.arange(B), last, :, 0]
+    if kw["smooth"]:
+        states = wnj_kalman(a_nav, mask, dt, **kw)
+        return states[np.arange(B), mask.sum(axis=1) - 1, :, 0]
+    return wnj_kalman(a_nav, mask, dt, final=True, **kw)[:, :, 0]
 
 
 # --- M3 rules (thesis ch.7.2.2) -------------------------------------------------------------------

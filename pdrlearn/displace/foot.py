@@ -420,6 +420,7 @@ class FootDisplacement:
         lo = np.clip(i0 - w, 0, len(t))
         hi = np.clip(i0 + w + 1, 0, len(t))
         g_body = (csum[hi] - csum[lo]) / (hi - lo)[:, None]
+        del csum  # decision L663: (n, 3) on L628's x5 grid, not kept through the strides
         init = None
         if self.attitude == "kalman" and B:
             # the angle filter runs at the native rate; its angles at the stride starts set the attitude
@@ -460,6 +461,9 @@ class FootDisplacement:
             self.yaw_change_ = twist_yaw(q[:, 0], q[np.arange(B), mask.sum(axis=1) - 1])
         self.gap_yaw_ = self._gap_yaw(acc, gyr, tclock, i0, i1, bias) if self.gap_yaw else np.zeros(B)
         zm = K.zupt_mask(zupt_stance, idx, mask)
+        heel = self.reference_point == "heel" and B
+        gyr_b = gyr[idx] if heel else None
+        del acc, gyr  # decision L663: the grid's samples are not read again (L628's x5 grid at 100 Hz: 86 MB an hour)
         s2 = self.accel_scale_error ** 2
         if self.integrator == "kalman":
             # decision L21: velocity errors proportional to |a| (scale, bandwidth, clipped impacts)
@@ -473,8 +477,8 @@ class FootDisplacement:
             self.disp_ = K.double_integrate(a_nav, mask, dt, zupt_end=self.zupt_end, zupt=zm, clock=clock)
         self._swing_measures(a_nav, mask, dt, zm, q, idx, weight)  # decision L421
         self.lever_arm_ = None
-        if self.reference_point == "heel" and B:
-            self._to_heel(a_nav, mask, dt, zm, q, gyr[idx], self.stance_[idx], period, weight)
+        if heel:
+            self._to_heel(a_nav, mask, dt, zm, q, gyr_b, self.stance_[idx], period, weight)
         return self
 
     def _swing_measures(self, a_nav, mask, dt, zm, q, idx, weight) -> None:
@@ -489,8 +493,9 @@ class FootDisplacement:
             return
         clock = (K.error_clock(a_nav, mask, r=self.r, scale_error=self.accel_scale_error, weight=weight)
                  if self.accel_scale_error > 0 else None)
-        v = K.zupt_velocity(a_nav, mask, dt, zupt_end=self.zupt_end, zupt=zm, clock=clock)
-        self.lift_m_ = max_lift(K._cumtrapz(v, dt), mask)
+        pos = K._cumtrapz(K.zupt_velocity(a_nav, mask, dt, zupt_end=self.zupt_end, zupt=zm, clock=clock), dt)
+        self.lift_m_ = max_lift(pos, mask)
+        del pos
         self.sole_pitch_deg_ = sole_pitch_deg(q)
 
     def sole_angle(self, times) -> np.ndarray:
@@ -502,14 +507,15 @@ class FootDisplacement:
 
     def _intervals(self, t: np.ndarray, period: float, idx: np.ndarray, mask: np.ndarray):
         """Decision L83: the sample intervals the strides are integrated over. Returns ``dt`` (``period``, or
-        (B, L - 1) s per stride step from the timestamps), the clock (n,) s of every sample and the
-        interval of every stride sample in periods (B, L) (None on a uniform clock)."""
+        (B, L - 1) s per stride step from the timestamps), the clock (n,) s of every sample (on a uniform clock the
+        period, which :meth:`_gap_yaw` reads as the sample clock; decision L663) and the interval of every stride
+        sample in periods (B, L) (None on a uniform clock)."""
         from pdrlearn.track.gaps import MIN_GAP_S  # B11's gap (imported here: pdrlearn.track imports this module)
 
         d = np.diff(np.asarray(t, dtype=float))
         d = np.where(d > MIN_GAP_S, period, d)  # B11's gap: one period, as before (its stride is zeroed)
         if not self.timestamps or not len(d) or np.all(np.abs(d - period) <= 1e-6 * period):
-            return period, np.arange(len(t)) * period, None
+            return period, period, None
         dt = np.where(mask[:, 1:], d[np.minimum(idx[:, :-1], len(d) - 1)], 0.0)
         weight = np.concatenate([np.ones((len(idx), 1)), dt / period], axis=1)
         return dt, np.concatenate([[0.0], np.cumsum(d)]), weight

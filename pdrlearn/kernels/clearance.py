@@ -53,7 +53,7 @@ def sole_pitch_deg(q: np.ndarray) -> np.ndarray:
     h /= np.maximum(np.linalg.norm(h, axis=1), 1e-12)[:, None]
     conj = q[:, 0] * np.array([1.0, -1.0, -1.0, -1.0])
     f_body = qrotate(conj, h)  # the horizontal forward direction at rest, in the body frame
-    f = qrotate(q, np.repeat(f_body[:, None, :], L, axis=1))
+    f = qrotate(q, f_body[:, None, :])  # broadcast over the stride's samples (decision L663: no repeated copy)
     return np.degrees(np.arcsin(np.clip(f[:, :, 2], -1.0, 1.0)))
 
 

@@ -39,17 +39,41 @@ def step_dt(dt):
     return dt if np.ndim(dt) == 0 else np.asarray(dt, dtype=float)[:, :, None]
 
 
+def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Decision L663: the cross products a x b of vectors (..., 3), broadcast, written out per component (the same
+    products and differences as ``np.cross``, without its axis moves and temporaries)."""
+    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
+    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
+    out = np.empty(np.broadcast_shapes(a.shape, b.shape), dtype=np.result_type(a, b, float))
+    np.multiply(a1, b2, out=out[..., 0])
+    out[..., 0] -= a2 * b1
+    np.multiply(a2, b0, out=out[..., 1])
+    out[..., 1] -= a0 * b2
+    np.multiply(a0, b1, out=out[..., 2])
+    out[..., 2] -= a1 * b0
+    return out
+
+
 def qrotate(q: np.ndarray, v: np.ndarray) -> np.ndarray:
     """Rotate vectors v (..., 3) by unit quaternions q (..., 4): v + 2w (u x v) + 2 u x (u x v)."""
     u = q[..., 1:]
-    t = 2.0 * np.cross(u, v)
-    return v + q[..., :1] * t + np.cross(u, t)
+    t = cross(u, v)
+    t *= 2.0
+    out = cross(u, t)
+    t *= q[..., :1]  # decision L663: two arrays, the same sums ((v + w t) + u x t)
+    t += v
+    out += t
+    return out
 
 
 def cumtrapz(x: np.ndarray, dt: float | np.ndarray) -> np.ndarray:
     """Trapezoid integral along axis 1 of (B, L, k) samples ``dt`` apart (:func:`step_dt`), 0 at the start."""
-    out = np.zeros_like(x)
-    out[:, 1:] = np.cumsum(0.5 * (x[:, 1:] + x[:, :-1]) * step_dt(dt), axis=1)
+    out = np.empty_like(x)
+    out[:, :1] = 0.0
+    step = x[:, 1:] + x[:, :-1]  # decision L663: in place, the same operations
+    step *= 0.5
+    step *= step_dt(dt)
+    np.cumsum(step, axis=1, out=out[:, 1:])
     return out
 
 
@@ -65,15 +89,18 @@ def level_quat(g_body: np.ndarray) -> np.ndarray:
     return np.concatenate([np.cos(half)[:, None], unit * np.sin(half)[:, None]], axis=1)
 
 
-def coning_increments(theta: np.ndarray, coef: float | None = None) -> np.ndarray:
+def coning_increments(theta: np.ndarray, coef: float | None = None, *, inplace: bool = False) -> np.ndarray:
     """Decision L626: the body-frame rotation vectors (B, m, 3) of consecutive steps ``theta`` (each the midpoint
     rate times its interval) with the coning term ``coef`` theta_k-1 x theta_k (default :data:`CONING_COEF`, L35)
     added to each step but the first: what the rotation of the mean rate misses when the rotation axis turns (a
-    swinging foot's pitch and roll, which do not commute). A new array; ``coef`` 0 returns the increments."""
+    swinging foot's pitch and roll, which do not commute). A new array (``inplace``: ``theta`` itself, a float array;
+    decision L663); ``coef`` 0 returns the increments."""
     c = CONING_COEF if coef is None else float(coef)
-    out = np.array(theta, dtype=float)
+    out = theta if inplace else np.array(theta, dtype=float)
     if c and out.shape[1] > 1:
-        out[:, 1:] += c * np.cross(theta[:, :-1], theta[:, 1:])
+        term = cross(theta[:, :-1], theta[:, 1:])
+        term *= c
+        out[:, 1:] += term
     return out
 
 
@@ -86,20 +113,27 @@ def stride_quaternions(q0: np.ndarray, gyr: np.ndarray, dt: float | np.ndarray, 
     B, L = idx.shape
     bias = np.zeros((B, 3)) if gyro_bias is None else np.asarray(gyro_bias, dtype=float)
     # body-frame rotation increments of every step (midpoint rate + L626's coning term), as quaternions [w, x, y, z]
-    w = 0.5 * (gyr[idx[:, :-1]] + gyr[idx[:, 1:]]) - bias[:, None, :]
-    w = coning_increments(np.where(mask[:, 1:, None], w, 0.0) * step_dt(dt), coning)
+    gyr = np.asarray(gyr, dtype=float)
+    w = gyr[idx[:, :-1]]  # decision L663: built in place, the same operations
+    w += gyr[idx[:, 1:]]
+    w *= 0.5
+    w -= bias[:, None, :]
+    w[~mask[:, 1:]] = 0.0
+    w *= step_dt(dt)
+    w = coning_increments(w, coning, inplace=True)
     ang = np.linalg.norm(w, axis=2, keepdims=True)
     half = 0.5 * ang
-    dq = np.concatenate([np.cos(half), w * np.where(ang > 1e-12, np.sin(half) / np.maximum(ang, 1e-300), 0.5)],
-                        axis=2)
+    w *= np.where(ang > 1e-12, np.sin(half) / np.maximum(ang, 1e-300), 0.5)
     qc = np.empty((L, 4, B))  # per sample position: components w, x, y, z of every stride (contiguous)
     qc[0] = np.asarray(q0, dtype=float).T
-    d = np.ascontiguousarray(np.transpose(dq, (1, 2, 0)))  # (L - 1, 4, B)
+    qc[1:, 0] = np.cos(half[:, :, 0]).T  # decision L663: the increment dq_j waits in qc[j] until it is applied
+    qc[1:, 1:] = np.transpose(w, (1, 2, 0))
+    del w, ang, half
     for j in range(1, L):  # q_j = q_{j-1} * dq_j (Hamilton product, body-frame increment)
         pw, px, py, pz = qc[j - 1]
-        qw_, qx_, qy_, qz_ = d[j - 1]
-        qc[j, 0] = pw * qw_ - px * qx_ - py * qy_ - pz * qz_
-        qc[j, 1] = pw * qx_ + px * qw_ + py * qz_ - pz * qy_
-        qc[j, 2] = pw * qy_ - px * qz_ + py * qw_ + pz * qx_
-        qc[j, 3] = pw * qz_ + px * qy_ - py * qx_ + pz * qw_
+        qw_, qx_, qy_, qz_ = qc[j]
+        prod = (pw * qw_ - px * qx_ - py * qy_ - pz * qz_, pw * qx_ + px * qw_ + py * qz_ - pz * qy_,
+                pw * qy_ - px * qz_ + py * qw_ + pz * qx_, pw * qz_ + px * qy_ - py * qx_ + pz * qw_)
+        for c in range(4):
+            qc[j, c] = prod[c]
     return np.transpose(qc, (2, 0, 1))  # (B, L, 4)
