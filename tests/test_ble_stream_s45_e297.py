@@ -58,7 +58,7 @@ def test_the_tracker_names_a_counter_wrap_with_its_exact_rebase(walk):  # noqa: 
             inside.append(str(e))
     assert [(e.unit, e.offset_s) for e in cwb] == [
         ("foot", pytest.approx(-U32 * 1e-3, abs=1e-6)),
-        ("waist", pytest.approx(w_off - U32 * 1e-3, abs=1e-6))]  # E227 had said -4294967.85
+        ("waist", pytest.approx(w_off - U32 * 1e-3, abs=1e-6))]  # before E297: -4294967.247
     line = str(cwb[0])
     assert "the foot clock wrapped: a 32-bit ms counter overflowing (2^32 ms = 4294967.296000 s), not a restart" in line
     assert "CounterUnwrapper(bits=32, tick_s=0.001) (decision E297)" in line
