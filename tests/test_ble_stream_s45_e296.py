@@ -138,3 +138,19 @@ def test_the_documented_thread_recipe_with_a_reorderer_per_unit_paced_at_arrival
     dist = sum(abs(s.length_m) for s in steps if not s.gap_s)
     print(f"recipe + Reorderer: {dist:.2f} m (clean {clean:.2f} m), late {late}, refused {len(refused)}")
     assert not late and abs(dist - clean) < 0.5
+
+
+def test_the_documented_ble_gateway_tracks_the_trials_stream_as_the_clean_one(walk):
+    d, bundle = walk
+    src = (ROOT / "docs" / "deploying.md").read_text()
+    code = re.search(r"<!-- example: tests/test_ble_stream_s45_e296.py -->\n```python\n(.*?)```", src, re.S)
+    ns: dict = {}
+    exec(code.group(1), ns)  # noqa: S102 - the docs' own gateway
+    clean, clean_end, _, _ = _track(bundle, packets(d, 0, faults=False))
+    lines: list[str] = []
+    pk = [(p["unit"], p["counter"], p["data"]) for p in packets(d, 1, loss=0.0)]
+    steps = list(ns["gateway"](Tracker(bundle), pk, START_MS, log=lines.append))
+    real = [s for s in steps if not s.gap_s]
+    assert sum(abs(s.length_m) for s in real) == pytest.approx(clean, abs=1e-6)
+    assert (steps[-1].x, steps[-1].y) == pytest.approx(clean_end, abs=1e-6)
+    assert len(lines) == 1 and lines[0].startswith("repeats dropped {") and "late {}" in lines[0]
