@@ -78,3 +78,15 @@ def test_a_gateway_with_the_unwrapper_tracks_the_wrapping_counters_as_the_clean_
     steps += tr.flush()
     dist = sum(abs(s.length_m) for s in steps if not s.gap_s)
     assert dist == pytest.approx(clean[0], abs=1e-6) and not [w for w in tr.warnings if "no samples" in w]
+
+
+def test_both_units_wrapping_in_one_push_get_their_exact_offsets():
+    from pdrlearn.runtime.links import order_error
+
+    e = order_error("fAccelerometer", 0.05, 4294967.246, duplicate=False, max_lag_s=2.0, offset_s=0.0,
+                    other_newest=None, also_back={"waist": (26.1, 4294993.2, -26.0)}, drift={"waist": 0.0})
+    assert isinstance(e, ClockWentBack) and e.offsets == {"foot": pytest.approx(-U32 * 1e-3, abs=1e-6),
+                                                         "waist": pytest.approx(-26.0 - U32 * 1e-3, abs=1e-6)}
+    assert "the foot clock wrapped" in str(e) and "the waist clock wrapped" in str(e)
+    e = order_error("fAccelerometer", 0.0, 38.95, duplicate=False, max_lag_s=2.0, offset_s=0.0, other_newest=None)
+    assert "wrapped" not in str(e) and "restarted" in str(e)  # T4's restart stays E227's
