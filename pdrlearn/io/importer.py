@@ -421,13 +421,10 @@ def _sample_steps(t_raw: np.ndarray) -> str:
     return f"step {d[0]:.0f}" if np.all(d == d[0]) else f"steps {d.min():.0f}-{d.max():.0f}"
 
 
-def _time_unit(t_raw: np.ndarray, given: str | None, column: str, where: str,
-               row_unit: str | None = None, *, inertial: bool = False, guessed: bool = False) -> tuple[str, str]:
-    """(unit, source) of the timestamps: given, the header's hint, else decision B22's inference (the units
-    in which the timestamps give a plausible rate, from B144's IMU floor for an ``inertial`` file, and a date
-    before 2100; ms when ms is one of them, as read_session does). When several fit, the source names the others
-    and the --time-unit that forces one (B144). A column named as sample numbers asks for --rate (B439): always
-    when it was ``guessed`` by that name and holds whole numbers (B444), else when they step by 1."""
+def _declared_time_unit(given: str | None, column: str, where: str,
+                        row_unit: str | None = None) -> tuple[str, str] | None:
+    """(unit, source) of the timestamps when declared: given (--time-unit), the units row under the header (B66) or
+    the header's own unit; None when only B22's inference can tell."""
     if given is not None:
         u = _time_word(given)
         if u not in _TIME_SCALE:
@@ -440,6 +437,19 @@ def _time_unit(t_raw: np.ndarray, given: str | None, column: str, where: str,
     hint = _TIME_ALIASES.get(hint, hint) if hint else None
     if hint in _TIME_SCALE:
         return hint, "header"
+    return None
+
+
+def _time_unit(t_raw: np.ndarray, given: str | None, column: str, where: str,
+               row_unit: str | None = None, *, inertial: bool = False, guessed: bool = False) -> tuple[str, str]:
+    """(unit, source) of the timestamps: given, the header's hint, else decision B22's inference (the units
+    in which the timestamps give a plausible rate, from B144's IMU floor for an ``inertial`` file, and a date
+    before 2100; ms when ms is one of them, as read_session does). When several fit, the source names the others
+    and the --time-unit that forces one (B144). A column named as sample numbers asks for --rate (B439): always
+    when it was ``guessed`` by that name and holds whole numbers (B444), else when they step by 1."""
+    declared = _declared_time_unit(given, column, where, row_unit)
+    if declared is not None:
+        return declared
     named = _stem(column) in _SAMPLE_NAMES and (sample_numbers(t_raw) or (guessed and _integers(t_raw)))
     if named:  # decisions B439, B444: the name says which; a guessed one never reaches B22's inference
         raise OptionFixError(f"{where}: column '{column}' holds sample numbers ({t_raw[0]:.0f}-{t_raw[-1]:.0f}, "
@@ -1155,10 +1165,17 @@ def _import_parts(path: str | os.PathLike, split: bool, *, unit: str = "foot",
             raise DataError(f"{where}: column {time_column!r} has {bad.size} non-numeric or empty value(s) (first at "
                             f"line {bad[0] + first_line}); timestamps must be numbers (or date-times) in every row"
                             + _units_row_hint(df, bad[0], first_line, (skipped or {}).get("rows", 0)))
-        bits, wraps = counter_wraps(t_num)  # decision B312: a timestamp counter that wraps around, unwrapped
+        try:  # decision B450: the tick, when declared (a unit not one of them is refused below, as before)
+            declared = None if rate_hz is not None else _declared_time_unit(time_unit, time_column, where,
+                                                                             row_units.get(time_column))
+        except DataError:
+            declared = None
+        tick = None if declared is None else _TIME_SCALE[declared[0]]
+        bits, wraps = counter_wraps(t_num, tick)  # decision B312 (B450: a gap across it, the tick known), unwrapped
         if bits:
-            log.warning("%s", wrap_message(f"{where} ({time_column})", t_num, bits, wraps,
-                                           time_unit or "ticks", int(wraps[0]) + 1 + first_line))
+            word = time_unit or (declared[0] if declared else "ticks")
+            log.warning("%s", wrap_message(f"{where} ({time_column})", t_num, bits, wraps, word,
+                                           int(wraps[0]) + 1 + first_line))
             t_num = unwrap(t_num, bits, wraps)
         if rate_hz is None and time_unit is not None and _time_word(time_unit) == "samples":
             raise DataError(f"{where}: --time-unit samples needs the sampling rate: pass --rate HZ")

@@ -15,10 +15,12 @@ except ModuleNotFoundError as _exc:  # decision E277: one line, not a traceback,
 else:
     del _numpy  # the package's names stay its own
 
+from pdrlearn.runtime.ble import CounterUnwrapper, Reorderer  # noqa: E402
 from pdrlearn.runtime.bundle import SCHEMA_VERSION, Bundle, OnnxModel, load_bundle, read_manifest  # noqa: E402
 from pdrlearn.runtime.pairing import SensorPair  # noqa: E402
 from pdrlearn.runtime.tracker import Step, Tracker  # noqa: E402
 from pdrlearn.runtime.waist import LiveStep, WaistBundle, WaistTracker, load_waist_bundle  # noqa: E402
 
 __all__ = ["SCHEMA_VERSION", "Bundle", "OnnxModel", "load_bundle", "read_manifest", "Step", "Tracker", "LiveStep",
-           "WaistBundle", "WaistTracker", "load_waist_bundle", "SensorPair"]
+           "WaistBundle", "WaistTracker", "load_waist_bundle", "SensorPair",
+           "CounterUnwrapper", "Reorderer"]

@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 
 from pdrlearn.errors import ClockWentBack, DataError
+from pdrlearn.kernels.counter_wrap import live_wrap
 
 #: decision E224 (ours, not from a document): a repeated E115 pause / resume line is written at most once per this many
 #: seconds of stream time (5 min: an hour's waist pausing on every packet writes about 24 lines, not 20 000); every
@@ -179,6 +180,24 @@ class RepeatedLines:
         return out
 
 
+def _wrapped(t0: float, last: float, offset_s: float, drift: float) -> tuple[int, float, float] | None:
+    """Decision E297: ``(bits, tick_s, offset)`` when the unit clock's step back from ``last`` to ``t0`` (the tracker's
+    clock; the unit reads ``t (1 + drift) + offset_s``, E229 / E248) is a counter wrapping (B312's rule on the unit's
+    own readings, :func:`~pdrlearn.kernels.counter_wrap.live_wrap`): the offset that goes on exactly across it is the
+    one now less the counter's period, ``2**bits`` ticks; None otherwise."""
+    w = live_wrap(last * (1.0 + drift) + offset_s, t0 * (1.0 + drift) + offset_s)
+    return None if w is None else (w[0], w[1], offset_s - 2.0 ** w[0] * w[1])
+
+
+def _wrap_text(unit: str, bits: int, tick: float, off: float) -> str:
+    """Decision E297: the clause naming a unit's counter that wrapped and the exact rebase."""
+    word = {1e-3: "ms", 1e-6: "us"}.get(tick, f"{tick:g} s")
+    return (f"the {unit} clock wrapped: a {bits}-bit {word} counter overflowing (2^{bits} {word} = "
+            f"{2.0 ** bits * tick:.6f} s), not a restart; tracker.rebase_clock({unit!r}, {off:.6f}) goes on exactly "
+            f"across it, but a packet holding the wrap is still refused: unwrap each pod's counter before pushing, "
+            f"pdrlearn.runtime.CounterUnwrapper(bits={bits}, tick_s={tick:g}) (decision E297)")
+
+
 def _all_went_back(head: str, back: dict, drift: dict) -> ClockWentBack:
     """Decision E243: the refusal of a push holding two units whose clocks both went back (unit -> (first sample,
     its streams' newest, offset now), the tracker's clock): each unit's first pushed sample goes just after the
@@ -187,6 +206,12 @@ def _all_went_back(head: str, back: dict, drift: dict) -> ClockWentBack:
     newest = max(b for _, b, _ in back.values())
     # decision E248: each unit's drift (s/s, ``drift``), as order_error's one-unit offset
     offsets = {u: off + (a - newest - 1e-3) * (1.0 + drift.get(u, 0.0)) for u, (a, _, off) in back.items()}
+    wraps = {u: w for u, (a, b, off) in back.items() if (w := _wrapped(a, b, off, drift.get(u, 0.0)))}
+    if wraps:  # decision E297: a unit whose counter wrapped goes on exactly across it, whatever the other's did
+        offsets.update({u: w[2] for u, w in wraps.items()})
+        first = next(iter(wraps))
+        return ClockWentBack(f"{head}: " + "; ".join(_wrap_text(u, *w) for u, w in wraps.items()) + " (ClockWentBack."
+                             "offsets: every unit of the push that went back)", first, offsets[first], False, offsets)
     went = " and ".join(f"the {u} clock {b - a:.2f} s" for u, (a, b, _) in back.items())
     calls = " and ".join(f"tracker.rebase_clock({u!r}, {o:.2f})" for u, o in offsets.items())
     first = next(iter(offsets))
@@ -217,6 +242,9 @@ def order_error(name: str, t0: float, last: float, *, duplicate: bool, max_lag_s
     if last - t0 > max_lag_s and unit is not None and not note:  # B141's accepted jump: its own note, not E227
         if also_back:
             return _all_went_back(head, {unit: (t0, last, offset_s), **also_back}, drift or {})
+        wrap = _wrapped(t0, last, offset_s, (drift or {}).get(unit, 0.0))
+        if wrap is not None:  # decision E297: a counter wrap, not a restart: the exact offset, not E235's guess
+            return ClockWentBack(f"{head}: {_wrap_text(unit, *wrap)} (ClockWentBack.offset_s)", unit, wrap[2], False)
         beside = other_newest is not None and other_newest > last
         # the sample 1 ms after the tracker's newest: its unit clock's reading t0 (1 + drift) + offset_s less that
         # time on the unit's clock (decision E248: with E229's drift; E227 took t0 - target, off by target x drift)

@@ -34,6 +34,7 @@ from pdrlearn.kernels import turn_length as _turn_length
 from pdrlearn.kernels.align import MAX_CLOCK_DRIFT
 from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, SIGMA_REL, check_rules, confident_one
 from pdrlearn.kernels.contact import force_at, stride_contact, stride_times
+from pdrlearn.kernels.counter_wrap import live_wrap
 from pdrlearn.kernels.distance import (
     applicable_calibration,
     apply_level_gain_one,
@@ -1509,6 +1510,10 @@ class Tracker(OwnGuard, FixInput):
         if (i := first_out_of_order(t)) is not None:
             dup = ("; that sample repeats the one before it, a duplicate: Tracker(drop_duplicate_timestamps=True) "
                    "drops such samples (decision E225)" if t[i] == t[i - 1] else "")
+            if (w := live_wrap(float(t[i - 1]), float(t[i]))) is not None:  # decision E297: a counter wrap in a push
+                dup = (f"; the step back is a {w[0]}-bit counter of {w[1]:g} s ticks wrapping, not samples out of "
+                       f"order: unwrap each pod's counter before pushing, pdrlearn.runtime.CounterUnwrapper(bits="
+                       f"{w[0]}, tick_s={w[1]:g}) (decision E297)")
             raise DataError(f"{name}: pushed timestamps are not increasing (at {t[i]:.3f} s after {t[i - 1]:.3f} s); "
                             f"push samples in time order{dup}")
         return t, v

@@ -1,0 +1,150 @@
+"""Decisions E296 / E297: the two pieces a gateway puts between a Bluetooth link and the :class:`Tracker`: a pod's
+wrapping sample counter read as seconds (:class:`CounterUnwrapper`) and packets put back into sample order, repeats
+dropped (:class:`Reorderer`). Numpy only."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable, Iterator
+
+import numpy as np
+
+from pdrlearn.errors import DataError
+from pdrlearn.kernels.counter_wrap import unwrap_near
+
+
+class CounterUnwrapper:
+    """Decision E297: one pod's ``bits``-bit sample counter of ``tick_s`` s ticks (a uint32 ms tick: ``bits=32,
+    tick_s=1e-3``) as seconds on the pod's own clock, unwrapped: the first value read as itself, every later one as
+    the nearest unwrapped count to the newest seen (:func:`~pdrlearn.kernels.counter_wrap.unwrap_near`), so a wrap,
+    a packet that arrives late and a repeat all keep their place. A packet lost across a wrap is fine; a silence of
+    half the counter's period or more (24.9 days for uint32 ms, 32.8 s for uint16 ms) is not (its wraps are not
+    known). One per pod: ``t = unwrap(packet_counter)``."""
+
+    def __init__(self, bits: int = 32, tick_s: float = 1e-3):
+        if isinstance(bits, bool) or not isinstance(bits, int | np.integer) or not 8 <= bits <= 62:
+            raise DataError(f"CounterUnwrapper(bits={bits!r}): give the counter's width in bits, 8-62 (a uint32 "
+                            "counter: 32)")
+        if isinstance(tick_s, bool) or not isinstance(tick_s, int | float | np.number) or not (
+                math.isfinite(tick_s) and tick_s > 0):
+            raise DataError(f"CounterUnwrapper(tick_s={tick_s!r}): give the counter's tick in seconds (a ms counter: "
+                            "1e-3)")
+        self.bits, self.tick_s = int(bits), float(tick_s)
+        self._ref_raw: int | None = None
+        self._ref = 0
+
+    def __call__(self, counter) -> np.ndarray:
+        c = np.asarray(counter).reshape(-1)
+        if c.size and (not np.issubdtype(c.dtype, np.integer) and not np.array_equal(c, np.round(c))
+                       or c.min() < 0 or c.max() >= 2.0 ** self.bits):
+            raise DataError(f"CounterUnwrapper: counter values {c.min()}-{c.max()} are not {self.bits}-bit counts "
+                            f"(whole numbers 0 to 2^{self.bits} - 1); give the raw counter and its bits")
+        if not c.size:
+            return np.empty(0)
+        c = c.astype(np.int64)
+        if self._ref_raw is None:
+            self._ref_raw, self._ref = int(c[0]), int(c[0])
+        ticks = unwrap_near(c, self._ref_raw, self._ref, self.bits)
+        j = int(np.argmax(ticks))
+        if ticks[j] > self._ref:  # the reference follows the newest count, so wraps keep being within reach
+            self._ref_raw, self._ref = int(c[j]), int(ticks[j])
+        return ticks * self.tick_s
+
+
+class Reorderer:
+    """Decision E296: a jitter buffer between a Bluetooth link and the tracker. :meth:`push` takes a packet's
+    chunk ``{sensor: (t, values)}`` in arrival order (``t`` on the pod's sample clock, s) and returns the samples
+    now due, per sensor in sample-time order: those at least ``hold_s`` older than that sensor's newest sample
+    seen. A sample whose timestamp repeats one held, or one released within the last ``hold_s``, is dropped
+    (``duplicates``: per sensor); any other sample older than the last released one arrived too late to be put in
+    place, dropped (``late``: per sensor). It adds ``hold_s`` of latency (plus up to a packet): ``max_latency_s``
+    the most seen (the released sample's time against its sensor's newest). ``flush()`` releases what is held (the
+    end of a stream). ``hold_s``: the link's longest reordering delay in sample time (a packet overtaken by the next
+    one: the next packet's span plus the arrival jitter; 1.2 s for packets of up to 20 samples at 20 Hz)."""
+
+    def __init__(self, hold_s: float):
+        if isinstance(hold_s, bool) or not isinstance(hold_s, int | float | np.number) or not hold_s >= 0:
+            raise DataError(f"Reorderer(hold_s={hold_s!r}): give the hold time in seconds (>= 0; the link's longest "
+                            "reordering delay, e.g. 1.2; math.inf holds everything until flush)")
+        self.hold_s = float(hold_s)
+        self._held: dict[str, list[tuple[np.ndarray, np.ndarray]]] = {}
+        self._newest: dict[str, float] = {}
+        self._released: dict[str, np.ndarray] = {}  # the recently released times, for repeats
+        self.duplicates: dict[str, int] = {}
+        self.late: dict[str, int] = {}
+        self.max_latency_s = 0.0
+
+    def push(self, chunk: dict) -> dict:
+        """The chunk's samples held; the samples now due returned as ``{sensor: (t, values)}`` (sensors with none
+        left out; an empty dict when nothing is due)."""
+        for name, tv in chunk.items():
+            if not (isinstance(tv, tuple | list) and len(tv) == 2):
+                raise DataError(f"Reorderer.push: {name!r} is not a (t, values) pair")
+            t = np.asarray(tv[0], dtype=np.float64).reshape(-1)
+            v = np.asarray(tv[1], dtype=np.float64)
+            if v.ndim == 0 or len(v) != len(t):
+                raise DataError(f"Reorderer.push: {name!r} has {len(t)} timestamps and {v.shape[:1] or 'no'} rows of "
+                                "values")
+            if not t.size:
+                continue
+            self._held.setdefault(name, []).append((t, v))
+            self._newest[name] = max(self._newest.get(name, -math.inf), float(t.max()))
+        return self._release(lambda name: self._newest[name] - self.hold_s)
+
+    def flush(self) -> dict:
+        """Everything still held, in sample-time order (the end of the stream)."""
+        return self._release(lambda name: math.inf)
+
+    def stream(self, chunks: Iterable[dict]) -> Iterator[dict]:
+        """The chunks of one link (e.g. one unit's packets, as its thread receives them) reordered: each non-empty
+        :meth:`push` result, then :meth:`flush`'s."""
+        for chunk in chunks:
+            out = self.push(chunk)
+            if out:
+                yield out
+        out = self.flush()
+        if out:
+            yield out
+
+    @property
+    def held(self) -> int:
+        """The samples held, every sensor."""
+        return sum(len(t) for parts in self._held.values() for t, _ in parts)
+
+    def _release(self, until) -> dict:
+        out = {}
+        for name in list(self._held):
+            parts = self._held[name]
+            t = np.concatenate([p[0] for p in parts])
+            v = np.concatenate([p[1] for p in parts])
+            order = np.argsort(t, kind="stable")  # the first arrived of equal times first
+            t, v = t[order], v[order]
+            first = np.ones(t.size, dtype=bool)
+            first[1:] = t[1:] != t[:-1]
+            prev = self._released.get(name, np.empty(0))
+            repeat = ~first | np.isin(t, prev)
+            last = prev[-1] if prev.size else -math.inf
+            late = ~repeat & (t <= last)
+            self._count(self.duplicates, name, int(repeat.sum()))
+            self._count(self.late, name, int(late.sum()))
+            keep = ~repeat & ~late
+            t, v = t[keep], v[keep]
+            due = t <= until(name)
+            self._held[name] = [(t[~due], v[~due])] if (~due).any() else []
+            if not self._held[name]:
+                del self._held[name]
+            if due.any():
+                out[name] = (t[due], v[due])
+                if math.isfinite(self._newest[name]):
+                    self.max_latency_s = max(self.max_latency_s, self._newest[name] - float(t[due][0]))
+                rel = np.concatenate([prev, t[due]])
+                self._released[name] = rel[rel >= rel[-1] - self.hold_s]  # repeats within hold_s of the last
+        return out
+
+    @staticmethod
+    def _count(counts: dict, name: str, k: int) -> None:
+        if k:
+            counts[name] = counts.get(name, 0) + k
+
+
+__all__ = ["CounterUnwrapper", "Reorderer"]
