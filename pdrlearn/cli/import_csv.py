@@ -327,6 +327,8 @@ def import_command(
         record["steps"] = {"file": Path(steps).name, "rows": len(session.steps)}
         if "from_ics" in session.steps.attrs:  # decision B338
             record["steps"]["from_ics"] = session.steps.attrs["from_ics"]
+        if session.steps.attrs.get("footfall_columns"):  # decision D51
+            record["steps"]["footfall_columns"] = session.steps.attrs["footfall_columns"]
     if labels_relative and steps is None and not labels:
         raise DataError("import: --labels-relative says how --steps and --labels times are written; pass those "
                         "tables, or leave it out")
@@ -588,6 +590,10 @@ def _say(record: dict, session, out: Path, merge: bool, existed: bool) -> None:
         st = record["steps"]
         built = (f", strides built from its {st['from_ics']} initial contacts: pre_ic_ms the opening one, ic_ms the "
                  "closing one (decision B338)" if st.get("from_ics") else "")
+        kept = st.get("footfall_columns") or {}
+        if kept:  # decision D51: the walkway's toe-off / stride length, each on the stride it belongs to
+            names = {"tc_s": "tc_ms (the opening contact's toe-off)", "length_m": "length_m (the closing contact's)"}
+            built += "; kept " + ", ".join(f"{names[c]} on {n}" for c, n in kept.items()) + " (decision D51)"
         err(f"steps: {st['rows']} labelled steps from {st['file']} (shifted to the session's clock{built})")
     for name, lab in (record.get("labels") or {}).items():
         err(f"labels: {name} with {lab['rows']} rows from {lab['file']} (shifted to the session's clock)")
