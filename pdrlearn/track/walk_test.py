@@ -143,8 +143,9 @@ def _row_turns(st: pd.DataFrame) -> np.ndarray:
 def pass_rows(steps: pd.DataFrame, a: int, b: int) -> list[tuple[int, int]]:
     """Decision L673: the straight passes of the bout ``steps.iloc[a:b]``, as ``(first, last + 1)`` row ranges: each
     run of consecutive rows turning at least L79's :data:`STRAIGHT_MAX_RAD` (:func:`_row_turns`) whose turns add up
-    to :data:`PASS_TURN_DEG` or more is a turn between two passes, its rows in neither; a smaller run stays in its
-    pass (L313's straightness rule judges it). A bout without such a turn is one pass."""
+    to :data:`PASS_TURN_DEG` or more is a turn between two passes: its rows close the pass before it (the walker's
+    deceleration runs into the turn, as a bout's last pass runs into its stop), the next pass starts after it. A
+    smaller run stays in its pass (L313's straightness rule judges it). A bout without such a turn is one pass."""
     turns = _row_turns(steps.iloc[a:b])
     turning = np.abs(turns) >= STRAIGHT_MAX_RAD
     out, start, k = [], a, 0
@@ -155,9 +156,8 @@ def pass_rows(steps: pd.DataFrame, a: int, b: int) -> list[tuple[int, int]]:
         j = k
         while j < b - a and turning[j]:
             j += 1
-        if abs(turns[k:j].sum()) >= math.radians(PASS_TURN_DEG):  # decision L673
-            if a + k > start:
-                out.append((start, a + k))
+        if abs(turns[k:j].sum()) >= math.radians(PASS_TURN_DEG):  # decision L673 (amended: the turn ends its pass)
+            out.append((start, a + j))
             start = a + j
         k = j
     if b > start:
