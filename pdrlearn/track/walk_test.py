@@ -165,17 +165,22 @@ def pass_rows(steps: pd.DataFrame, a: int, b: int) -> list[tuple[int, int]]:
     return out
 
 
-def _walks(steps: pd.DataFrame, passes: bool, max_bout_m: float | None = None) -> list[tuple[str, int, int]]:
-    """The pieces a walk test times, ``(name, first, last + 1)``: the walking bouts (L312), or with ``passes`` their
-    straight passes (decision L673, :func:`pass_rows`), named "walking bout N" / "walking bout N pass P". A bout
-    longer than ``max_bout_m`` stays whole, for L552 to refuse (a march's legs are no walkway's passes)."""
+def _timed_pieces(steps: pd.DataFrame, zone_m: float, timed_m: float, decel_m: float, max_bout_m: float | None = None,
+                  passes: bool = True) -> list[tuple[str, object]]:
+    """Decision L673: ``(name, _time_bout's result)`` of each piece a walk test times: with ``passes`` each straight
+    pass of a walking bout (:func:`pass_rows`, "walking bout N pass P"), else each bout ("walking bout N"). A bout
+    whose passes are all too short is judged whole (L313's note: a walk that turns inside its first metres), and a
+    bout longer than ``max_bout_m`` stays whole for L552 to refuse (a march's legs are no walkway's passes)."""
     out = []
     length = np.abs(np.nan_to_num(steps["length_m"].to_numpy(float)))
     for n, (a, b) in enumerate(bout_rows(steps), start=1):
         split = passes and (max_bout_m is None or length[a:b].sum() <= max_bout_m)
         parts = pass_rows(steps, a, b) if split else [(a, b)]
-        for p, (c, d) in enumerate(parts, start=1):
-            out.append((f"walking bout {n}" + (f" pass {p}" if len(parts) > 1 else ""), c, d))
+        got = [(f"walking bout {n}" + (f" pass {p}" if len(parts) > 1 else ""),
+                _time_bout(steps, c, d, zone_m, timed_m, decel_m, max_bout_m)) for p, (c, d) in enumerate(parts, 1)]
+        if len(parts) > 1 and all(isinstance(g, float) for _, g in got):
+            got = [(f"walking bout {n}", _time_bout(steps, a, b, zone_m, timed_m, decel_m, max_bout_m))]
+        out += got
     return out
 
 
@@ -233,8 +238,7 @@ def ten_metre_walk_trials(steps: pd.DataFrame, zones: tuple[float, float, float]
     lower_back_ok = lower_back_note(accel, timed, calibrated) is None  # decision L649
     if len(steps) and {"start_s", "end_s", "length_m"} <= set(steps.columns) and (
             lower_back_ok or not _is_lower_back(steps)):
-        for _, a, b in _walks(steps, True, _bout_limit(zones)):  # decision L673: each straight pass of a bout
-            got = _time_bout(steps, a, b, accel, timed, decel, _bout_limit(zones))  # L552
+        for _, got in _timed_pieces(steps, accel, timed, decel, _bout_limit(zones)):  # L552; L673: each pass
             if isinstance(got, tuple):
                 rows.append((len(rows) + 1, got[0], got[1], got[1] - got[0], timed / (got[1] - got[0])))
     return pd.DataFrame(rows, columns=list(TRIAL_COLUMNS))
@@ -247,7 +251,7 @@ def _near_misses(steps: pd.DataFrame, need: float, lower_back_ok: bool = False) 
     if not len(steps) or not {"start_s", "end_s", "length_m"} <= set(steps.columns) or (
             _is_lower_back(steps) and not lower_back_ok):
         return []
-    got = [(n, _time_bout(steps, a, b, 0.0, need, 0.0)) for n, a, b in _walks(steps, passes=True)]  # L673
+    got = _timed_pieces(steps, 0.0, need, 0.0)  # decision L673: per pass
     return [(n, m) for n, m in got if isinstance(m, float) and need - RUN_OUT_M <= m < need]
 
 
@@ -337,8 +341,7 @@ def timed_walk(steps: pd.DataFrame, zone_m: float, timed_m: float, keys: tuple[s
         out[note_key] = lower_back_note
         return out
     longest, refused = 0.0, None
-    for n, a, b in _walks(steps, passes, max_bout_m):
-        got = _time_bout(steps, a, b, zone_m, timed_m, decel_m, max_bout_m)
+    for n, got in _timed_pieces(steps, zone_m, timed_m, decel_m, max_bout_m, passes):
         if isinstance(got, float):
             longest = max(longest, got)
             continue
