@@ -105,8 +105,9 @@ def import_command(
                                      "the walking range (L148) and the waist pendulum (B390)."),
     steps: Path = typer.Option(None, "--steps", help="Labelled steps (start_ms,end_ms,terrain,... as steps.csv) in "
                                "ms on the export's clock; written as the session's steps.csv. A list of initial "
-                               "contacts only (ic_ms, optional foot column: --foot picks) becomes strides from "
-                               "contact to contact, pre_ic_ms the opening one (mocap events, B338)."),
+                               "contacts only (ic_ms, optional foot or side column: --foot picks) becomes strides "
+                               "from contact to contact, pre_ic_ms the opening one (mocap events, B338); a "
+                               "walkway's tc_ms and length_m per footfall go on those strides (D51)."),
     labels: list[Path] = typer.Option(None, "--labels", help="An extra label table (ics.csv, bouts.csv, turns.csv "
                                       "...: *_ms columns on the export's clock), shifted as --steps and written "
                                       "under its file name; repeat for each (lower-back scoring uses ics.csv and "
