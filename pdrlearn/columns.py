@@ -1176,10 +1176,20 @@ FOOT_STEPS: tuple[Column, ...] = (
                                    "next stride's time (L509, L512)"),
     ("turn_angle_rad", "rad", "number", "the foot's own heading change from rest to rest over the stride (wrapped "
                                         "to +-pi)"),
-    ("tc_s", "s", "number", "--toe-off only: the stride's toe-off (foot gyroscope push-off peak; L73)"),
-    ("stance_time_s", "s", "number", "--toe-off only: IC to toe-off"),
-    ("swing_time_s", "s", "number", "--toe-off only: toe-off to the next IC"),
-    ("stance_pct", "%", "number", "--toe-off only: 100 x stance_time_s / stride_time_s"),
+    ("tc_s", "s", "number", "--toe-off only: the toe-off inside the stride, the one ending the stance of the contact "
+                            "at cycle_start_s (foot gyroscope push-off peak; L73); against gaitmap's mocap ~21 ms "
+                            "early (L672)"),
+    ("stance_time_s", "s", "number", "--toe-off only: the stance of the contact at cycle_start_s (the previous "
+                                     "row's event_s), tc_s - cycle_start_s - not of this row's event_s (L672); "
+                                     "against gaitmap's mocap (straight strides) -36.9 / -42.8 ms left / right"),
+    ("swing_time_s", "s", "number", "--toe-off only: tc_s to this row's event_s (the next IC); against gaitmap's "
+                                    "mocap +36.3 / +39.9 ms left / right (L672)"),
+    ("stance_pct", "%", "number", "--toe-off only: 100 x stance_time_s / stride_time_s; against gaitmap's mocap "
+                                  "-3.3 / -3.8 points left / right (L672)"),
+    ("cycle_start_s", "s", "number", "--toe-off only: the IC opening the gait cycle stance_time_s / swing_time_s "
+                                     "split, event_s - stride_time_s (the previous row's event_s; empty without a "
+                                     "stride time): pair a walkway's footfall (heel strike) with this, not event_s "
+                                     "(L672)"),
     ("max_sensor_lift_m", "m", "number", "offline foot track: the sensor's highest point above the line joining its "
                                          "two rests (gaitmap's max_sensor_lift on level ground; L421)"),
     ("ic_angle_deg", "deg", "number", "offline foot track: the sole angle at event_s, + toes up, 0 at the starting "
@@ -1192,7 +1202,8 @@ FOOT_STEPS: tuple[Column, ...] = (
     ("x", "m", "number", "pdrlearn run: the position east at the stride's end"),
     ("y", "m", "number", "pdrlearn run: the position north"),
     ("z", "m", "number", "pdrlearn run: the height"),
-    ("ref_match", "index", "integer", "where the session labels stride lengths (E135): the labelled stride paired "
+    ("ref_match", "index", "integer", "where the session labels stride lengths (E135; or toe-offs on a --toe-off "
+                                      "track, D52): the labelled stride paired "
                                       "with this row, its row in the session's steps.csv from 0; empty: unpaired"),
     ("ref_length_m", "m", "number", "that labelled stride's length_m"),
     ("ref_stride_time_s", "s", "number", "its stride time: ic - pre_ic, or the IC of the labelled stride ending "
@@ -1200,6 +1211,15 @@ FOOT_STEPS: tuple[Column, ...] = (
     ("ref_composed", _ID, "true/false", "the row is one of two or more tracked rows tiling one labelled stride"),
     ("pair_length_m", "m", "number", "the pair's estimated length: |length_m|, or the tiles' vector sum on each "
                                      "tile; stride_length_mae_* = these pairs, one per ref_match (L252)"),
+    ("ref_tc_s", "s", "number", "--toe-off, labels with tc_ms (D52): the paired labelled stride's toe-off (between its "
+                                "pre_ic and ic); without labelled lengths ref_match / ref_stride_time_s come from "
+                                "these pairs"),
+    ("ref_stance_time_s", "s", "number", "--toe-off, labels with tc_ms: ref_tc_s - the labelled stride's opening IC "
+                                         "(pre_ic), beside stance_time_s (D52)"),
+    ("ref_swing_time_s", "s", "number", "--toe-off, labels with tc_ms: the labelled ic - ref_tc_s, beside "
+                                        "swing_time_s (D52)"),
+    ("ref_stance_pct", "%", "number", "--toe-off, labels with tc_ms: 100 x ref_stance_time_s / ref_stride_time_s "
+                                      "(D52)"),
 )
 
 #: decision C110: ``pdrlearn gait-all``'s gait_pairs.csv, one row per visit folder

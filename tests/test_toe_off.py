@@ -78,7 +78,7 @@ def test_stance_swing_split_and_gap_rows():
     tc = np.array([0.4, 1.5, 2.4, 3.95])  # the last one after its IC: no toe-off
     valid = np.array([True, True, False, True])  # the third row is a gap row
     add_gait_columns(table, valid=valid, tc_s=tc)
-    assert list(table.columns[-4:]) == list(TOE_OFF_COLUMNS)
+    assert list(table.columns[-len(TOE_OFF_COLUMNS):]) == list(TOE_OFF_COLUMNS)
     assert np.isnan(table["tc_s"][2]) and np.isnan(table["tc_s"][3])
     assert table["swing_time_s"][1] == pytest.approx(0.4)
     assert table["stance_time_s"][1] == pytest.approx(1.5 - 0.8)

@@ -105,8 +105,9 @@ def import_command(
                                      "the walking range (L148) and the waist pendulum (B390)."),
     steps: Path = typer.Option(None, "--steps", help="Labelled steps (start_ms,end_ms,terrain,... as steps.csv) in "
                                "ms on the export's clock; written as the session's steps.csv. A list of initial "
-                               "contacts only (ic_ms, optional foot column: --foot picks) becomes strides from "
-                               "contact to contact, pre_ic_ms the opening one (mocap events, B338)."),
+                               "contacts only (ic_ms, optional foot or side column: --foot picks) becomes strides "
+                               "from contact to contact, pre_ic_ms the opening one (mocap events, B338); a "
+                               "walkway's tc_ms and length_m per footfall go on those strides (D51)."),
     labels: list[Path] = typer.Option(None, "--labels", help="An extra label table (ics.csv, bouts.csv, turns.csv "
                                       "...: *_ms columns on the export's clock), shifted as --steps and written "
                                       "under its file name; repeat for each (lower-back scoring uses ics.csv and "
@@ -327,6 +328,8 @@ def import_command(
         record["steps"] = {"file": Path(steps).name, "rows": len(session.steps)}
         if "from_ics" in session.steps.attrs:  # decision B338
             record["steps"]["from_ics"] = session.steps.attrs["from_ics"]
+        if session.steps.attrs.get("footfall_columns"):  # decision D51
+            record["steps"]["footfall_columns"] = session.steps.attrs["footfall_columns"]
     if labels_relative and steps is None and not labels:
         raise DataError("import: --labels-relative says how --steps and --labels times are written; pass those "
                         "tables, or leave it out")
@@ -588,6 +591,10 @@ def _say(record: dict, session, out: Path, merge: bool, existed: bool) -> None:
         st = record["steps"]
         built = (f", strides built from its {st['from_ics']} initial contacts: pre_ic_ms the opening one, ic_ms the "
                  "closing one (decision B338)" if st.get("from_ics") else "")
+        kept = st.get("footfall_columns") or {}
+        if kept:  # decision D51: the walkway's toe-off / stride length, each on the stride it belongs to
+            names = {"tc_s": "tc_ms (the opening contact's toe-off)", "length_m": "length_m (the closing contact's)"}
+            built += "; kept " + ", ".join(f"{names[c]} on {n}" for c, n in kept.items()) + " (decision D51)"
         err(f"steps: {st['rows']} labelled steps from {st['file']} (shifted to the session's clock{built})")
     for name, lab in (record.get("labels") or {}).items():
         err(f"labels: {name} with {lab['rows']} rows from {lab['file']} (shifted to the session's clock)")

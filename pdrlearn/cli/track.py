@@ -94,9 +94,11 @@ REFERENCE_POINT_OPT = typer.Option(None, "--reference-point", help="plasys: the 
                                    "estimated from the recording, decision L22; = \"reference_point\" in "
                                    "--params).")
 TOE_OFF_OPT = typer.Option(False, "--toe-off", help="plasys, offline: add the toe-off tc_s and "
-                           "stance_time_s, swing_time_s, stance_pct to steps.csv (decision L73: an option, "
-                           "not the default - its toe-off runs ~21 ms early against mocap, see "
-                           "docs/localization.md).")
+                           "stance_time_s, swing_time_s, stance_pct, cycle_start_s (the IC whose stance it is, "
+                           "L672) to steps.csv (decision L73: an option, not the default - its toe-off runs ~21 ms "
+                           "early against mocap, so stance reads ~37-43 ms short and swing as much long, L672; see "
+                           "docs/localization.md). With labels giving tc_ms, steps.csv gets ref_tc_s / "
+                           "ref_stance_time_s / ref_swing_time_s (D52).")
 IGNORE_FORCE_OPT = typer.Option(False, "--ignore-force", help="plasys, offline: the stance and strides from the foot "
                                 "IMU alone, the force sensors (fForceA/fForceB) left out (decision L366); without "
                                 "it they are checked against the IMU and replaced where they disagree (L365).")

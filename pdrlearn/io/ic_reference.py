@@ -16,14 +16,31 @@ import pandas as pd
 from pdrlearn.kernels.contact import MAX_STRIDE_S
 
 
-def ic_strides(ic_s) -> pd.DataFrame:
+def ic_strides(ic_s, tc_s=None, length_m=None) -> pd.DataFrame:
     """Decision B338: one foot's contact times (s) -> strides ``start_s, end_s, ic_s, pre_ic_s`` the G2 way
     (``pre_ic_s = start_s`` = contact *i*, ``ic_s = end_s`` = contact *i+1*). Consecutive contacts further apart
     than :data:`~pdrlearn.kernels.contact.MAX_STRIDE_S` (Mobilise-D's longest stride, 3 s: the foot left the capture
     volume) are not a stride: the chain ends there. A shorter interval is a stride, as the mocap reference of
-    gaitmap labels a 2.3 s one: a contact missing from the list makes one long stride."""
-    t = np.sort(np.asarray(ic_s, dtype=float))
-    t = t[np.isfinite(t)]
+    gaitmap labels a 2.3 s one: a contact missing from the list makes one long stride.
+
+    Decision D51: a walkway's per-footfall values come along when given, each (N,) beside ``ic_s``: ``tc_s``, the
+    footfall's own toe-off, becomes the stride's ``tc_s`` of the stride it opens (contact *i*'s toe-off, kept only
+    inside that stride, as gaitmap's ``pre_ic < tc < ic``: stance = tc - pre_ic); ``length_m``, the footfall's
+    stride length (a walkway's: heel of the previous same-side footfall to this one), becomes the length of the
+    stride it closes (contact *i+1*'s)."""
+    t = np.asarray(ic_s, dtype=float)
+    extra = {k: np.asarray(v, dtype=float) for k, v in (("tc_s", tc_s), ("length_m", length_m)) if v is not None}
+    order = np.argsort(t, kind="stable")
+    t, extra = t[order], {k: v[order] for k, v in extra.items()}
+    fin = np.isfinite(t)
+    t, extra = t[fin], {k: v[fin] for k, v in extra.items()}
     keep = np.diff(t) <= MAX_STRIDE_S
     a, b = t[:-1][keep], t[1:][keep]
-    return pd.DataFrame({"start_s": a, "end_s": b, "ic_s": b, "pre_ic_s": a})
+    out = pd.DataFrame({"start_s": a, "end_s": b, "ic_s": b, "pre_ic_s": a})
+    if "tc_s" in extra:
+        tc = extra["tc_s"][:-1][keep]
+        with np.errstate(invalid="ignore"):
+            out["tc_s"] = np.where((tc > a) & (tc < b), tc, np.nan)  # D51: the opening footfall's toe-off
+    if "length_m" in extra:
+        out["length_m"] = extra["length_m"][1:][keep]  # D51: the closing footfall's stride length
+    return out

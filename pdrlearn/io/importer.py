@@ -1670,12 +1670,40 @@ def import_labels(paths, session: Session, origin_s: float, *, taken=(),
                    extras=extras, meta=session.meta, frames=session.frames), rows
 
 
+#: decision D51: the side column of a footfall list (a walkway's one row per footfall) and its values' spellings
+SIDE_COLUMNS = ("foot", "side")
+SIDE_WORDS = {"l": "left", "left": "left", "r": "right", "right": "right"}
+#: decision D51: the per-footfall columns an IC list's strides keep (:func:`pdrlearn.io.ic_reference.ic_strides`)
+FOOTFALL_COLUMNS = ("tc_s", "length_m")
+
+
+def _footfall_sides(table: pd.DataFrame, path: Path) -> pd.Series | None:
+    """Decision D51 (B338's ``foot``): the side of each footfall, ``left`` / ``right``, from the table's ``foot`` or
+    ``side`` column (L / R accepted, any case); None without one. Two such columns, or another value, is one line."""
+    cols = [c for c in table.columns if str(c).strip().lower() in SIDE_COLUMNS]
+    if not cols:
+        return None
+    if len(cols) > 1:
+        raise DataError(f"{path}: both {' and '.join(cols)} columns; keep one side column (foot or side: left / "
+                        "right, L / R; decision D51)")
+    raw = table[cols[0]].astype(str).str.strip().str.lower()
+    sides = raw.map(SIDE_WORDS)
+    if sides.isna().any():
+        bad = sorted(set(raw[sides.isna()]))[:3]
+        raise DataError(f"{path}: column {cols[0]} has {', '.join(map(repr, bad))}; a footfall's side is left / right "
+                        "(or L / R) (decision D51)")
+    return sides
+
+
 def _ic_list_strides(table: pd.DataFrame, path: Path, foot: str | None, unit: str = "foot") -> pd.DataFrame:
-    """Decision B338: an IC list (``ic_ms``, optionally ``foot``) as G2 strides of the instrumented foot."""
+    """Decision B338: an IC list (``ic_ms``, optionally ``foot``) as G2 strides of the instrumented foot. Decision
+    D51: a walkway's per-footfall table (side as ``foot`` or ``side``, L / R too; ``tc_ms``, ``length_m``) gives
+    the strides their toe-off and length (:func:`pdrlearn.io.ic_reference.ic_strides`); any other column is named
+    in one warning line as not read."""
     from pdrlearn.io.ic_reference import ic_strides
 
-    if "foot" in table.columns:
-        sides = table["foot"].astype(str).str.strip().str.lower()
+    sides = _footfall_sides(table, path)
+    if sides is not None:
         found = sorted(set(sides))
         if unit == "waist" and len(found) > 1:  # decision B352: --foot is refused there (B321)
             raise DataError(f"{path}: an initial-contact list of {' and '.join(found)} contacts, the lower back's "
@@ -1687,13 +1715,23 @@ def _ic_list_strides(table: pd.DataFrame, path: Path, foot: str | None, unit: st
         if foot is not None:
             table = table[sides == foot]
             if table.empty:
-                raise DataError(f"{path}: no {foot} contacts in its foot column ({', '.join(found)}); check --foot "
+                raise DataError(f"{path}: no {foot} contacts in its side column ({', '.join(found)}); check --foot "
                                 "(decision B338)")
-    out = ic_strides(table["ic_s"])
+    kept = [c for c in FOOTFALL_COLUMNS
+            if c in table.columns and pd.to_numeric(table[c], errors="coerce").notna().any()]
+    side_cols = {c for c in table.columns if str(c).strip().lower() in SIDE_COLUMNS}
+    unread = [c for c in table.columns if c not in {"ic_s", *FOOTFALL_COLUMNS} | side_cols]
+    if unread:  # decision D51: named, not dropped without a word (trial T3 finding F3)
+        times = set(table.attrs.get("time_columns", ()))
+        names = [f"{c[:-2]}_ms" if c in times else str(c) for c in unread]
+        log.warning("%s: column(s) %s not read: an initial-contact list's strides keep ic_ms, the side and tc_ms, "
+                    "length_m (decision D51)", path, ", ".join(names))
+    out = ic_strides(table["ic_s"], **{c: pd.to_numeric(table[c], errors="coerce").to_numpy(float) for c in kept})
     if out.empty:
         raise DataError(f"{path}: {len(table)} initial contact(s) and no two consecutive ones within a stride (3 s): "
                         "no stride to label; a foot reference needs each contact of the walk (decision B338)")
     out.attrs["from_ics"] = int(len(table))
+    out.attrs["footfall_columns"] = {c: int(out[c].notna().sum()) for c in kept}  # D51: for import's steps line
     return out
 
 

@@ -62,7 +62,7 @@ def _offset(text: str | None):
 TIME_ORIGINS = ("session", "export")
 #: decision E173: the instant columns (s on the session's clock) ``steps --time-origin export`` moves onto the
 #: export's clock (plasys.DEFAULT_TIME_COLUMNS and the detections' ``event_s``)
-INSTANT_COLUMNS = ("start_s", "end_s", "event_s", "ic_s", "tc_s", "pre_ic_s", "fc_s")
+INSTANT_COLUMNS = ("start_s", "end_s", "event_s", "ic_s", "tc_s", "pre_ic_s", "fc_s", "cycle_start_s")
 
 
 def export_origin_s(meta: dict | None) -> float | None:

@@ -1079,6 +1079,41 @@ def stride_pairs(result: TrackResult, session: Session) -> list[tuple[list[int],
 
 #: decision E135: the columns a foot track's steps.csv gets where the session labels stride lengths
 REFERENCE_COLUMNS = ("ref_match", "ref_length_m", "ref_stride_time_s", "ref_composed", "pair_length_m")
+#: decision D52: after them, on a ``--toe-off`` track whose labels give the toe-off (``tc_ms``): the labelled
+#: stride's toe-off and its stance / swing split, the reference of the row's tc_s, stance_time_s, swing_time_s,
+#: stance_pct (the labelled stride runs pre_ic -> tc -> ic, the row's cycle_start_s -> tc_s -> event_s, L672)
+TIMING_REFERENCE_COLUMNS = ("ref_tc_s", "ref_stance_time_s", "ref_swing_time_s", "ref_stance_pct")
+
+
+def reference_timings(st: pd.DataFrame) -> tuple[np.ndarray, ...]:
+    """Decision D52: per labelled stride (a steps.csv, seconds), ``(tc, stance, swing, stance_pct)``: ``tc_s`` where
+    it lies inside the stride's cycle (its opening IC ``ic - stride time``, :func:`reference_stride_times`, to its
+    ``ic_s``), stance = tc - that opening IC, swing = ic - tc, stance_pct = 100 x stance / stride time; NaN
+    otherwise (no toe-off, no stride time)."""
+    n = len(st)
+    ic = st["ic_s"].to_numpy(float) if "ic_s" in st else np.full(n, np.nan)
+    tc = st["tc_s"].to_numpy(float) if "tc_s" in st else np.full(n, np.nan)
+    stride = reference_stride_times(st)
+    start = ic - stride
+    with np.errstate(invalid="ignore"):
+        tc = np.where((tc > start) & (tc < ic), tc, np.nan)
+        return tc, tc - start, ic - tc, 100.0 * (tc - start) / stride
+
+
+def _timing_pairs(result: TrackResult, session: Session) -> list[tuple[int, int]]:
+    """Decision D52: (tracked row, labelled stride) pairs for the timing reference: one tracked stride matched to one
+    labelled stride with a toe-off (IoU >= 0.5, :func:`match_by_overlap`, as the stride lengths), on a track with
+    toe-offs (``--toe-off``); a gap or impossible row left out (no stance of its own, L67 / L97)."""
+    st, steps = session.steps, result.steps
+    if st is None or "tc_s" not in st or "tc_s" not in steps:
+        return []
+    keep = np.flatnonzero(np.isfinite(reference_timings(st)[0]))
+    if not len(keep):
+        return []
+    from pdrlearn.track.gait import stride_rows
+
+    valid = stride_rows(steps)
+    return [(i, int(keep[j])) for i, j in match_by_overlap(steps, st.iloc[keep].reset_index(drop=True)) if valid[i]]
 
 
 def with_reference_columns(result: TrackResult, session: Session | None) -> pd.DataFrame:
@@ -1087,14 +1122,18 @@ def with_reference_columns(result: TrackResult, session: Session | None) -> pd.D
     session's steps.csv (``ref_match``, from 0), its ``length_m`` and stride time (:func:`reference_stride_times`),
     whether the pair is two or more tracked rows tiling one labelled stride (``ref_composed``) and the pair's
     estimated length (``pair_length_m``: the row's |length|, or the tiles' vector sum on each of them). The summary's
-    ``stride_length_mae_m`` / ``_pct`` / ``stride_length_matched`` are these pairs, one per ``ref_match``."""
+    ``stride_length_mae_m`` / ``_pct`` / ``stride_length_matched`` are these pairs, one per ``ref_match``.
+    Decision D52: on a ``--toe-off`` track whose labels give toe-offs, :data:`TIMING_REFERENCE_COLUMNS` too (the
+    :func:`_timing_pairs`, :func:`reference_timings`); without labelled lengths ``ref_match`` and
+    ``ref_stride_time_s`` then come from those pairs and the length columns are left out."""
     steps = result.steps
     if session is None or not len(steps) or "unit" not in steps or not (steps["unit"] == "foot").all():
         return steps
     from pdrlearn.track.window import steps_row
 
     pairs = stride_pairs(result, session)
-    if pairs is None:
+    timing = _timing_pairs(result, session)
+    if pairs is None and not timing:
         return steps
     st = session.steps
     n = len(steps)
@@ -1102,13 +1141,27 @@ def with_reference_columns(result: TrackResult, session: Session | None) -> pd.D
     ref_len, ref_t, pair_len = np.full(n, np.nan), np.full(n, np.nan), np.full(n, np.nan)
     composed = np.zeros(n, dtype=bool)
     times = reference_stride_times(st)
-    for rows, j, est in pairs:
+    for rows, j, est in pairs or []:
         for i in rows:
             match[i] = steps_row(session, j)  # decision E138: steps.csv's row, also under --window
             ref_len[i], ref_t[i], pair_len[i] = float(st["length_m"].iloc[j]), times[j], abs(est)
             composed[i] = len(rows) > 1
-    return steps.assign(ref_match=match, ref_length_m=ref_len, ref_stride_time_s=ref_t, ref_composed=composed,
-                        pair_length_m=pair_len)
+    cols = {}
+    if pairs is not None:
+        cols = dict(ref_match=match, ref_length_m=ref_len, ref_stride_time_s=ref_t, ref_composed=composed,
+                    pair_length_m=pair_len)
+    if timing:  # decision D52
+        ref = reference_timings(st)
+        vals = [np.full(n, np.nan) for _ in TIMING_REFERENCE_COLUMNS]
+        for i, j in timing:
+            if pairs is None:
+                match[i], ref_t[i] = steps_row(session, j), times[j]
+            for v, r in zip(vals, ref, strict=True):
+                v[i] = r[j]
+        if pairs is None:
+            cols = dict(ref_match=match, ref_stride_time_s=ref_t)
+        cols.update(zip(TIMING_REFERENCE_COLUMNS, vals, strict=True))
+    return steps.assign(**cols)
 
 
 def _stride_lengths(result: TrackResult, session: Session, out: dict) -> None:

@@ -39,8 +39,10 @@ from pdrlearn.warning_lines import coded
 
 #: the gait columns, in the order steps.csv carries them (after the stride's own columns)
 GAIT_COLUMNS = ("stride_time_s", "cadence_spm", "speed_mps", "turn_angle_rad")
-#: decision L73: toe-off (terminal contact) and the stance/swing split of the stride time, after GAIT_COLUMNS
-TOE_OFF_COLUMNS = ("tc_s", "stance_time_s", "swing_time_s", "stance_pct")
+#: decision L73: toe-off (terminal contact) and the stance/swing split of the stride time, after GAIT_COLUMNS;
+#: decision L672: ``cycle_start_s``, the IC that opens the gait cycle the stance/swing belong to (the previous
+#: stride's ``event_s``): a row's stance is that contact's, not its own ``event_s``'s (trial T3 finding F4)
+TOE_OFF_COLUMNS = ("tc_s", "stance_time_s", "swing_time_s", "stance_pct", "cycle_start_s")
 
 
 def stride_rows(table: pd.DataFrame) -> np.ndarray:
@@ -96,6 +98,13 @@ def stance_swing(start_s, end_s, event_s, tc_s, stride_s, valid=None) -> tuple[n
     return tc, stance, swing, 100.0 * stance / sd
 
 
+def cycle_starts(event_s, stride_s) -> np.ndarray:
+    """Decision L672: (B,) s, the initial contact that opens each row's gait cycle, ``event_s - stride_s`` (the
+    previous stride's IC): :func:`stance_swing`'s stance runs from it to the row's toe-off, and its swing from that
+    toe-off to the row's own ``event_s``. NaN where the stride time is (a first stride, after a stop or a gap)."""
+    return np.asarray(event_s, dtype=float) - np.asarray(stride_s, dtype=float)
+
+
 def resumed_times(start_s, end_s, stride_s, valid=None) -> np.ndarray:
     """Decision L512 (L509 revised): (B,) s, the moving time ``speed_mps`` divides by: ``stride_s`` (IC to IC),
     except for a stride after a rest - the first valid row, or one whose ``start_s`` lies more than
@@ -145,6 +154,7 @@ def add_gait_columns(table: pd.DataFrame, *, turn_rad=None, valid=None, tc_s=Non
     if tc_s is not None:
         with np.errstate(invalid="ignore", divide="ignore"):
             cols = stance_swing(table["start_s"], table["end_s"], table["event_s"], tc_s, stride, valid)
+        cols += (cycle_starts(table["event_s"], stride),)
         for name, col in zip(TOE_OFF_COLUMNS, cols, strict=True):
             table[name] = col
     return table

@@ -15,6 +15,7 @@ import math
 import numpy as np
 import pandas as pd
 
+from pdrlearn.kernels.turn_length import STRAIGHT_MAX_RAD
 from pdrlearn.track.clinical import _is_lower_back, bout_rows
 from pdrlearn.track.flags import flag_values
 from pdrlearn.track.stair_flights import flight_strides
@@ -63,6 +64,11 @@ LOWER_BACK_NOTE = lower_back_note(2.0, 10.0)
 #: 5.30 s" on a 9 km march) - and the automatic 10 m walk and T25FW skip it. 100 m: ten 10 m walk tests, as
 #: position_sigma's 100 m; a 14 m walkway's bout with run-outs is some 20 m
 WALKWAY_BOUT_MAX_M = 100.0
+#: decision L673 (our choice, no document gives one): a turn of at least this much (deg) inside a walking bout ends a
+#: straight pass, and each pass is a 10 m walk trial (trial T3 finding F6: a walkway's back-and-forth passes with
+#: turns on the spot are one bout). 90 deg: a walkway's turnaround is 180 deg; L312's STRAIGHT_MIN already refuses a
+#: pass that turns less inside its 14 m; the turn's strides are those over L79's 15 deg (STRAIGHT_MAX_RAD)
+PASS_TURN_DEG = 90.0
 #: the summary keys :func:`ten_metre_walk` gives (decision L312)
 KEYS = ("ten_m_walk_time_s", "ten_m_walk_speed_mps", "ten_m_walk_note")
 
@@ -121,6 +127,63 @@ def _path(st: pd.DataFrame) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndar
     return t, d, x, y
 
 
+def _row_turns(st: pd.DataFrame) -> np.ndarray:
+    """Decision L673: each row's turn (rad): the foot's own ``turn_angle_rad`` where the table has it (L66), else the
+    wrapped change of ``heading_rad`` from the previous row (a lower-back table); 0 where unknown."""
+    if "turn_angle_rad" in st:
+        turn = st["turn_angle_rad"].to_numpy(float)
+    elif "heading_rad" in st:
+        h = st["heading_rad"].to_numpy(float)
+        turn = np.angle(np.exp(1j * np.diff(h, prepend=h[:1]))) if len(h) else h
+    else:
+        turn = np.zeros(len(st))
+    return np.nan_to_num(turn)
+
+
+def pass_rows(steps: pd.DataFrame, a: int, b: int) -> list[tuple[int, int]]:
+    """Decision L673: the straight passes of the bout ``steps.iloc[a:b]``, as ``(first, last + 1)`` row ranges: each
+    run of consecutive rows turning at least L79's :data:`STRAIGHT_MAX_RAD` (:func:`_row_turns`) whose turns add up
+    to :data:`PASS_TURN_DEG` or more is a turn between two passes: its rows close the pass before it (the walker's
+    deceleration runs into the turn, as a bout's last pass runs into its stop), the next pass starts after it. A
+    smaller run stays in its pass (L313's straightness rule judges it). A bout without such a turn is one pass."""
+    turns = _row_turns(steps.iloc[a:b])
+    turning = np.abs(turns) >= STRAIGHT_MAX_RAD
+    out, start, k = [], a, 0
+    while k < b - a:
+        if not turning[k]:
+            k += 1
+            continue
+        j = k
+        while j < b - a and turning[j]:
+            j += 1
+        if abs(turns[k:j].sum()) >= math.radians(PASS_TURN_DEG):  # decision L673 (amended: the turn ends its pass)
+            out.append((start, a + j))
+            start = a + j
+        k = j
+    if b > start:
+        out.append((start, b))
+    return out
+
+
+def _timed_pieces(steps: pd.DataFrame, zone_m: float, timed_m: float, decel_m: float, max_bout_m: float | None = None,
+                  passes: bool = True) -> list[tuple[str, object]]:
+    """Decision L673: ``(name, _time_bout's result)`` of each piece a walk test times: with ``passes`` each straight
+    pass of a walking bout (:func:`pass_rows`, "walking bout N pass P"), else each bout ("walking bout N"). A bout
+    whose passes are all too short is judged whole (L313's note: a walk that turns inside its first metres), and a
+    bout longer than ``max_bout_m`` stays whole for L552 to refuse (a march's legs are no walkway's passes)."""
+    out = []
+    length = np.abs(np.nan_to_num(steps["length_m"].to_numpy(float)))
+    for n, (a, b) in enumerate(bout_rows(steps), start=1):
+        split = passes and (max_bout_m is None or length[a:b].sum() <= max_bout_m)
+        parts = pass_rows(steps, a, b) if split else [(a, b)]
+        got = [(f"walking bout {n}" + (f" pass {p}" if len(parts) > 1 else ""),
+                _time_bout(steps, c, d, zone_m, timed_m, decel_m, max_bout_m)) for p, (c, d) in enumerate(parts, 1)]
+        if len(parts) > 1 and all(isinstance(g, float) for _, g in got):
+            got = [(f"walking bout {n}", _time_bout(steps, a, b, zone_m, timed_m, decel_m, max_bout_m))]
+        out += got
+    return out
+
+
 def _bout_limit(zones) -> float | None:
     """Decision L552: the longest bout the walk tests time: none with a declared walkway (``zones``), else
     :data:`WALKWAY_BOUT_MAX_M`."""
@@ -142,13 +205,13 @@ def ten_metre_walk(steps: pd.DataFrame, zones: tuple[float, float, float] | None
     accel, timed, decel = zones or (ZONE_M, TIMED_M, ZONE_M)
     out = timed_walk(steps, accel, timed, KEYS, lower_back_note(accel, timed, calibrated),
                      lambda longest, need: short_walk_note(longest, need, (accel, timed, decel)), decel_m=decel,
-                     max_bout_m=_bout_limit(zones))
+                     max_bout_m=_bout_limit(zones), passes=True)  # decision L673
     trials = ten_metre_walk_trials(steps, zones, calibrated)
     out["n_ten_m_walk_trials"] = len(trials)  # decision L524
     missed = _near_misses(steps, accel + timed + decel, lower_back_note(accel, timed, calibrated) is None)
     if out["ten_m_walk_time_s"] is not None and missed:  # decision L524: a trial lost to L349's few cm is said
         out["ten_m_walk_note"] = "; ".join(filter(None, [out["ten_m_walk_note"], (  # L535's note kept before it
-            "; ".join(f"walking bout {n} tracked {math.floor(m * 100.0 + 1e-6) / 100.0:.2f} m, short of "
+            "; ".join(f"{n} tracked {math.floor(m * 100.0 + 1e-6) / 100.0:.2f} m, short of "
                       f"{accel + timed + decel:g} m" for n, m in missed)
             + ": not timed, so the timed trial(s) in ten_m_walk_trials.csv may not be the first walk (L313); have the "
             "walker start and stop beyond the walkway's ends (a run-out, decisions L349, L524)")]))
@@ -175,21 +238,20 @@ def ten_metre_walk_trials(steps: pd.DataFrame, zones: tuple[float, float, float]
     lower_back_ok = lower_back_note(accel, timed, calibrated) is None  # decision L649
     if len(steps) and {"start_s", "end_s", "length_m"} <= set(steps.columns) and (
             lower_back_ok or not _is_lower_back(steps)):
-        for a, b in bout_rows(steps):
-            got = _time_bout(steps, a, b, accel, timed, decel, _bout_limit(zones))  # L552
+        for _, got in _timed_pieces(steps, accel, timed, decel, _bout_limit(zones)):  # L552; L673: each pass
             if isinstance(got, tuple):
                 rows.append((len(rows) + 1, got[0], got[1], got[1] - got[0], timed / (got[1] - got[0])))
     return pd.DataFrame(rows, columns=list(TRIAL_COLUMNS))
 
 
-def _near_misses(steps: pd.DataFrame, need: float, lower_back_ok: bool = False) -> list[tuple[int, float]]:
-    """Decisions L349, L524: (bout number from 1, tracked metres) of each walking bout short of ``need`` by less than
+def _near_misses(steps: pd.DataFrame, need: float, lower_back_ok: bool = False) -> list[tuple[str, float]]:
+    """Decisions L349, L524: (its name, tracked metres) of each walking bout (L673: pass) short of ``need`` by less than
     :data:`RUN_OUT_M` - a walk of the walkway's length that tracked a few cm short (L649: on the lower back only when
     ``lower_back_ok``)."""
     if not len(steps) or not {"start_s", "end_s", "length_m"} <= set(steps.columns) or (
             _is_lower_back(steps) and not lower_back_ok):
         return []
-    got = [(n, _time_bout(steps, a, b, 0.0, need, 0.0)) for n, (a, b) in enumerate(bout_rows(steps), start=1)]
+    got = _timed_pieces(steps, 0.0, need, 0.0)  # decision L673: per pass
     return [(n, m) for n, m in got if isinstance(m, float) and need - RUN_OUT_M <= m < need]
 
 
@@ -259,14 +321,16 @@ def _time_bout(steps: pd.DataFrame, a: int, b: int, zone_m: float, timed_m: floa
 
 
 def timed_walk(steps: pd.DataFrame, zone_m: float, timed_m: float, keys: tuple[str, str, str], lower_back_note: str,
-               short_note, decel_m: float | None = None, max_bout_m: float | None = None) -> dict:
+               short_note, decel_m: float | None = None, max_bout_m: float | None = None,
+               passes: bool = False) -> dict:
     """Decisions L312, L387: ``keys`` (time, speed, note) of the first walking bout whose path reaches ``zone_m`` +
     ``timed_m`` + ``decel_m`` (default ``zone_m``; L522), timed over the ``timed_m`` after its first ``zone_m``
     (L313's refusals, :func:`_time_bout`; ``short_note(longest, need)`` the note of a walk too short). Decision L535:
     a bout L313 refuses (a turn in it) does not end the search: the first bout timed is the keys', the note naming
     the refused bout before it; with none timed, the first refusal is the note (review R0 finding 3: the summary,
     console and clinical.md said "not timed" beside ten_m_walk_trials.csv's timed trials). Decision L552: a bout
-    over ``max_bout_m`` is refused."""
+    over ``max_bout_m`` is refused. Decision L673: ``passes`` (the 10 m walk) times each straight pass of a bout
+    (:func:`pass_rows`) as a bout of its own."""
     time_key, speed_key, note_key = keys
     out = dict.fromkeys(keys)
     decel_m = zone_m if decel_m is None else decel_m
@@ -277,8 +341,7 @@ def timed_walk(steps: pd.DataFrame, zone_m: float, timed_m: float, keys: tuple[s
         out[note_key] = lower_back_note
         return out
     longest, refused = 0.0, None
-    for n, (a, b) in enumerate(bout_rows(steps), start=1):
-        got = _time_bout(steps, a, b, zone_m, timed_m, decel_m, max_bout_m)
+    for n, got in _timed_pieces(steps, zone_m, timed_m, decel_m, max_bout_m, passes):
         if isinstance(got, float):
             longest = max(longest, got)
             continue
@@ -287,7 +350,7 @@ def timed_walk(steps: pd.DataFrame, zone_m: float, timed_m: float, keys: tuple[s
             continue
         out[time_key], out[speed_key] = got[1] - got[0], timed_m / (got[1] - got[0])
         if refused:
-            out[note_key] = f"timed walking bout {n}; walking bout {refused[0]} before it: {refused[1]} (L535)"
+            out[note_key] = f"timed {n}; {refused[0]} before it: {refused[1]} (L535)"
         return out
     out[note_key] = refused[1] if refused else short_note(longest, zone_m + timed_m + decel_m)
     return out
