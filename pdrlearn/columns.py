@@ -568,6 +568,9 @@ SESSIONS: tuple[Column, ...] = (
     ("ten_m_walk_zones_m", "m", "number", "summary.json only (a list): the walkway the 10 m walk keys were timed on, "
                                           "acceleration zone, timed metres, deceleration zone (2, 10, 2; track "
                                           "--ten-m-walk, L522)"),
+    ("ten_m_walk_declared", _ID, "true/false", "true when track --ten-m-walk declared the walkway; false: the 10 m "
+                                               "walk and T25FW were found in free walking, no test declared, and "
+                                               "the console and clinical.md say so (L679)"),
     ("t25fw_time_s", "s", "number", "timed 25-foot walk: the time from the first walking bout's start (standing) to "
                                     "where its path passes 7.62 m, straight (L387); empty on a shorter or turning "
                                     "walk and on the lower back, calibrated or not (L313, L649)"),
