@@ -450,8 +450,9 @@ SESSIONS: tuple[Column, ...] = (
     ("time_no_data_s", "s", "number", "the tracked unit's data gaps over 1 s (the warned ones, B11) (L275)"),
     ("time_no_steps_s", "s", "number", "before the first step counted and after the last: no step bounds it (the "
                                        "time before the walk, a seated stretch at a window's edge) (L275)"),
-    ("time_span_s", "s", "number", "the recording of the tracked unit from the session start, or the --window: "
-                                   "time_walking_s + time_between_steps_s + time_no_steps_s + time_no_data_s (L275)"),
+    ("time_span_s", "s", "number", "the recording of the tracked unit from the session start (after --common-span "
+                                   "the cut's start, C185), or the --window: time_walking_s + "
+                                   "time_between_steps_s + time_no_steps_s + time_no_data_s (L275)"),
     ("steady_trim", "count", "integer", "--steady-trim: the strides left out at each end of each walking bout from "
                                         "steady_gait_speed_mps, cadence, the stride medians and the CVs (L415; "
                                         "0: none); distance_m, walking_time_s and gait_speed_mps keep every "
@@ -1339,7 +1340,10 @@ RAMPS: tuple[Column, ...] = (
     ("rise_m", "m", "number", "the runs' height change (signed)"),
     ("mean_grade_pct", "%", "number", "100 x rise_m / horizontal_run_m"),
     ("max_run_grade_pct", "%", "number", "the steepest run's own mean grade"),
-    ("n_steps", "count", "integer", "rows of steps.csv from the first run's first to the last run's last"),
+    ("n_steps", "count", "integer", "rows of steps.csv from the first run's first to the last run's last: on a foot "
+                                    "track strides of the tracked foot (one foot: about half as many as bouts.csv's "
+                                    "n_steps, which counts both feet, L449), on the lower back steps of both feet "
+                                    "(C186)"),
     ("duration_s", "s", "number", "end_s - start_s (L467)"),
     ("speed_mps", "m/s", "number", "along_slope_m over duration_s: the runs' length along the surface over the "
                                    "ramp's time, landings' time included (L467)"),
@@ -1368,7 +1372,8 @@ RAMP_RUNS: tuple[Column, ...] = (
                                     "stride (a 1.0 m landing can read 1.7 m)"),
     ("rise_m", "m", "number", "the rows' summed dz_m (signed, + up)"),
     ("grade_pct", "%", "number", "100 x rise_m / horizontal_m"),
-    ("n_steps", "count", "integer", "rows of steps.csv"),
+    ("n_steps", "count", "integer", "rows of steps.csv: strides of the tracked foot on a foot track (not both "
+                                    "feet's steps, as bouts.csv's n_steps), steps on the lower back (C186)"),
     ("over_1_12", _ID, "true/false", "a run's |grade_pct| over 1:12 = 8.33 % (ADA 2010 sec. 405.2; L569); empty "
                                      "on a landing"),
     ("over_1_20", _ID, "true/false", "a run's |grade_pct| over 1:20 = 5 % (L569); empty on a landing"),
@@ -1895,7 +1900,8 @@ STEP_COUNT_LINE = ("Step counts (L449): `n_steps` is the rows of steps.csv - str
                    "track, steps of both feet on the lower back (summary, sessions.csv, periods.csv; "
                    "`n_steps_counts` says which); `n_steps_both_feet` (summary, sessions.csv, periods.csv) and "
                    "bouts.csv's and subjects.csv's `n_steps` always count the steps of both feet (on a foot track "
-                   "2 per stride, an estimate).")
+                   "2 per stride, an estimate); ramps.csv's and ramp_runs.csv's `n_steps` are rows of steps.csv "
+                   "again - a foot track's strides (C186).")
 
 
 def markdown(tables: list[str] | None = None) -> str:
