@@ -146,12 +146,13 @@ def ramp_numbers(steps: pd.DataFrame, found) -> np.ndarray:
 
 
 def _ramp_note(steps: pd.DataFrame, a: int, k: int, need: float, timed_m: float, ramps) -> str | None:
-    """Decision L679: the refusal of the walk-test stretch ``steps.iloc[a:a + k + 1]`` (the rows up to the one
-    reaching ``need`` m) when a row of it lies on a ramp of ``ramps`` (:func:`ramp_numbers`); None otherwise."""
+    """Decision L679: the refusal of the walk-test stretch ``steps.iloc[a:a + k]`` (the rows whose path reaches
+    ``need`` m, as L434's flight check reads them) when a row of it lies on a ramp of ``ramps``
+    (:func:`ramp_numbers`); None otherwise."""
     if ramps is None:
         return None
     ramps = np.asarray(ramps)
-    on = ramps[a:a + k + 1]
+    on = ramps[a:a + k]
     if not (on > 0).any():
         return None
     n = int(on[on > 0][0])
