@@ -5,6 +5,7 @@ no insoles. Measured once, after the rule was written (docs/decisions/localizati
 
 Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/slow_turns_s45_l678.py [WORKDIR]
 Prints one line per user: the threshold, and turns.csv's rows (angle@start-end) before and after.
+Output: experiments/results/slow_turns_s45_l678.txt (the printed lines).
 """
 import subprocess
 import sys
