@@ -456,8 +456,9 @@ SESSIONS: tuple[Column, ...] = (
     ("time_no_data_s", "s", "number", "the tracked unit's data gaps over 1 s (the warned ones, B11) (L275)"),
     ("time_no_steps_s", "s", "number", "before the first step counted and after the last: no step bounds it (the "
                                        "time before the walk, a seated stretch at a window's edge) (L275)"),
-    ("time_span_s", "s", "number", "the recording of the tracked unit from the session start, or the --window: "
-                                   "time_walking_s + time_between_steps_s + time_no_steps_s + time_no_data_s (L275)"),
+    ("time_span_s", "s", "number", "the recording of the tracked unit from the session start (after --common-span "
+                                   "the cut's start, C185), or the --window: time_walking_s + "
+                                   "time_between_steps_s + time_no_steps_s + time_no_data_s (L275)"),
     ("steady_trim", "count", "integer", "--steady-trim: the strides left out at each end of each walking bout from "
                                         "steady_gait_speed_mps, cadence, the stride medians and the CVs (L415; "
                                         "0: none); distance_m, walking_time_s and gait_speed_mps keep every "
@@ -574,6 +575,9 @@ SESSIONS: tuple[Column, ...] = (
     ("ten_m_walk_zones_m", "m", "number", "summary.json only (a list): the walkway the 10 m walk keys were timed on, "
                                           "acceleration zone, timed metres, deceleration zone (2, 10, 2; track "
                                           "--ten-m-walk, L522)"),
+    ("ten_m_walk_declared", _ID, "true/false", "true when track --ten-m-walk declared the walkway; false: the 10 m "
+                                               "walk and T25FW were found in free walking, no test declared, and "
+                                               "the console and clinical.md say so (L679)"),
     ("t25fw_time_s", "s", "number", "timed 25-foot walk: the time from the first walking bout's start (standing) to "
                                     "where its path passes 7.62 m, straight (L387); empty on a shorter or turning "
                                     "walk and on the lower back, calibrated or not (L313, L649)"),
@@ -1365,7 +1369,10 @@ RAMPS: tuple[Column, ...] = (
     ("rise_m", "m", "number", "the runs' height change (signed)"),
     ("mean_grade_pct", "%", "number", "100 x rise_m / horizontal_run_m"),
     ("max_run_grade_pct", "%", "number", "the steepest run's own mean grade"),
-    ("n_steps", "count", "integer", "rows of steps.csv from the first run's first to the last run's last"),
+    ("n_steps", "count", "integer", "rows of steps.csv from the first run's first to the last run's last: on a foot "
+                                    "track strides of the tracked foot (one foot: about half as many as bouts.csv's "
+                                    "n_steps, which counts both feet, L449), on the lower back steps of both feet "
+                                    "(C186)"),
     ("duration_s", "s", "number", "end_s - start_s (L467)"),
     ("speed_mps", "m/s", "number", "along_slope_m over duration_s: the runs' length along the surface over the "
                                    "ramp's time, landings' time included (L467)"),
@@ -1394,7 +1401,8 @@ RAMP_RUNS: tuple[Column, ...] = (
                                     "stride (a 1.0 m landing can read 1.7 m)"),
     ("rise_m", "m", "number", "the rows' summed dz_m (signed, + up)"),
     ("grade_pct", "%", "number", "100 x rise_m / horizontal_m"),
-    ("n_steps", "count", "integer", "rows of steps.csv"),
+    ("n_steps", "count", "integer", "rows of steps.csv: strides of the tracked foot on a foot track (not both "
+                                    "feet's steps, as bouts.csv's n_steps), steps on the lower back (C186)"),
     ("over_1_12", _ID, "true/false", "a run's |grade_pct| over 1:12 = 8.33 % (ADA 2010 sec. 405.2; L569); empty "
                                      "on a landing"),
     ("over_1_20", _ID, "true/false", "a run's |grade_pct| over 1:20 = 5 % (L569); empty on a landing"),
@@ -1921,7 +1929,8 @@ STEP_COUNT_LINE = ("Step counts (L449): `n_steps` is the rows of steps.csv - str
                    "track, steps of both feet on the lower back (summary, sessions.csv, periods.csv; "
                    "`n_steps_counts` says which); `n_steps_both_feet` (summary, sessions.csv, periods.csv) and "
                    "bouts.csv's and subjects.csv's `n_steps` always count the steps of both feet (on a foot track "
-                   "2 per stride, an estimate).")
+                   "2 per stride, an estimate); ramps.csv's and ramp_runs.csv's `n_steps` are rows of steps.csv "
+                   "again - a foot track's strides (C186).")
 
 
 def markdown(tables: list[str] | None = None) -> str:

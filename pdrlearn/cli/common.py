@@ -589,17 +589,21 @@ def transfer_line(summary: dict) -> str | None:
             parts.append(summary["tug_time_note"])  # (W325: with trials, their own line says it)
         if summary.get("sts5_time_s") is not None:  # decision W279
             parts.append(f"five-times sit-to-stand {summary['sts5_time_s']:.2f} s (first rise to last sit)")
+    from pdrlearn.track.walk_test import free_walking_text
+
+    free = free_walking_text(summary)  # decision L679: an automatic walk test is no declared test
+    free = f"; {free}" if free else ""
     if summary.get("ten_m_walk_time_s") is not None:  # decision L312: the middle 10 m of the first 14 m bout
         from pdrlearn.track.walk_test import timed_stretch, trials_text, walkway_zones  # L522, L524, L531
 
         more = trials_text(summary)
         more = f"; {more}, ten_m_walk_trials.csv, L524" if more else ""
         parts.append(f"10 m walk test {summary['ten_m_walk_time_s']:.2f} s, {summary['ten_m_walk_speed_mps']:.2f} m/s "
-                     f"({timed_stretch(*walkway_zones(summary), 'a {total} m walk')}, L312, L536{more})"
+                     f"({timed_stretch(*walkway_zones(summary), 'a {total} m walk')}, L312, L536{more}{free})"
                      + (f" - {summary['ten_m_walk_note']}" if summary.get("ten_m_walk_note") else ""))  # L524
     if summary.get("t25fw_time_s") is not None:  # decision L387: the first 7.62 m from standing
         parts.append(f"timed 25-foot walk {summary['t25fw_time_s']:.2f} s, {summary['t25fw_speed_mps']:.2f} m/s "
-                     "(the first 7.62 m from standing, L387)")
+                     f"(the first 7.62 m from standing, L387{free})")
     if summary.get("n_freezes"):  # decision W213: the freeze index's episodes
         parts.append(f"{summary['n_freezes']} freeze episode(s), {summary['freeze_time_s']:.1f} s in all "
                      "(freezes.csv; freeze index, decision W213)")

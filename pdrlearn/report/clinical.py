@@ -260,12 +260,13 @@ def clinical_lines(summary: dict, folder: Path) -> list[str]:
     if tug:
         lines.append(tug)
     if summary.get("ten_m_walk_speed_mps") is not None:  # L531: the walkway's timed metres and every trial (L524)
-        from pdrlearn.track.walk_test import timed_stretch, trials_text, walkway_zones
+        from pdrlearn.track.walk_test import free_walking_text, timed_stretch, trials_text, walkway_zones
 
         trials = trials_text(summary)
+        free = free_walking_text(summary)  # decision L679: an automatic walk test is no declared test
         lines.append(f"- 10 m walk: {summary['ten_m_walk_speed_mps']:.2f} m/s ({_s(summary['ten_m_walk_time_s'])} "
                      f"over {timed_stretch(*walkway_zones(summary))}"  # decision L536
-                     f"{f'; {trials}' if trials else ''}; {unit})")
+                     f"{f'; {trials}' if trials else ''}; {unit}{f'; {free}' if free else ''})")
     speed = gait_speed_line(summary, unit)
     if speed:
         lines.append(speed)

@@ -474,6 +474,28 @@ def walking_rows(st: pd.DataFrame) -> np.ndarray:
         return np.isin(travel, ("forward", "backward")) & (length > WALK_MIN_STRIDE_M)
 
 
+#: decision L678: a healthy adult's gait cycle (s; Perry & Burnfield 2010, ~1.1 s, as
+#: :mod:`pdrlearn.track.contact_quality` cites): at it :data:`TURN_RATE_MIN_DPS` is 16.5 deg per stride
+TURN_RATE_STRIDE_S = 1.1
+
+
+def turn_rate_threshold(st: pd.DataFrame, min_rate_dps: float = TURN_RATE_MIN_DPS) -> float:
+    """Decision L678: the rate (deg/s) a row-to-row heading change of table ``st`` (rows in ``start_s`` order) turns
+    at: on a foot table ``min_rate_dps`` x min(1, :data:`TURN_RATE_STRIDE_S` / T), T the walker's rhythm
+    (:func:`rhythm_s`, the pause rule's), i.e. ``min_rate_dps`` x 1.1 s degrees per stride of a walker slower than a
+    healthy one (a rollator walker turning 30 deg per 1.8-2 s stride turns at 14-17 deg/s, trial T1 finding F3);
+    ``min_rate_dps`` itself on a lower-back table, a faster walker's or without two valid rows."""
+    if len(st) < 2 or not is_foot_table(st):
+        return min_rate_dps
+    t = st["start_s"].to_numpy(float)
+    ok = _valid(st)
+    d = np.diff(t)
+    pair = ok[:-1] & ok[1:] & np.isfinite(d) & (d > 0)
+    if not pair.any():
+        return min_rate_dps
+    return min_rate_dps * min(1.0, TURN_RATE_STRIDE_S / rhythm_s(st, d, pair))
+
+
 def _cut_before(a: int, b: int, stops: np.ndarray) -> list[tuple[int, int]]:
     """Decision L577: the run ``[a, b)`` of intervals cut before each interval after its first flagged in ``stops``."""
     edges = [a, *(i for i in range(a + 1, b) if stops[i]), b]
@@ -509,6 +531,7 @@ def _turn_spans(steps: pd.DataFrame, *, min_rate_dps: float = TURN_RATE_MIN_DPS,
     t = st["start_s"].to_numpy(float)
     ok = _valid(st)
     dh, dt = np.diff(h), np.diff(t)
+    min_rate_dps = turn_rate_threshold(st, min_rate_dps)  # decision L678: per stride of the walker's rhythm
     with np.errstate(invalid="ignore", divide="ignore"):
         turning = ok[:-1] & ok[1:] & np.isfinite(dh) & (dt > 0) & (np.abs(dh) / dt >= min_rate_dps)
         # decision L119: a turn beside a pause turns in the time the pause rule left it (TURN_ON_SPOT_MIN_DPS)

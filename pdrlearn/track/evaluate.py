@@ -708,13 +708,19 @@ def _basic(result: TrackResult, out: dict) -> None:
     # decision W331: a lower-back track's turns on the spot that hold no step, and the steps they imply
     out.update(stepless_summary(result.steps["event_s"] if "event_s" in result.steps else [],
                                 result.info.get("yaw_turns")))
-    from pdrlearn.track.walk_test import t25fw, ten_metre_walk
+    from pdrlearn.track.grade import add_grade, grade_summary, info_stair_grade, track_ramps
+    from pdrlearn.track.walk_test import ramp_numbers, t25fw, ten_metre_walk
 
+    add_grade(result.steps, result.info)  # decision L300: steps.csv's grade_pct
+    with info_stair_grade(result.info):  # session 42: the ramps found once for both (L469's grade, as ramps.csv's)
+        found = track_ramps(result.steps, result.info)
+    ramps = ramp_numbers(result.steps, found)  # decision L679: no walk test on a ramp
     # decisions L312, L313: the 10 m walk test's middle 10 m; L522: --ten-m-walk's walkway; L524: every trial
     calibrated = result.info.get("params_source") == "calibrated"  # decision L649
-    out.update(ten_metre_walk(result.steps, result.info.get("ten_m_walk_m"), calibrated))
+    out.update(ten_metre_walk(result.steps, result.info.get("ten_m_walk_m"), calibrated, ramps=ramps))
     # decision L387: the timed 25-foot walk from standing; L552: a long bout only on a declared walkway
-    out.update(t25fw(result.steps, walkway=result.info.get("ten_m_walk_m") is not None, calibrated=calibrated))
+    out.update(t25fw(result.steps, walkway=result.info.get("ten_m_walk_m") is not None, calibrated=calibrated,
+                     ramps=ramps))
     from pdrlearn.track.stair_flights import flight_summary
 
     out.update(flight_summary(result.steps))  # decision L432: stairs.csv's flights up and down
@@ -730,11 +736,6 @@ def _basic(result: TrackResult, out: dict) -> None:
 
     belt_floors(out)  # decision L442: a declared inclined belt climbs no storeys
     _ascent(result, out)
-    from pdrlearn.track.grade import add_grade, grade_summary, info_stair_grade, track_ramps
-
-    add_grade(result.steps, result.info)  # decision L300: steps.csv's grade_pct
-    with info_stair_grade(result.info):  # session 42: the ramps found once for both (L469's grade, as ramps.csv's)
-        found = track_ramps(result.steps, result.info)
     out.update(grade_summary(result.steps, result.info, found=found))  # decisions L300, L301
     out.update(identified_climbs(result, found=found))  # decision L566: what ramps.csv / stairs.csv rise and drop
 

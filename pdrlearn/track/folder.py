@@ -139,10 +139,11 @@ def clinical_tables(result, bouts) -> dict:
                                  yaw_turns=tug_yaw_turns(result), foot=foot_strides(result))
         if len(trials):
             out["tug_trials.csv"] = trials
-    from pdrlearn.track.walk_test import ten_metre_walk_trials
+    from pdrlearn.track.walk_test import ramp_numbers, ten_metre_walk_trials
 
     trials = ten_metre_walk_trials(result.steps, result.info.get("ten_m_walk_m"),  # decision L524: every trial
-                                   result.info.get("params_source") == "calibrated")  # L649
+                                   result.info.get("params_source") == "calibrated",  # L649
+                                   ramps=ramp_numbers(result.steps, found))  # decision L679: not on a ramp
     if len(trials):
         out["ten_m_walk_trials.csv"] = trials
     if result.info.get("flights") is not None:  # decision W417: each unit's flight phases, with a jump height

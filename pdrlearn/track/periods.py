@@ -250,7 +250,15 @@ def time_accounting(result, session, unit: str | None = None, window: tuple[floa
     if unit is None:
         unit = "waist" if "unit" in steps and len(steps) and (steps["unit"] == "waist").all() else "foot"
     timeline = Timeline.of(steps, unit_gaps(session, unit), result.info.get("postures"))
-    return time_summary(timeline, *(window if window is not None else session_span(session, unit)))
+    return time_summary(timeline, *(window if window is not None else held_span(session, unit)))
+
+
+def held_span(session, unit: str | None) -> tuple[float, float]:
+    """Decision C185: the span ``time_span_s`` accounts for without ``--window``: :func:`session_span`'s end, from
+    the first sample the session holds - after a ``--common-span`` cut the cut's start (the seconds cut off are
+    ``common_span_cut_s``, B267, not time the walker stood: trial T1 finding F8, a cut to 0-246.69 s read
+    ``time 248.7 s``), else the recording's first sample as :func:`session_span`'s."""
+    return float(session.t_start), session_span(session, unit)[1]
 
 
 #: decision S69: the lower-back step-length models that read the pelvis's vertical excursion (the inverted pendulum,

@@ -102,6 +102,14 @@ def trials_text(summary: dict) -> str:
     return f"{n} trials, fastest {summary['ten_m_walk_max_speed_mps']:.2f} m/s"
 
 
+def free_walking_text(summary: dict) -> str:
+    """Decision L679: the words that a summary's walk tests were found in free walking (``ten_m_walk_declared``
+    False: no ``track --ten-m-walk``), not a declared test; "" when declared or for a summary without the key."""
+    if summary.get("ten_m_walk_declared") is not False:
+        return ""
+    return "found in free walking, no walkway declared (track --ten-m-walk), L679"
+
+
 #: decision L387: the timed 25-foot walk's distance (m; 25 ft, the MSFC's T25FW as recalled), from standing
 T25FW_M = 7.62
 #: the summary keys :func:`t25fw` gives (decision L387)
@@ -166,20 +174,21 @@ def pass_rows(steps: pd.DataFrame, a: int, b: int) -> list[tuple[int, int]]:
 
 
 def _timed_pieces(steps: pd.DataFrame, zone_m: float, timed_m: float, decel_m: float, max_bout_m: float | None = None,
-                  passes: bool = True) -> list[tuple[str, object]]:
+                  passes: bool = True, ramps=None) -> list[tuple[str, object]]:
     """Decision L673: ``(name, _time_bout's result)`` of each piece a walk test times: with ``passes`` each straight
     pass of a walking bout (:func:`pass_rows`, "walking bout N pass P"), else each bout ("walking bout N"). A bout
     whose passes are all too short is judged whole (L313's note: a walk that turns inside its first metres), and a
-    bout longer than ``max_bout_m`` stays whole for L552 to refuse (a march's legs are no walkway's passes)."""
+    bout longer than ``max_bout_m`` stays whole for L552 to refuse (a march's legs are no walkway's passes). Decision
+    L679: ``ramps`` as :func:`_time_bout`'s."""
     out = []
     length = np.abs(np.nan_to_num(steps["length_m"].to_numpy(float)))
     for n, (a, b) in enumerate(bout_rows(steps), start=1):
         split = passes and (max_bout_m is None or length[a:b].sum() <= max_bout_m)
         parts = pass_rows(steps, a, b) if split else [(a, b)]
         got = [(f"walking bout {n}" + (f" pass {p}" if len(parts) > 1 else ""),
-                _time_bout(steps, c, d, zone_m, timed_m, decel_m, max_bout_m)) for p, (c, d) in enumerate(parts, 1)]
+                _time_bout(steps, c, d, zone_m, timed_m, decel_m, max_bout_m, ramps)) for p, (c, d) in enumerate(parts, 1)]
         if len(parts) > 1 and all(isinstance(g, float) for _, g in got):
-            got = [(f"walking bout {n}", _time_bout(steps, a, b, zone_m, timed_m, decel_m, max_bout_m))]
+            got = [(f"walking bout {n}", _time_bout(steps, a, b, zone_m, timed_m, decel_m, max_bout_m, ramps))]
         out += got
     return out
 
@@ -190,8 +199,36 @@ def _bout_limit(zones) -> float | None:
     return None if zones else WALKWAY_BOUT_MAX_M
 
 
+def ramp_numbers(steps: pd.DataFrame, found) -> np.ndarray:
+    """Decision L679: (N,) int, each row's ramps.csv ramp number (from 1; 0 outside every ramp) of ``found``
+    (:func:`pdrlearn.track.grade.track_ramps` of ``steps``: each ramp's ``first`` / ``last`` row, numbered as
+    ramps.csv numbers them)."""
+    out = np.zeros(len(steps), int)
+    for k, r in enumerate((found or ([],))[0], start=1):
+        out[int(r["first"]):int(r["last"]) + 1] = k
+    return out
+
+
+def _ramp_note(steps: pd.DataFrame, a: int, k: int, need: float, timed_m: float, ramps) -> str | None:
+    """Decision L679: the refusal of the walk-test stretch ``steps.iloc[a:a + k]`` (the rows whose path reaches
+    ``need`` m, as L434's flight check reads them) when a row of it lies on a ramp of ``ramps``
+    (:func:`ramp_numbers`); None otherwise."""
+    if ramps is None:
+        return None
+    ramps = np.asarray(ramps)
+    on = ramps[a:a + k]
+    if not (on > 0).any():
+        return None
+    n = int(on[on > 0][0])
+    rows = np.flatnonzero(ramps == n)
+    t0, t1 = float(steps["start_s"].iloc[rows[0]]), float(steps["end_s"].iloc[rows[-1]])
+    return (f"the first {need:g} m of the walk hold {int((on == n).sum())} stride(s) of ramp {n} of ramps.csv "
+            f"({t0:.1f}-{t1:.1f} s): a {timed_m:g} m walk test is timed on a level walkway (decisions L434, L679); "
+            "not timed")
+
+
 def ten_metre_walk(steps: pd.DataFrame, zones: tuple[float, float, float] | None = None,
-                   calibrated: bool = False) -> dict:
+                   calibrated: bool = False, ramps=None) -> dict:
     """Decision L312: :data:`KEYS` of a tracked step table: the first walking bout (L104's bouts,
     :func:`pdrlearn.track.clinical.bout_rows`) whose path reaches ZONE_M + TIMED_M + ZONE_M = 14 m is timed over
     its middle 10 m (module docstring); ``ten_m_walk_note`` says why there is no time (decision L313: a walk shorter
@@ -201,12 +238,13 @@ def ten_metre_walk(steps: pd.DataFrame, zones: tuple[float, float, float] | None
     instead of (2, 10, 2). Decision L524: :data:`TRIAL_KEYS` count every timed bout (:func:`ten_metre_walk_trials`).
     Decision L552: without ``zones`` a bout over :data:`WALKWAY_BOUT_MAX_M` is not timed. Decision L649:
     ``calibrated`` (a lower-back track with ``calibrate``'s parameters) times the lower back when the walkway has an
-    acceleration zone (:func:`lower_back_note`)."""
+    acceleration zone (:func:`lower_back_note`). Decision L679: ``ramps`` (:func:`ramp_numbers`) a bout whose
+    walkway holds a ramp's row is not timed; ``ten_m_walk_declared`` says whether ``zones`` declared the walkway."""
     accel, timed, decel = zones or (ZONE_M, TIMED_M, ZONE_M)
     out = timed_walk(steps, accel, timed, KEYS, lower_back_note(accel, timed, calibrated),
                      lambda longest, need: short_walk_note(longest, need, (accel, timed, decel)), decel_m=decel,
-                     max_bout_m=_bout_limit(zones), passes=True)  # decision L673
-    trials = ten_metre_walk_trials(steps, zones, calibrated)
+                     max_bout_m=_bout_limit(zones), passes=True, ramps=ramps)  # decision L673
+    trials = ten_metre_walk_trials(steps, zones, calibrated, ramps=ramps)
     out["n_ten_m_walk_trials"] = len(trials)  # decision L524
     missed = _near_misses(steps, accel + timed + decel, lower_back_note(accel, timed, calibrated) is None)
     if out["ten_m_walk_time_s"] is not None and missed:  # decision L524: a trial lost to L349's few cm is said
@@ -217,6 +255,7 @@ def ten_metre_walk(steps: pd.DataFrame, zones: tuple[float, float, float] | None
             "walker start and stop beyond the walkway's ends (a run-out, decisions L349, L524)")]))
     out["ten_m_walk_max_speed_mps"] = float(trials["speed_mps"].max()) if len(trials) else None
     out["ten_m_walk_zones_m"] = [accel, timed, decel]  # decision L522: the walkway the keys were timed on
+    out["ten_m_walk_declared"] = zones is not None  # decision L679: False = found in free walking
     return out
 
 
@@ -227,18 +266,18 @@ TRIAL_KEYS = ("n_ten_m_walk_trials", "ten_m_walk_max_speed_mps", "ten_m_walk_zon
 
 
 def ten_metre_walk_trials(steps: pd.DataFrame, zones: tuple[float, float, float] | None = None,
-                          calibrated: bool = False) -> pd.DataFrame:
+                          calibrated: bool = False, ramps=None) -> pd.DataFrame:
     """Decision L524: ``ten_m_walk_trials.csv``: every walking bout timed as L312 times the first one (its
     acceleration zone, timed metres, deceleration zone reached, straight, level, every length known; L313's
     refusals skip a bout), one row each (:data:`TRIAL_COLUMNS`: ``start_s`` / ``end_s`` where the path passes the
     timed stretch's start and end). A self-selected and a fast trial in one recording are two rows. Decision L649:
-    ``calibrated`` as :func:`ten_metre_walk`'s."""
+    ``calibrated`` as :func:`ten_metre_walk`'s; decision L679: ``ramps`` too."""
     accel, timed, decel = zones or (ZONE_M, TIMED_M, ZONE_M)
     rows = []
     lower_back_ok = lower_back_note(accel, timed, calibrated) is None  # decision L649
     if len(steps) and {"start_s", "end_s", "length_m"} <= set(steps.columns) and (
             lower_back_ok or not _is_lower_back(steps)):
-        for _, got in _timed_pieces(steps, accel, timed, decel, _bout_limit(zones)):  # L552; L673: each pass
+        for _, got in _timed_pieces(steps, accel, timed, decel, _bout_limit(zones), ramps=ramps):  # L552; L673; L679
             if isinstance(got, tuple):
                 rows.append((len(rows) + 1, got[0], got[1], got[1] - got[0], timed / (got[1] - got[0])))
     return pd.DataFrame(rows, columns=list(TRIAL_COLUMNS))
@@ -255,18 +294,20 @@ def _near_misses(steps: pd.DataFrame, need: float, lower_back_ok: bool = False) 
     return [(n, m) for n, m in got if isinstance(m, float) and need - RUN_OUT_M <= m < need]
 
 
-def t25fw(steps: pd.DataFrame, walkway: bool = False, calibrated: bool = False) -> dict:
+def t25fw(steps: pd.DataFrame, walkway: bool = False, calibrated: bool = False, ramps=None) -> dict:
     """Decision L387: :data:`T25FW_KEYS` of a tracked step table: the timed 25-foot walk from a standing start - the
     first walking bout whose path reaches :data:`T25FW_M` is timed from its first row's start to where its path
     passes 7.62 m (no zone: the test starts from standing, L312's kernel with a zone of 0 m); a shorter, turning or
     lower-back walk is not timed (L313's rules), ``t25fw_note`` says why. Decision L552: unless ``walkway`` (a
     walkway declared, ``track --ten-m-walk``) a bout over :data:`WALKWAY_BOUT_MAX_M` is not timed. Decision L649: a
-    calibrated lower back is not timed either (from standing it reads fast), its note says so."""
+    calibrated lower back is not timed either (from standing it reads fast), its note says so. Decision L679:
+    ``ramps`` (:func:`ramp_numbers`): a walk on a ramp is not timed."""
     return timed_walk(steps, 0.0, T25FW_M, T25FW_KEYS,
                       lower_back_note(0.0, T25FW_M, calibrated, what="the timed 25-foot walk"),
                       lambda longest, need: (f"no walking bout of {need:g} m (25 ft, from standing; the longest "
                                              f"{math.floor(longest * 100.0 + 1e-6) / 100.0:.2f} m; decision L387): "
-                                             "a shorter walk is not timed"), max_bout_m=_bout_limit(walkway))
+                                             "a shorter walk is not timed"), max_bout_m=_bout_limit(walkway),
+                      ramps=ramps)
 
 
 def _climb_tables(steps: pd.DataFrame, a: int, b: int) -> str:
@@ -284,11 +325,12 @@ def _climb_tables(steps: pd.DataFrame, a: int, b: int) -> str:
 
 
 def _time_bout(steps: pd.DataFrame, a: int, b: int, zone_m: float, timed_m: float, decel_m: float,
-               max_bout_m: float | None = None):
+               max_bout_m: float | None = None, ramps=None):
     """Decisions L312, L313, L434: the bout ``steps.iloc[a:b]`` timed over the ``timed_m`` after its first
     ``zone_m`` when its path reaches ``zone_m + timed_m + decel_m``: the times ``(t0, t1)``; a float (the bout's
     known length) when it is shorter; a str (the note) when it reaches that length but is refused - decision L552:
-    also when the bout is longer than ``max_bout_m`` (a march, not a walkway)."""
+    also when the bout is longer than ``max_bout_m`` (a march, not a walkway); decision L679: when its stretch holds
+    a row of a ramp of ``ramps`` (:func:`ramp_numbers`)."""
     need = zone_m + timed_m + decel_m
     t, d, x, y = _path(steps.iloc[a:b])
     length = np.abs(steps["length_m"].to_numpy(float)[a:b])
@@ -309,6 +351,9 @@ def _time_bout(steps: pd.DataFrame, a: int, b: int, zone_m: float, timed_m: floa
         return (f"the first {need:g} m of the walk hold a climb of {n_stair} ramp or stair stride(s) "
                 f"(|dz_m| >= 0.10 m, L179; 2 or more in a row, L438): a {timed_m:g} m walk test is "
                 f"timed on a level walkway (decision L434); not timed - {_climb_tables(steps, a, a + k)}")
+    on_ramp = _ramp_note(steps, a, k, need, timed_m, ramps)  # decision L679: a ramp is no level walkway
+    if on_ramp:
+        return on_ramp
     end = (np.interp(need, d[k - 1: k + 1], x[k - 1: k + 1]), np.interp(need, d[k - 1: k + 1], y[k - 1: k + 1]))
     if math.hypot(*end) < STRAIGHT_MIN * need:
         return (f"the first {need:g} m of the walk are not straight: a turn or a reversal "
@@ -322,15 +367,15 @@ def _time_bout(steps: pd.DataFrame, a: int, b: int, zone_m: float, timed_m: floa
 
 def timed_walk(steps: pd.DataFrame, zone_m: float, timed_m: float, keys: tuple[str, str, str], lower_back_note: str,
                short_note, decel_m: float | None = None, max_bout_m: float | None = None,
-               passes: bool = False) -> dict:
+               passes: bool = False, ramps=None) -> dict:
     """Decisions L312, L387: ``keys`` (time, speed, note) of the first walking bout whose path reaches ``zone_m`` +
     ``timed_m`` + ``decel_m`` (default ``zone_m``; L522), timed over the ``timed_m`` after its first ``zone_m``
     (L313's refusals, :func:`_time_bout`; ``short_note(longest, need)`` the note of a walk too short). Decision L535:
     a bout L313 refuses (a turn in it) does not end the search: the first bout timed is the keys', the note naming
     the refused bout before it; with none timed, the first refusal is the note (review R0 finding 3: the summary,
     console and clinical.md said "not timed" beside ten_m_walk_trials.csv's timed trials). Decision L552: a bout
-    over ``max_bout_m`` is refused. Decision L673: ``passes`` (the 10 m walk) times each straight pass of a bout
-    (:func:`pass_rows`) as a bout of its own."""
+    over ``max_bout_m`` is refused; decision L679: a bout on a ramp of ``ramps`` too. Decision L673: ``passes``
+    (the 10 m walk) times each straight pass of a bout (:func:`pass_rows`) as a bout of its own."""
     time_key, speed_key, note_key = keys
     out = dict.fromkeys(keys)
     decel_m = zone_m if decel_m is None else decel_m
@@ -341,7 +386,7 @@ def timed_walk(steps: pd.DataFrame, zone_m: float, timed_m: float, keys: tuple[s
         out[note_key] = lower_back_note
         return out
     longest, refused = 0.0, None
-    for n, got in _timed_pieces(steps, zone_m, timed_m, decel_m, max_bout_m, passes):
+    for n, got in _timed_pieces(steps, zone_m, timed_m, decel_m, max_bout_m, passes, ramps):  # L673, L679
         if isinstance(got, float):
             longest = max(longest, got)
             continue
