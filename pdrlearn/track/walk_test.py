@@ -186,7 +186,8 @@ def _timed_pieces(steps: pd.DataFrame, zone_m: float, timed_m: float, decel_m: f
         split = passes and (max_bout_m is None or length[a:b].sum() <= max_bout_m)
         parts = pass_rows(steps, a, b) if split else [(a, b)]
         got = [(f"walking bout {n}" + (f" pass {p}" if len(parts) > 1 else ""),
-                _time_bout(steps, c, d, zone_m, timed_m, decel_m, max_bout_m, ramps)) for p, (c, d) in enumerate(parts, 1)]
+                _time_bout(steps, c, d, zone_m, timed_m, decel_m, max_bout_m, ramps))
+               for p, (c, d) in enumerate(parts, 1)]
         if len(parts) > 1 and all(isinstance(g, float) for _, g in got):
             got = [(f"walking bout {n}", _time_bout(steps, a, b, zone_m, timed_m, decel_m, max_bout_m, ramps))]
         out += got
