@@ -6,10 +6,11 @@ A streamed stride headed by the waist gyroscope turned by its rate on the stride
 rest (a stop, a turn on the spot) or ends in one gains or loses walking speed within it, so that mean leans by about
 ``v / (g T)`` (~6 deg at 1.2 m/s over 1.1 s) and the pelvis' roll into or out of the gait leaks into the "vertical"
 rate, the same way each time: trial T2 (session 44, F1) lost -0.15 to -0.64 deg at each such stride, always
-clockwise. Here the vertical is the mean specific force over the stride and the :data:`CARRY_BACK_S` seconds before
-it, each sample's expressed in one body frame by the gyroscope's own rotation, and carried through the window by
-the same rotation (a world-fixed vector seen from the turning pelvis). It reads only samples up to the stride's end
-(causal): ``pdrlearn run`` / the ``Tracker`` and ``track --streaming`` call the same function.
+clockwise (decision E285; judged again in E289). Here the vertical is the mean specific force over the stride and
+the :data:`CARRY_BACK_S` seconds before it, each sample's expressed in one body frame by the gyroscope's own
+rotation, and carried through the window by the same rotation (a world-fixed vector seen from the turning pelvis).
+It reads only samples up to the stride's end (causal): ``pdrlearn run`` / the ``Tracker`` and ``track --streaming``
+call the same function.
 """
 
 from __future__ import annotations
@@ -29,11 +30,11 @@ CARRY_BACK_S = 4.0
 Stream = Callable[[str], tuple[np.ndarray, np.ndarray]]
 
 
-def carried_yaw(stream: Stream, lo: float, t0: float, t1: float) -> tuple[float, float, float] | None:
-    """Decision E285: ``(gap, own, place)``, the waist's turn (rad, CCW) over ``[lo, t0]`` and over ``[t0, t1]`` (s,
-    ``lo <= t0 < t1``) and L651's placement (:func:`mean_less_end`), on the carried vertical (the module's doc) of
-    the window ``[min(lo, t0 - CARRY_BACK_S), t1]``. None without the waist accelerometer / gyroscope samples to read
-    it. ``stream(name)`` -> ``(t, values)`` of a buffered stream."""
+def carried_yaw(stream: Stream, lo: float, t0: float, t1: float) -> tuple[float, float] | None:
+    """Decision E285: ``(gap, own)``, the waist's turn (rad, CCW) over ``[lo, t0]`` and over ``[t0, t1]`` (s,
+    ``lo <= t0 < t1``), on the carried vertical (the module's doc) of the window ``[min(lo, t0 - CARRY_BACK_S),
+    t1]``. None without the waist accelerometer / gyroscope samples to read it. ``stream(name)`` -> ``(t,
+    values)`` of a buffered stream."""
     a = min(float(lo), float(t0) - CARRY_BACK_S)
     try:
         ta, acc = segment(*stream("wAccelerometer"), a, float(t1))
@@ -65,27 +66,13 @@ def carried_yaw(stream: Stream, lo: float, t0: float, t1: float) -> tuple[float,
         return None
     ups = np.einsum("jki,k->ji", c, up / n)  # frame 0's vertical in each frame j (c[j] transposed)
     rate = np.einsum("ij,ij->i", gyr, ups)
-    return yaw_change(tg, rate, float(lo), float(t0)), yaw_change(tg, rate, float(t0), float(t1)), \
-        mean_less_end(tg, rate, float(t0), float(t1))
-
-
-def mean_less_end(t: np.ndarray, rate: np.ndarray, t0: float, t1: float) -> float:
-    """Decision L651: the mean heading over ``[t0, t1]`` (s) less the heading at ``t1`` (rad), the heading being the
-    trapezoidal integral of ``rate`` (rad/s at the times ``t``) interpolated at the ends, as
-    :func:`~pdrlearn.kernels.stride.yaw_change`; 0 for an empty span."""
-    if not t1 > t0:
-        return 0.0
-    tt = np.concatenate([[t0], t[(t > t0) & (t < t1)], [t1]])
-    r = interp(tt, t, rate)
-    psi = np.concatenate([[0.0], np.cumsum(0.5 * (r[1:] + r[:-1]) * np.diff(tt))])
-    return float(0.5 * ((psi[1:] + psi[:-1]) * np.diff(tt)).sum() / (t1 - t0) - psi[-1])
+    return yaw_change(tg, rate, float(lo), float(t0)), yaw_change(tg, rate, float(t0), float(t1))
 
 
 def carried_turn(stream: Stream, levelled, heading_source: str, prev_end: float | None, t0: float, t1: float,
-                 waist_gap: bool = True) -> tuple[float, float, float] | None:
-    """Decision E285: ``(turn, dyaw, place)`` of a stride headed by the waist gyroscope: its own turn over ``[t0,
-    t1]``, L651's placement offset (its mean heading less its heading at the end) and its heading change with the gap
-    before it (the span L61 / L498's gap yaw covers,
+                 waist_gap: bool = True) -> tuple[float, float] | None:
+    """Decision E285: ``(turn, dyaw)`` of a stride headed by the waist gyroscope: its own turn over ``[t0, t1]`` and
+    its heading change with the gap before it (the span L61 / L498's gap yaw covers,
     :func:`~pdrlearn.kernels.stride.waist_gap_from`, when ``waist_gap``), both by :func:`carried_yaw`; None for a
     foot-headed stride (or no waist samples), which keeps :func:`~pdrlearn.kernels.stride.stride_motion` and
     :func:`~pdrlearn.kernels.stride.stride_gap_yaw`'s. The runtime and ``track --streaming`` call it alike."""
@@ -94,5 +81,5 @@ def carried_turn(stream: Stream, levelled, heading_source: str, prev_end: float 
     s = carried_yaw(stream, waist_gap_from(prev_end, t0, waist_gap), t0, t1)
     if s is None:
         return None
-    gap, own, place = s
-    return own, own + gap, place
+    gap, own = s
+    return own, own + gap

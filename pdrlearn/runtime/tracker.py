@@ -53,7 +53,6 @@ from pdrlearn.kernels.stride import (
     FINE_PAD_S,
     GAP_YAW_MAX_S,
     HEADING_SOURCES,
-    WAIST_PLACE,
     StanceSegmenter,
     advance_xyz,
     fine_spec,
@@ -2079,8 +2078,7 @@ class Tracker(OwnGuard, FixInput):
             started = _carried_yaw.carried_turn(self._stream, lev, self.heading_source, prev, t0, t1,
                                                  self.waist_gap_yaw)  # decision E285 (track --streaming's call)
             if started is not None:
-                turn, dyaw = started[:2]
-                lev = {**lev, WAIST_PLACE: started[2]}  # decision L651: where the stride is placed
+                turn, dyaw = started
         if self._stop_bias is not None and not headed_by_foot(lev, self.heading_source):  # decision E272
             self._stop_bias.update(self._stream, prev, t0)
             lo = prev if pause_gap and self._bridged() else waist_gap_from(prev, t0, self.waist_gap_yaw)

@@ -2111,8 +2111,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         if not (i and prev < t0 and overlaps_any(prev, float(t0), imu_gaps)):  # decision E285 (the runtime's call)
             started = KCY.carried_turn(streams.__getitem__, lev, heading, prev, float(t0), float(t1), waist_gap_yaw)
             if started is not None:
-                turn[i], dyaw[i] = started[:2]
-                place[i] = SK.placement_offset({**lev, SK.WAIST_PLACE: started[2]}, heading, disp[i])  # L651
+                turn[i], dyaw[i] = started
         if stop is not None and not foot_headed[i]:  # decision E272: the bias read at the last stop, as the runtime
             stop.update(streams.__getitem__, prev, float(t0))
             lo = (prev if i and prev < t0 and bridged and overlaps_any(prev, float(t0), imu_gaps)
