@@ -289,7 +289,7 @@ class LiveLoops:
             ended = after >= 1 and rows[i + 1][0] - rows[i][1] > CHAIN_PAUSE_S
             if final or ended or after >= REACH:
                 pedal = self._verdict(rows, i)
-            elif self._quiet_lead(rows, i) or not self._verdict(rows + self._worst(rows[-1]), i):
+            elif not self._verdict(rows + self._worst(rows[-1]), i):
                 pedal = False
             else:
                 break
@@ -297,13 +297,6 @@ class LiveLoops:
             self.history = (self.history + [row])[-REACH:]
             out.append((payload, pedal))
         return out
-
-    @staticmethod
-    def _quiet_lead(rows: list[tuple], i: int) -> bool:
-        """Decision E290: row ``i`` and the :data:`REACH` rows before it are quiet (unjudged, or a raw height change
-        under :data:`REVERSAL_MIN_DZ_M` and not unrested): no stride to come gives it L611's reversals or unrested
-        strides, and L640's mount stroke (the next stride pedalling) is not waited for."""
-        return all(not r[5] or (abs(r[2]) < REVERSAL_MIN_DZ_M and not r[3]) for r in rows[max(0, i - REACH):i + 1])
 
     @staticmethod
     def _worst(last: tuple) -> list[tuple]:
