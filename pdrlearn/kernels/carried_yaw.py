@@ -41,16 +41,17 @@ def carried_yaw(stream: Stream, lo: float, t0: float, t1: float) -> tuple[float,
         tg, gyr = segment(*stream("wGyroscope"), a, float(t1))
     except KeyError:
         return None
-    i0 = int(np.searchsorted(tg, a, side="left"))
-    i0 = max(i0 - 1, 0) if i0 < len(tg) and tg[i0] > a else i0  # the sample at or before the window's start
+    # the sample at or before the window's start; E35's TIE_S: a sample within it of a limit is on it (a clock shifted
+    # by a waist_clock_offset_s moves the last bits of the times, not the window)
+    i0 = max(int(np.searchsorted(tg, a + TIE_S, side="right")) - 1, 0)
     tg, gyr = tg[i0:], np.asarray(gyr, dtype=float)[i0:, :3]
     gaps = np.flatnonzero(np.diff(tg) > WAIST_GAP_S)  # E114's waist gap: no rotation is known across it
     if len(gaps):
         tg, gyr = tg[gaps[-1] + 1:], gyr[gaps[-1] + 1:]
         a = float(tg[0]) if len(tg) else a
-        if not a <= lo:  # the gap L61 / L498 count has no carried vertical: the caller keeps the old reading
+        if not a <= lo + TIE_S:  # the gap L61 / L498 count has no carried vertical: the caller keeps the old reading
             return None
-    if len(ta) < 2 or len(tg) < 2 or not tg[-1] >= t1 - TIE_S or tg[0] > t0:  # E35: a sample within TIE_S is on it
+    if len(ta) < 2 or len(tg) < 2 or not tg[-1] >= t1 - TIE_S or tg[0] > t0 + TIE_S:  # E35: within TIE_S is on it
         return None
     f = np.column_stack([interp(tg, ta, np.asarray(acc, dtype=float)[:, k]) for k in range(3)])  # gyro's clock
     # frame j+1 -> frame j by the gyroscope's mean rate over the interval; c[j]: frame j -> frame 0
@@ -59,7 +60,7 @@ def carried_yaw(stream: Stream, lo: float, t0: float, t1: float) -> tuple[float,
     c[0] = np.eye(3)
     for j in range(1, len(tg)):
         c[j] = c[j - 1] @ steps[j - 1]
-    inside = (tg >= a) & (tg <= t1)
+    inside = (tg >= a - TIE_S) & (tg <= t1 + TIE_S)
     up = np.einsum("jik,jk->i", c[inside], f[inside])  # the specific forces in frame 0, summed
     n = float(np.sqrt(up.dot(up)))
     if not n > 0:
