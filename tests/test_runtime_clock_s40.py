@@ -244,7 +244,9 @@ def test_a_pod_that_reconnects_with_its_clock_restarted_is_named_and_rebased(bun
     steps, errors = _run(tr, packets, rebase=True)
     assert len(errors) == 1 and abs(getattr(tr, f"{unit}_clock_offset_s") + 15.0) < 0.3
     assert len(steps) >= len(clean) - 2
-    assert np.hypot(*(_xy(steps)[-1] - _xy(clean)[-1])) < 3.0  # the 1 s gap, not a 15 s misalignment
+    # the 1 s gap, not a 15 s misalignment: the foot pod's case ends 2.98 m from the clean walk on main before E289,
+    # 3.03 m with E289's carried waist turn (printed; session 45), hence 3.5 (was 3.0)
+    assert np.hypot(*(_xy(steps)[-1] - _xy(clean)[-1])) < 3.5
 
 
 def test_rebase_clock_checks_its_arguments_and_sets_the_waist_offset(bundle):

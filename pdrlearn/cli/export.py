@@ -361,8 +361,8 @@ def run(
                                        help="What turns the streamed heading (the Tracker's heading_source, decision "
                                        "E6): auto = the waist gyroscope when the waist unit streams, else the foot; "
                                        "foot = the foot's attitude change from rest to rest; waist-gyro = the waist "
-                                       "gyroscope always. For stop-and-turn sessions (VR, rehab) foot kept the "
-                                       "heading better on simulated ones (decision E285; docs/deploying.md)."),
+                                       "gyroscope always, on a vertical carried by it (decision E289). On "
+                                       "stop-and-turn sessions (VR, rehab) try foot too (docs/deploying.md)."),
 ) -> None:
     """Replay a recorded session (or a Bluetooth capture) through the streaming runtime.
 

@@ -24,6 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from pdrlearn.errors import DataError, InternalError, ModelError, VerticalAxisError
+from pdrlearn.kernels import carried_yaw as _carried_yaw
 from pdrlearn.kernels import distance as _distance
 from pdrlearn.kernels import first_walk as _first_walk
 from pdrlearn.kernels import pedal as _pedal
@@ -480,6 +481,7 @@ class Tracker(OwnGuard, FixInput):
     _baro = None  # decision E232 (likewise: no barometer check)
     _first_walk = None  # decision E215 (a bare Tracker.__new__ has none)
     _stop_bias = None  # decision E272 (a bare Tracker.__new__ has none)
+    _drop_at_w = math.inf  # decision E285 (as _stop_bias)
     _pedal_line: list | None = None  # decision E280: [spans, index in warnings]
     _foot_gaps: list | tuple = ()
     _drop_ref: tuple | None = None  # decision L167 (a bare Tracker.__new__ has no clean stride yet)
@@ -691,6 +693,7 @@ class Tracker(OwnGuard, FixInput):
         # a lower bound of the earliest cut that drops a sample (a ring keeps the last sample before the cut,
         # so its second sample; a ring of one sample, that sample): a cheap _trim between two steps
         self._drop_at = math.inf
+        self._drop_at_w = math.inf  # decision E285: the waist rings' (see _trim)
         self._latest = -math.inf  # time of the newest buffered sample (s)
         #: the foot levelling's per-sample part, done at push time (decision E15); None = the shared
         #: kernel at the step event only (``incremental=False``, or no declared foot frame)
@@ -1078,7 +1081,10 @@ class Tracker(OwnGuard, FixInput):
         if ring is None:
             ring = self._buf[name] = Ring(v.shape[1])
             self._oldest = min(self._oldest, t0)
-            self._drop_at = min(self._drop_at, t0)
+            if name.startswith("w"):  # decision E285: the waist's rings keep their own bound
+                self._drop_at_w = min(self._drop_at_w, t0)
+            else:
+                self._drop_at = min(self._drop_at, t0)
         elif v.shape[1] != ring.v.shape[1]:
             raise DataError(f"{name}: pushed {v.shape[1]} values per sample after {ring.v.shape[1]}; push every "
                             "sample of a sensor with the same number of values")
@@ -2074,6 +2080,10 @@ class Tracker(OwnGuard, FixInput):
                                        waist=self.waist_gap_yaw)
         else:  # decisions L31 / L61: the heading unit's turn between strides (track --streaming's call)
             dyaw += stride_gap_yaw(lev, self.heading_source, self._stream, prev, t0, waist=self.waist_gap_yaw)
+            started = _carried_yaw.carried_turn(self._stream, lev, self.heading_source, prev, t0, t1,
+                                                 self.waist_gap_yaw)  # decision E285 (track --streaming's call)
+            if started is not None:
+                turn, dyaw = started
         if self._stop_bias is not None and not headed_by_foot(lev, self.heading_source):  # decision E272
             self._stop_bias.update(self._stream, prev, t0)
             lo = prev if pause_gap and self._bridged() else waist_gap_from(prev, t0, self.waist_gap_yaw)
@@ -2324,6 +2334,12 @@ class Tracker(OwnGuard, FixInput):
         prev_end = self._restart_from[0]  # decision E280: a restart state re-measures the held strides from there
         if self._loops.held:
             keep_from = min(keep_from, self._loops.held[0][0][0] - _LOOK_BACK_S)
+        # decision E285: a waist-headed stride reads the waist's samples from CARRY_BACK_S before its start (the next,
+        # a waiting and a held one's); the foot's samples and state keep their own bound
+        starts = [x for x in (self.segmenter.last_boundary, self._pending[0][0] if self._pending else None,
+                              self._loops.held[0][0][0] if self._loops.held else None) if x is not None]
+        carry = "waist" in self.units and self.heading_source != "foot" and starts
+        waist_from = min(keep_from, min(starts) - _carried_yaw.CARRY_BACK_S - _LOOK_BACK_S) if carry else keep_from
         if prev_end is not None and any(g[2] and g[3] for g in self._foot_gaps):  # decision L91: the waist's
             keep_from = min(keep_from, prev_end - _LOOK_BACK_S)  # turn from the last stride's end is bridged
         elif prev_end is not None and self.waist_gap_yaw and "waist" in self.units \
@@ -2334,14 +2350,17 @@ class Tracker(OwnGuard, FixInput):
             start = -math.inf if prev_end is None else prev_end
             keep_from = min(keep_from, max(start, self._latest - _stop_bias.KEEP_S) - _LOOK_BACK_S)
         keep_from = min(keep_from, self._foot_silent_keep())  # decision E113
-        if keep_from <= self._drop_at:  # nothing to drop (the common case between two steps)
-            return
+        waist_from = min(waist_from, keep_from)
+        if keep_from <= self._drop_at and waist_from <= self._drop_at_w:  # nothing to drop (the common case between
+            return  # two steps)
         self._trims += 1  # a computed-ahead step is recomputed (decision E24)
-        for ring in self._buf.values():
-            ring.drop_before(keep_from)
+        for name, ring in self._buf.items():
+            ring.drop_before(waist_from if name.startswith("w") else keep_from)
         if self._foot is not None:
             if self._foot_q:
                 self._feed_foot()
             self._foot.drop_before(keep_from)
         self._oldest = min(float(r.t[r.i0]) for r in self._buf.values())
-        self._drop_at = min(float(r.t[r.i0 + 1] if r.i1 - r.i0 > 1 else r.t[r.i0]) for r in self._buf.values())
+        at = {n: float(r.t[r.i0 + 1] if r.i1 - r.i0 > 1 else r.t[r.i0]) for n, r in self._buf.items()}
+        self._drop_at = min((v for n, v in at.items() if not n.startswith("w")), default=math.inf)
+        self._drop_at_w = min((v for n, v in at.items() if n.startswith("w")), default=math.inf)  # decision E285

@@ -52,6 +52,7 @@ from pdrlearn.displace.force_clock import force_events, offset_check, toe_offs_i
 from pdrlearn.errors import DataError, InternalError, MissingSensorError, ModelError, NoStridesError, VerticalAxisError
 from pdrlearn.io.resample import recorded_rate
 from pdrlearn.io.session import Session
+from pdrlearn.kernels import carried_yaw as KCY
 from pdrlearn.kernels import distance as KD
 from pdrlearn.kernels import sideways as KSW
 from pdrlearn.kernels import stop_bias as KSB
@@ -2111,6 +2112,10 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         elif i:  # decisions L31 / L61: the heading unit's turn between strides (the runtime's call)
             dyaw[i] += SK.stride_gap_yaw(lev, heading, streams.__getitem__, prev, float(t0),
                                          foot=gap_yaw, waist=waist_gap_yaw)
+        if not (i and prev < t0 and overlaps_any(prev, float(t0), imu_gaps)):  # decision E285 (the runtime's call)
+            started = KCY.carried_turn(streams.__getitem__, lev, heading, prev, float(t0), float(t1), waist_gap_yaw)
+            if started is not None:
+                turn[i], dyaw[i] = started
         if stop is not None and not foot_headed[i]:  # decision E272: the bias read at the last stop, as the runtime
             stop.update(streams.__getitem__, prev, float(t0))
             lo = (prev if i and prev < t0 and bridged and overlaps_any(prev, float(t0), imu_gaps)
