@@ -729,7 +729,9 @@ BOUTS: tuple[Column, ...] = (
     ("cadence_spm", "steps/min", "number", "60 x n_step_intervals / contact_span_s (L164); empty on a lower-back "
                                            "track whose contacts are no step count (step_count_withheld, W480)"),
     ("longest_contact_gap_s", "s", "number", "longest time between two consecutive contacts in the bout; may "
-                                             "exceed --bout-break-s under --bout-rule pdrlearn (L163)"),
+                                             "exceed --bout-break-s under --bout-rule pdrlearn (L163), and on a "
+                                             "foot track (one foot's contacts) under mobgap by one step time "
+                                             "(L676)"),
     ("data_gap_s", "s", "number", "foot-data gaps (L67's gap rows) inside the bout, summed; a gap longer than "
                                   "--bout-break-s ends the bout instead (L269)"),
     ("n_turns", "count", "integer", f"turns of >= {TURN_COUNT_MIN_DEG:g} deg in the bout (L104)"),
