@@ -742,7 +742,9 @@ BOUTS: tuple[Column, ...] = (
                                            "track whose contacts are no step count (step_count_withheld, W480)"),
     ("longest_contact_gap_s", "s", "number", "longest time between two consecutive contacts in the bout; may "
                                              "exceed --bout-break-s under --bout-rule pdrlearn (L163; with "
-                                             "--corridor a stepless cone turn's gap, which ends no bout: C182)"),
+                                             "--corridor a stepless cone turn's gap, which ends no bout: C182), "
+                                             "and on a foot track (one foot's contacts) under mobgap by one "
+                                             "step time (L676)"),
     ("data_gap_s", "s", "number", "foot-data gaps (L67's gap rows) inside the bout, summed; a gap longer than "
                                   "--bout-break-s ends the bout instead (L269)"),
     ("n_turns", "count", "integer", f"turns of >= {TURN_COUNT_MIN_DEG:g} deg in the bout (L104)"),

@@ -103,7 +103,7 @@ def stance_runs(t: np.ndarray, stance: np.ndarray, *, merge_s: float = SK.STANCE
 
 
 def rest_to_rest(t: np.ndarray, stance: np.ndarray, starts: np.ndarray, ends: np.ndarray, *,
-                 max_rest_s: float = 0.3, tol_s: float = 0.2, all_rows: bool = False
+                 max_rest_s: float = 0.3, tol_s: float = 0.2, all_rows: bool = False, events=None
                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Turn detected step windows into rest-to-rest strides of the foot unit.
 
@@ -116,7 +116,9 @@ def rest_to_rest(t: np.ndarray, stance: np.ndarray, starts: np.ndarray, ends: np
     Returns
     -------
     i0, i1 : sample indices of the stride boundaries;  keep : indices of the input rows used
-    (``all_rows``: every (stride, row) pair before duplicates are dropped, for :func:`one_per_rest_stride`)
+    (``all_rows``: every (stride, row) pair before duplicates are dropped). Of several rows that make the same
+    stride the first is kept, or with ``events`` (one per input row, s) the one with the latest event (the landing
+    just before the rest that ends the stride: steps decision 34, localization L675)
     """
     rr = stance_runs(t, stance)
     if len(rr) < 2:
@@ -140,9 +142,21 @@ def rest_to_rest(t: np.ndarray, stance: np.ndarray, starts: np.ndarray, ends: np
     i1 = np.minimum(mid[k1], rr[k1, 0] + n_rest)
     if all_rows:
         return i0, i1, keep
-    _, first = np.unique(np.column_stack([i0, i1]), axis=0, return_index=True)
-    first = np.sort(first)
+    if events is not None:  # decision L675: steps decision 34's pick, the latest event of the stride
+        first = np.sort(_latest_per_stride(i0, i1, np.asarray(events, dtype=float)[keep]))
+    else:
+        _, first = np.unique(np.column_stack([i0, i1]), axis=0, return_index=True)
+        first = np.sort(first)
     return i0[first], i1[first], keep[first]
+
+
+def _latest_per_stride(i0: np.ndarray, i1: np.ndarray, ev: np.ndarray) -> np.ndarray:
+    """Steps decision 34 / localization L675: of the (stride, row) pairs ``i0``, ``i1`` with events ``ev`` (NaN = no
+    event, taken as the earliest), the positions of one pair per stride, the one with the latest event."""
+    order = np.lexsort((np.nan_to_num(ev, nan=-np.inf), i1, i0))  # by stride, the latest event last
+    pair = np.column_stack([i0, i1])[order]
+    last = np.r_[np.any(pair[1:] != pair[:-1], axis=1), True]
+    return order[last]
 
 
 def one_per_rest_stride(t: np.ndarray, stance: np.ndarray, starts, ends, events, *,
@@ -156,12 +170,9 @@ def one_per_rest_stride(t: np.ndarray, stance: np.ndarray, starts, ends, events,
     i0, i1, rows = rest_to_rest(t, stance, np.asarray(starts, float), np.asarray(ends, float), all_rows=True)
     if not len(rows):
         return (np.zeros(0, dtype=int), 0) if count_strides else np.zeros(0, dtype=int)
-    ev = np.asarray(events, dtype=float)[rows]
-    order = np.lexsort((np.nan_to_num(ev, nan=-np.inf), i1, i0))  # by stride, the latest event last
-    pair = np.column_stack([i0, i1])[order]
-    last = np.r_[np.any(pair[1:] != pair[:-1], axis=1), True]
-    kept = np.unique(rows[order][last])
-    return (kept, int(last.sum())) if count_strides else kept
+    pick = _latest_per_stride(i0, i1, np.asarray(events, dtype=float)[rows])
+    kept = np.unique(rows[pick])
+    return (kept, len(pick)) if count_strides else kept
 
 
 def twist_yaw(q_start: np.ndarray, q_end: np.ndarray) -> np.ndarray:
@@ -407,7 +418,8 @@ class FootDisplacement:
         period = 1.0 / fs
         st = steps["start_s"].to_numpy(dtype=float)
         en = steps["end_s"].to_numpy(dtype=float)
-        i0, i1, self.rows_ = rest_to_rest(t, self.stance_, st, en, max_rest_s=self.max_rest_s)
+        ev = steps["event_s"].to_numpy(dtype=float) if "event_s" in steps else None  # decision L675
+        i0, i1, self.rows_ = rest_to_rest(t, self.stance_, st, en, max_rest_s=self.max_rest_s, events=ev)
         self.start_idx_, self.end_idx_ = i0, i1
         self.start_s_, self.end_s_ = t[i0], t[i1]
         long = (self.end_s_ - self.start_s_) > self.max_stride_s

@@ -11,8 +11,10 @@ in the track's totals); default 0 (every bout, as L104 counts them).
 Decision L163: that rhythm rule with ``break_s=3`` is NOT mobgap's rule - its effective break is the median step
 interval plus 3 s plus angle / 20 deg/s for a turn across the gap, so a Mobilise-D trial found bouts spanning
 4.9-6.5 s without a contact. ``--bout-rule mobgap`` (:data:`BOUT_PRESETS`) is the literal rule: gap ``contact``, a
-new bout when two consecutive initial contacts are more than 3 s apart, at least 4 strides. Every row says its
-``longest_contact_gap_s``, so a bout spanning a longer gap than the break is visible under either rule.
+new bout when two consecutive initial contacts are more than 3 s apart, at least 4 strides (decision L676: on a foot
+track, whose rows are one foot's contacts, the same-foot gap less one step time, the other foot's unseen contact).
+Every row says its ``longest_contact_gap_s``, so a bout spanning a longer gap than the break is visible under either
+rule.
 
 Decision L269: a foot-data gap (L67's gap row) longer than ``break_s`` ends a bout under either rule, the gap row
 in neither bout; ``data_gap_s`` sums the shorter gaps a bout holds (summary.json's ``time_no_data_s``, L275, is
@@ -214,11 +216,26 @@ def contact_times(st: pd.DataFrame) -> np.ndarray:
     return np.where(np.isfinite(ic), ic, t)
 
 
+def contact_gaps(st: pd.DataFrame, break_s: float) -> np.ndarray:
+    """Decision L163's ``contact`` gaps of ``st`` (sorted by ``start_s``): the times (s) between consecutive rows'
+    contacts. Decision L676: on a foot track the rows are one foot's contacts, and the other foot's contact lies in
+    each gap unseen (Mobilise-D's 3 s break is between consecutive contacts of both feet), so there the gap is the
+    same-foot gap less one step time - half the median of the same-foot gaps of at most ``break_s`` (the strides
+    inside bouts); no such gap: unchanged. The other foot's closing or opening step at a stop is taken to last one
+    step time, so the longer part of the gap is what is compared."""
+    gaps = np.diff(contact_times(st))
+    if not is_foot_table(st):
+        return gaps
+    walking = gaps[np.isfinite(gaps) & (gaps <= break_s)]
+    return gaps - 0.5 * float(np.median(walking)) if len(walking) else gaps
+
+
 def _contact_bouts(st: pd.DataFrame, break_s: float) -> list[tuple[int, int]]:
-    """Decision L163's ``contact`` gap: the rows between two consecutive contacts more than ``break_s`` apart."""
+    """Decision L163's ``contact`` gap: the rows between two consecutive contacts more than ``break_s`` apart
+    (:func:`contact_gaps`; L676: a foot track's gap less the other foot's step)."""
     if not len(st):
         return []
-    cuts = [0, *(np.flatnonzero(np.diff(contact_times(st)) > break_s) + 1).tolist(), len(st)]
+    cuts = [0, *(np.flatnonzero(contact_gaps(st, break_s) > break_s) + 1).tolist(), len(st)]
     return split_at_data_gaps(st, list(zip(cuts[:-1], cuts[1:], strict=True)), break_s)  # decision L269
 
 
