@@ -54,7 +54,10 @@ def test_the_count_and_the_warning_line():
     assert pause_scaled_message(10, 100) is None  # a tenth: no line
     line = pause_scaled_message(11, 100)
     assert line is not None and "\n" not in line and line.startswith("11 of 100 steps (11 %)")
-    assert '{"options": {"pause_steps": false}}' in line and "W134" in line and "W514" in line
+    assert '{"options": {"pause_steps": false}}' in line and "W134" in line
+    from pdrlearn.warning_lines import warning_code
+
+    assert warning_code(line) == "W514"  # E155: the line's own decision is its code
     assert "W122" in pause_scaled_message(5, 10, "progression")
     assert "pause_steps true" in pause_scaled_message(5, 10, True)
 

@@ -138,9 +138,9 @@ def pause_scaled_message(n_scaled: int, n_steps: int, value: bool | str = "stand
         return None
     shown = "true" if value is True else f'"{value}"'
     return (f"{n_scaled} of {n_steps} steps ({100.0 * n_scaled / n_steps:.0f} %) were shortened as pauses / stands "
-            f"inside a walk (pause_steps {shown}, decisions {_PAUSE_DECISIONS.get(value, 'W111')}, W514): if the "
-            "subject did not stop that often (a walking aid steadies the trunk), the distance reads short; track and "
-            "calibrate with {\"options\": {\"pause_steps\": false}} in the parameters file")
+            f"inside a walk (pause_steps {shown}, {_PAUSE_DECISIONS.get(value, 'W111')}): if the subject did not "
+            "stop that often (a walking aid steadies the trunk), the distance reads short; track and calibrate with "
+            "{\"options\": {\"pause_steps\": false}} in the parameters file (decision W514)")
 
 
 def check_length_smoothing(mode) -> str:
