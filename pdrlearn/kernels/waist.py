@@ -1724,6 +1724,9 @@ def progression_factor(displacement_m: np.ndarray, length_m: np.ndarray) -> np.n
 #: walking the pelvis is slowest in double support, about 10 % of the gait cycle twice per cycle (Perry & Burnfield,
 #: Gait Analysis, 2010), a fifth of a step (a quarter when slow); half a step is more than twice that. Not fitted.
 STANDING_SHARE = 0.5
+#: decision W516: a walking sequence with more than this share of its steps read as stands has none (a real stand
+#: needs a step into it and one out of it, so stops come at most every third step; a steadied trunk, trial T1: 35-54 %)
+STANDS_MAX_SHARE = 0.25
 
 
 def standing_step_mask(still_run_s: np.ndarray, duration_s: np.ndarray, use: np.ndarray,
@@ -1733,6 +1736,8 @@ def standing_step_mask(still_run_s: np.ndarray, duration_s: np.ndarray, use: np.
     (W18's :func:`local_medians` of ``duration_s``), and the step is neither the first nor the last row of
     ``use`` in its walking sequence (a walk's first / last step starts from / ends in quiet standing, which the
     still window runs into while the pelvis still travels). Rows without a local period are never flagged.
+    Decision W516: a walking sequence in which over :data:`STANDS_MAX_SHARE` of the steps would be stands has none
+    (a walking aid's steadied trunk is still half of every other step; stands are events).
     ``use``, ``closes``: as :func:`local_medians`."""
     run = np.asarray(still_run_s, dtype=np.float64)
     use, closes = np.asarray(use, dtype=bool), np.asarray(closes, dtype=bool)
@@ -1743,7 +1748,12 @@ def standing_step_mask(still_run_s: np.ndarray, duration_s: np.ndarray, use: np.
         rows = np.flatnonzero(use & (seq == sid))
         inner[rows[1:-1]] = True
     ok = inner & np.isfinite(per) & np.isfinite(run)
-    return ok & (np.where(ok, run, 0.0) >= STANDING_SHARE * np.where(ok, per, np.inf))
+    stand = ok & (np.where(ok, run, 0.0) >= STANDING_SHARE * np.where(ok, per, np.inf))
+    for sid in np.unique(seq[use]):  # W516: stands are events of a walk, not every other step of it
+        rows = use & (seq == sid)
+        if stand[rows].sum() > STANDS_MAX_SHARE * rows.sum():
+            stand[rows] = False
+    return stand
 
 
 def frequency_length(f_hz: np.ndarray, a: float, b: float) -> np.ndarray:

@@ -23,6 +23,7 @@ import pandas as pd
 from pdrlearn.errors import DataError
 from pdrlearn.report.daily_living import daily_living_lines
 from pdrlearn.report.travel import travel_lines
+from pdrlearn.report.walking import walking_line
 from pdrlearn.track.stair_lead import FLIGHT_WORDS, flight_line
 
 #: decision W420: the body unit each pipeline's measures come from, as the summary names it
@@ -270,6 +271,10 @@ def clinical_lines(summary: dict, folder: Path) -> list[str]:
     speed = gait_speed_line(summary, unit)
     if speed:
         lines.append(speed)
+    walking = walking_line(summary, folder, unit, distance_given=unit != "lower-back unit" or _calibrated(summary)
+                           or (summary.get("gait_speed_mps") or 0.0) >= VALIDATED_MIN_MPS)  # W515, W446
+    if walking:
+        lines.append(walking)
     lines += travel_lines(summary, folder, unit)  # decision L582: backward / side strides, turns
     lines += daily_living_lines(summary, folder)
     warnings = warnings_line(summary)

@@ -91,6 +91,8 @@ from pdrlearn.waist.lengths import (
     check_pause_steps,
     get_step_length,
     model_spec,
+    pause_scaled_count,
+    pause_scaled_message,
     step_frequency,
     walking_sequences,
 )
@@ -1417,6 +1419,9 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
                                                  steps["has_next"].to_numpy(bool)))
     if micro_line:
         warnings.append(micro_line)
+    pause_line = pause_scaled_message(*pause_scaled_count(steps), o["pause_steps"])  # decision W514
+    if pause_line:
+        warnings.append(pause_line)
     # decisions W140 (gait_check: an option, its adoption rule was not met), W211 (speed_check: on); one line
     cadence_ratio, calibration, covers = _calibration_gait(steps, p, pipeline, bool(o["gait_check"]),
                                                            bool(o["speed_check"]))

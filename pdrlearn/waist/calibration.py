@@ -14,6 +14,7 @@ from pdrlearn.io import Session
 from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.evaluate import reference_bouts, steps_in_interval
 from pdrlearn.waist.heading import TurnClassifier
+from pdrlearn.waist.lengths import pause_scaled_message
 from pdrlearn.waist.params import DEFAULT_K, TAU_K, WaistParams, resolve_params
 from pdrlearn.waist.plausibility import (  # noqa: F401  (W99 moved to plausibility; its names stay importable here)
     MISSED_STEPS_CAUSE,
@@ -99,7 +100,9 @@ def calibration_walks(session: Session, pipeline: str, *, distance_m: float | No
     f = st["frequency_hz"].to_numpy(float)
     steady = steady_steps(1.0 / res.steps["frequency_hz"].to_numpy(float), res.steps["has_next"].to_numpy(bool),
                           frequency_scale=p.frequency_scale())[res.steps["has_next"].to_numpy(bool)]  # W261
-    return [CalibrationWalk(d, f[m], g[m], name, c[m], None if dpsi is None else dpsi[m], steady[m])
+    paused = ((st["pause_factor"].to_numpy(float) < 1.0) if "pause_factor" in st else np.zeros(len(st), bool)) & (c > 0)
+    return [CalibrationWalk(d, f[m], g[m], name, c[m], None if dpsi is None else dpsi[m], steady[m],
+                            int((paused & m).sum()))  # W514
             for d, m, name in counted_walks(session, st, distance_m=distance_m, span_s=span_s)]
 
 
@@ -553,6 +556,12 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
                       "length from the first to the last heel strike)" for w in walks]
     out.notes.append(f"{pipeline} step length calibrated on {len(walks)} walk(s), {n_steps} steps, "
                      f"{total:.2f} m: {how}")
+    n_paused = sum(w.paused for w in walks)  # decision W514: the walk's steps the tracker shortened as stands
+    if pipeline == "waist-pendulum":
+            out.notes.append(f"{n_paused} of the {n_steps} steps shortened as pauses / stands (pause_factor < 1, "
+                         "decisions W111, W134, W514); the fit sums them as the track does (W21)")
+    if pause_scaled_message(n_paused, n_steps):
+        log.warning("calibrate: %s", pause_scaled_message(n_paused, n_steps))
     if shrunk is not None:
         out.notes.append(shrunk)
     if n_steps < MIN_CALIBRATION_STEPS:  # decision W169: a short walk's gain varies from walk to walk

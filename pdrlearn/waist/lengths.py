@@ -109,6 +109,40 @@ def check_pause_steps(value):
     return value
 
 
+#: decision W514: over this share of the steps with a length shortened as stands (W134) the track says so -- a
+#: walk with a stand every tenth step is not a walk; a steadied trunk (walking aid) is the likelier reading (trial T1)
+PAUSE_SCALED_WARN_SHARE = 0.10
+
+
+def pause_scaled_count(steps: pd.DataFrame) -> tuple[int, int]:
+    """Decision W514: (steps shortened as a pause / stand, steps with a length) of a pendulum steps table: rows with
+    a next contact and not a W27 fragment; shortened: ``pause_factor`` under 1 (W111, W122, W134). (0, n) without
+    the column (``pause_steps`` off)."""
+    use = steps["has_next"].to_numpy(bool) if "has_next" in steps else np.ones(len(steps), bool)
+    if "merged" in steps:
+        use = use & ~steps["merged"].to_numpy(bool)
+    if "pause_factor" not in steps:
+        return 0, int(use.sum())
+    f = steps["pause_factor"].to_numpy(float)
+    return int((use & (f < 1.0)).sum()), int(use.sum())
+
+
+#: the decision of each shortening ``pause_steps`` value (W111, W122, W134)
+_PAUSE_DECISIONS = {True: "W111", "progression": "W122", "standing": "W134, W516"}
+
+
+def pause_scaled_message(n_scaled: int, n_steps: int, value: bool | str = "standing") -> str | None:
+    """Decision W514's warning: one line when over :data:`PAUSE_SCALED_WARN_SHARE` of the steps with a length were
+    shortened as pauses / stands by ``pause_steps`` ``value``, naming the option that turns it off; None otherwise."""
+    if n_steps <= 0 or n_scaled <= PAUSE_SCALED_WARN_SHARE * n_steps:
+        return None
+    shown = "true" if value is True else f'"{value}"'
+    return (f"{n_scaled} of {n_steps} steps ({100.0 * n_scaled / n_steps:.0f} %) were shortened as pauses / stands "
+            f"inside a walk (pause_steps {shown}, {_PAUSE_DECISIONS.get(value, 'W111')}): if the subject did not "
+            "stop that often (a walking aid steadies the trunk), the distance reads short; track and calibrate with "
+            "{\"options\": {\"pause_steps\": false}} in the parameters file (decision W514)")
+
+
 def check_length_smoothing(mode) -> str:
     """``mode`` as text if it is one of the W56 smoothing modes, else one line naming them."""
     mode = str(mode)

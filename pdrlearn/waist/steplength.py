@@ -148,6 +148,8 @@ class CalibrationWalk:
     dpsi: np.ndarray | None = None
     #: decision W261: each step's :func:`steady_steps` verdict in the tracker's steps (None: not known)
     steady: np.ndarray | None = None
+    #: decision W514: how many of the walk's steps the tracker shortened as pauses / stands (``pause_factor`` < 1)
+    paused: int = 0
 
     def factors(self) -> np.ndarray:
         n = len(self.f_hz)
