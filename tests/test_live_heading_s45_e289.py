@@ -15,9 +15,9 @@ ROOT = Path(__file__).resolve().parents[1]
 G = 9.80665
 #: the live and streamed headings are one computation (E6): rounding only (3.55e-15 rad printed)
 HEADING_TOL_RAD = 1e-9
-#: their positions were already 2.33e-3 m apart on this walk on main before E289 (a stride after a stop placed
-#: 6.7e-5 m apart; left for the lead, E289); without E289's streamed call they are 1.16 m / 0.0634 rad apart
-POS_TOL_M = 0.01
+#: their positions were 2.33e-3 m apart before E291: ``tasks=[]`` classified every task live (the length class
+#: moved strides), not M2's none; without E289's streamed call they are 1.16 m / 0.0634 rad apart
+POS_TOL_M = 1e-6
 #: the final error the test allows (m): 0.72 m with E289's carried vertical, 1.78 m without (printed; see E289)
 ERR_MAX_M = 1.2
 
@@ -71,8 +71,8 @@ def test_carried_yaw_reads_a_real_turn_e289():
 
 @pytest.fixture(scope="module")
 def stop_and_turn_walk():
-    """A 12 s stand, then stop-and-go walking with walking turns, a side and a backward step (user 12503;
-    a turn on the spot is left out: its pivot strides are placed differently live, on main too, see E289)."""
+    """A 12 s stand, then stop-and-go walking with walking turns, a side and a backward step (user 12503; a turn
+    on the spot: tests/test_runtime_parity_s45_e291.py)."""
     from pdrlearn.sim import UserProfile, simulate_path
     from pdrlearn.sim.route import parse_route
 

@@ -171,12 +171,14 @@ _NO_CLASS_RULE = {"terrain": "the stride's raw height change", "direction": "the
                   "length": "no length clamp"}
 
 
-def check_tasks(bundle: Bundle, tasks, methods) -> tuple[list[str] | None, dict[str, str] | None]:
+def check_tasks(bundle: Bundle, tasks, methods) -> tuple[list[str], dict[str, str] | None]:
     """Decisions B137, B139: ``tasks`` (None: all the bundle's) and ``methods`` (task -> ``"method/unit"``, or a
     method alone as ``run --method`` takes it: :meth:`Bundle.method_unit`) as the bundle has them, else a
     one-line error naming the valid values: an unknown task (a typo, ``"terrian"``) was a raw KeyError in
     ``tasks`` and silently ignored in ``methods``, a method without its unit a raw unpacking error. Returns
-    the task list and the methods resolved to ``"method/unit"``."""
+    the task list - None resolved to the bundle's tasks here, once; an empty list stays empty: no task is
+    classified, ``track --streaming``'s M2 (decision E291: ``tasks or all`` classified every task) - and the
+    methods resolved to ``"method/unit"``."""
     have = list(bundle.tasks)
     if tasks is not None:
         tasks = [tasks] if isinstance(tasks, str) else list(tasks)
@@ -184,8 +186,9 @@ def check_tasks(bundle: Bundle, tasks, methods) -> tuple[list[str] | None, dict[
         if bad:
             raise DataError(f"tasks={tasks}: bundle {bundle.path} has no {', '.join(map(str, bad))} classifier; "
                             f"its tasks: {', '.join(have)}")
+    resolved = have if tasks is None else tasks  # decision E291: [] is no task, not every task
     if methods is None:
-        return tasks, None
+        return resolved, None
     out = {}
     for task, mu in methods.items():
         what = f"methods={{{task!r}: {mu!r}}}"
@@ -196,7 +199,7 @@ def check_tasks(bundle: Bundle, tasks, methods) -> tuple[list[str] | None, dict[
         if not isinstance(mu, str) or not mu.strip():
             raise DataError(f"{what}: give \"method/unit\" or a method, e.g. {bundle.exported(task)[0]!r}")
         out[task] = bundle.method_unit(task, mu, what=what)
-    return tasks, out
+    return resolved, out
 
 
 def check_units(bundle: Bundle, units) -> tuple[str, ...]:
@@ -375,7 +378,8 @@ class Tracker(OwnGuard, FixInput):
     ----------
     bundle : a :class:`Bundle` or the path of a bundle folder (verified on load).
     frames : placement -> declared axis frame of the incoming data (default: the bundle's).
-    tasks : tasks to classify (default: every task in the bundle).
+    tasks : tasks to classify (default: every task in the bundle; an empty list: none, the strides tracked as
+        ``track --streaming --method M2`` tracks them, decision E291).
     methods : task -> ``"method/unit"`` to use instead of the bundle's chosen one.
     start_enu_m : initial position ``(x, y, z)`` in ENU metres (east, north, up; default the origin), and
         ``heading_rad`` the initial heading override. ``start`` is its older name (decision L159: a geodetic
@@ -630,7 +634,7 @@ class Tracker(OwnGuard, FixInput):
         self._turn_tally: list | None = None  # decisions C89 / C94: [TurnTally, index of its line in warnings]
         self._model_args = (*check_tasks(self.bundle, tasks, methods), units, step_graph)  # decisions B137, B139
         if self._session_length is not None:  # decision C131: the classes C117's median needs, or one line
-            _relative_length.check_session_tasks(self._model_args[0] or list(self.bundle.tasks), self.bundle.path)
+            _relative_length.check_session_tasks(self._model_args[0], self.bundle.path)
         self._choose_models(sensors)
         self.params = dict(m["displacement"])
         self.heading_source = heading_source or str(self.params.get("heading_source", "auto"))
@@ -924,7 +928,7 @@ class Tracker(OwnGuard, FixInput):
         fm = self.bundle.manifest["features"]
         ctx = {"signals": fm["signals"], "channel_index": self.ci}
         self.classifiers: dict[str, TaskClassifier] = {}
-        for task in tasks or list(self.bundle.tasks):
+        for task in tasks:  # check_tasks' list (decision E291: [] classifies no task)
             mu = (methods or {}).get(task)
             meth, unit = mu.split("/") if mu else (None, None)  # checked by check_tasks (B139)
             self.classifiers[task] = TaskClassifier(self.bundle, task, ctx, method=meth, unit=unit, lazy=True,
