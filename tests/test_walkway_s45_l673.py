@@ -49,8 +49,8 @@ def test_each_pass_between_turns_is_a_trial_l673():
     assert pass_rows(steps, 0, len(steps)) == [(0, 14), (14, 26), (26, 34)]
 
 
-def test_a_turn_under_90_deg_does_not_split_a_pass_l673():
-    steps = _three_passes(turn=(40.0, 40.0))  # 80 deg: one pass, and L313's straightness refuses the bend
+def test_a_turn_under_80_deg_does_not_split_a_pass_l673():
+    steps = _three_passes(turn=(35.0, 35.0))  # 70 deg (under L104's 80, review R2 finding 4): one pass, L313 judges it
     assert pass_rows(steps, 0, len(steps)) == [(0, len(steps))]
     assert len(ten_metre_walk_trials(steps, (2.0, 8.0, 2.0))) == 1  # the first 12 m are straight
 

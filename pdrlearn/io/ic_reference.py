@@ -27,7 +27,8 @@ def ic_strides(ic_s, tc_s=None, length_m=None) -> pd.DataFrame:
     footfall's own toe-off, becomes the stride's ``tc_s`` of the stride it opens (contact *i*'s toe-off, kept only
     inside that stride, as gaitmap's ``pre_ic < tc < ic``: stance = tc - pre_ic); ``length_m``, the footfall's
     stride length (a walkway's: heel of the previous same-side footfall to this one), becomes the length of the
-    stride it closes (contact *i+1*'s)."""
+    stride it closes (contact *i+1*'s). ``attrs["tc_given"]``: how many strides' opening footfalls had a toe-off
+    before the inside-the-stride filter (the importer says how many it dropped)."""
     t = np.asarray(ic_s, dtype=float)
     extra = {k: np.asarray(v, dtype=float) for k, v in (("tc_s", tc_s), ("length_m", length_m)) if v is not None}
     order = np.argsort(t, kind="stable")
@@ -41,6 +42,7 @@ def ic_strides(ic_s, tc_s=None, length_m=None) -> pd.DataFrame:
         tc = extra["tc_s"][:-1][keep]
         with np.errstate(invalid="ignore"):
             out["tc_s"] = np.where((tc > a) & (tc < b), tc, np.nan)  # D51: the opening footfall's toe-off
+        out.attrs["tc_given"] = int(np.isfinite(tc).sum())  # D51 amended (review R2 finding 6): before the filter
     if "length_m" in extra:
         out["length_m"] = extra["length_m"][1:][keep]  # D51: the closing footfall's stride length
     return out

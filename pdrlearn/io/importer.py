@@ -1720,13 +1720,25 @@ def _ic_list_strides(table: pd.DataFrame, path: Path, foot: str | None, unit: st
     kept = [c for c in FOOTFALL_COLUMNS
             if c in table.columns and pd.to_numeric(table[c], errors="coerce").notna().any()]
     side_cols = {c for c in table.columns if str(c).strip().lower() in SIDE_COLUMNS}
-    unread = [c for c in table.columns if c not in {"ic_s", *FOOTFALL_COLUMNS} | side_cols]
+    unread = [c for c in table.columns if c not in {"ic_s", *kept} | side_cols]
+    times = set(table.attrs.get("time_columns", ()))
+
+    def name(c) -> str:  # the column as the file spells it (a time column was read in ms)
+        return f"{c[:-2]}_ms" if c in times else str(c)
+
     if unread:  # decision D51: named, not dropped without a word (trial T3 finding F3)
-        times = set(table.attrs.get("time_columns", ()))
-        names = [f"{c[:-2]}_ms" if c in times else str(c) for c in unread]
+        # D51 amended (review R2 finding 6): a tc_ms / length_m without one number is named too, as not numeric
+        names = [name(c) + (" (no number in it)" if c in FOOTFALL_COLUMNS else "") for c in unread]
         log.warning("%s: column(s) %s not read: an initial-contact list's strides keep ic_ms, the side and tc_ms, "
                     "length_m (decision D51)", path, ", ".join(names))
     out = ic_strides(table["ic_s"], **{c: pd.to_numeric(table[c], errors="coerce").to_numpy(float) for c in kept})
+    given, got = int(out.attrs.get("tc_given", 0)), int(out["tc_s"].notna().sum()) if "tc_s" in out else 0
+    if got < given:  # D51 amended (review R2 finding 6): toe-offs dropped are said, with how many
+        log.warning("%s: %s: %d of %d toe-off(s) lie outside the stride their footfall opens (after it, before the "
+                    "next %scontact) and are not kept; decision D51 reads a footfall's own toe-off - check the "
+                    "walkway's toe-off convention and that %s counts on the ic_ms clock (--labels-offset moves "
+                    "both)", path, name("tc_s"), given - got, given, "same-side " if sides is not None else "",
+                    name("tc_s"))
     if out.empty:
         raise DataError(f"{path}: {len(table)} initial contact(s) and no two consecutive ones within a stride (3 s): "
                         "no stride to label; a foot reference needs each contact of the walk (decision B338)")

@@ -492,14 +492,22 @@ def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.D
     ``per_s`` seconds from the recording's start to the tracked ``unit``'s end; ``bouts`` bouts.csv's table,
     ``turns`` turns.csv's. Decision L299: ``clock`` (the clock time of the session's 0 s, a datetime) cuts them at
     the clock's whole periods instead (``--per-align clock``: 1h = the clock hours), the first and last partial.
-    Decision L381: ``span`` (s, :func:`period_span`: a ``--window`` or the first step) replaces the recording's."""
+    Decision L381: ``span`` (s, :func:`period_span`: a ``--window`` or the first step) replaces the recording's.
+    Decision C185 (amended): no period accounts for time before the session's first held sample (a
+    ``--common-span`` cut's seconds are ``common_span_cut_s``, not "no steps"); the first period starts there."""
     from pdrlearn.track.clock import clock_edges
 
     t0, t1 = session_span(session, unit) if span is None else span
     edges = np.arange(t0, t1, per_s) if clock is None else clock_edges(t0, t1, per_s, clock)
     ends = np.minimum(edges + per_s, t1) if clock is None else np.r_[edges[1:], t1]
     closed = np.arange(len(edges)) == len(edges) - 1  # the last period holds its end
-    rows = interval_rows(result, session, edges, ends, closed, unit=unit, bouts=bouts, turns=turns,
+    # decision C185 amended (review R2 finding 5): the edges stay the recording's (B81), but each period is accounted
+    # from the first sample the session holds (held_span: after a --common-span cut its start), so the periods add up
+    # to time_span_s; a period wholly cut off is none
+    lo = float(session.t_start)
+    held = ends > lo + 1e-9
+    starts, ends, closed = np.maximum(edges, lo)[held], ends[held], closed[held]
+    rows = interval_rows(result, session, starts, ends, closed, unit=unit, bouts=bouts, turns=turns,
                          storey_height_m=storey_height_m)
     for k, row in enumerate(rows):
         row["period"] = k + 1

@@ -16,7 +16,7 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.kernels.turn_length import STRAIGHT_MAX_RAD
-from pdrlearn.track.clinical import _is_lower_back, bout_rows
+from pdrlearn.track.clinical import TURN_COUNT_MIN_DEG, _is_lower_back, bout_rows
 from pdrlearn.track.flags import flag_values
 from pdrlearn.track.stair_flights import flight_strides
 
@@ -69,6 +69,9 @@ WALKWAY_BOUT_MAX_M = 100.0
 #: turns on the spot are one bout). 90 deg: a walkway's turnaround is 180 deg; L312's STRAIGHT_MIN already refuses a
 #: pass that turns less inside its 14 m; the turn's strides are those over L79's 15 deg (STRAIGHT_MAX_RAD)
 PASS_TURN_DEG = 90.0
+#: decision L673 (amended, review R2 finding 4): the measured turn that ends a pass - a 90 deg turn measured as L104's
+#: TURN_COUNT_MIN_DEG (80 deg: 10 deg for the tracked heading's error), as turns.csv counts it
+PASS_TURN_MIN_DEG = TURN_COUNT_MIN_DEG
 #: the summary keys :func:`ten_metre_walk` gives (decision L312)
 KEYS = ("ten_m_walk_time_s", "ten_m_walk_speed_mps", "ten_m_walk_note")
 
@@ -150,12 +153,14 @@ def _row_turns(st: pd.DataFrame) -> np.ndarray:
 
 def pass_rows(steps: pd.DataFrame, a: int, b: int) -> list[tuple[int, int]]:
     """Decision L673: the straight passes of the bout ``steps.iloc[a:b]``, as ``(first, last + 1)`` row ranges: each
-    run of consecutive rows turning at least L79's :data:`STRAIGHT_MAX_RAD` (:func:`_row_turns`) whose turns add up
-    to :data:`PASS_TURN_DEG` or more is a turn between two passes: its rows close the pass before it (the walker's
+    run of consecutive rows turning at least L79's :data:`STRAIGHT_MAX_RAD` (:func:`_row_turns`; one slower row
+    between two turning rows bridged, as L104's turns) whose turns add up to :data:`PASS_TURN_DEG`, measured as
+    :data:`PASS_TURN_MIN_DEG` or more, is a turn between two passes: its rows close the pass before it (the walker's
     deceleration runs into the turn, as a bout's last pass runs into its stop), the next pass starts after it. A
     smaller run stays in its pass (L313's straightness rule judges it). A bout without such a turn is one pass."""
     turns = _row_turns(steps.iloc[a:b])
     turning = np.abs(turns) >= STRAIGHT_MAX_RAD
+    turning[1:-1] |= turning[:-2] & turning[2:]  # L673 amended (review R2 finding 3): one slower stride, as L104's
     out, start, k = [], a, 0
     while k < b - a:
         if not turning[k]:
@@ -164,7 +169,8 @@ def pass_rows(steps: pd.DataFrame, a: int, b: int) -> list[tuple[int, int]]:
         j = k
         while j < b - a and turning[j]:
             j += 1
-        if abs(turns[k:j].sum()) >= math.radians(PASS_TURN_DEG):  # decision L673 (amended: the turn ends its pass)
+        # decision L673 (amended: the turn ends its pass; review R2 finding 4: L104's 80 deg, a 1e-9 rad tolerance)
+        if abs(turns[k:j].sum()) >= math.radians(PASS_TURN_MIN_DEG) - 1e-9:
             out.append((start, a + j))
             start = a + j
         k = j
@@ -177,9 +183,11 @@ def _timed_pieces(steps: pd.DataFrame, zone_m: float, timed_m: float, decel_m: f
                   passes: bool = True, ramps=None) -> list[tuple[str, object]]:
     """Decision L673: ``(name, _time_bout's result)`` of each piece a walk test times: with ``passes`` each straight
     pass of a walking bout (:func:`pass_rows`, "walking bout N pass P"), else each bout ("walking bout N"). A bout
-    whose passes are all too short is judged whole (L313's note: a walk that turns inside its first metres), and a
-    bout longer than ``max_bout_m`` stays whole for L552 to refuse (a march's legs are no walkway's passes). Decision
-    L679: ``ramps`` as :func:`_time_bout`'s."""
+    whose passes are all too short is judged whole for its note only (L313's: a walk that turns inside its first
+    metres; review R2 finding 2: not when a pass is a near miss, :data:`RUN_OUT_M` short, whose L349 note stays, and
+    never timed whole, so a pass is timed or refused by itself, whatever follows it), and a bout longer than
+    ``max_bout_m`` stays whole for L552 to refuse (a march's legs are no walkway's passes). Decision L679: ``ramps``
+    as :func:`_time_bout`'s."""
     out = []
     length = np.abs(np.nan_to_num(steps["length_m"].to_numpy(float)))
     for n, (a, b) in enumerate(bout_rows(steps), start=1):
@@ -188,8 +196,10 @@ def _timed_pieces(steps: pd.DataFrame, zone_m: float, timed_m: float, decel_m: f
         got = [(f"walking bout {n}" + (f" pass {p}" if len(parts) > 1 else ""),
                 _time_bout(steps, c, d, zone_m, timed_m, decel_m, max_bout_m, ramps))
                for p, (c, d) in enumerate(parts, 1)]
-        if len(parts) > 1 and all(isinstance(g, float) for _, g in got):
-            got = [(f"walking bout {n}", _time_bout(steps, a, b, zone_m, timed_m, decel_m, max_bout_m, ramps))]
+        need = zone_m + timed_m + decel_m
+        if len(parts) > 1 and all(isinstance(g, float) and g < need - RUN_OUT_M for _, g in got):  # L673; R2 #2
+            whole = _time_bout(steps, a, b, zone_m, timed_m, decel_m, max_bout_m, ramps)
+            got = [(f"walking bout {n}", whole)] if isinstance(whole, str) else got  # its refusal only
         out += got
     return out
 
@@ -247,7 +257,8 @@ def ten_metre_walk(steps: pd.DataFrame, zones: tuple[float, float, float] | None
                      max_bout_m=_bout_limit(zones), passes=True, ramps=ramps)  # decision L673
     trials = ten_metre_walk_trials(steps, zones, calibrated, ramps=ramps)
     out["n_ten_m_walk_trials"] = len(trials)  # decision L524
-    missed = _near_misses(steps, accel + timed + decel, lower_back_note(accel, timed, calibrated) is None)
+    missed = _near_misses(steps, accel + timed + decel, lower_back_note(accel, timed, calibrated) is None,
+                          _bout_limit(zones), ramps)  # review R2 finding 1: L552's march stays whole here too
     if out["ten_m_walk_time_s"] is not None and missed:  # decision L524: a trial lost to L349's few cm is said
         out["ten_m_walk_note"] = "; ".join(filter(None, [out["ten_m_walk_note"], (  # L535's note kept before it
             "; ".join(f"{n} tracked {math.floor(m * 100.0 + 1e-6) / 100.0:.2f} m, short of "
@@ -284,14 +295,16 @@ def ten_metre_walk_trials(steps: pd.DataFrame, zones: tuple[float, float, float]
     return pd.DataFrame(rows, columns=list(TRIAL_COLUMNS))
 
 
-def _near_misses(steps: pd.DataFrame, need: float, lower_back_ok: bool = False) -> list[tuple[str, float]]:
+def _near_misses(steps: pd.DataFrame, need: float, lower_back_ok: bool = False, max_bout_m: float | None = None,
+                 ramps=None) -> list[tuple[str, float]]:
     """Decisions L349, L524: (its name, tracked metres) of each walking bout (L673: pass) short of ``need`` by less than
     :data:`RUN_OUT_M` - a walk of the walkway's length that tracked a few cm short (L649: on the lower back only when
-    ``lower_back_ok``)."""
+    ``lower_back_ok``). ``max_bout_m`` and ``ramps`` as :func:`_timed_pieces`' (review R2 finding 1: a march over
+    L552's limit stays whole, its legs no near misses)."""
     if not len(steps) or not {"start_s", "end_s", "length_m"} <= set(steps.columns) or (
             _is_lower_back(steps) and not lower_back_ok):
         return []
-    got = _timed_pieces(steps, 0.0, need, 0.0)  # decision L673: per pass
+    got = _timed_pieces(steps, 0.0, need, 0.0, max_bout_m, ramps=ramps)  # decision L673: per pass
     return [(n, m) for n, m in got if isinstance(m, float) and need - RUN_OUT_M <= m < need]
 
 
