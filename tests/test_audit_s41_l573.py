@@ -103,9 +103,11 @@ def test_lower_back_grades_warn_about_calibration_w463():
 
 
 def test_lower_back_grade_window_kept_w465():
-    from pdrlearn.track.grade import GRADE_WINDOW_ROWS
+    from pdrlearn.track.grade import GRADE_WINDOW_ROWS, WAIST_SLOPE_WINDOW_M
 
-    assert GRADE_WINDOW_ROWS["waist"] == 3  # W465: 5 and 7 rows failed the rule (one-ramp sessions 7 of 14, not 12)
+    # W465: 5 and 7 rows failed the rule (one-ramp sessions 7 of 14, not 12); W517 replaced the three rows by a 4 m
+    # least-squares slope (tests/test_waist_ramps_s45_w517.py)
+    assert "waist" not in GRADE_WINDOW_ROWS and WAIST_SLOPE_WINDOW_M == 4.0
 
 
 def test_a_lone_noisy_step_splits_no_lower_back_ramp_w464():

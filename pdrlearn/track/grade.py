@@ -46,9 +46,14 @@ RAMP_MIN_RUN_M = 2.0
 #: decision L301: a level stretch of at most this horizontal length (m) between two runs of one sign is a landing of
 #: one ramp (ADA 2010 sec. 405.7.3: a landing is at least 60 in = 1.52 m long; two of them with a turn)
 LANDING_MAX_M = 3.5
-#: decision L301: rows of the centred window the ramp rows are judged on - a foot stride alone; a lower-back step with
-#: its two neighbours (its barometric height change over one 0.7 m step is noise of several %, L300's measurement)
-GRADE_WINDOW_ROWS = {"foot": 1, "waist": 3}
+#: decision L301: rows of the centred window a foot track's ramp rows are judged on - a stride alone (the lower back's
+#: three steps, L301 / W465, gave way to W517's slope over :data:`WAIST_SLOPE_WINDOW_M`)
+GRADE_WINDOW_ROWS = {"foot": 1}
+#: decision W517: the lower back judges its ramp (and stair) rows on the least-squares slope of its walked barometric
+#: altitude over this centred horizontal window (m): one slow step's barometric change is noise of tens of %
+#: (trial T1 F4: -24 ... +33 % step to step on a 1:12 ramp). A project choice, fixed before measuring: 5-6 normal
+#: steps or 12+ slow ones, under a 1:12 run's 9 m between landings (ADA 2010 sec. 405.6: 30 in of rise)
+WAIST_SLOPE_WINDOW_M = 4.0
 
 RAMP_COLUMNS = ("ramp", "start_s", "end_s", "direction", "n_runs", "landings", "horizontal_run_m", "landing_m",
                 "along_slope_m", "rise_m", "mean_grade_pct", "max_run_grade_pct", "n_steps",
@@ -196,9 +201,39 @@ def window_grades_pct(length, dz, window: int = 1) -> np.ndarray:
     return np.where(wl > 0, 100.0 * wz / np.where(wl > 0, wl, 1.0), 0.0)
 
 
+def fitted_grades_pct(length, dz, window_m: float, ends=None) -> np.ndarray:
+    """Decision W517: per row, the least-squares slope (%) of the walked altitude (cumulated ``dz``) against the
+    cumulated horizontal ``|length|`` over the step boundaries within ``window_m / 2`` of the row's middle, inside
+    its walking sequence (``ends``: True on a sequence's last row; None: one sequence); the row's own two boundaries
+    always count, so a row as long as the window has its own grade; 0 where the boundaries span no length. NaN read as
+    0. A pure kernel."""
+    length = np.nan_to_num(np.abs(np.asarray(length, dtype=float)))
+    dz = np.nan_to_num(np.asarray(dz, dtype=float))
+    n = len(length)
+    if not n:
+        return np.zeros(0)
+    x = np.concatenate([[0.0], np.cumsum(length)])  # boundary k: the start of row k (k = n: the last row's end)
+    z = np.concatenate([[0.0], np.cumsum(dz)])
+    last = np.zeros(n, bool) if ends is None else np.asarray(ends, bool).copy()
+    last[-1] = True
+    seq = np.concatenate([[0], np.cumsum(last)[:-1]])  # each row's walking sequence
+    first_row = np.searchsorted(seq, seq, side="left")
+    last_row = np.searchsorted(seq, seq, side="right") - 1
+    mid = 0.5 * (x[:-1] + x[1:])
+    rows = np.arange(n)
+    lo = np.maximum(np.minimum(np.searchsorted(x, mid - 0.5 * window_m, side="left"), rows), first_row)
+    hi = np.minimum(np.maximum(np.searchsorted(x, mid + 0.5 * window_m, side="right") - 1, rows + 1), last_row + 1)
+    c = [np.concatenate([[0.0], np.cumsum(v)]) for v in (np.ones_like(x), x, z, x * x, x * z)]
+    k, sx, sz, sxx, sxz = (s[hi + 1] - s[lo] for s in c)
+    den = k * sxx - sx * sx
+    ok = den > 1e-12 * np.maximum(k * sxx, 1e-12)
+    return np.where(ok, 100.0 * (k * sxz - sx * sz) / np.where(ok, den, 1.0), 0.0)
+
+
 def ramp_runs(length, dz, window: int = 1, min_grade_pct: float = RAMP_MIN_GRADE_PCT,
               stair_grade_pct: float = STAIR_MIN_GRADE_PCT, min_run_m: float = RAMP_MIN_RUN_M,
-              landing_max_m: float = LANDING_MAX_M, on_stairs=None, lone_stair_joins: bool = False) -> list[dict]:
+              landing_max_m: float = LANDING_MAX_M, on_stairs=None, lone_stair_joins: bool = False,
+              window_m: float | None = None, ends=None) -> list[dict]:
     """Decision L301: the ramps of rows (horizontal ``length`` m, height change ``dz`` m, walking order) - a pure
     kernel. A row is a ramp row of sign s when the grade of the centred ``window`` rows around it (their summed dz
     over their summed |length|) is at least ``min_grade_pct`` in size, under ``stair_grade_pct`` (steeper: a stair),
@@ -211,14 +246,20 @@ def ramp_runs(length, dz, window: int = 1, min_grade_pct: float = RAMP_MIN_GRADE
     riser over a long step - are stair rows. ``lone_stair_joins`` (decision W464, the lower back's): a stair row with
     no stair row next to it does not keep two runs of one sign from joining (a lower-back step's barometric change
     is noise of several %, L300: one step of 0.15 m over 0.7 m split T3's 1:12 ramp in three). Decision L633: a ramp
-    between two stair rows of its own direction is a stair's landing and left out."""
+    between two stair rows of its own direction is a stair's landing and left out. ``window_m`` (decision W517, the
+    lower back's): the rows are judged on :func:`fitted_grades_pct` over that many metres of each walking sequence
+    (``ends``) instead of ``window`` rows, and a row is a stair row when that grade (not its own) is a stair's."""
     length = np.nan_to_num(np.abs(np.asarray(length, dtype=float)))
     dz = np.nan_to_num(np.asarray(dz, dtype=float))
     n = len(length)
     if not n:
         return []
-    g = window_grades_pct(length, dz, window)
-    own = np.where(length >= GRADE_MIN_LENGTH_M, 100.0 * dz / np.where(length > 0, length, 1.0), np.inf)
+    if window_m is None:
+        g = window_grades_pct(length, dz, window)
+        own = np.where(length >= GRADE_MIN_LENGTH_M, 100.0 * dz / np.where(length > 0, length, 1.0), np.inf)
+    else:  # decision W517
+        g = fitted_grades_pct(length, dz, window_m, ends)
+        own = np.where(length >= GRADE_MIN_LENGTH_M, g, np.inf)
     stair = np.abs(own) >= stair_grade_pct
     if on_stairs is not None:  # decision L314
         stair |= np.asarray(on_stairs, dtype=bool)
@@ -280,18 +321,22 @@ FoundRamps = tuple[list[dict], np.ndarray, np.ndarray]
 
 def track_ramps(steps: pd.DataFrame, info: dict | None) -> FoundRamps:
     """Decisions L301, L568: :func:`ramp_runs` of a track's rows (the valid rows' ``length_m`` / ``dz_m``, the
-    unit's window, L314's stair rows, the stair grade in force) with the rows' lengths and height changes it read;
-    no ramps where :func:`grade_source` is None. The tables and the summary take it as ``found=`` (session 42):
-    computed once, inside the stair grade in force (:func:`info_stair_grade`)."""
+    unit's window - the lower back's W517 slope over :data:`WAIST_SLOPE_WINDOW_M` of each walking sequence, ended
+    where ``has_next`` is False -, L314's stair rows, the stair grade in force) with the rows' lengths and height
+    changes it read; no ramps where :func:`grade_source` is None. The tables and the summary take it as ``found=``
+    (session 42): computed once, inside the stair grade in force (:func:`info_stair_grade`)."""
     if grade_source(steps, info) is None:
         return [], np.zeros(0), np.zeros(0)
     valid = _valid(steps)
     length = np.where(valid, pd.to_numeric(steps["length_m"], errors="coerce").to_numpy(float), 0.0)
     dz = np.where(valid, pd.to_numeric(steps["dz_m"], errors="coerce").to_numpy(float), 0.0)
     unit = str(steps["unit"].iloc[0]) if "unit" in steps else "foot"
+    waist = unit == "waist"
+    ends = ~steps["has_next"].astype(bool).to_numpy() if waist and "has_next" in steps else None
     found = ramp_runs(length, dz, GRADE_WINDOW_ROWS.get(unit, 1), on_stairs=climb_rows(steps, info),
                       stair_grade_pct=stair_min_grade_pct(steps),  # decision L463
-                      lone_stair_joins=unit == "waist")  # decision W464: one noisy barometric step splits no ramp
+                      lone_stair_joins=waist,  # decision W464: one noisy barometric step splits no ramp
+                      window_m=WAIST_SLOPE_WINDOW_M if waist else None, ends=ends)  # decision W517
     return found, np.abs(length), dz
 
 
