@@ -2076,7 +2076,7 @@ class Tracker(OwnGuard, FixInput):
                 self._drop_warned = True
                 self._warn("strides across dropped foot samples over 0.25 s take the length and height change of the "
                            "stride before each (decision L167)")
-        hole = self._swing_hole(t0, t1)
+        hole = 0.0 if bridged and self.drop_neighbour else self._swing_hole(t0, t1)  # L167's option: its neighbour's
         if hole:  # decision L674: a hole in the foot's samples: no classes, no height change (the length kept)
             classes, proba = {}, {}
             disp = np.array((float(disp[0]), float(disp[1]), 0.0))

@@ -2101,8 +2101,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         disp[i], dyaw[i] = SK.stride_motion(lev, heading, t0=float(t0), t1=float(t1), fine=fine)
         if across[i]:
             disp[i] = drop_stride_disp(disp[i], float(t1 - t0), ref, neighbour)
-        hole[i] = max([stride_hole(streams[n][0], float(t0), float(t1)) for n in FOOT_IMU if n in streams],
-                      default=0.0)
+        hole[i] = 0.0 if across[i] and neighbour else max(  # L167's option keeps its neighbour's height
+            [stride_hole(streams[n][0], float(t0), float(t1)) for n in FOOT_IMU if n in streams], default=0.0)
         if hole[i]:  # decision L674 (the runtime's): a hole in the foot's samples, no classes and no height change
             disp[i, 2] = 0.0
         elif not across[i]:
