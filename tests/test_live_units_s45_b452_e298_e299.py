@@ -82,3 +82,30 @@ def test_a_waist_gyroscope_in_deg_s_is_refused_at_its_first_turn_not_when_its_wi
 def test_the_heading_gap_line_names_the_unmeasured_turn():
     line = heading_gap_line(37.23, 39.83)
     assert line.startswith("wGyroscope: no samples for 2.60 s (37.23-39.83 s)") and "E299" in line
+
+
+@pytest.mark.parametrize("waist_first", [False, True])
+def test_a_gap_in_both_units_says_the_turn_inside_it_is_not_measured(synthetic_bundle, waist_first):
+    """Both units silent 1.6 s in a turning walk (the waist heads the strides, L91): the gap's line says the turn is
+    not measured (E299), whether the waist's gap or the foot's is pushed first; before, "turns with the waist
+    gyroscope (L91)"."""
+    from tests.runtime_helpers import synthetic_session
+
+    walk = synthetic_session(12, seed=12833, name="walk", turn_rad_per_step=0.3)
+    tr = Tracker(synthetic_bundle)
+    t = walk.streams["fAccelerometer"].t
+    for a in np.arange(t[0], t[-1] + 0.25, 0.25):
+        chunk = {}
+        for n, st in walk.streams.items():
+            keep = (st.t >= a) & (st.t < a + 0.25) & ~((st.t > 5.2) & (st.t < 6.8))
+            if keep.any():
+                chunk[n] = (st.t[keep], st.values[keep])
+        if waist_first:  # the waist's samples after the gap arrive one push before the foot's
+            tr.push({n: c for n, c in chunk.items() if n.startswith("w")})
+            tr.push({n: c for n, c in chunk.items() if not n.startswith("w")})
+        else:
+            tr.push(chunk)
+    tr.flush()
+    lines = [w for w in tr.warnings if "E299" in w]
+    assert lines and all("1.6" in w for w in lines), tr.warnings
+    assert not any("turns with the waist gyroscope (L91)" in w for w in tr.warnings)

@@ -492,6 +492,7 @@ class Tracker(OwnGuard, FixInput):
     _stop_bias = None  # decision E272 (a bare Tracker.__new__ has none)
     _pedal_line: list | None = None  # decision E280: [spans, index in warnings]
     _foot_gaps: list | tuple = ()
+    _heading_gaps: list | tuple = ()  # decision E299: the waist gyroscope's gaps over 1 s, the latest 16
     _drop_ref: tuple | None = None  # decision L167 (a bare Tracker.__new__ has no clean stride yet)
     _session_length = None  # decision C117 (a bare Tracker.__new__: the model's length class)
     _side: _sideways.SideRun | None = None  # decision E124 (a bare Tracker.__new__ makes one at its first stride)
@@ -1450,6 +1451,8 @@ class Tracker(OwnGuard, FixInput):
         gaps, self._pushed_gaps = self._pushed_gaps, None
         new: list[list] = []  # [start, end, long, names]
         for name, a, b in gaps:
+            if name == "wGyroscope" and b - a > GAP_LONG_S:  # decision E299: the heading's own gaps
+                self._heading_gaps = [*self._heading_gaps[-15:], (a, b)]
             long = name in _FOOT_GAP_STREAMS and b - a > GAP_LONG_S
             if long or name in _FOOT_IMU:
                 self._foot_gaps.append((a, b, long, name in _FOOT_IMU))
@@ -1470,7 +1473,7 @@ class Tracker(OwnGuard, FixInput):
                 new.append([a, b, long, [name]])
         for a, b, long, names in new:
             self._gap_marks.append([a, b, long])
-            turn = (("turns with the waist gyroscope (L91)" if "wGyroscope" not in names or b - a <= GAP_LONG_S
+            turn = (("turns with the waist gyroscope (L91)" if not any(x < b and y > a for x, y in self._heading_gaps)
                      else "turns by a straight line across the waist gyroscope's own gap, a turn inside it not "
                           "measured: every later stride's heading may be off by that turn (decision E299)")
                     if self._bridged() else
