@@ -126,6 +126,26 @@ def count_unit(rest_norm: float) -> str:
     return f"1/{rest_norm:.0f} g"
 
 
+#: the 99th percentile |rate| over which a gyroscope in rad/s is read as deg/s: a 2000 deg/s sensor's full scale is
+#: 34.9 rad/s (thesis Tables 5, 13)
+GYRO_RAD_S_MAX = 40.0
+#: decision E298: this many samples over GYRO_RAD_S_MAX (any axis) in a gyroscope's window so far are deg/s, before
+#: the window is whole: a foot in deg/s swings past 40 in its first stride while a standing start keeps the window's
+#: 99th percentile low; three, so that one or two corrupt samples (B425's) do not decide it
+GYRO_EARLY_SAMPLES = 3
+
+
+def gyro_in_deg(values: np.ndarray) -> str:
+    """Decision E298: the reason a gyroscope window so far is deg/s (:data:`GYRO_EARLY_SAMPLES` samples or more
+    with an axis over :data:`GYRO_RAD_S_MAX`), or ``""``."""
+    over = np.abs(values).max(axis=1) > GYRO_RAD_S_MAX if values.ndim == 2 else np.abs(values) > GYRO_RAD_S_MAX
+    n = int(np.count_nonzero(over))
+    if n < GYRO_EARLY_SAMPLES:
+        return ""
+    return (f"{n} samples turn faster than {GYRO_RAD_S_MAX:g} (up to {float(np.abs(values).max()):.0f}), beyond a "
+            "2000 deg/s gyroscope in rad/s; the values look like deg/s: multiply by pi/180 (decision E298)")
+
+
 def check_units(spec: SensorSpec, values: np.ndarray, where: str, declare: str | None = None,
                 t: np.ndarray | None = None, factor: float = 1.0) -> None:
     """Detect values recorded in the wrong unit from their magnitudes and say how to convert.
@@ -188,7 +208,7 @@ def check_units(spec: SensorSpec, values: np.ndarray, where: str, declare: str |
                 + _or(declare, f"declare the unit that gives m/s^2 (\"units\": {{\"{spec.name}\": ...}}) in meta.json"))
     elif spec.kind == "gyroscope":
         p99 = float(np.percentile(np.abs(values), 99))
-        if p99 > 40.0:
+        if p99 > GYRO_RAD_S_MAX:
             raise DataError(
                 f"{where}: 99th percentile |rate| is {p99:.0f}, beyond a 2000 deg/s gyroscope in rad/s; "
                 f"the {'values look' if declare == '' else 'file looks'} like deg/s: multiply by pi/180"

@@ -506,6 +506,31 @@ def gap_clock(t: np.ndarray, gap_s: float = BRIDGE_GAP_S) -> np.ndarray:
     return t - shift
 
 
+#: Decision L674: a stride whose foot accelerometer / gyroscope samples have an interval longer than this many of
+#: their own median interval in the stride (two samples lost or more) has a hole in it: no classes and no height
+#: change (trial T2 F6: a 120 ms hole at 100 Hz gave a confident "down" stride with dz -0.46 m on flat ground)
+SWING_GAP_INTERVALS = 2.5
+
+
+def stride_hole(t: np.ndarray, t0: float, t1: float) -> float:
+    """Decision L674: the longest interval (s) between the samples ``t`` (rising) that lie in or cover the stride
+    ``[t0, t1]`` (:func:`cover`'s) when it is over :data:`SWING_GAP_INTERVALS` of their median interval (and
+    :data:`GAP_TOL_S`, E230), else 0.0 (also with fewer than three samples)."""
+    a, b = cover(t, t0, t1)
+    if b - a < 3:
+        return 0.0
+    d = np.diff(t[a:b])
+    longest = float(d.max())
+    return longest if longest > SWING_GAP_INTERVALS * float(np.median(d)) + GAP_TOL_S else 0.0
+
+
+def stride_hole_line(hole_s: float, t0: float, t1: float) -> str:
+    """Decision L674: the one line for the first stride with a hole (the runtime's and ``track --streaming``'s)."""
+    return (f"foot accelerometer / gyroscope samples missing for {hole_s:.2f} s inside the stride at "
+            f"{t0:.2f}-{t1:.2f} s (over {SWING_GAP_INTERVALS:g} of their sample intervals): strides with such a hole "
+            "have no classes and dz 0 m, their length kept (decision L674; said once)")
+
+
 def levelled_units(streams: Streams, t0: float, t1: float, *, available: tuple[str, ...],
                    forward: Mapping[str, np.ndarray], rest_search_s: float, heading: str,
                    bridge_gaps: bool = False) -> Levelled:

@@ -23,9 +23,11 @@ from pdrlearn.kernels.handedness import MIN_SEGMENTS, mirror_log_ratios, mirrore
 from pdrlearn.kernels.units import (
     FROZEN_PARTNER,
     FROZEN_S,
+    GYRO_RAD_S_MAX,
     WALKING_ACC_STD,
     check_units,
     frozen_message,
+    gyro_in_deg,
     identical_runs,
     moving_norm,
     moving_samples,
@@ -114,6 +116,8 @@ class UnitGuard:
             t0 = float((chunks[0] if chunks else tv)[0][0])
             if float(tv[0][-1]) - t0 >= GUARD_S:
                 ready[name] = self._joined([*chunks, tv], t0, t0 + GUARD_S)
+            elif GUARDED[name] == "gyroscope" and float(np.max(np.abs(tv[1]))) > GYRO_RAD_S_MAX:
+                self._early(name, *self._joined([*chunks, tv]))  # decision E298: deg/s at its first swing
         moving = set()
         for name, (t, _) in ready.items():
             if GUARDED[name] == "gyroscope" and name not in self.judged:
@@ -146,6 +150,15 @@ class UnitGuard:
         t, v = self._joined([*self.held[name], tv])
         with np.errstate(over="ignore", invalid="ignore"):  # the corrupt values' squares may overflow (B425)
             self._check(name, t, v)
+            if GUARDED[name] == "gyroscope":
+                self._early(name, t, v)  # decision E298
+
+    def _early(self, name: str, t: np.ndarray, v: np.ndarray) -> None:
+        """Decision E298: a gyroscope's window so far refused as deg/s before it is whole (:func:`gyro_in_deg`)."""
+        why = gyro_in_deg(v)
+        if why:
+            raise DataError(f"{name} (its samples of {float(t[0]):.1f}-{float(t[-1]):.1f} s pushed to the {self.who}, "
+                            f"decision B119): {why}")
 
     def _check(self, name: str, t: np.ndarray, v: np.ndarray) -> None:
         """B119's unit checks of one window of ``name`` (one line naming the stream and the seconds judged)."""

@@ -40,6 +40,10 @@ RATE_PROBE_MIN = 5
 #: accelerometer and gyroscope rates, 10-1000 Hz, stay within it of every bundle rate, 20-100 Hz; judged on
 #: those streams only, a barometer may run at 1 Hz)
 RATE_UNIT_FACTOR = 100.0
+#: decision B452: a barometer's timestamps are judged by this least rate (Hz; one sample per 10 s) instead: the
+#: slowest barometer documented here is E39's 0.2 Hz, and ms timestamps of a 1-100 Hz barometer give 0.001-0.1 Hz
+#: (before, the barometer was not judged at all: trial T2's one-sample barometer packets in ms passed, F8)
+BARO_MIN_HZ = 0.1
 #: centres filtered together in one block of :meth:`StreamResampler._filter_at` (bounds its memory)
 _BLOCK = 64
 #: input intervals longer than this (s) are not bridged: the resampler ends the segment and restarts at the
@@ -321,11 +325,16 @@ class InputStage:
 
     def unit_check(self, rates: dict[str, float]) -> None:
         """Decision E29: a one-line :class:`DataError` for a stream whose rate (Hz) is more than
-        :data:`RATE_UNIT_FACTOR` away from the bundle's: its timestamps are not in seconds."""
+        :data:`RATE_UNIT_FACTOR` away from the bundle's (a barometer's: under :data:`BARO_MIN_HZ`, decision
+        B452): its timestamps are not in seconds."""
         for n, r in rates.items():
-            if not n.endswith(("Accelerometer", "Gyroscope")):  # a barometer may run at 1 Hz or slower
+            if n.endswith("Barometer"):  # decision B452: a barometer may run at 1 Hz or slower, not at 0.1 Hz
+                if r < BARO_MIN_HZ:
+                    raise DataError(f"{n}: the pushed timestamps give {r:.3g} Hz, under any barometer's rate "
+                                    f"({BARO_MIN_HZ:g} Hz, one sample per 10 s; decision B452): "
+                                    f"{_unit_hint(10.0 / r)}")  # the hint for a 10 Hz barometer
                 continue
-            check_rate_unit(n, r, self.rate_hz, "the bundle's ")
+            check_rate_unit(n, r, self.rate_hz, "the bundle's ")  # B452: every stream at the IMUs' rates
 
     def check_rate(self, name: str, t: np.ndarray) -> None:
         """:meth:`refuse` the rate a push of ``t`` (s) would teach for a stream whose rate is being learned,

@@ -89,6 +89,8 @@ from pdrlearn.kernels.window import (
     posture_warning,
     rest_boundaries,
     segment,
+    stride_hole,
+    stride_hole_line,
 )
 from pdrlearn.runtime.baro_check import BaroCheck
 from pdrlearn.runtime.bundle import Bundle, load_bundle, waist_only_hint
@@ -327,6 +329,15 @@ def calibration_record(displacement: dict) -> dict | None:
             "stride_sd": displacement.get("stride_sigma_rel"), "reason": None}
 
 
+def heading_gap_line(a: float, b: float) -> str:
+    """Decision E299: the line for a gap of ``a``-``b`` s (over B11's 1 s) in the waist gyroscope that heads the
+    strides: the turn inside it is not measured."""
+    return (f"wGyroscope: no samples for {b - a:.2f} s ({a:.2f}-{b:.2f} s) while it heads the strides: the heading "
+            "is carried across it on a straight line between its samples around it, so a turn inside the gap is "
+            "not measured and every later stride's heading may be off by that turn (trial T2: 18-60 deg after "
+            "1.6-4 s gaps in a turn; decision E299)")
+
+
 def _no_samples(tv) -> bool:
     """Whether a sensor's ``(t, values)`` of a push holds no timestamp (decision E40)."""
     try:
@@ -488,11 +499,13 @@ class Tracker(OwnGuard, FixInput):
     _drop_at_w = math.inf  # decision E285 (as _stop_bias)
     _pedal_line: list | None = None  # decision E280: [spans, index in warnings]
     _foot_gaps: list | tuple = ()
+    _heading_gaps: list | tuple = ()  # decision E299: the waist gyroscope's gaps over 1 s, the latest 16
     _drop_ref: tuple | None = None  # decision L167 (a bare Tracker.__new__ has no clean stride yet)
     _session_length = None  # decision C117 (a bare Tracker.__new__: the model's length class)
     _side: _sideways.SideRun | None = None  # decision E124 (a bare Tracker.__new__ makes one at its first stride)
     _side_rows: _sideways.SideRun | None = None  # decision L243 (the same)
     _drop_warned = False
+    _hole_warned = False  # decision L674's one line
     drop_neighbour = False  # decisions E101, L549 (a bare Tracker.__new__: L167 off)
     gated_level_dz: bool | str = False  # decision L550 (a bare Tracker.__new__: raw heights)
     #: decision E46: the long foot gaps (start, end) not yet behind the last emitted stride, the pending gap row
@@ -769,6 +782,7 @@ class Tracker(OwnGuard, FixInput):
         self._side = _sideways.SideRun()  # decision E124: the side-stepping stretch the strides are in
         self._side_rows = _sideways.SideRun()  # decision L243: the same test on every stride, for Step.sideways
         self._drop_warned = False
+        self._hole_warned = False
         self.drop_neighbour = bool(drop_neighbour)  # decisions E101, L549
         self._held: set[str] = set()
         #: decision E115: the required waist streams that stopped while the foot strides went on (name -> the
@@ -1270,13 +1284,13 @@ class Tracker(OwnGuard, FixInput):
             last = raw if raw is not None else (ring.last if ring is not None else None)
             if last is not None and not t[0] > last:
                 raise self._order_error(name, float(t[0]), last, samples)
+            self.inputs.check_rate(name, t)  # decision B452: timestamps in ms are named before B141's jump
             tt = t if last is None else np.concatenate(([last], t))
             if len(tt) > 1 and float(tt[-1] - tt[0]) > GAP_WARN_S:
                 d = np.diff(tt)
                 i = int(np.argmax(d))
                 if d[i] > self.max_gap_s and not (i == 0 and self._resumes(name, float(tt[1]))):  # decision B141:
                     raise self._jump_error(name, float(tt[i]), float(tt[i + 1]))  # before any state change
-            self.inputs.check_rate(name, t)
             lim = self._drop_limit(name)
             if len(tt) > 1 and float(tt[-1] - tt[0]) > lim:  # decision E230: intervals of dropped samples
                 dd = np.diff(tt)
@@ -1448,6 +1462,8 @@ class Tracker(OwnGuard, FixInput):
         gaps, self._pushed_gaps = self._pushed_gaps, None
         new: list[list] = []  # [start, end, long, names]
         for name, a, b in gaps:
+            if name == "wGyroscope" and b - a > GAP_LONG_S:  # decision E299: the heading's own gaps
+                self._heading_gaps = [*self._heading_gaps[-15:], (a, b)]
             long = name in _FOOT_GAP_STREAMS and b - a > GAP_LONG_S
             if long or name in _FOOT_IMU:
                 self._foot_gaps.append((a, b, long, name in _FOOT_IMU))
@@ -1461,12 +1477,17 @@ class Tracker(OwnGuard, FixInput):
                     elif long and not g[2]:  # a gap announced as bridged turns out to be a long foot gap
                         g[2] = True
                         new.append([a, b, True, [name]])
+                    elif name == "wGyroscope" and b - a > GAP_LONG_S and self._bridged():  # decision E299: the
+                        self._warn(heading_gap_line(a, b))  # heading's own gap, after a foot gap's line
                     break
             else:
                 new.append([a, b, long, [name]])
         for a, b, long, names in new:
             self._gap_marks.append([a, b, long])
-            turn = ("turns with the waist gyroscope (L91)" if self._bridged() else
+            turn = (("turns with the waist gyroscope (L91)" if not any(x < b and y > a for x, y in self._heading_gaps)
+                     else "turns by a straight line across the waist gyroscope's own gap, a turn inside it not "
+                          "measured: every later stride's heading may be off by that turn (decision E299)")
+                    if self._bridged() else
                     "keeps the heading: the turn inside the gap is unknown, the heading after it is uncertain (L90)"
                     ) if _FOOT_IMU.intersection(names) else "keeps the heading"  # decision L92
             what = (f"a gap longer than {GAP_LONG_S:g} s (B11): the stride across it moves 0 m, {turn} and "
@@ -2073,7 +2094,14 @@ class Tracker(OwnGuard, FixInput):
                 self._drop_warned = True
                 self._warn("strides across dropped foot samples over 0.25 s take the length and height change of the "
                            "stride before each (decision L167)")
-        else:
+        hole = 0.0 if bridged and self.drop_neighbour else self._swing_hole(t0, t1)  # L167's option: its neighbour's
+        if hole:  # decision L674: a hole in the foot's samples: no classes, no height change (the length kept)
+            classes, proba = {}, {}
+            disp = np.array((float(disp[0]), float(disp[1]), 0.0))
+            if not self._hole_warned:
+                self._hole_warned = True
+                self._warn(stride_hole_line(hole, t0, t1))
+        elif not bridged:
             self._drop_ref = (disp.copy(), t1 - t0)
         turn = dyaw  # decision E51: the stride's own turn, before the pivot between strides
         if pause_gap:  # decisions L90 / L91 (track --streaming's): no foot pivot over a foot gap; the waist's turn
@@ -2196,6 +2224,12 @@ class Tracker(OwnGuard, FixInput):
                     turn_angle_rad=turn_wrapped, impossible=impossible,
                     pivot_rad=float(np.angle(np.exp(1j * (dyaw - turn)))),  # decision L106
                     sideways=self._side_rows.decided)  # decision L243
+
+    def _swing_hole(self, t0: float, t1: float) -> float:
+        """Decision L674: the longest hole (s) in the buffered foot accelerometer / gyroscope samples of the stride
+        ``[t0, t1]`` (:func:`~pdrlearn.kernels.window.stride_hole`), 0.0 without one."""
+        rings = [self._buf.get(name) for name in sorted(_FOOT_IMU)]
+        return max([stride_hole(r.view()[0], t0, t1) for r in rings if r is not None], default=0.0)
 
     def _contact(self, t0: float, t1: float) -> float:
         """Decisions E49 / E50: the initial contact (s) of the stride ``[t0, t1]`` from its buffered samples

@@ -85,6 +85,8 @@ from pdrlearn.kernels.window import (
     available_groups,
     levelled_units,
     posture_warning,
+    stride_hole,
+    stride_hole_line,
 )
 from pdrlearn.orient import WaistHeading, unit_data, wrap_angle
 from pdrlearn.orient._kernels import fit_horizontal_hard_iron, level_axes
@@ -1897,6 +1899,17 @@ def _level_without_classes(res: TrackResult) -> None:
     set_strides_dz(res, level_dz(res.steps["dz_m"].to_numpy(float)) if len(res.steps) else np.zeros(0))
 
 
+def _unclassed(classes: pd.DataFrame, mask: np.ndarray) -> pd.DataFrame:
+    """A copy of the streamed strides' ``classes`` with no class or probability on the strides of ``mask`` (E30's
+    strides, L674's)."""
+    classes = classes.copy()
+    for c in [c for c in classes.columns if c in ("terrain", "direction", "length_class") or c.startswith("p_")]:
+        num = pd.api.types.is_float_dtype(classes[c].dtype)
+        classes[c] = classes[c].astype(float if num else object)
+        classes.loc[mask, c] = np.nan if num else None
+    return classes
+
+
 def _one_row_per_gap(table: pd.DataFrame, traj: pd.DataFrame, in_gap: np.ndarray,
                      gaps: dict) -> tuple[pd.DataFrame, pd.DataFrame]:
     """Decision E46: the streamed strides that touch a foot gap (``in_gap``, 0 m each) replaced by offline's
@@ -2067,6 +2080,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     foot_turn = np.zeros(len(table))  # decision L400: the foot's heading change over each stride
     posture = np.zeros(len(table), dtype=bool)  # decision B131: strides skipped as the runtime skips them
     in_gap = overlaps_gaps(table, foot_gaps)  # decision E30: these strides move 0 m, turn 0, no classes
+    hole = np.zeros(len(table))  # decision L674: each stride's hole in the foot's samples (s), 0 without one
     imu_gaps = {k: v for k, v in foot_gaps.items() if k in FOOT_IMU}
     imu_gap = overlaps_gaps(table, imu_gaps)  # decisions L90 / L91: the foot's yaw is lost over these strides
     # decision L167 (an option, drop_neighbour): a stride across dropped samples over the gap clock's limit takes the
@@ -2092,7 +2106,11 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         disp[i], dyaw[i] = SK.stride_motion(lev, heading, t0=float(t0), t1=float(t1), fine=fine)
         if across[i]:
             disp[i] = drop_stride_disp(disp[i], float(t1 - t0), ref, neighbour)
-        else:
+        hole[i] = 0.0 if across[i] and neighbour else max(  # L167's option keeps its neighbour's height
+            [stride_hole(streams[n][0], float(t0), float(t1)) for n in FOOT_IMU if n in streams], default=0.0)
+        if hole[i]:  # decision L674 (the runtime's): a hole in the foot's samples, no classes and no height change
+            disp[i, 2] = 0.0
+        elif not across[i]:
             ref = (disp[i].copy(), float(t1 - t0))
         turn[i] = dyaw[i]  # decision E51: the stride's own turn (the runtime's), before the pivot below
         a, b = np.searchsorted(fa_t, t0, side="left"), np.searchsorted(fa_t, t1, side="right")
@@ -2124,6 +2142,10 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             dyaw[i] -= stop.turn(lo, t1)
     if neighbour and (across & ~posture).any():
         warnings.append(drop_stride_warning(int((across & ~posture).sum()), streamed=True))
+    if (hole > 0).any():  # decision L674: the runtime's line (for the first such stride) and its missing classes
+        i = int(np.flatnonzero(hole > 0)[0])
+        warnings.append(stride_hole_line(float(hole[i]), float(strides[i, 0]), float(strides[i, 1])))
+        classes = _unclassed(classes, hole > 0)
     # decision L611 (offline's kernel): pedalling strides are skipped as B131's posture strides are (no row, 0 m)
     # (a stride across a bridged gap, L167's ``across``, is not judged: its interpolated swing is neither a height
     # reversal nor a missing rest; session 43, lead, after test_runtime_input_e29's 0.55 s gap lost 3 strides)
@@ -2192,11 +2214,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     lost = in_gap | posture
     if lost.any():  # decision E30: the runtime's Step for such a stride (0 m, no classes)
         length, dz = np.where(lost, 0.0, length), np.where(lost, 0.0, dz)
-        classes = classes.copy()
-        for c in [c for c in classes.columns if c in ("terrain", "direction", "length_class") or c.startswith("p_")]:
-            num = pd.api.types.is_float_dtype(classes[c].dtype)
-            classes[c] = classes[c].astype(float if num else object)
-            classes.loc[lost, c] = np.nan if num else None
+        classes = _unclassed(classes, lost)
     terrain_check, altitude_check = None, None
     if method == "M3" and "terrain" in untrained:  # decision L69 (C17): a model without terrain classes, as offline
         msg, altitude_check = coded_altitude_check(dz, levelled=False)
