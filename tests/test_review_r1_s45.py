@@ -3,12 +3,17 @@ experiment scripts that import experiments/_results.py (E294)."""
 
 from __future__ import annotations
 
+import math
 import os
 import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
+
+from pdrlearn.errors import DataError
+from pdrlearn.runtime import Reorderer
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -23,3 +28,70 @@ def test_f5_results_users_run_from_the_repo_root_without_pythonpath(name):
                        text=True, timeout=120)
     assert r.returncode == 0, r.stderr[-400:]
     assert "--users" in r.stdout
+
+
+# F1 (E296): a pod that reconnected with its counter restarted
+def _packets(ro, t0, n=10, dt=0.05, k=20):
+    out = []
+    for i in range(n):
+        t = t0 + (i * k + np.arange(k)) * dt
+        got = ro.push({"fAccelerometer": (t, np.zeros((k, 3)))})
+        out += list(got.get("fAccelerometer", (np.empty(0),))[0])
+    return out
+
+
+def test_f1_reset_releases_a_restarted_clock_that_flush_alone_drops_as_late():
+    ro = Reorderer(1.2)
+    _packets(ro, 0.0)
+    before = ro.flush()["fAccelerometer"][0]
+    assert before.size and before[-1] == pytest.approx(9.95)
+    assert ro.reset() == {}  # nothing held after the flush: nothing released, the clock forgotten
+    got = _packets(ro, 0.0, n=5) + list(ro.flush()["fAccelerometer"][0])
+    np.testing.assert_allclose(got, np.arange(100) * 0.05)  # all 100 of the restarted clock (flush alone: 0)
+    assert not ro.late
+    ro2 = Reorderer(1.2)  # the reset releases what is held, as flush does, and only for the sensors named
+    ro2.push({"fAccelerometer": (np.arange(5) * 0.05, np.zeros((5, 3))), "fGyroscope": ([0.0], [1.0, 2.0, 3.0])})
+    out = ro2.reset(["fAccelerometer"])
+    np.testing.assert_allclose(out["fAccelerometer"][0], np.arange(5) * 0.05)
+    assert "fGyroscope" not in out and ro2.held == 1
+    ro2.push({"fAccelerometer": ([0.0], [[1.0, 1.0, 1.0]])})
+    assert ro2.flush()["fAccelerometer"][0].tolist() == [0.0] and not ro2.late
+
+
+# F2 (E296): each chunk checked whole before any of it is held
+def _state(ro):
+    return (ro.held, dict(ro._newest), {k: v.tolist() for k, v in ro._released.items()}, dict(ro.late),
+            dict(ro.duplicates))
+
+
+@pytest.mark.parametrize(("chunk", "match"), [
+    ({"fAccelerometer": ([0.2, 0.3], np.zeros((2, 2)))}, r"fAccelerometer: pushed values of shape \(2, 2\)"),
+    ({"a": ([0.2, 0.3], np.zeros((2, 2)))}, r"a: pushed values of shape \(2, 2\) for 2 timestamp\(s\); push an array "
+                                            r"of shape \(2, 3\)"),
+    ({"fAccelerometer": ([0.2, math.inf], np.zeros((2, 3)))}, "fAccelerometer: pushed samples contain NaN/inf"),
+    ({"fAccelerometer": ([0.2, math.nan, 0.3], np.zeros((3, 3)))}, "fAccelerometer: pushed samples contain NaN"),
+    ({"fAccelerometer": ([0.2], [[math.nan, 0.0, 0.0]])}, "fAccelerometer: pushed samples contain NaN/inf"),
+    ({"fGyroscope": ([0.2], np.zeros((1, 3))), "fAccelerometer": ([0.3], [1.0, 2.0])},
+     r"fAccelerometer: pushed values of shape \(1, 2\)"),  # the gyroscope's good sample is not held either
+    ({"fAccelerometer": (["x"], np.zeros((1, 3)))}, "fAccelerometer: push numbers"),
+])
+def test_f2_a_bad_chunk_is_refused_whole_and_leaves_the_reorderer_as_it_was(chunk, match):
+    ro = Reorderer(0.5)
+    ro.push({"fAccelerometer": ([0.0, 0.1], np.zeros((2, 3))), "a": ([0.0], np.ones((1, 3)))})
+    ro.push({"fAccelerometer": ([0.7], np.zeros((1, 3)))})
+    before = _state(ro)
+    with pytest.raises(DataError, match="^Reorderer.push: " + match):
+        ro.push(chunk)
+    assert _state(ro) == before and "fGyroscope" not in ro._newest
+    out = ro.push({"fAccelerometer": ([1.3], np.ones((1, 3)))})  # and goes on: the stream is not poisoned
+    assert out["fAccelerometer"][0].tolist() == [0.7] and not ro.late
+    assert ro.flush()["fAccelerometer"][0].tolist() == [1.3] and ro.held == 0
+
+
+def test_f2_one_sample_as_a_row_as_tracker_push_takes_it():
+    ro = Reorderer(0.5)
+    assert ro.push({"fAccelerometer": (0.01, [0.1, 0.2, 9.8])}) == {}
+    t, v = ro.flush()["fAccelerometer"]
+    assert t.tolist() == [0.01] and v.tolist() == [[0.1, 0.2, 9.8]]
+    ro.push({"fForceA": ([0.0, 0.05], [1.0, 2.0])})  # a one-value sensor's samples as a column
+    assert ro.flush()["fForceA"][1].shape == (2, 1)
