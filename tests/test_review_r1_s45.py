@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from pdrlearn.errors import DataError
-from pdrlearn.runtime import Reorderer
+from pdrlearn.runtime import CounterUnwrapper, Reorderer
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -95,3 +95,17 @@ def test_f2_one_sample_as_a_row_as_tracker_push_takes_it():
     assert t.tolist() == [0.01] and v.tolist() == [[0.1, 0.2, 9.8]]
     ro.push({"fForceA": ([0.0, 0.05], [1.0, 2.0])})  # a one-value sensor's samples as a column
     assert ro.flush()["fForceA"][1].shape == (2, 1)
+
+
+# F4 (E297): a chunk unwrapped sample by sample, not against its first value
+def test_f4_a_70_s_uint16_ms_log_in_one_call_runs_forward():
+    raw = np.arange(0, 70000, 10)
+    t = CounterUnwrapper(bits=16, tick_s=1e-3)(raw % 65536)
+    np.testing.assert_allclose(t, raw * 1e-3, atol=1e-9)  # old: t at 40 s = -25.536 s, steps of -65.526 s
+    np.testing.assert_allclose(CounterUnwrapper(bits=8, tick_s=0.01)(np.arange(200) % 256), np.arange(200) * 0.01)
+    u = CounterUnwrapper(bits=16, tick_s=1e-3)  # and packets late, repeated, across wraps as before
+    first = u(raw[:4000] % 65536)
+    late = u(raw[3990:4100][::-1] % 65536)  # a chunk in reverse: each step within half the period
+    np.testing.assert_allclose(first, raw[:4000] * 1e-3, atol=1e-9)
+    np.testing.assert_allclose(late, raw[3990:4100][::-1] * 1e-3, atol=1e-9)
+    np.testing.assert_allclose(u(raw[6990:7000] % 65536), raw[6990:7000] * 1e-3, atol=1e-9)

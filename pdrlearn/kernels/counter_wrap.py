@@ -106,10 +106,12 @@ def live_wrap(last_s: float, t0_s: float) -> tuple[int, float] | None:
 
 
 def unwrap_near(raw: np.ndarray, ref_raw: int, ref: int, bits: int) -> np.ndarray:
-    """Decision E297: the ``bits``-bit counter values ``raw`` unwrapped as the ticks nearest to the reference
-    (``ref_raw`` read as the unwrapped ``ref``): ``ref`` plus each value's difference to ``ref_raw`` modulo
-    ``2**bits``, taken in ``[-2**(bits-1), 2**(bits-1))``; so a wrap, packets out of order and repeats all land where
-    they belong while they are within half the counter's period of the reference (int64 ticks, bits <= 62)."""
+    """Decision E297: the ``bits``-bit counter values ``raw`` unwrapped, each as the ticks nearest to the value
+    before it (the first to the reference, ``ref_raw`` read as the unwrapped ``ref``): the running sum from ``ref`` of
+    each step modulo ``2**bits``, taken in ``[-2**(bits-1), 2**(bits-1))``; so a wrap, packets out of order and
+    repeats all land where they belong while each step is within half the counter's period, also in a chunk that
+    spans more than half of it (review R1 finding F4; int64 ticks, bits <= 62)."""
     half, full = 1 << (bits - 1), 1 << bits
-    c = np.asarray(raw, dtype=np.int64)
-    return int(ref) + (c - int(ref_raw) + half) % full - half
+    c = np.asarray(raw, dtype=np.int64).reshape(-1)
+    steps = np.diff(c, prepend=np.int64(ref_raw))
+    return int(ref) + np.cumsum((steps + half) % full - half)

@@ -17,10 +17,11 @@ from pdrlearn.runtime.samples import SENSOR_WIDTH, checked_samples
 class CounterUnwrapper:
     """Decision E297: one pod's ``bits``-bit sample counter of ``tick_s`` s ticks (a uint32 ms tick: ``bits=32,
     tick_s=1e-3``) as seconds on the pod's own clock, unwrapped: the first value read as itself, every later one as
-    the nearest unwrapped count to the newest seen (:func:`~pdrlearn.kernels.counter_wrap.unwrap_near`), so a wrap,
-    a packet that arrives late and a repeat all keep their place. A packet lost across a wrap is fine; a silence of
-    half the counter's period or more (24.9 days for uint32 ms, 32.8 s for uint16 ms) is not (its wraps are not
-    known). One per pod: ``t = unwrap(packet_counter)``."""
+    the nearest unwrapped count to the one before it (a call's first to the newest seen;
+    :func:`~pdrlearn.kernels.counter_wrap.unwrap_near`), so a wrap, a packet that arrives late and a repeat all keep
+    their place, and one call may hold a stored buffer longer than half the period (review R1 finding F4). A packet
+    lost across a wrap is fine; a silence of half the counter's period or more (24.9 days for uint32 ms, 32.8 s for
+    uint16 ms) is not (its wraps are not known). One per pod: ``t = unwrap(packet_counter)``."""
 
     def __init__(self, bits: int = 32, tick_s: float = 1e-3):
         if isinstance(bits, bool) or not isinstance(bits, int | np.integer) or not 8 <= bits <= 62:
