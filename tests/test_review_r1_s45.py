@@ -13,7 +13,9 @@ import numpy as np
 import pytest
 
 from pdrlearn.errors import DataError
+from pdrlearn.kernels.counter_wrap import counter_wraps, live_wrap
 from pdrlearn.runtime import CounterUnwrapper, Reorderer
+from pdrlearn.runtime.links import order_error
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -109,3 +111,31 @@ def test_f4_a_70_s_uint16_ms_log_in_one_call_runs_forward():
     np.testing.assert_allclose(first, raw[:4000] * 1e-3, atol=1e-9)
     np.testing.assert_allclose(late, raw[3990:4100][::-1] * 1e-3, atol=1e-9)
     np.testing.assert_allclose(u(raw[6990:7000] % 65536), raw[6990:7000] * 1e-3, atol=1e-9)
+
+
+# F3 (E297 / B450 amended, B451): only a firmware's counter widths wrap; a restart off the sampling phase is no wrap
+@pytest.mark.parametrize("last", [2.05, 3.5, 16.0, 1.1, 38.95])
+def test_f3_a_restart_just_under_2_to_the_k_us_keeps_e227s_restart_line(last):
+    assert live_wrap(last, 0.0) is None  # before: 21-, 22-, 24-, 21-bit us "counters"; 38.95 s: E227 already
+    e = order_error("fAccelerometer", 0.0, last, duplicate=False, max_lag_s=0.5, offset_s=0.0, other_newest=None)
+    assert f"the foot clock went back {last:.2f} s, a pod that reconnected with its clock restarted?" in str(e)
+    assert "wrapped" not in str(e) and e.offset_s == pytest.approx(-last - 1e-3)
+
+
+def test_f3_real_counters_still_wrap_and_the_uint16_ms_line_says_a_restart_reads_the_same():
+    assert live_wrap(4294967.246, 0.0) == (32, 1e-3) and live_wrap(4294.9, 0.0) == (32, 1e-6)
+    e = order_error("fAccelerometer", 0.02, 65.53, duplicate=False, max_lag_s=2.0, offset_s=0.0, other_newest=None)
+    assert e.offset_s == pytest.approx(-65.536) and "a 16-bit ms counter overflowing (2^16 ms = 65.536000 s), or a " \
+        "pod that restarted 65.5 s after its clock started (the two read the same: then follow E227 instead" in str(e)
+    e = order_error("fAccelerometer", 0.0, 4294967.246, duplicate=False, max_lag_s=2.0, offset_s=0.0,
+                    other_newest=None)
+    assert "(2^32 ms = 4294967.296000 s), not a restart;" in str(e)
+
+
+def test_f3_the_import_refuses_a_reset_at_64_89_s_as_before_b450_and_a_17_bit_coincidence():
+    reset = np.r_[np.arange(0, 64891, 10), np.arange(0, 4991, 10)]  # a ms log whose device reset at 64.89 s
+    assert counter_wraps(reset, 1e-3)[0] == 0 and counter_wraps(reset)[0] == 0  # B450 alone: 16
+    assert counter_wraps(np.r_[np.arange(0, 130591, 10), np.arange(0, 4991, 10)], 1e-3)[0] == 0  # B450 alone: 17
+    true = np.arange(0, 130000, 10) + 123.0  # a uint16 ms wrap with 0.64 s of packets lost: still unwrapped
+    lost = (true > 65536 - 300) & (true < 65536 + 340)
+    assert counter_wraps(true[~lost] % 65536, 1e-3)[0] == 16
