@@ -16,15 +16,18 @@ from __future__ import annotations
 
 import argparse
 import logging
+import sys
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
-from experiments._results import add_users, user_range, write_result, write_table
-from pdrlearn.io import Stream
-from pdrlearn.sim.simulate import simulate
-from pdrlearn.track.evaluate import evaluate_track
-from pdrlearn.track.plasys import track_plasys
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the repo root, for `python experiments/x.py` (E294)
+from experiments._results import add_users, user_range, write_result, write_table  # noqa: E402
+from pdrlearn.io import Stream  # noqa: E402
+from pdrlearn.sim.simulate import simulate  # noqa: E402
+from pdrlearn.track.evaluate import evaluate_track  # noqa: E402
+from pdrlearn.track.plasys import track_plasys  # noqa: E402
 
 LOSSES = (0.01, 0.03, 0.05)
 ARMS = {"before": False, "L167": True}

@@ -8,12 +8,15 @@ from __future__ import annotations
 
 import argparse
 import logging
+import sys
+from pathlib import Path
 
-from experiments._results import add_users, user_range
-from pdrlearn.io.session import Stream
-from pdrlearn.sim import simulate
-from pdrlearn.steps.align import align_units
-from pdrlearn.track.plasys import UNIT_OFFSET_WARN_S, track_plasys
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the repo root, for `python experiments/x.py` (E294)
+from experiments._results import add_users, user_range  # noqa: E402
+from pdrlearn.io.session import Stream  # noqa: E402
+from pdrlearn.sim import simulate  # noqa: E402
+from pdrlearn.steps.align import align_units  # noqa: E402
+from pdrlearn.track.plasys import UNIT_OFFSET_WARN_S, track_plasys  # noqa: E402
 
 
 def shifted(session, dt: float):

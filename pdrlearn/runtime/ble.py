@@ -11,15 +11,17 @@ import numpy as np
 
 from pdrlearn.errors import DataError
 from pdrlearn.kernels.counter_wrap import unwrap_near
+from pdrlearn.runtime.samples import SENSOR_WIDTH, checked_samples
 
 
 class CounterUnwrapper:
     """Decision E297: one pod's ``bits``-bit sample counter of ``tick_s`` s ticks (a uint32 ms tick: ``bits=32,
     tick_s=1e-3``) as seconds on the pod's own clock, unwrapped: the first value read as itself, every later one as
-    the nearest unwrapped count to the newest seen (:func:`~pdrlearn.kernels.counter_wrap.unwrap_near`), so a wrap,
-    a packet that arrives late and a repeat all keep their place. A packet lost across a wrap is fine; a silence of
-    half the counter's period or more (24.9 days for uint32 ms, 32.8 s for uint16 ms) is not (its wraps are not
-    known). One per pod: ``t = unwrap(packet_counter)``."""
+    the nearest unwrapped count to the one before it (a call's first to the newest seen;
+    :func:`~pdrlearn.kernels.counter_wrap.unwrap_near`), so a wrap, a packet that arrives late and a repeat all keep
+    their place, and one call may hold a stored buffer longer than half the period (review R1 finding F4). A packet
+    lost across a wrap is fine; a silence of half the counter's period or more (24.9 days for uint32 ms, 32.8 s for
+    uint16 ms) is not (its wraps are not known). One per pod: ``t = unwrap(packet_counter)``."""
 
     def __init__(self, bits: int = 32, tick_s: float = 1e-3):
         if isinstance(bits, bool) or not isinstance(bits, int | np.integer) or not 8 <= bits <= 62:
@@ -59,7 +61,8 @@ class Reorderer:
     (``duplicates``: per sensor); any other sample older than the last released one arrived too late to be put in
     place, dropped (``late``: per sensor). It adds ``hold_s`` of latency (plus up to a packet): ``max_latency_s``
     the most seen (the released sample's time against its sensor's newest). ``flush()`` releases what is held (the
-    end of a stream). ``hold_s``: the link's longest reordering delay in sample time (a packet overtaken by the next
+    end of a stream); ``reset()`` the same, and forgets the clock (a pod that reconnected with its counter restarted).
+    ``hold_s``: the link's longest reordering delay in sample time (a packet overtaken by the next
     one: the next packet's span plus the arrival jitter; 1.2 s for packets of up to 20 samples at 20 Hz)."""
 
     def __init__(self, hold_s: float):
@@ -70,23 +73,30 @@ class Reorderer:
         self._held: dict[str, list[tuple[np.ndarray, np.ndarray]]] = {}
         self._newest: dict[str, float] = {}
         self._released: dict[str, np.ndarray] = {}  # the recently released times, for repeats
+        self._width: dict[str, int] = {}  # values per sample of a sensor not in SENSOR_WIDTH: its first samples'
         self.duplicates: dict[str, int] = {}
         self.late: dict[str, int] = {}
         self.max_latency_s = 0.0
 
     def push(self, chunk: dict) -> dict:
         """The chunk's samples held; the samples now due returned as ``{sensor: (t, values)}`` (sensors with none
-        left out; an empty dict when nothing is due)."""
+        left out; an empty dict when nothing is due). Each sensor's ``(t, values)`` is checked as
+        :meth:`Tracker.push <pdrlearn.runtime.Tracker.push>` checks it (decision E29: finite numbers, one row per
+        timestamp, the sensor's width: a known sensor's, else that of its first samples; one sample may be a row),
+        the whole chunk before any of it is held: a refusal (:class:`DataError`) leaves the Reorderer as it was
+        (review R1 finding F2)."""
+        if not isinstance(chunk, dict):
+            raise DataError(f"Reorderer.push: give a dict {{sensor: (t, values)}}, not {type(chunk).__name__}")
+        checked = []
         for name, tv in chunk.items():
             if not (isinstance(tv, tuple | list) and len(tv) == 2):
                 raise DataError(f"Reorderer.push: {name!r} is not a (t, values) pair")
-            t = np.asarray(tv[0], dtype=np.float64).reshape(-1)
-            v = np.asarray(tv[1], dtype=np.float64)
-            if v.ndim == 0 or len(v) != len(t):
-                raise DataError(f"Reorderer.push: {name!r} has {len(t)} timestamps and {v.shape[:1] or 'no'} rows of "
-                                "values")
-            if not t.size:
-                continue
+            t, v = checked_samples(name, tv[0], tv[1], SENSOR_WIDTH.get(name, self._width.get(name)),
+                                   where="Reorderer.push: ")
+            if t.size:
+                checked.append((name, t, v))
+        for name, t, v in checked:
+            self._width.setdefault(name, v.shape[1])
             self._held.setdefault(name, []).append((t, v))
             self._newest[name] = max(self._newest.get(name, -math.inf), float(t.max()))
         return self._release(lambda name: self._newest[name] - self.hold_s)
@@ -94,6 +104,21 @@ class Reorderer:
     def flush(self) -> dict:
         """Everything still held, in sample-time order (the end of the stream)."""
         return self._release(lambda name: math.inf)
+
+    def reset(self, sensors: Iterable[str] | None = None) -> dict:
+        """A pod that reconnected with its clock restarted (review R1 finding F1): what :meth:`flush` returns for
+        ``sensors`` (None: every sensor), then their clocks forgotten (the newest and the released times, and the
+        width), so the restarted clock's samples are released again instead of dropped as ``late``; the counts
+        (``duplicates``, ``late``, ``max_latency_s``) are kept."""
+        if sensors is None:
+            names = set(self._held) | set(self._newest)
+        else:
+            names = {sensors} if isinstance(sensors, str) else set(sensors)
+        out = self._release(lambda name: math.inf, names)
+        for name in names:
+            for state in (self._newest, self._released, self._width):
+                state.pop(name, None)
+        return out
 
     def stream(self, chunks: Iterable[dict]) -> Iterator[dict]:
         """The chunks of one link (e.g. one unit's packets, as its thread receives them) reordered: each non-empty
@@ -111,9 +136,9 @@ class Reorderer:
         """The samples held, every sensor."""
         return sum(len(t) for parts in self._held.values() for t, _ in parts)
 
-    def _release(self, until) -> dict:
+    def _release(self, until, names=None) -> dict:
         out = {}
-        for name in list(self._held):
+        for name in [n for n in self._held if names is None or n in names]:
             parts = self._held[name]
             t = np.concatenate([p[0] for p in parts])
             v = np.concatenate([p[1] for p in parts])

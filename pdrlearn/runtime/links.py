@@ -192,8 +192,14 @@ def _wrapped(t0: float, last: float, offset_s: float, drift: float) -> tuple[int
 def _wrap_text(unit: str, bits: int, tick: float, off: float) -> str:
     """Decision E297: the clause naming a unit's counter that wrapped and the exact rebase."""
     word = {1e-3: "ms", 1e-6: "us"}.get(tick, f"{tick:g} s")
+    period = 2.0 ** bits * tick
+    # review R1 finding F3: a uint16 ms (65.5 s) or uint32 us (71.6 min) counter's period is a pod's plausible run
+    # time, and a restart within 1 s of it reads the same
+    restart = ("not a restart" if period >= 86400.0 else
+               f"or a pod that restarted {period:.1f} s after its clock started (the two read the same: then follow "
+               f"E227 instead, its samples just after the last)")
     return (f"the {unit} clock wrapped: a {bits}-bit {word} counter overflowing (2^{bits} {word} = "
-            f"{2.0 ** bits * tick:.6f} s), not a restart; tracker.rebase_clock({unit!r}, {off:.6f}) goes on exactly "
+            f"{period:.6f} s), {restart}; tracker.rebase_clock({unit!r}, {off:.6f}) goes on exactly "
             f"across it, but a packet holding the wrap is still refused: unwrap each pod's counter before pushing, "
             f"pdrlearn.runtime.CounterUnwrapper(bits={bits}, tick_s={tick:g}) (decision E297)")
 

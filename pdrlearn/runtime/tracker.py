@@ -105,6 +105,7 @@ from pdrlearn.runtime.replay import refuse_pushed_out_of_range
 from pdrlearn.runtime.resample import InputStage, stopped_message
 from pdrlearn.runtime.restart import drop_measured, restart_state
 from pdrlearn.runtime.restart import resume as resume_state
+from pdrlearn.runtime.samples import SENSOR_WIDTH, checked_samples
 from pdrlearn.runtime.stream import FootLevelling, HeightLog, Ring, fill_resampled, foot_levelled, waist_entry
 from pdrlearn.runtime.threads import OwnGuard, new_guard, one_call_at_a_time
 
@@ -117,10 +118,6 @@ _ONE = (1,)
 _WAIST_ACC = frozenset(("waist_acc_x", "waist_acc_y", "waist_acc_z"))
 #: samples kept before a step's start: the window margin (1 s) and L31's gap-yaw look-back
 _LOOK_BACK_S = max(1.0, GAP_YAW_MAX_S)
-#: values per sample of each sensor, as ``pdrlearn.io.sensors.SENSORS[name].n_axes`` (thesis ch.4.3.3; not
-#: imported: ``pdrlearn.io`` imports pandas, the runtime numpy only)
-SENSOR_WIDTH = {"fAccelerometer": 3, "fGyroscope": 3, "fForceA": 1, "fForceB": 1, "wAccelerometer": 3,
-                "wGyroscope": 3, "wMagneticField": 3, "wBarometer": 1}
 #: decision E30: an interval between two pushed samples of a stream longer than this (s) is a gap the tracker
 #: warns about (once per gap); longer than B11's 1 s (``pdrlearn.track.gaps.MIN_GAP_S``) in a foot stream, the
 #: stride across it moves 0 m, as offline ``pdrlearn track`` (plasys) does
@@ -1520,24 +1517,7 @@ class Tracker(OwnGuard, FixInput):
     def _checked_arrays(self, name: str, t, v) -> tuple[np.ndarray, np.ndarray]:
         """``(t (n,), values (n, k))`` as float64 with k the sensor's width, finite and increasing; else a
         one-line :class:`DataError` naming the sensor and the expected shape (decision E29)."""
-        width = SENSOR_WIDTH.get(name)
-        try:
-            t = np.asarray(t, dtype=np.float64).reshape(-1)
-            v = np.asarray(v, dtype=np.float64)
-        except (TypeError, ValueError):
-            raise DataError(f"{name}: push numbers: t (n,) in seconds and values (n, {width or 'k'})") from None
-        n = len(t)
-        if not n and not v.size:  # no sample (decision E40): any empty values
-            return t, v.reshape(0, width or 0)
-        if v.ndim == 1 and (n == 1 or (width == 1 and len(v) == n)):
-            v = v.reshape(n, -1)  # one sample as a row, or a one-value sensor as a column
-        if v.ndim != 2 or v.shape[0] != n or (width is not None and v.shape[1] != width):
-            want = f"({n}, {width})" if width else f"({n}, k)"
-            what = {3: " (x, y, z)", 1: " (one value per sample)"}.get(width, "")
-            raise DataError(f"{name}: pushed values of shape {v.shape} for {n} timestamp(s); push an array of shape "
-                            f"{want}{what}, one row per timestamp")
-        if n and not (np.isfinite(t).all() and np.isfinite(v).all()):
-            raise DataError(f"{name}: pushed samples contain NaN/inf; clean the stream before tracking")
+        t, v = checked_samples(name, t, v, SENSOR_WIDTH.get(name))
         if (i := first_out_of_order(t)) is not None:
             dup = ("; that sample repeats the one before it, a duplicate: Tracker(drop_duplicate_timestamps=True) "
                    "drops such samples (decision E225)" if t[i] == t[i - 1] else "")
