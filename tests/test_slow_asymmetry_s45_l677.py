@@ -67,3 +67,36 @@ def test_track_calls_the_slow_walkers_index_uncertain_l677(monkeypatch):
     assert out["step_time_asymmetry_pct"] is not None
     assert "uncertain" in out["step_time_asymmetry_reason"] and "L677" in out["step_time_asymmetry_reason"]
     assert out["step_time_asymmetry_se_points"] > la.UNCERTAIN_SE_POINTS
+
+
+def test_gait_line_says_uncertain_over_three_points_l677():
+    """The console's gait line (L671) says "uncertain" where the reason does: T1's s2 printed "12.0 % (standard
+    error 2.7 points; ...)" bare; 3.0 points exactly is not over."""
+    from pdrlearn.cli.common import asymmetry_clause
+
+    line = asymmetry_clause({"step_time_asymmetry_pct": 11.950455, "step_time_asymmetry_se_points": 3.64})
+    assert "12.0 %" in line and "standard error 3.6 points, uncertain" in line and "within noise" not in line
+    line = asymmetry_clause({"step_time_asymmetry_pct": 1.0, "step_time_asymmetry_se_points": 3.0})
+    assert "uncertain" not in line and "within noise" in line
+
+
+def test_report_lists_a_given_but_uncertain_asymmetry_c184(tmp_path):
+    """Decision C184: report.md's gait table printed T1's 9.671 % bare although summary.json called it uncertain;
+    a given index over 3 standard-error points now gets a row in "gait parameters given but uncertain, and why"."""
+    import json
+
+    from pdrlearn.report.build import build_report
+
+    for name, pct, se in (("slow", 11.95, 3.64), ("steady", 4.25, 1.2)):
+        folder = tmp_path / "res" / name
+        folder.mkdir(parents=True)
+        (folder / "summary.json").write_text(json.dumps({
+            "session": name, "pipeline": "plasys", "distance_m": 10.0, "n_steps": 12, "median_cadence_spm": 66.3,
+            "median_stride_time_s": 1.81, "walking_time_s": 30.0, "step_time_asymmetry_pct": pct,
+            "step_time_asymmetry_se_points": se,
+            "step_time_asymmetry_reason": f"labelled ({name}){'; uncertain: over 3 points' if se > 3 else ''}"}))
+    build_report(tmp_path / "res", tmp_path / "rep")
+    md = (tmp_path / "rep" / "report.md").read_text()
+    why = md.split("**gait parameters given but uncertain, and why**")[1].split("**")[0]
+    assert "slow" in why and "3.64" in why and "uncertain: over 3 points" in why
+    assert "steady" not in why
