@@ -230,8 +230,8 @@ def track_asymmetry(session, steps, warnings=(), alignment: dict | None = None) 
         if res["standard_error_points"] > UNCERTAIN_SE_POINTS:  # decision L490: say it is loose
             reason += ("; uncertain: over 3 points, the lower back's contacts scatter too much about the foot's (a "
                        "child's short fast steps, a slow walker's short slow ones: trial T1 read 5-21 % on symmetric "
-                       "children, 12 % on a slow walker), so a longer walk or a unit on each foot (pdrlearn gait "
-                       "LEFT_DIR RIGHT_DIR) times it better")
+                       "children, 12 % on a slow walker), so a unit on each foot (pdrlearn gait LEFT_DIR RIGHT_DIR) "
+                       "times it better; a longer walk helps a child's, not a slow walker's (decision L677)")
     out = {"step_time_asymmetry_pct": res["step_time_asymmetry_pct"],
            "n_step_time_asymmetry_steps": 2 * res["n_strides"], "step_time_asymmetry_reason": reason}
     if res["step_time_asymmetry_pct"] is not None:
