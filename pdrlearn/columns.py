@@ -337,7 +337,8 @@ SESSIONS: tuple[Column, ...] = (
                                                    "either way (symmetric simulated walkers read up to 18.8 %, L121)"),
     ("step_time_asymmetry_reason", _ID, "text", "why step_time_asymmetry_pct is given or empty (L121, L216, W228)"),
     ("step_time_asymmetry_se_points", "points", "number", "a foot track with the lower-back unit too: the standard "
-                                                          "error of step_time_asymmetry_pct (L490); an index under "
+                                                          "error of step_time_asymmetry_pct (L490; counting the lower "
+                                                          "back's lag, L677); an index under "
                                                           "1.96 x it is within noise (L671); empty otherwise"),
     ("step_time_s_left", "s", "number", "lower back: mean step time onto the left foot (the step ending at a left "
                                         "contact, W129's side; as gait's step_time_s_left; W250; turning steps "

@@ -691,13 +691,18 @@ WITHIN_NOISE_SE = 1.96
 def asymmetry_clause(summary: dict) -> str:
     """Decision L671: what the gait line adds when the summary gives ``step_time_asymmetry_pct``: the index, with
     its standard error (a foot track with the lower-back unit too, L490) and "within noise" under
-    :data:`WITHIN_NOISE_SE` of them, or, from the lower back alone, that its size is misread (L121); "" without."""
+    :data:`WITHIN_NOISE_SE` of them ("uncertain" over L490's 3 points, L677), or, from the lower back alone, that
+    its size is misread (L121); "" without."""
     pct = summary.get("step_time_asymmetry_pct")
     if pct is None:
         return ""
     se = summary.get("step_time_asymmetry_se_points")
     if se is not None:
+        from pdrlearn.track.labelled_asymmetry import UNCERTAIN_SE_POINTS
+
         noise = ", within noise" if pct < WITHIN_NOISE_SE * se else ""
+        if se > UNCERTAIN_SE_POINTS:  # decision L677: L490's note on the console too
+            noise += f", uncertain: over {UNCERTAIN_SE_POINTS:g} points, see summary.json step_time_asymmetry_reason"
         return f"; step-time asymmetry {pct:.1f} % (standard error {se:.1f} points{noise}; decisions L416, L671)"
     return (f"; step-time asymmetry {pct:.1f} % (the lower back alone misreads its size: summary.json "
             "step_time_asymmetry_reason; decisions L121, L671)")

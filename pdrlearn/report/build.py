@@ -225,6 +225,9 @@ def collect(source: str | os.PathLike, *, exclude: str | os.PathLike | None = No
             withheld = withheld_table(df)  # decision L496: why a stride-time CV or asymmetry cell is empty
             if withheld is not None:
                 tables.append(("gait parameters not given, and why", withheld))
+            uncertain = uncertain_table(df)  # decision C184: a given asymmetry over L490's 3 points, and why
+            if uncertain is not None:
+                tables.append(("gait parameters given but uncertain, and why", uncertain))
         from pdrlearn.report.travel import travel_table
 
         travel = travel_table(df)  # decision L582: the runs with backward or side strides
@@ -420,6 +423,24 @@ def withheld_table(df: pd.DataFrame) -> pd.DataFrame | None:
             for run, value, why in zip(df["run"], df[col], df[key], strict=True)
             if pd.isna(value) and isinstance(why, str) and why.strip()]
     return pd.DataFrame(rows, columns=["run", "parameter", "reason"]) if rows else None
+
+
+def uncertain_table(df: pd.DataFrame) -> pd.DataFrame | None:
+    """Decision C184: one row per run whose ``step_time_asymmetry_pct`` is given with a standard error
+    (``step_time_asymmetry_se_points``, L490 / L677) over L490's :data:`~pdrlearn.track.labelled_asymmetry.
+    UNCERTAIN_SE_POINTS` (``run``, ``parameter``, ``standard_error_points``, ``reason``: the summary's
+    ``step_time_asymmetry_reason``, which says so); None without one."""
+    from pdrlearn.track.labelled_asymmetry import UNCERTAIN_SE_POINTS
+
+    cols = ("step_time_asymmetry_pct", "step_time_asymmetry_se_points", "step_time_asymmetry_reason")
+    if not all(c in df for c in cols):
+        return None
+    se = pd.to_numeric(df[cols[1]], errors="coerce")
+    keep = df[cols[0]].notna() & (se > UNCERTAIN_SE_POINTS)
+    if not keep.any():
+        return None
+    return pd.DataFrame({"run": df["run"][keep], "parameter": cols[0], "standard_error_points": se[keep],
+                         "reason": df[cols[2]][keep]}).reset_index(drop=True)
 
 _CSS = """body{font-family:system-ui,sans-serif;max-width:1100px;margin:2em auto;color:#222}
 table{border-collapse:collapse;margin:.6em 0 1.4em}td,th{border:1px solid #ccc;padding:3px 8px;font-size:13px}

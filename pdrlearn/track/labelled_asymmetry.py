@@ -52,13 +52,20 @@ def other_foot_phases(foot_ic_s, waist_ic_s, *, tolerance_steps: float = LABEL_T
     """(S,) the phase (0-1) of the other foot's contact inside each of the foot's strides that holds exactly one
     (:func:`label_contacts`; the lower back's median lag behind the foot's own contacts taken off; strides over
     :data:`MAX_STRIDE_FACTOR` x the median left out); empty without an own contact."""
+    return _phases_and_lags(foot_ic_s, waist_ic_s, tolerance_steps=tolerance_steps)[0]
+
+
+def _phases_and_lags(foot_ic_s, waist_ic_s, *, tolerance_steps: float) -> tuple[np.ndarray, np.ndarray]:
+    """``(phases, lags)``: :func:`other_foot_phases` and (O,) the own contacts' offsets from their foot contacts (s),
+    whose median is the lag taken off (decision L677: its standard error counts too); both empty without an own
+    contact or without another foot's."""
     f, w, own = label_contacts(foot_ic_s, waist_ic_s, tolerance_steps=tolerance_steps)
     if not own.any() or own.all():
-        return np.zeros(0)
+        return np.zeros(0), np.zeros(0)
     j = np.clip(np.searchsorted(f, w[own]), 1, len(f) - 1)
     near = np.where(np.abs(w[own] - f[j - 1]) <= np.abs(w[own] - f[j]), j - 1, j)
-    lag = float(np.median(w[own] - f[near]))
-    other = w[~own] - lag
+    lags = w[own] - f[near]
+    other = w[~own] - float(np.median(lags))
     k = np.searchsorted(f, other)
     ok = (k >= 1) & (k < len(f))
     other, k = other[ok], k[ok]
@@ -67,18 +74,29 @@ def other_foot_phases(foot_ic_s, waist_ic_s, *, tolerance_steps: float = LABEL_T
     other, k, stride = other[ok], k[ok], stride[ok]
     idx, counts = np.unique(k, return_counts=True)
     single = np.isin(k, idx[counts == 1])
-    return ((other - f[k - 1]) / stride)[single]
+    return ((other - f[k - 1]) / stride)[single], lags
 
 
-def index_standard_error_pct(phases) -> float:
+def median_standard_error(x) -> float:
+    """Decision L490: the standard error of the median of ``x``: 1.2533 x the robust SD (1.4826 x the median absolute
+    deviation) / sqrt(n) (the median's asymptotic efficiency, 1.2533 = sqrt(pi / 2)); nan for fewer than 2 values."""
+    x = np.asarray(x, dtype=float)
+    if len(x) < 2:
+        return float("nan")
+    return float(1.2533 * 1.4826 * np.median(np.abs(x - np.median(x))) / np.sqrt(len(x)))
+
+
+def index_standard_error_pct(phases, lags=None, stride_s: float | None = None) -> float:
     """Decision L490: the standard error (points) of :func:`labelled_step_asymmetry`'s index from the other foot's
     phases: the index is 200 |1 - 2 phi| (L121's symmetry index of phi T and (1 - phi) T), so 400 x the median
-    phase's standard error, 1.2533 x the phases' robust SD (1.4826 x their median absolute deviation) / sqrt(n)
-    (the median's asymptotic efficiency, 1.2533 = sqrt(pi / 2)); nan for fewer than 2 phases."""
-    p = np.asarray(phases, dtype=float)
-    if len(p) < 2:
-        return float("nan")
-    return float(400.0 * 1.2533 * 1.4826 * np.median(np.abs(p - np.median(p))) / np.sqrt(len(p)))
+    phase's standard error (:func:`median_standard_error`); nan for fewer than 2 phases. Decision L677: with the own
+    contacts' offsets ``lags`` (s, their median the lag taken off the other foot's) and the foot's median stride
+    ``stride_s``, the lag's standard error / ``stride_s`` is added in quadrature (phi = (t_other - lag - t_ic) / T:
+    the two medians come from different contacts)."""
+    se_phi = median_standard_error(phases)
+    if lags is not None and stride_s is not None and len(np.asarray(lags)) >= 2:
+        se_phi = float(np.hypot(se_phi, median_standard_error(lags) / float(stride_s)))
+    return 400.0 * se_phi
 
 
 def labelled_step_asymmetry(foot_ic_s, waist_ic_s, *, tolerance_steps: float = LABEL_TOLERANCE_STEPS,
@@ -89,16 +107,17 @@ def labelled_step_asymmetry(foot_ic_s, waist_ic_s, *, tolerance_steps: float = L
     (:func:`other_foot_phases`) and the foot's median stride T: the step onto the other foot phi T, onto the
     instrumented foot (1 - phi) T, and their symmetry index (Robinson et al. 1987, L121). None values with fewer
     than ``min_strides`` strides (and at least 2, which a standard error needs: ``standard_error_points``, decision
-    L490, always given)."""
+    L490, always given; decision L677: it counts the lower back's lag, :func:`index_standard_error_pct`)."""
     from pdrlearn.track.clinical import symmetry_index_pct
 
-    phases = other_foot_phases(foot_ic_s, waist_ic_s, tolerance_steps=tolerance_steps)
+    phases, lags = _phases_and_lags(foot_ic_s, waist_ic_s, tolerance_steps=tolerance_steps)
+    f = np.sort(np.asarray(foot_ic_s, dtype=float)[np.isfinite(np.asarray(foot_ic_s, dtype=float))])
+    stride = float(np.median(np.diff(f))) if len(f) >= 2 else float("nan")
     out = {"step_time_asymmetry_pct": None, "n_strides": int(len(phases)), "step_time_s_instrumented": None,
-           "step_time_s_other": None, "standard_error_points": index_standard_error_pct(phases)}
+           "step_time_s_other": None,
+           "standard_error_points": index_standard_error_pct(phases, lags, stride)}  # decisions L490, L677
     if len(phases) < max(min_strides, 2):
         return out
-    f = np.sort(np.asarray(foot_ic_s, dtype=float)[np.isfinite(np.asarray(foot_ic_s, dtype=float))])
-    stride = float(np.median(np.diff(f)))
     phi = float(np.median(phases))
     onto_other, onto_own = phi * stride, (1.0 - phi) * stride
     out.update(step_time_asymmetry_pct=symmetry_index_pct(onto_own, onto_other), step_time_s_instrumented=onto_own,
@@ -206,12 +225,13 @@ def track_asymmetry(session, steps, warnings=(), alignment: dict | None = None) 
                   f"foot, {MIN_STRIDES} needed (decision L416)")
     else:
         reason = ("the lower back's contacts labelled by the foot unit's (the other foot's step in each stride, "
-                  f"median over {res['n_strides']} strides, standard error {res['standard_error_points']:.1f} points; "
-                  "decisions L416, L490)")
+                  f"median over {res['n_strides']} strides, standard error {res['standard_error_points']:.1f} points "
+                  "counting the lower back's lag; decisions L416, L490, L677)")
         if res["standard_error_points"] > UNCERTAIN_SE_POINTS:  # decision L490: say it is loose
-            reason += ("; uncertain: over 3 points, the lower back's contacts scatter too much about the foot's at "
-                       "these short fast steps (e.g. a child's; trial T1 read 5-21 % on symmetric children), so a "
-                       "longer walk or a unit on each foot (pdrlearn gait LEFT_DIR RIGHT_DIR) times it better")
+            reason += ("; uncertain: over 3 points, the lower back's contacts scatter too much about the foot's (a "
+                       "child's short fast steps, a slow walker's short slow ones: trial T1 read 5-21 % on symmetric "
+                       "children, 12 % on a slow walker), so a unit on each foot (pdrlearn gait LEFT_DIR RIGHT_DIR) "
+                       "times it better; a longer walk helps a child's, not a slow walker's (decision L677)")
     out = {"step_time_asymmetry_pct": res["step_time_asymmetry_pct"],
            "n_step_time_asymmetry_steps": 2 * res["n_strides"], "step_time_asymmetry_reason": reason}
     if res["step_time_asymmetry_pct"] is not None:
