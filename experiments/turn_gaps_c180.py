@@ -118,7 +118,7 @@ def c180(work: Path) -> None:
     say(f"C181 (ii): n_laps == 5 on {laps_ok} of {len(USERS)}; cone turns marked carried: {carried_cones}")
 
 
-def _swivel(session, a: float, b: float, deg: float):
+def swivel(session, a: float, b: float, deg: float):
     """L622's splice: a ``deg`` turn of the lower back's yaw rate (simulator waist frame: y up) from ``a`` to ``b``."""
     g = session["wGyroscope"]
     v = g.values.copy()
@@ -136,7 +136,7 @@ def c181_swivel(work: Path, u: int = 12731) -> None:
     tr = pd.read_csv(sim / "transfers.csv")
     mid = 0.5 * (float(tr["seated_ms"].iloc[0]) + float(tr["rise_ms"].iloc[0])) / 1000.0
     if not spliced.is_dir():
-        write_session(_swivel(read_session(sim), mid - 5.0, mid + 5.0, 180.0), spliced)
+        write_session(swivel(read_session(sim), mid - 5.0, mid + 5.0, 180.0), spliced)
     assert main(["track", str(spliced), "--units", "waist", "--corridor", "12", "--no-plot", "--out", str(out),
                  "--force"]) == 0
     summary = json.loads((out / "summary.json").read_text())

@@ -249,14 +249,20 @@ def svm_user_walk(root, user: int, walk: str = "D"):
     return model, load_bundle(root / "bundle"), simulate(walk, user_seed=user, seed=3)
 
 
-def replay(tracker, session, chunk_s: float = 0.5) -> list:
-    """Push ``session`` into ``tracker`` in ``chunk_s`` chunks, then flush; the emitted steps."""
-    t = session.streams["fAccelerometer"].t
+def replay(tracker, session, chunk_s: float = 0.5, used_only: bool = False) -> list:
+    """Push ``session`` into ``tracker`` in ``chunk_s`` chunks, then flush; the emitted steps. ``used_only``: only
+    the streams the tracker uses (``tracker.used_sensors``), from t = 0 to the last sample of any of them."""
+    streams = {n: st for n, st in session.streams.items() if not used_only or n in tracker.used_sensors}
+    if used_only:
+        start, end = 0.0, max(st.t[-1] for st in streams.values())
+    else:
+        t = session.streams["fAccelerometer"].t
+        start, end = t[0], t[-1]
     steps = []
-    for t0 in np.arange(t[0], t[-1] + chunk_s, chunk_s):
+    for t0 in np.arange(start, end + chunk_s, chunk_s):
         steps += tracker.push({n: (st.t[(st.t >= t0) & (st.t < t0 + chunk_s)],
                                    st.values[(st.t >= t0) & (st.t < t0 + chunk_s)])
-                               for n, st in session.streams.items()})
+                               for n, st in streams.items()})
     return steps + tracker.flush()
 
 

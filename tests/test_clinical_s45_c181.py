@@ -4,13 +4,13 @@ walk, so a corridor whose cone turns are stepped round (their arcs in every lap 
 lap as one on a short corridor too."""
 from __future__ import annotations
 
-import dataclasses
 import json
 
 import numpy as np
 import pandas as pd
 import pytest
 
+from experiments.turn_gaps_c180 import swivel
 from pdrlearn.cli import main
 from pdrlearn.track.corridor import corridor_laps
 
@@ -64,15 +64,6 @@ def test_a_carried_turn_ends_no_lap():
     assert corridor_laps(steps, table.assign(carried=False), 12.0)[1]["n_laps"] == 5
 
 
-def _swivel(session, a: float, b: float, deg: float):
-    """L622's splice: a ``deg`` turn of the lower back's yaw rate (simulator waist frame: y up) from ``a`` to ``b``."""
-    g = session["wGyroscope"]
-    v = g.values.copy()
-    m = (g.t > a) & (g.t < b)
-    v[m, 1] += np.radians(deg) / (b - a) * (1 - np.cos(2 * np.pi * (g.t[m] - a) / (b - a)))
-    return dataclasses.replace(session, streams={**session.streams, "wGyroscope": dataclasses.replace(g, values=v)})
-
-
 def test_a_simulated_swivel_on_a_corridor_is_carried_and_ends_no_lap(tmp_path):
     """User 12731, 4 laps of a 12 m corridor, a 20 s sit mid-lap 3 with a 180 deg swivel spliced into the seated yaw
     rate: turns.csv marks it carried, `track --corridor 12` counts 4 laps (5 before C181)."""
@@ -83,7 +74,7 @@ def test_a_simulated_swivel_on_a_corridor_is_carried_and_ends_no_lap(tmp_path):
                  "--stand", "3", "--out", str(tmp_path / "s")]) == 0
     tr = pd.read_csv(tmp_path / "s" / "transfers.csv")
     mid = 0.5 * (float(tr["seated_ms"].iloc[0]) + float(tr["rise_ms"].iloc[0])) / 1000.0
-    write_session(_swivel(read_session(tmp_path / "s"), mid - 5.0, mid + 5.0, 180.0), tmp_path / "w")
+    write_session(swivel(read_session(tmp_path / "s"), mid - 5.0, mid + 5.0, 180.0), tmp_path / "w")
     assert main(["track", str(tmp_path / "w"), "--units", "waist", "--corridor", "12", "--no-plot", "--out",
                  str(tmp_path / "t")]) == 0
     turns = pd.read_csv(tmp_path / "t" / "turns.csv")

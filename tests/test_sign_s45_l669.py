@@ -16,6 +16,7 @@ import pytest
 import pdrlearn.kernels.stride as SK
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
+from tests.runtime_helpers import replay
 
 SHIPPED = Path(__file__).resolve().parents[1] / "models" / "plasys-sim-default"
 ROUTE_P = "stand:3, straight:8, turn:90, straight:4, turn:180, straight:6, turn:-90, straight:6, stand:3"  # E216's P
@@ -61,13 +62,7 @@ def test_the_live_tracker_reports_e216_pivot_strides_positive_along_their_move_l
 
     monkeypatch.setattr(TR, "waist_forward_flip", recorded)
     s = simulate_path(parse_route(ROUTE_P), UserProfile.from_seed(9890), rate_hz=100.0, seed=0, scenario="route")
-    tr = Tracker(SHIPPED)
-    data = {n: (st.t, st.values) for n, st in s.streams.items() if n in tr.used_sensors}
-    steps = []
-    for lo in np.arange(0.0, max(t[-1] for t, _ in data.values()) + 1.0, 1.0):
-        steps += tr.push({n: (t[(t >= lo) & (t < lo + 1.0)], v[(t >= lo) & (t < lo + 1.0)])
-                          for n, (t, v) in data.items()})
-    steps += tr.flush()
+    steps = replay(Tracker(SHIPPED), s, chunk_s=1.0, used_only=True)
     assert len(flipped) == len(steps)
     prev, seen = np.zeros(2), 0
     for st, f in zip(steps, flipped, strict=True):

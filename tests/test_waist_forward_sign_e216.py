@@ -14,6 +14,7 @@ import pytest
 import pdrlearn.kernels.stride as SK
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
+from tests.runtime_helpers import replay
 
 SHIPPED = Path(__file__).resolve().parents[1] / "models" / "plasys-sim-default"
 ROUTE_Q = "stand:3, straight:5, turn:135, straight:3, turn:-135, straight:3, turn:180, straight:5, stand:3"
@@ -39,13 +40,7 @@ def _wrong_way(flag: bool | None, monkeypatch) -> int:
 
         monkeypatch.setattr(TR, "waist_forward_flip", lambda *a, **k: 0.0)
     s = simulate_path(parse_route(ROUTE_Q), UserProfile.from_seed(9894), rate_hz=100.0, seed=0, scenario="route")
-    tr = Tracker(SHIPPED)
-    data = {n: (st.t, st.values) for n, st in s.streams.items() if n in tr.used_sensors}
-    steps = []
-    for lo in np.arange(0.0, max(t[-1] for t, _ in data.values()) + 1.0, 1.0):
-        steps += tr.push({n: (t[(t >= lo) & (t < lo + 1.0)], v[(t >= lo) & (t < lo + 1.0)])
-                          for n, (t, v) in data.items()})
-    steps += tr.flush()
+    steps = replay(Tracker(SHIPPED), s, chunk_s=1.0, used_only=True)
     ft = s.extras["foot_trajectory"]
     t = ft["t_s"].to_numpy(float)
 
