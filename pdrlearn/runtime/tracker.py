@@ -85,6 +85,7 @@ from pdrlearn.kernels.window import (
     _unit_grid,
     available_groups,
     fill_step_window,
+    hole_stride_dz,
     levelled_units,
     posture_warning,
     rest_boundaries,
@@ -644,7 +645,8 @@ class Tracker(OwnGuard, FixInput):
         self._turn_tally: list | None = None  # decisions C89 / C94: [TurnTally, index of its line in warnings]
         self._model_args = (*check_tasks(self.bundle, tasks, methods), units, step_graph)  # decisions B137, B139
         if self._session_length is not None:  # decision C131: the classes C117's median needs, or one line
-            _relative_length.check_session_tasks(self._model_args[0], self.bundle.path)
+            _relative_length.check_session_tasks(self._model_args[0], self.bundle.path,  # E291 amended (R3 F6):
+                                                 None if tasks is None else list(self.bundle.tasks))  # the caller's
         self._choose_models(sensors)
         self.params = dict(m["displacement"])
         self.heading_source = heading_source or str(self.params.get("heading_source", "auto"))
@@ -2075,9 +2077,9 @@ class Tracker(OwnGuard, FixInput):
                 self._warn("strides across dropped foot samples over 0.25 s take the length and height change of the "
                            "stride before each (decision L167)")
         hole = 0.0 if bridged and self.drop_neighbour else self._swing_hole(t0, t1)  # L167's option: its neighbour's
-        if hole:  # decision L674: a hole in the foot's samples: no classes, no height change (the length kept)
-            classes, proba = {}, {}
-            disp = np.array((float(disp[0]), float(disp[1]), 0.0))
+        if hole:  # decision L674: a hole in the foot's samples: no classes, the height change of the clean stride
+            classes, proba = {}, {}  # before it (R3 F1; the length kept)
+            disp = np.array((float(disp[0]), float(disp[1]), hole_stride_dz(self._drop_ref)))
             if not self._hole_warned:
                 self._hole_warned = True
                 self._warn(stride_hole_line(hole, t0, t1))
