@@ -100,3 +100,56 @@ def test_f6_tasks_left_out_name_the_callers_list_not_the_model():
     msg = str(e.value)
     assert "tasks=[]" in msg and "leaves out" in msg and "trained with" not in msg
     assert "\n" not in msg
+
+
+@pytest.mark.parametrize("resample", ["native", True])
+def test_f3_the_hole_is_judged_on_the_input_times_also_when_resampled(resample):
+    """Review R3 F3: with ``resample=True`` the buffer holds the 20 Hz grid, which interpolated the hole away; the
+    hole is judged on the input times (E239's), so the 50 Hz stride across it is unclassed there too."""
+    walk = synthetic_session(12, seed=12831, name="walk", rate_hz=50.0)
+    tr, got = Tracker(load_bundle(MODEL), resample=resample), []
+    s = walk.streams
+    t = s["fAccelerometer"].t
+    for a in np.arange(t[0], t[-1] + 0.5, 0.5):
+        chunk = {}
+        for n, st in s.items():
+            keep = (st.t >= a) & (st.t < a + 0.5)
+            if n in ("fAccelerometer", "fGyroscope"):
+                keep &= ~((st.t > HOLE[0]) & (st.t < HOLE[1]))
+            if keep.any():
+                chunk[n] = (st.t[keep], st.values[keep])
+        got += tr.push(chunk)
+    got += tr.flush()
+    hit = [st for st in got if st.start_s < HOLE[0] and st.end_s > HOLE[1]]
+    assert len(hit) == 1 and hit[0].classes == {}
+    assert sum("decision L674" in w for w in tr.warnings) == 1
+    assert sum(not st.classes for st in got) == 1
+
+
+@pytest.mark.parametrize("order", ["foot_first", "waist_one_push_late"])
+def test_f5_a_foot_gap_pushed_before_the_waists_does_not_keep_the_l91_claim(synthetic_bundle, order):
+    """Review R3 F5 (E299): both units silent 1.6 s in a turning walk, the foot's samples after the gap pushed before
+    the waist's: the foot line said "turns with the waist gyroscope (L91)" and stayed beside E299's; it is now
+    rewritten in place, so no line claims the waist's turn."""
+    walk = synthetic_session(12, seed=12833, name="walk", turn_rad_per_step=0.3)
+    tr, held = Tracker(synthetic_bundle), {}
+    t = walk.streams["fAccelerometer"].t
+    for a in np.arange(t[0], t[-1] + 0.25, 0.25):
+        chunk = {}
+        for n, st in walk.streams.items():
+            keep = (st.t >= a) & (st.t < a + 0.25) & ~((st.t > 5.2) & (st.t < 6.8))
+            if keep.any():
+                chunk[n] = (st.t[keep], st.values[keep])
+        waist = {n: c for n, c in chunk.items() if n.startswith("w")}
+        foot = {n: c for n, c in chunk.items() if not n.startswith("w")}
+        if order == "foot_first":
+            tr.push(foot)
+            tr.push(waist)
+        else:
+            tr.push({**foot, **held})
+            held = waist
+    tr.push(held)
+    tr.flush()
+    assert not any("(L91)" in w for w in tr.warnings), tr.warnings
+    gap = [w for w in tr.warnings if "E299" in w]
+    assert len(gap) == 1 and "moves 0 m" in gap[0] and "1.6" in gap[0], gap
