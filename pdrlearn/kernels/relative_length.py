@@ -48,10 +48,16 @@ def check_length_reference(value) -> str:
 SESSION_TASKS = ("length", "terrain", "direction")
 
 
-def check_session_tasks(tasks, where) -> None:
+def check_session_tasks(tasks, where, model_tasks=None) -> None:
     """Decision C131: ``length_reference="session"`` with a model lacking one of :data:`SESSION_TASKS` would change
-    nothing and say nothing; one DataError line instead."""
+    nothing and say nothing; one DataError line instead. ``model_tasks``: the bundle's own tasks when the caller
+    chose ``tasks`` (decision E291 amended, review R3 F6: the line then names the caller's list, not the model)."""
     missing = [t for t in SESSION_TASKS if t not in tasks]
+    if missing and model_tasks is not None and not [t for t in missing if t not in model_tasks]:
+        raise DataError(f"length_reference=\"session\" (--length-reference session): tasks=[{', '.join(tasks)}] "
+                        f"leaves out {', '.join(missing)}, which the session-relative length class needs (model "
+                        f"{where} classifies {', '.join(model_tasks)}); add them to tasks or drop the option "
+                        "(decisions C131, E291)")
     if missing:
         raise DataError(f"length_reference=\"session\" (--length-reference session): model {where} classifies no "
                         f"{', '.join(missing)} (its tasks: {', '.join(tasks)}), and the session-relative length class "

@@ -510,25 +510,41 @@ def gap_clock(t: np.ndarray, gap_s: float = BRIDGE_GAP_S) -> np.ndarray:
 #: their own median interval in the stride (two samples lost or more) has a hole in it: no classes and no height
 #: change (trial T2 F6: a 120 ms hole at 100 Hz gave a confident "down" stride with dz -0.46 m on flat ground)
 SWING_GAP_INTERVALS = 2.5
+#: decision L674 amended (session 45, FM, review R3 F2): the limit is raised by this many robust standard deviations
+#: (1.4826 x MAD) of the stride's intervals, so timestamp jitter (4 ms at 100 Hz flagged 9 of 15 complete strides)
+#: is not read as a hole; a clean clock's MAD is 0 and the limit is L674's
+HOLE_JITTER_MADS = 3.0
 
 
 def stride_hole(t: np.ndarray, t0: float, t1: float) -> float:
     """Decision L674: the longest interval (s) between the samples ``t`` (rising) that lie in or cover the stride
-    ``[t0, t1]`` (:func:`cover`'s) when it is over :data:`SWING_GAP_INTERVALS` of their median interval (and
-    :data:`GAP_TOL_S`, E230), else 0.0 (also with fewer than three samples)."""
+    ``[t0, t1]`` (:func:`cover`'s) when it is over :data:`SWING_GAP_INTERVALS` of their median interval (plus
+    :data:`HOLE_JITTER_MADS` robust deviations of the intervals, R3 F2, and :data:`GAP_TOL_S`, E230), else 0.0
+    (also with fewer than three samples)."""
     a, b = cover(t, t0, t1)
     if b - a < 3:
         return 0.0
     d = np.diff(t[a:b])
     longest = float(d.max())
-    return longest if longest > SWING_GAP_INTERVALS * float(np.median(d)) + GAP_TOL_S else 0.0
+    med = float(np.median(d))
+    jitter = HOLE_JITTER_MADS * 1.4826 * float(np.median(np.abs(d - med)))  # L674 amended (R3 F2): the intervals'
+    return longest if longest > SWING_GAP_INTERVALS * med + jitter + GAP_TOL_S else 0.0  # own spread, robust (MAD)
+
+
+def hole_stride_dz(ref) -> float:
+    """Decision L674 amended (session 45, FM, review R3 F1): the height change (m) of a stride with a hole, that of
+    the nearest clean stride before it (``ref``: ``((dx, dy, dz), duration_s)``, L167's neighbour, or None: 0.0).
+    L674's 0 m flattened real stairs (two stairs a stride, 0.34 m: a 17-stair flight with a 0.12 s hole every 3 s
+    climbed 1.86 of 2.86 m); on level ground the neighbour's height is ~0, as L674's was."""
+    return 0.0 if ref is None else float(ref[0][2])
 
 
 def stride_hole_line(hole_s: float, t0: float, t1: float) -> str:
     """Decision L674: the one line for the first stride with a hole (the runtime's and ``track --streaming``'s)."""
     return (f"foot accelerometer / gyroscope samples missing for {hole_s:.2f} s inside the stride at "
             f"{t0:.2f}-{t1:.2f} s (over {SWING_GAP_INTERVALS:g} of their sample intervals): strides with such a hole "
-            "have no classes and dz 0 m, their length kept (decision L674; said once)")
+            "have no classes and the height change of the clean stride before them, their length kept (decision L674; "
+            "said once)")
 
 
 def levelled_units(streams: Streams, t0: float, t1: float, *, available: tuple[str, ...],

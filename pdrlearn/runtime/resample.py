@@ -42,6 +42,7 @@ RATE_PROBE_MIN = 5
 RATE_UNIT_FACTOR = 100.0
 #: decision B452: a barometer's timestamps are judged by this least rate (Hz; one sample per 10 s) instead: the
 #: slowest barometer documented here is E39's 0.2 Hz, and ms timestamps of a 1-100 Hz barometer give 0.001-0.1 Hz
+#: (0.1 Hz itself refused: ``<=``, session 45, FM, review R3 F4)
 #: (before, the barometer was not judged at all: trial T2's one-sample barometer packets in ms passed, F8)
 BARO_MIN_HZ = 0.1
 #: centres filtered together in one block of :meth:`StreamResampler._filter_at` (bounds its memory)
@@ -329,7 +330,7 @@ class InputStage:
         B452): its timestamps are not in seconds."""
         for n, r in rates.items():
             if n.endswith("Barometer"):  # decision B452: a barometer may run at 1 Hz or slower, not at 0.1 Hz
-                if r < BARO_MIN_HZ:
+                if r <= BARO_MIN_HZ:  # B452 amended (review R3 F4): a 100 Hz barometer in ms reads as 0.1 Hz
                     raise DataError(f"{n}: the pushed timestamps give {r:.3g} Hz, under any barometer's rate "
                                     f"({BARO_MIN_HZ:g} Hz, one sample per 10 s; decision B452): "
                                     f"{_unit_hint(10.0 / r)}")  # the hint for a 10 Hz barometer

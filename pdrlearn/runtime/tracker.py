@@ -85,6 +85,7 @@ from pdrlearn.kernels.window import (
     _unit_grid,
     available_groups,
     fill_step_window,
+    hole_stride_dz,
     levelled_units,
     posture_warning,
     rest_boundaries,
@@ -326,6 +327,13 @@ def calibration_record(displacement: dict) -> dict | None:
             "stride_sd": displacement.get("stride_sigma_rel"), "reason": None}
 
 
+#: decision L91's clause of a long foot gap's line (the waist heads the strides), and E299's when the waist gyroscope
+#: has its own gap there (a later wGyroscope gap rewrites the first into the second: review R3 F5)
+_L91_TURN = "turns with the waist gyroscope (L91)"
+_E299_TURN = ("turns by a straight line across the waist gyroscope's own gap, a turn inside it not measured: every "
+              "later stride's heading may be off by that turn (decision E299)")
+
+
 def heading_gap_line(a: float, b: float) -> str:
     """Decision E299: the line for a gap of ``a``-``b`` s (over B11's 1 s) in the waist gyroscope that heads the
     strides: the turn inside it is not measured."""
@@ -497,6 +505,7 @@ class Tracker(OwnGuard, FixInput):
     _pedal_line: list | None = None  # decision E280: [spans, index in warnings]
     _foot_gaps: list | tuple = ()
     _heading_gaps: list | tuple = ()  # decision E299: the waist gyroscope's gaps over 1 s, the latest 16
+    _l91_lines: list | tuple = ()  # E299 amended (R3 F5): (start, end, index in warnings) of foot lines saying L91
     _drop_ref: tuple | None = None  # decision L167 (a bare Tracker.__new__ has no clean stride yet)
     _session_length = None  # decision C117 (a bare Tracker.__new__: the model's length class)
     _side: _sideways.SideRun | None = None  # decision E124 (a bare Tracker.__new__ makes one at its first stride)
@@ -644,7 +653,8 @@ class Tracker(OwnGuard, FixInput):
         self._turn_tally: list | None = None  # decisions C89 / C94: [TurnTally, index of its line in warnings]
         self._model_args = (*check_tasks(self.bundle, tasks, methods), units, step_graph)  # decisions B137, B139
         if self._session_length is not None:  # decision C131: the classes C117's median needs, or one line
-            _relative_length.check_session_tasks(self._model_args[0], self.bundle.path)
+            _relative_length.check_session_tasks(self._model_args[0], self.bundle.path,  # E291 amended (R3 F6):
+                                                 None if tasks is None else list(self.bundle.tasks))  # the caller's
         self._choose_models(sensors)
         self.params = dict(m["displacement"])
         self.heading_source = heading_source or str(self.params.get("heading_source", "auto"))
@@ -1475,15 +1485,13 @@ class Tracker(OwnGuard, FixInput):
                         g[2] = True
                         new.append([a, b, True, [name]])
                     elif name == "wGyroscope" and b - a > GAP_LONG_S and self._bridged():  # decision E299: the
-                        self._warn(heading_gap_line(a, b))  # heading's own gap, after a foot gap's line
+                        self._heading_gap_after(a, b)  # heading's own gap, after a foot gap's line
                     break
             else:
                 new.append([a, b, long, [name]])
         for a, b, long, names in new:
             self._gap_marks.append([a, b, long])
-            turn = (("turns with the waist gyroscope (L91)" if not any(x < b and y > a for x, y in self._heading_gaps)
-                     else "turns by a straight line across the waist gyroscope's own gap, a turn inside it not "
-                          "measured: every later stride's heading may be off by that turn (decision E299)")
+            turn = ((_L91_TURN if not any(x < b and y > a for x, y in self._heading_gaps) else _E299_TURN)
                     if self._bridged() else
                     "keeps the heading: the turn inside the gap is unknown, the heading after it is uncertain (L90)"
                     ) if _FOOT_IMU.intersection(names) else "keeps the heading"  # decision L92
@@ -1499,8 +1507,21 @@ class Tracker(OwnGuard, FixInput):
                     f"bridged (interpolated) as `pdrlearn track` does up to {GAP_LONG_S:g} s (B11): the stride across "
                     "it has an unreliable length, height change and heading, and no classes when the gap is the "
                     "foot's")
+            if long and turn == _L91_TURN:  # E299 amended (R3 F5): a waist gyroscope gap pushed later rewrites it
+                self._l91_lines = [*self._l91_lines[-15:], (a, b, len(self.warnings))]
             self._warn(f"{', '.join(names)}: no samples for {b - a:.2f} s ({a:.2f}-{b:.2f} s); {what} (decision E30)")
         del self._gap_marks[:-16]  # the latest few: a gap is seen by every stream within a few pushes
+
+    def _heading_gap_after(self, a: float, b: float) -> None:
+        """Decision E299 (amended, session 45, FM, review R3 F5): the waist gyroscope's own gap ``a``-``b`` s pushed
+        after a foot gap's line: a foot line that promised the waist's turn (L91) is rewritten in place to E299's
+        clause (the foot's gap pushed first, the usual order when the waist's packets lag); else E299's line."""
+        for x, y, at in self._l91_lines:
+            if x < b and y > a and _L91_TURN in self.warnings[at]:
+                self.warnings[at] = self.warnings[at].replace(_L91_TURN, _E299_TURN)
+                log.warning("bundle %s: %s", self.bundle.path, self.warnings[at])
+                return
+        self._warn(heading_gap_line(a, b))
 
     def _waist_gap_foot_heads(self, names) -> bool:
         """Decision B231: whether the gap of the streams ``names`` (waist streams only) holds a waist accelerometer /
@@ -2075,9 +2096,9 @@ class Tracker(OwnGuard, FixInput):
                 self._warn("strides across dropped foot samples over 0.25 s take the length and height change of the "
                            "stride before each (decision L167)")
         hole = 0.0 if bridged and self.drop_neighbour else self._swing_hole(t0, t1)  # L167's option: its neighbour's
-        if hole:  # decision L674: a hole in the foot's samples: no classes, no height change (the length kept)
-            classes, proba = {}, {}
-            disp = np.array((float(disp[0]), float(disp[1]), 0.0))
+        if hole:  # decision L674: a hole in the foot's samples: no classes, the height change of the clean stride
+            classes, proba = {}, {}  # before it (R3 F1; the length kept)
+            disp = np.array((float(disp[0]), float(disp[1]), hole_stride_dz(self._drop_ref)))
             if not self._hole_warned:
                 self._hole_warned = True
                 self._warn(stride_hole_line(hole, t0, t1))
@@ -2206,10 +2227,12 @@ class Tracker(OwnGuard, FixInput):
                     sideways=self._side_rows.decided)  # decision L243
 
     def _swing_hole(self, t0: float, t1: float) -> float:
-        """Decision L674: the longest hole (s) in the buffered foot accelerometer / gyroscope samples of the stride
-        ``[t0, t1]`` (:func:`~pdrlearn.kernels.window.stride_hole`), 0.0 without one."""
-        rings = [self._buf.get(name) for name in sorted(_FOOT_IMU)]
-        return max([stride_hole(r.view()[0], t0, t1) for r in rings if r is not None], default=0.0)
+        """Decision L674: the longest hole (s) in the foot accelerometer / gyroscope input times of the stride
+        ``[t0, t1]`` (:func:`~pdrlearn.kernels.window.stride_hole`), 0.0 without one. The input times, not the
+        buffer's (:meth:`_taken_times`, E239's): with ``resample=True`` the buffer holds the resampler's grid, in
+        which a hole under 1 s is interpolated away (review R3 F3, session 45, FM)."""
+        return max([stride_hole(self._taken_times(name), t0, t1) for name in sorted(_FOOT_IMU) if name in self._buf],
+                   default=0.0)
 
     def _contact(self, t0: float, t1: float) -> float:
         """Decisions E49 / E50: the initial contact (s) of the stride ``[t0, t1]`` from its buffered samples

@@ -83,6 +83,7 @@ from pdrlearn.kernels.window import (
     GROUP_STREAMS,
     TASK_COLUMNS,
     available_groups,
+    hole_stride_dz,
     levelled_units,
     posture_warning,
     stride_hole,
@@ -2108,8 +2109,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             disp[i] = drop_stride_disp(disp[i], float(t1 - t0), ref, neighbour)
         hole[i] = 0.0 if across[i] and neighbour else max(  # L167's option keeps its neighbour's height
             [stride_hole(streams[n][0], float(t0), float(t1)) for n in FOOT_IMU if n in streams], default=0.0)
-        if hole[i]:  # decision L674 (the runtime's): a hole in the foot's samples, no classes and no height change
-            disp[i, 2] = 0.0
+        if hole[i]:  # decision L674 (the runtime's): a hole in the foot's samples, no classes and the height change
+            disp[i, 2] = hole_stride_dz(ref)  # of the clean stride before it (R3 F1)
         elif not across[i]:
             ref = (disp[i].copy(), float(t1 - t0))
         turn[i] = dyaw[i]  # decision E51: the stride's own turn (the runtime's), before the pivot below
