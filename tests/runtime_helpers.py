@@ -266,6 +266,22 @@ def replay(tracker, session, chunk_s: float = 0.5, used_only: bool = False) -> l
     return steps + tracker.flush()
 
 
+def holed_chunks(session, chunk_s: float, hole=None, sensors=None):
+    """``{sensor: (t, values)}`` per ``chunk_s`` slice of ``session`` (from the foot accelerometer's first time),
+    without the samples strictly inside ``hole`` = ``(a, b)`` s of ``sensors`` (None: of every stream); a stream with
+    no sample in a slice is left out of it (a link that lost packets: decisions L674, E299)."""
+    t = session.streams["fAccelerometer"].t
+    for a in np.arange(t[0], t[-1] + chunk_s, chunk_s):
+        chunk = {}
+        for n, st in session.streams.items():
+            keep = (st.t >= a) & (st.t < a + chunk_s)
+            if hole is not None and (sensors is None or n in sensors):
+                keep &= ~((st.t > hole[0]) & (st.t < hole[1]))
+            if keep.any():
+                chunk[n] = (st.t[keep], st.values[keep])
+        yield chunk
+
+
 def time_chunks(session, chunk_s: float, prefix: str = ""):
     """``(t0, {sensor: (t, values)})`` per ``chunk_s`` slice of ``session`` (slices of whole sample indices from the
     foot accelerometer's first time: no sample in two slices), the streams whose name starts with ``prefix``."""

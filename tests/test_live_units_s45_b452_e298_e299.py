@@ -89,17 +89,11 @@ def test_a_gap_in_both_units_says_the_turn_inside_it_is_not_measured(synthetic_b
     """Both units silent 1.6 s in a turning walk (the waist heads the strides, L91): the gap's line says the turn is
     not measured (E299), whether the waist's gap or the foot's is pushed first; before, "turns with the waist
     gyroscope (L91)"."""
-    from tests.runtime_helpers import synthetic_session
+    from tests.runtime_helpers import holed_chunks, synthetic_session
 
     walk = synthetic_session(12, seed=12833, name="walk", turn_rad_per_step=0.3)
     tr = Tracker(synthetic_bundle)
-    t = walk.streams["fAccelerometer"].t
-    for a in np.arange(t[0], t[-1] + 0.25, 0.25):
-        chunk = {}
-        for n, st in walk.streams.items():
-            keep = (st.t >= a) & (st.t < a + 0.25) & ~((st.t > 5.2) & (st.t < 6.8))
-            if keep.any():
-                chunk[n] = (st.t[keep], st.values[keep])
+    for chunk in holed_chunks(walk, 0.25, (5.2, 6.8)):
         if waist_first:  # the waist's samples after the gap arrive one push before the foot's
             tr.push({n: c for n, c in chunk.items() if n.startswith("w")})
             tr.push({n: c for n, c in chunk.items() if not n.startswith("w")})

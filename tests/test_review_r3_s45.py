@@ -18,7 +18,7 @@ from pdrlearn.errors import DataError
 from pdrlearn.kernels.window import hole_stride_dz, stride_hole
 from pdrlearn.runtime import load_bundle
 from pdrlearn.runtime.tracker import Tracker
-from tests.runtime_helpers import synthetic_session
+from tests.runtime_helpers import holed_chunks, synthetic_session
 
 MODEL = Path(__file__).resolve().parents[1] / "models" / "plasys-sim-default"
 #: as test_stride_hole_s45_l674: three 20 Hz samples lost inside the swing of the stride at ~5.2-6.2 s
@@ -67,16 +67,7 @@ def test_f1_the_hole_stride_takes_the_clean_stride_befores_height():
 def test_f1_live_hole_stride_height_is_its_clean_neighbours(synthetic_bundle):
     walk = synthetic_session(12, seed=12831, name="walk")
     tr, got = Tracker(synthetic_bundle), []
-    s = walk.streams
-    t = s["fAccelerometer"].t
-    for a in np.arange(t[0], t[-1] + 0.5, 0.5):
-        chunk = {}
-        for n, st in s.items():
-            keep = (st.t >= a) & (st.t < a + 0.5)
-            if n in ("fAccelerometer", "fGyroscope"):
-                keep &= ~((st.t > HOLE[0]) & (st.t < HOLE[1]))
-            if keep.any():
-                chunk[n] = (st.t[keep], st.values[keep])
+    for chunk in holed_chunks(walk, 0.5, HOLE, ("fAccelerometer", "fGyroscope")):
         got += tr.push(chunk)
     got += tr.flush()
     hit = [i for i, st in enumerate(got) if st.start_s < HOLE[0] and st.end_s > HOLE[1]]
@@ -108,16 +99,7 @@ def test_f3_the_hole_is_judged_on_the_input_times_also_when_resampled(resample):
     hole is judged on the input times (E239's), so the 50 Hz stride across it is unclassed there too."""
     walk = synthetic_session(12, seed=12831, name="walk", rate_hz=50.0)
     tr, got = Tracker(load_bundle(MODEL), resample=resample), []
-    s = walk.streams
-    t = s["fAccelerometer"].t
-    for a in np.arange(t[0], t[-1] + 0.5, 0.5):
-        chunk = {}
-        for n, st in s.items():
-            keep = (st.t >= a) & (st.t < a + 0.5)
-            if n in ("fAccelerometer", "fGyroscope"):
-                keep &= ~((st.t > HOLE[0]) & (st.t < HOLE[1]))
-            if keep.any():
-                chunk[n] = (st.t[keep], st.values[keep])
+    for chunk in holed_chunks(walk, 0.5, HOLE, ("fAccelerometer", "fGyroscope")):
         got += tr.push(chunk)
     got += tr.flush()
     hit = [st for st in got if st.start_s < HOLE[0] and st.end_s > HOLE[1]]
@@ -133,13 +115,7 @@ def test_f5_a_foot_gap_pushed_before_the_waists_does_not_keep_the_l91_claim(synt
     rewritten in place, so no line claims the waist's turn."""
     walk = synthetic_session(12, seed=12833, name="walk", turn_rad_per_step=0.3)
     tr, held = Tracker(synthetic_bundle), {}
-    t = walk.streams["fAccelerometer"].t
-    for a in np.arange(t[0], t[-1] + 0.25, 0.25):
-        chunk = {}
-        for n, st in walk.streams.items():
-            keep = (st.t >= a) & (st.t < a + 0.25) & ~((st.t > 5.2) & (st.t < 6.8))
-            if keep.any():
-                chunk[n] = (st.t[keep], st.values[keep])
+    for chunk in holed_chunks(walk, 0.25, (5.2, 6.8)):
         waist = {n: c for n, c in chunk.items() if n.startswith("w")}
         foot = {n: c for n, c in chunk.items() if not n.startswith("w")}
         if order == "foot_first":

@@ -15,7 +15,7 @@ import pytest
 
 from pdrlearn.kernels.window import SWING_GAP_INTERVALS, stride_hole
 from pdrlearn.runtime.tracker import Tracker
-from tests.runtime_helpers import synthetic_session
+from tests.runtime_helpers import holed_chunks, synthetic_session
 
 #: the synthetic swing of step k lies in [k + 0.4, k + 1.0) s (stance 0.4 s, swing 0.6 s); samples of 5.65-5.75 s
 #: (three at 20 Hz) are lost, the interval 5.60-5.80 s is four of the stream's
@@ -40,16 +40,7 @@ def walk():
 
 def _push(bundle, walk, hole=None):
     tr, steps = Tracker(bundle), []
-    s = walk.streams
-    t = s["fAccelerometer"].t
-    for a in np.arange(t[0], t[-1] + 0.5, 0.5):
-        chunk = {}
-        for n, st in s.items():
-            keep = (st.t >= a) & (st.t < a + 0.5)
-            if hole is not None and n in ("fAccelerometer", "fGyroscope"):
-                keep &= ~((st.t > hole[0]) & (st.t < hole[1]))
-            if keep.any():
-                chunk[n] = (st.t[keep], st.values[keep])
+    for chunk in holed_chunks(walk, 0.5, hole, ("fAccelerometer", "fGyroscope")):
         steps += tr.push(chunk)
     return steps + tr.flush(), tr.warnings
 
