@@ -24,7 +24,9 @@ equal), INDIP the truth. For every error:
   (`2.5 Hz max` kept by every rule, `W18 fill`, `W28 end`, `W152 parity`, `not the detector's`: added by the track
   after its detector). Both: the track options whose one-at-a-time removal (every other option at its default) turns
   the FN into a hit or removes the FP (`ablation`: sit veto W185/W487, stand veto W189/W219, contact shift W131,
-  turn bridge W374/W385, parity fill W152/W159, rhythm W18/W28, relative gate W76).
+  turn bridge W374/W385, parity fill W152/W159, rhythm W18/W28, relative gate W76);
+- whether the lab's second reference (Stereophoto, ics_stereophoto.csv, inside its capture volume only, X4) has a
+  contact within 0.25 s of the error (experiments/waist_ic_context.py's flag).
 
 Then the loss by stage and by context: the pooled F1 if only that group's errors were undone (each FN a hit, each FP
 gone; a timing pair - an FP and an FN 0.25-0.5 s apart - is both), its share of the pooled loss 1 - F1; each
@@ -129,7 +131,8 @@ def analyse(sub: str, session, ablations=ABLATIONS) -> dict:
                 partner = fn_t[(np.abs(fn_t - t) > TOL) & (np.abs(fn_t - t) <= W.C.NEAR_S)]
             rows.append({"sub": sub, "kind": kind, "t": t, "wb": int(wb[k]), "cls": row["cls"], "ctx": ctx,
                          "step": step, "amp": np.nan if i is None else float(c["h"][i] / med_h), "stage": stage,
-                         "undo": undo, "pair": float(partner[0]) if partner.size else None})
+                         "undo": undo, "pair": float(partner[0]) if partner.size else None,
+                         "stereo": bool(row.get("stereo"))})
     return {"tp": r["tp"], "det": r["det"], "ref": r["ref"], "rows": rows, "net": net,
             "cues": detection_cues(session, steps, c, med_h, {round(x["t"], 6): x for x in rows if x["kind"] == "FP"})}
 
@@ -178,14 +181,14 @@ def main(external: Path) -> None:
     print("\n## Every error\n\n(step s: FN the mean INDIP interval to its bout neighbours, FP the interval to the "
           "track's previous / next contact; v/med: the pelvic 2.5 Hz vertical maximum over the median kept one; "
           "pair: the other side of a timing pair, s; ablation: the options whose removal alone undoes the error)\n")
-    print("| rec | kind | t s | WB | class | context | step s | v/med | stage | pair | ablation |\n"
-          "|---|---|---|---|---|---|---|---|---|---|---|")
+    print("| rec | kind | t s | WB | class | context | step s | v/med | stage | pair | ablation | Stereophoto |\n"
+          "|---|---|---|---|---|---|---|---|---|---|---|---|")
     for x in rows:
         ctx = " ".join(k for k, v in x["ctx"].items() if v) or "-"
         amp = "-" if not np.isfinite(x["amp"]) else f"{x['amp']:.2f}"
         pair = "-" if x["pair"] is None else f"{x['pair']:.2f}"
         print(f"| {x['sub']} | {x['kind']} | {x['t']:.2f} | {x['wb']} | {x['cls']} | {ctx} | {x['step']} | {amp} | "
-              f"{x['stage']} | {pair} | {', '.join(x['undo']) or '-'} |")
+              f"{x['stage']} | {pair} | {', '.join(x['undo']) or '-'} | {'y' if x['stereo'] else ''} |")
     print(f"\n## Loss by group: the pooled F1 ({f0:.4f}, loss {1 - f0:.4f}) with only the group's errors undone\n")
     print("| group | FN | FP | F1 undone | share of the loss |\n|---|---|---|---|---|")
 
@@ -219,6 +222,7 @@ def main(external: Path) -> None:
         line(f"context: {cx}", sel)
     for sub in SUBJECTS:
         line(f"recording: {sub}", [x for x in rows if x["sub"] == sub])
+    line("the lab's second reference (Stereophoto) has a contact within 0.25 s", [x for x in rows if x["stereo"]])
     for cls in sorted({x["cls"] for x in rows}):
         line(f"W119 class: {cls}", [x for x in rows if x["cls"] == cls])
     line("every error", rows)
