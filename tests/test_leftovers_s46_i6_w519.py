@@ -10,8 +10,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from pdrlearn.track.grade import (RAMP_REST_SWING_FACTOR, ramp_runs, rest_rise_floor_m, rest_swing_m,
-                                  track_ramps)
+from pdrlearn.track.grade import RAMP_REST_SWING_FACTOR, ramp_runs, rest_rise_floor_m, rest_swing_m, track_ramps
 
 TEST11 = Path(__file__).resolve().parents[1] / "datasets" / "real" / "mobgap_HA001_Test11_Trial1"
 
