@@ -75,6 +75,7 @@ def test_the_bouts_context_short_turning_slow_and_the_unmeasured_steps():
     assert (row.ref_steps, row.ref_spm) == (6, pytest.approx(120.0))
     assert row.short and not row.turning and not row.slow  # 6 < 10 INDIP steps; 120 >= 0.9 x 120 steps/min
     assert _row(_steps(REF_IC, [0.6] * 6), _session(), cal_spm=140.0).slow  # 120 < 0.9 x 140 = 126
+    assert not _row(_steps(REF_IC, [0.6] * 6), _session(), cal_spm=130.0).slow  # 120 >= 0.9 x 130 = 117 (W211)
     assert _row(_steps(REF_IC, [0.6] * 6), _session(turns=((1.0, 1.5),))).turning
     # the first stride unmeasured: its first step lies in no measured stride (the second is in the second stride)
     assert _row(_steps(REF_IC, [0.6] * 6), _session(nan_first_stride=True)).fallback_steps == 1
