@@ -1,6 +1,6 @@
 """Decision W521: experiments/waist_bout_error_s46_w521.py splits a walking bout's distance error vs INDIP ``Length``
 into count (inner / edge), per-step length (inner / edge) and INDIP's own reference term, flags the bout's context and
-gives each lever's upper bound. Hand-made bouts, hand-computed parts."""
+sets each lever's part to 0. Hand-made bouts, hand-computed parts."""
 
 from __future__ import annotations
 
@@ -13,19 +13,22 @@ import pandas as pd
 import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "experiments"))
-from waist_bout_error_s46_w521 import PARTS, bout_parts, summary, upper_bounds  # noqa: E402
+from waist_bout_error_s46_w521 import PARTS, bout_parts, levers_exact, summary  # noqa: E402
 
 REF_IC = np.arange(7) * 0.5  # 7 contacts, 6 reference steps of 0.5 s (120 steps/min)
 STRIDE_M = 1.2  # every stride 1.2 m: every reference step 0.6 m, 3.6 m in all
 
 
-def _session(length_m: float = 3.6, turns: tuple = (), nan_first_stride: bool = False):
-    strides = pd.DataFrame({"start_s": REF_IC[:-2], "end_s": REF_IC[2:], "ic_s": REF_IC[:-2], "length_m": STRIDE_M})
-    if nan_first_stride:
-        strides.loc[0, "length_m"] = np.nan
-    extras = {"bouts": pd.DataFrame({"level": ["wb"], "start_s": [REF_IC[0]], "end_s": [REF_IC[-1]],
+FEET = np.where(np.arange(7) % 2 == 0, "left", "right")  # left at 0, 1, 2, 3 s: 3 left strides, 2 right
+
+
+def _session(length_m: float = 3.6, turns: tuple = (), nan_strides: tuple = ()):
+    strides = pd.DataFrame({"start_s": REF_IC[:-2], "end_s": REF_IC[2:], "ic_s": REF_IC[:-2], "length_m": STRIDE_M,
+                            "foot": FEET[:-2], "wb_id": 0})
+    strides.loc[list(nan_strides), "length_m"] = np.nan
+    extras = {"bouts": pd.DataFrame({"level": ["wb"], "wb_id": [0], "start_s": [REF_IC[0]], "end_s": [REF_IC[-1]],
                                      "length_m": [length_m]}),
-              "ics": pd.DataFrame({"ic_s": REF_IC}),
+              "ics": pd.DataFrame({"ic_s": REF_IC, "foot": FEET}),
               "turns": pd.DataFrame({"start_s": [a for a, _ in turns], "end_s": [b for _, b in turns],
                                      "angle_deg": [90.0] * len(turns)})}
     return SimpleNamespace(name="hand-made", extras=extras, steps=strides)
@@ -78,19 +81,31 @@ def test_the_bouts_context_short_turning_slow_and_the_unmeasured_steps():
     assert not _row(_steps(REF_IC, [0.6] * 6), _session(), cal_spm=130.0).slow  # 120 >= 0.9 x 130 = 117 (W211)
     assert _row(_steps(REF_IC, [0.6] * 6), _session(turns=((1.0, 1.5),))).turning
     # the first stride unmeasured: its first step lies in no measured stride (the second is in the second stride)
-    assert _row(_steps(REF_IC, [0.6] * 6), _session(nan_first_stride=True)).fallback_steps == 1
+    assert _row(_steps(REF_IC, [0.6] * 6), _session(nan_strides=(0,))).fallback_steps == 1
 
 
-def test_a_levers_upper_bound_sets_its_part_to_zero_and_the_perfect_tracker_leaves_ref():
+def test_indips_term_splits_into_the_unmeasured_strides_and_the_one_foot_path():
+    # Length = the left foot's finite strides (1 of 3 measured: 1.2 m): +200 % is all its two unmeasured strides (W273)
+    row = _row(_steps(REF_IC, [0.6] * 6), _session(length_m=1.2, nan_strides=(0, 2)))
+    assert row.ref == pytest.approx(200.0) and row.ref_path == pytest.approx(0.0)
+    # Length = the right foot's two strides (2.4 m, both measured): +50 % is the one-foot path's missing edge steps
+    row = _row(_steps(REF_IC, [0.6] * 6), _session(length_m=2.4))
+    assert row.ref == pytest.approx(50.0) and row.ref_path == pytest.approx(50.0)
+
+
+def test_a_lever_made_exact_sets_its_part_to_zero_and_the_perfect_tracker_leaves_ref():
     t = pd.DataFrame({"err_L": [10.0, -4.0, 30.0], "count_inner": [5.0, 0.0, 0.0], "count_edge": [0.0, -2.0, 0.0],
                       "length_inner": [1.0, -2.0, 10.0], "length_edge": [0.0, 0.0, 0.0], "ref": [4.0, 0.0, 20.0],
+                      "ref_path": [4.0, 0.0, 5.0],
                       "turning": [True, False, True], "slow": [False, False, True]})
-    b = {r["lever"]: r for r in upper_bounds(t)}
+    b = {r["lever"]: r for r in levers_exact(t)}
     assert b["count (every contact right)"]["with the part exact"] == pytest.approx(5.0)  # |5|, |-2|, |30|
     assert b["inner step length, turning bouts only"]["with the part exact"] == pytest.approx(9.0)  # 9, 4, 20
     assert b["inner step length, slow bouts only"]["with the part exact"] == pytest.approx(10.0)  # 10, 4, 20
     whole = b["count and step length (the tracker whole)"]
     assert whole["with the part exact"] == pytest.approx(float(np.median(np.abs(t.ref))))
     assert whole["drop"] == pytest.approx(10.0 - 4.0)
+    assert b["INDIP's one-foot stride path (Length's convention, W273)"]["with the part exact"] == pytest.approx(6.0)
+    assert b["the tracker whole on Length's one-foot path"]["with the part exact"] == pytest.approx(0.0)  # 0, 0, 15
     s = summary(t)
     assert s["count right"] == pytest.approx(5.0) and s["length alone"] == pytest.approx(2.0)
