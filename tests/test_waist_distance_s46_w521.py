@@ -96,7 +96,7 @@ def test_indips_term_splits_into_the_unmeasured_strides_and_the_one_foot_path():
 def test_a_lever_made_exact_sets_its_part_to_zero_and_the_perfect_tracker_leaves_ref():
     t = pd.DataFrame({"err_L": [10.0, -4.0, 30.0], "count_inner": [5.0, 0.0, 0.0], "count_edge": [0.0, -2.0, 0.0],
                       "length_inner": [1.0, -2.0, 10.0], "length_edge": [0.0, 0.0, 0.0], "ref": [4.0, 0.0, 20.0],
-                      "ref_path": [4.0, 0.0, 5.0],
+                      "ref_path": [1.0, 0.0, 5.0],
                       "turning": [True, False, True], "slow": [False, False, True]})
     b = {r["lever"]: r for r in levers_exact(t)}
     assert b["count (every contact right)"]["with the part exact"] == pytest.approx(5.0)  # |5|, |-2|, |30|
@@ -105,7 +105,7 @@ def test_a_lever_made_exact_sets_its_part_to_zero_and_the_perfect_tracker_leaves
     whole = b["count and step length (the tracker whole)"]
     assert whole["with the part exact"] == pytest.approx(float(np.median(np.abs(t.ref))))
     assert whole["drop"] == pytest.approx(10.0 - 4.0)
-    assert b["INDIP's one-foot stride path (Length's convention, W273)"]["with the part exact"] == pytest.approx(6.0)
-    assert b["the tracker whole on Length's one-foot path"]["with the part exact"] == pytest.approx(0.0)  # 0, 0, 15
+    assert b["INDIP's one-foot stride path (Length's convention, W273)"]["with the part exact"] == pytest.approx(9.0)  # 9, 4, 25
+    assert b["the tracker whole on Length's one-foot path"]["with the part exact"] == pytest.approx(3.0)  # 3, 0, 15
     s = summary(t)
     assert s["count right"] == pytest.approx(5.0) and s["length alone"] == pytest.approx(2.0)
