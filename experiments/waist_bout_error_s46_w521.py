@@ -5,9 +5,11 @@ Protocol and exact additive split: experiments/waist_bout_terms.py (W220; calibr
 walks, tested on Test11; defaults = meta.json; `waist-pendulum` as today). Per INDIP walking bout (level wb),
 ``tracked - Length`` in % of ``Length`` is the sum of three parts:
 - ``count`` = the segments between matched contacts that hold more or fewer tracked than INDIP steps (W220's
-  ``*_count``, the long step over a missed contact included), split into ``count_inner`` (missed / extra steps inside
-  the bout's span, W220's ``turn_count`` + ``straight_count``) and ``count_edge`` (before the first / after the last
-  matched contact or holding the bout's first / last INDIP step: the bout's start / end against INDIP's WB);
+  ``*_count``, the long step over a missed contact included; unlike W220 a walking sequence's closing row, which has
+  no next contact and no length, is no step, so a sequence that stops before INDIP's last contact is a miss), split
+  into ``count_inner`` (missed / extra steps inside the bout's span, W220's ``turn_count`` + ``straight_count``) and
+  ``count_edge`` (before the first / after the last matched contact or holding the bout's first / last INDIP step:
+  the bout's start / end against INDIP's WB);
 - ``length`` = the segments with as many tracked as INDIP steps: the pendulum's length against INDIP's per-step length
   (its stride length / the INDIP steps in the stride; without a measured stride the bout's mean half stride, counted
   in ``fallback_steps``), split into ``length_inner`` (W220's ``straight_step`` + ``turn_step``) and ``length_edge``
@@ -72,8 +74,11 @@ def bout_parts(steps: pd.DataFrame, session, cal_spm: float) -> pd.DataFrame:
     for b in bouts.itertuples():
         g = T.bout_segments(steps, session, b.start_s, b.end_s, turns)
         term = {f"{p}_{k}": 0.0 for p in T.PLACES for k in T.KINDS}
+        walking = g["sel"]["has_next"].to_numpy(bool)
         for seg in g["segments"]:
-            term[f"{seg['place']}_{seg['kind']}"] += seg["e"]
+            # a sequence-closing row (no next contact, no length) is no step: standing for an INDIP step it is a miss
+            kind = "count" if int((seg["dm"] & walking).sum()) != int(seg["rm"].sum()) else "step"
+            term[f"{seg['place']}_{kind}"] += seg["e"]
         s, r = g["s"], g["r"]
         term["ref"] = float(s.sum()) - b.length_m
         err = float(g["dl"].sum()) - b.length_m

@@ -69,8 +69,10 @@ def test_the_bouts_start_and_end_are_the_edge_parts():
     # an extra contact inside the first reference step: the bout's start delimited wrong (+0.2 m) ...
     c = np.r_[REF_IC[0], 0.25, REF_IC[1:]]
     _only(_row(_steps(c, [0.4, 0.4, 0.6, 0.6, 0.6, 0.6, 0.6]), _session()), count_edge=100 * 0.2 / 3.6)
-    # ... and the right count with a last step 0.2 m short is the edge's length
+    # ... the right count with a last step 0.2 m short is the edge's length ...
     _only(_row(_steps(REF_IC, [0.6] * 5 + [0.4]), _session()), length_edge=100 * -0.2 / 3.6)
+    # ... and a walking sequence that closes one contact early (its closing row has no length) missed the last step
+    _only(_row(_steps(REF_IC[:-1], [0.6] * 5), _session()), count_edge=100 * -0.6 / 3.6)
 
 
 def test_the_bouts_context_short_turning_slow_and_the_unmeasured_steps():
@@ -105,7 +107,8 @@ def test_a_lever_made_exact_sets_its_part_to_zero_and_the_perfect_tracker_leaves
     whole = b["count and step length (the tracker whole)"]
     assert whole["with the part exact"] == pytest.approx(float(np.median(np.abs(t.ref))))
     assert whole["drop"] == pytest.approx(10.0 - 4.0)
-    assert b["INDIP's one-foot stride path (Length's convention, W273)"]["with the part exact"] == pytest.approx(9.0)  # 9, 4, 25
+    one_foot = b["INDIP's one-foot stride path (Length's convention, W273)"]
+    assert one_foot["with the part exact"] == pytest.approx(9.0)  # 9, 4, 25
     assert b["the tracker whole on Length's one-foot path"]["with the part exact"] == pytest.approx(3.0)  # 3, 0, 15
     s = summary(t)
     assert s["count right"] == pytest.approx(5.0) and s["length alone"] == pytest.approx(2.0)
