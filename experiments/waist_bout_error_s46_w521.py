@@ -4,16 +4,17 @@ or the per-step length -- by bout length and context, and whether 3 % is reachab
 Protocol and exact additive split: experiments/waist_bout_terms.py (W220; calibrated = K from the subject's Test5
 walks, tested on Test11; defaults = meta.json; `waist-pendulum` as today). Per INDIP walking bout (level wb),
 ``tracked - Length`` in % of ``Length`` is the sum of three parts:
-- ``count`` = the segments between matched contacts that hold more or fewer tracked than INDIP steps (W220's
-  ``*_count``, the long step over a missed contact included; unlike W220 a walking sequence's closing row, which has
-  no next contact and no length, is no step, so a sequence that stops before INDIP's last contact is a miss), split
-  into ``count_inner`` (missed / extra steps inside the bout's span, W220's ``turn_count`` + ``straight_count``) and
-  ``count_edge`` (before the first / after the last matched contact or holding the bout's first / last INDIP step:
-  the bout's start / end against INDIP's WB);
-- ``length`` = the segments with as many tracked as INDIP steps: the pendulum's length against INDIP's per-step length
-  (its stride length / the INDIP steps in the stride; without a measured stride the bout's mean half stride, counted
-  in ``fallback_steps``), split into ``length_inner`` (W220's ``straight_step`` + ``turn_step``) and ``length_edge``
-  (``edge_step``: the bout's first / last step with the right count);
+- ``count`` = in each segment between matched contacts (W220's anchors) that holds n_d tracked for n_r != n_d INDIP
+  steps, (n_d - n_r) x the segment's mean INDIP step (all of the segment's error when it holds no INDIP step); a
+  walking sequence's closing row, which has no next contact and no length, is no step, so a sequence that stops
+  before INDIP's last contact missed it. W220 gave a mismatched segment's whole error to the count (the long step
+  over a missed contact included): that is ``count_net``, printed beside. Split into ``count_inner`` (missed / extra
+  steps inside the bout's span: W220's turn and straight segments) and ``count_edge`` (W220's edge segments: before
+  the first / after the last matched contact or holding the bout's first / last INDIP step, i.e. the bout's start /
+  end against INDIP's WB);
+- ``length`` = the rest: the tracked steps' length against INDIP's per-step length (its stride length / the INDIP
+  steps in the stride; without a measured stride the bout's mean half stride, counted in ``fallback_steps``), split
+  into ``length_inner`` and ``length_edge`` by the same places;
 - ``ref`` = INDIP's per-step lengths summed - ``Length`` (INDIP's own bookkeeping: strides of one foot it could not
   measure are missing from ``Length``, W273). No tracker change can move it.
 Contexts (fixed before running): ``short`` = fewer than 10 INDIP steps; ``turning`` = a step of the bout has its
@@ -55,6 +56,7 @@ PARTS = {"count_inner": ["turn_count", "straight_count"], "count_edge": ["edge_c
 GROUPS = {"count": ["count_inner", "count_edge"], "length": ["length_inner", "length_edge"], "ref": ["ref"]}
 # each lever of the brief made exact (its part set to 0); a partial fix could beat it only by cancelling another part
 LEVERS = {"count (every contact right)": ["count_inner", "count_edge"],
+          "count, W220's net convention": ["count_net"],
           "bout edges (INDIP-like start / end)": ["count_edge", "length_edge"],
           "inner step length (cadence gain, turning steps)": ["length_inner"],
           "inner step length, turning bouts only": ["length_inner"],
@@ -75,11 +77,19 @@ def bout_parts(steps: pd.DataFrame, session, cal_spm: float) -> pd.DataFrame:
         g = T.bout_segments(steps, session, b.start_s, b.end_s, turns)
         term = {f"{p}_{k}": 0.0 for p in T.PLACES for k in T.KINDS}
         walking = g["sel"]["has_next"].to_numpy(bool)
+        s, r = g["s"], g["r"]
+        count_net = 0.0
         for seg in g["segments"]:
             # a sequence-closing row (no next contact, no length) is no step: standing for an INDIP step it is a miss
-            kind = "count" if int((seg["dm"] & walking).sum()) != int(seg["rm"].sum()) else "step"
-            term[f"{seg['place']}_{kind}"] += seg["e"]
-        s, r = g["s"], g["r"]
+            n_d, n_r = int((seg["dm"] & walking).sum()), int(seg["rm"].sum())
+            if n_d == n_r:
+                term[f"{seg['place']}_step"] += seg["e"]
+                continue
+            # the missing / extra steps at the segment's mean INDIP step; the rest is its tracked steps' length
+            count = seg["e"] if n_r == 0 else (n_d - n_r) * float(s[seg["rm"]].mean())
+            term[f"{seg['place']}_count"] += count
+            term[f"{seg['place']}_step"] += seg["e"] - count
+            count_net += seg["e"]
         term["ref"] = float(s.sum()) - b.length_m
         err = float(g["dl"].sum()) - b.length_m
         part = {p: 100 * sum(term[t] for t in ts) / b.length_m for p, ts in PARTS.items()}
@@ -87,6 +97,7 @@ def bout_parts(steps: pd.DataFrame, session, cal_spm: float) -> pd.DataFrame:
         # W273: ref = ref_nan (Length's foot's strides INDIP did not measure) + ref_path (the one-foot path's edges)
         nan_m = length_by_foot(session, int(b.wb_id), b.start_s, b.end_s, b.length_m)["ref_nan_m"] if by_foot else 0.0
         part["ref_path"] = part["ref"] - 100 * nan_m / b.length_m
+        part["count_net"] = 100 * count_net / b.length_m  # W220's convention: a mismatched segment's whole error
         n_ref = int(s.size)
         cadence = 60 * n_ref / (r[-1] - r[0]) if n_ref else np.nan
         rows.append({"start_s": b.start_s, "L_m": b.length_m, "tracked_m": float(g["dl"].sum()),
@@ -113,6 +124,8 @@ def summary(t: pd.DataFrame) -> dict:
     out.update({f"|{g}|": v.abs().median() for g, v in grp.items()})
     out.update({f"|{p}|": t[p].abs().median() for p in PARTS if p != "ref"})
     out["count right"] = (t.err_L - grp["count"]).abs().median()
+    out["|count_net|"] = t.count_net.abs().median()
+    out["count right (net)"] = (t.err_L - t.count_net).abs().median()
     out["length alone"] = grp["length"].abs().median()
     out["length alone <= 3 %"] = f"{int((grp['length'].abs() <= 3).sum())}/{len(t)}"
     return out
@@ -153,8 +166,8 @@ def kind_table(ext: Path, runs: list) -> pd.DataFrame:
 
 def report(t: pd.DataFrame, title: str, say) -> None:
     """The per-bout table, the summaries by subject / length / context, each lever made exact, the median bouts."""
-    cols = ["subject", "test", "params", "start_s", "L_m", "tracked_m", "err_L", *PARTS, "ref_path", "ref_steps",
-            "steps", "missed", "extra", "untimed", "fallback_steps", "ref_spm", "short", "turning", "slow"]
+    cols = ["subject", "test", "params", "start_s", "L_m", "tracked_m", "err_L", *PARTS, "count_net", "ref_path",
+            "ref_steps", "steps", "missed", "extra", "untimed", "fallback_steps", "ref_spm", "short", "turning", "slow"]
     say(f"{title}: per bout, % of INDIP Length (err_L = count_inner + count_edge + length_inner + length_edge + ref):")
     say(t[cols].round(2).to_string(index=False))
     for params, g in t.groupby("params", sort=False):
@@ -164,7 +177,8 @@ def report(t: pd.DataFrame, title: str, say) -> None:
         for flag in ("short", "turning", "slow"):
             rows += [{"group": f"{'' if v else 'not '}{flag}", **summary(h)} for v, h in g.groupby(flag)]
         say(f"\n{title}, {params}: median |error| and median |part| over the bouts (% of Length); count right = "
-            "median |error - count|; length alone = median |length| (count right and a complete reference):")
+            "median |error - count| (net: W220's count_net); length alone = median |length| (count right and a "
+            "complete reference):")
         say(pd.DataFrame(rows).round(3).to_string(index=False))
         say(f"\n{title}, {params}: each lever made exact (its part set to 0), median |error| vs Length, pooled "
             "and per subject:")

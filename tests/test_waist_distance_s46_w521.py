@@ -60,15 +60,19 @@ def test_perfect_steps_leave_only_indips_own_term():
 def test_a_missed_inner_contact_is_the_inner_count_and_a_long_inner_step_the_inner_length():
     c = np.delete(REF_IC, 3)  # the contact at 1.5 s missed: one step of 1.0 m for two reference steps (1.2 m)
     row = _row(_steps(c, [0.6, 0.6, 1.0, 0.6, 0.6]), _session())
-    _only(row, count_inner=100 * -0.2 / 3.6)
+    # one step missing at the segment's 0.6 m INDIP step; its one tracked step reads 0.4 m over INDIP's 0.6 m
+    _only(row, count_inner=100 * -0.6 / 3.6, length_inner=100 * 0.4 / 3.6)
+    assert row.count_net == pytest.approx(100 * -0.2 / 3.6)  # W220's convention: the segment's whole error
     assert (row.missed, row.extra) == (1, 0)
     _only(_row(_steps(REF_IC, [0.6, 0.6, 0.7, 0.6, 0.6, 0.6]), _session()), length_inner=100 * 0.1 / 3.6)
 
 
 def test_the_bouts_start_and_end_are_the_edge_parts():
-    # an extra contact inside the first reference step: the bout's start delimited wrong (+0.2 m) ...
+    # an extra contact inside the first reference step: one step too many at the start (+0.6 m), the two tracked
+    # steps 0.4 m short of two INDIP steps (0.8 m vs 1.2 m) ...
     c = np.r_[REF_IC[0], 0.25, REF_IC[1:]]
-    _only(_row(_steps(c, [0.4, 0.4, 0.6, 0.6, 0.6, 0.6, 0.6]), _session()), count_edge=100 * 0.2 / 3.6)
+    _only(_row(_steps(c, [0.4, 0.4, 0.6, 0.6, 0.6, 0.6, 0.6]), _session()), count_edge=100 * 0.6 / 3.6,
+          length_edge=100 * -0.4 / 3.6)
     # ... the right count with a last step 0.2 m short is the edge's length ...
     _only(_row(_steps(REF_IC, [0.6] * 5 + [0.4]), _session()), length_edge=100 * -0.2 / 3.6)
     # ... and a walking sequence that closes one contact early (its closing row has no length) missed the last step
@@ -98,10 +102,11 @@ def test_indips_term_splits_into_the_unmeasured_strides_and_the_one_foot_path():
 def test_a_lever_made_exact_sets_its_part_to_zero_and_the_perfect_tracker_leaves_ref():
     t = pd.DataFrame({"err_L": [10.0, -4.0, 30.0], "count_inner": [5.0, 0.0, 0.0], "count_edge": [0.0, -2.0, 0.0],
                       "length_inner": [1.0, -2.0, 10.0], "length_edge": [0.0, 0.0, 0.0], "ref": [4.0, 0.0, 20.0],
-                      "ref_path": [1.0, 0.0, 5.0],
+                      "ref_path": [1.0, 0.0, 5.0], "count_net": [3.0, -2.0, 0.0],
                       "turning": [True, False, True], "slow": [False, False, True]})
     b = {r["lever"]: r for r in levers_exact(t)}
     assert b["count (every contact right)"]["with the part exact"] == pytest.approx(5.0)  # |5|, |-2|, |30|
+    assert b["count, W220's net convention"]["with the part exact"] == pytest.approx(7.0)  # |7|, |-2|, |30|
     assert b["inner step length, turning bouts only"]["with the part exact"] == pytest.approx(9.0)  # 9, 4, 20
     assert b["inner step length, slow bouts only"]["with the part exact"] == pytest.approx(10.0)  # 10, 4, 20
     whole = b["count and step length (the tracker whole)"]
