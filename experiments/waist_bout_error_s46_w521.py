@@ -128,6 +128,8 @@ def summary(t: pd.DataFrame) -> dict:
     out["count right (net)"] = (t.err_L - t.count_net).abs().median()
     out["length alone"] = grp["length"].abs().median()
     out["length alone <= 3 %"] = f"{int((grp['length'].abs() <= 3).sum())}/{len(t)}"
+    out["count, length opposite"] = f"{int((grp['count'] * grp['length'] < 0).sum())}/{len(t)}"
+    out["ref > 0"] = f"{int((grp['ref'] > 0).sum())}/{len(t)}"
     return out
 
 

@@ -117,3 +117,4 @@ def test_a_lever_made_exact_sets_its_part_to_zero_and_the_perfect_tracker_leaves
     assert b["the tracker whole on Length's one-foot path"]["with the part exact"] == pytest.approx(3.0)  # 3, 0, 15
     s = summary(t)
     assert s["count right"] == pytest.approx(5.0) and s["length alone"] == pytest.approx(2.0)
+    assert (s["count, length opposite"], s["ref > 0"]) == ("0/3", "2/3")  # 5 x 1, -2 x -2, 0 x 10: none < 0
