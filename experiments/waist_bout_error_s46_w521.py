@@ -57,10 +57,14 @@ GROUPS = {"count": ["count_inner", "count_edge"], "length": ["length_inner", "le
 # each lever of the brief made exact (its part set to 0); a partial fix could beat it only by cancelling another part
 LEVERS = {"count (every contact right)": ["count_inner", "count_edge"],
           "count, W220's net convention": ["count_net"],
+          "extra steps only (count where > 0)": ["count_inner", "count_edge"],
+          "missed steps only (count where < 0)": ["count_inner", "count_edge"],
           "bout edges (INDIP-like start / end)": ["count_edge", "length_edge"],
           "inner step length (cadence gain, turning steps)": ["length_inner"],
           "inner step length, turning bouts only": ["length_inner"],
           "inner step length, slow bouts only": ["length_inner"],
+          "inner steps read long only (where > 0)": ["length_inner"],
+          "inner steps read short only (where < 0)": ["length_inner"],
           "count and step length (the tracker whole)": ["count_inner", "count_edge", "length_inner", "length_edge"],
           "INDIP's one-foot stride path (Length's convention, W273)": ["ref_path"],
           "the tracker whole on Length's one-foot path": ["count_inner", "count_edge", "length_inner", "length_edge",
@@ -134,14 +138,17 @@ def summary(t: pd.DataFrame) -> dict:
 
 
 def levers_exact(t: pd.DataFrame) -> list[dict]:
-    """Per lever: the median |error| with its part set to 0 (on the bouts it names), and the drop from as is. The
+    """Per lever: the median |error| with its part set to 0 (on the bouts it names; "where > 0" / "where < 0": on the
+    bouts where the part has that sign, a one-sided fix), and the drop from as is. The
     tracker whole on Length's one-foot path leaves W273's ``ref_nan`` (the strides INDIP did not measure); on a bout
     where no foot's stride sum is ``Length`` (HA001's ties) all of ``ref`` is ``ref_path``."""
     now = t.err_L.abs().median()
     rows = []
     for lever, ps in LEVERS.items():
         on = t.turning if "turning bouts" in lever else t.slow if "slow bouts" in lever else pd.Series(True, t.index)
-        fixed = (t.err_L - t[ps].sum(axis=1).where(on, 0.0)).abs().median()
+        part = t[ps].sum(axis=1).where(on, 0.0)
+        part = part.clip(lower=0.0) if "> 0)" in lever else part.clip(upper=0.0) if "< 0)" in lever else part
+        fixed = (t.err_L - part).abs().median()
         rows.append({"lever": lever, "median |err| as is": now, "with the part exact": fixed, "drop": now - fixed})
     return rows
 

@@ -107,6 +107,8 @@ def test_a_lever_made_exact_sets_its_part_to_zero_and_the_perfect_tracker_leaves
     b = {r["lever"]: r for r in levers_exact(t)}
     assert b["count (every contact right)"]["with the part exact"] == pytest.approx(5.0)  # |5|, |-2|, |30|
     assert b["count, W220's net convention"]["with the part exact"] == pytest.approx(7.0)  # |7|, |-2|, |30|
+    assert b["extra steps only (count where > 0)"]["with the part exact"] == pytest.approx(5.0)  # 5, -4, 30
+    assert b["missed steps only (count where < 0)"]["with the part exact"] == pytest.approx(10.0)  # 10, -2, 30
     assert b["inner step length, turning bouts only"]["with the part exact"] == pytest.approx(9.0)  # 9, 4, 20
     assert b["inner step length, slow bouts only"]["with the part exact"] == pytest.approx(10.0)  # 10, 4, 20
     whole = b["count and step length (the tracker whole)"]
