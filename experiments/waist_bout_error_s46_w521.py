@@ -44,10 +44,11 @@ import waist as W  # noqa: E402
 import waist_bout_terms as T  # noqa: E402
 from waist_bout_error_w273 import length_by_foot  # noqa: E402
 
+from experiments._results import write_result  # noqa: E402
 from pdrlearn.track import get_pipeline  # noqa: E402
 from pdrlearn.waist.evaluate import reference_bouts  # noqa: E402
 
-RESULT = W.ROOT / "experiments" / "results" / "waist_bout_error_s46_w521.txt"
+RESULT = "waist_bout_error_s46_w521"  # experiments/results/<RESULT>.md (E294's write_result)
 SLOW = 0.9  # W211: the calibration's cadence range starts at x0.9 (as W317)
 SHORT_STEPS = 10  # a bout of fewer INDIP steps is short (fixed before running)
 LENGTH_BINS = [0, 10, 20, 10_000]
@@ -219,9 +220,7 @@ def main() -> None:
     for kind, kind_runs in by_kind.items():
         if kind_runs:
             report(kind_table(ext, kind_runs), kind, say)
-    text = "\n".join(out) + "\n"
-    sys.stdout.write(text)
-    RESULT.write_text(text)
+    write_result(RESULT, [*out[:2], "```text", *out[2:], "```"])
 
 
 if __name__ == "__main__":
