@@ -54,6 +54,15 @@ GRADE_WINDOW_ROWS = {"foot": 1}
 #: (trial T1 F4: -24 ... +33 % step to step on a 1:12 ramp). A project choice, fixed before measuring: 5-6 normal
 #: steps or 12+ slow ones, under a 1:12 run's 9 m between landings (ADA 2010 sec. 405.6: 30 in of rise)
 WAIST_SLOPE_WINDOW_M = 4.0
+#: decision W519: a lower-back ramp's |rise| is at least this many times the track's rest swing
+#: (:func:`rest_swing_m`): a stand's barometric change and a ramp's rise are the same kind of difference, so a rise
+#: within twice the stands' median is not told apart from the barometer's own swing (Test11's 3-4 s swing of +-0.18 m
+#: read two ramps on a lab floor). A project choice, fixed before measuring
+RAMP_REST_SWING_FACTOR = 2.0
+#: decision W519: a standstill the rest swing reads is at least this long (s; L104's pause)
+REST_SWING_MIN_STILL_S = 1.0
+#: decision W519: the rest swing needs at least this many standstills (else no floor)
+REST_SWING_MIN_STANDS = 3
 
 RAMP_COLUMNS = ("ramp", "start_s", "end_s", "direction", "n_runs", "landings", "horizontal_run_m", "landing_m",
                 "along_slope_m", "rise_m", "mean_grade_pct", "max_run_grade_pct", "n_steps",
@@ -230,10 +239,26 @@ def fitted_grades_pct(length, dz, window_m: float, ends=None) -> np.ndarray:
     return np.where(ok, 100.0 * (k * sxz - sx * sz) / np.where(ok, den, 1.0), 0.0)
 
 
+def rest_swing_m(still_s, pause_dz, ride=None) -> float | None:
+    """Decision W519: the median |altitude change| (m) over the standstills of a track - rows whose ``still_s``
+    (steps.csv ``still_before_s``) is at least :data:`REST_SWING_MIN_STILL_S` with a finite ``pause_dz``
+    (``pause_dz_m``, W158: the change while the walker stood before the row) and no ``ride`` (True rows of a ride,
+    None: none) - what the barometer alone does in a few seconds on one floor; None with fewer than
+    :data:`REST_SWING_MIN_STANDS` of them. A pure kernel."""
+    still = np.asarray(still_s, dtype=float)
+    dz = np.asarray(pause_dz, dtype=float)
+    ok = np.isfinite(still) & (still >= REST_SWING_MIN_STILL_S) & np.isfinite(dz)
+    if ride is not None:
+        ok &= ~np.asarray(ride, dtype=bool)
+    if int(ok.sum()) < REST_SWING_MIN_STANDS:
+        return None
+    return float(np.median(np.abs(dz[ok])))
+
+
 def ramp_runs(length, dz, window: int = 1, min_grade_pct: float = RAMP_MIN_GRADE_PCT,
               stair_grade_pct: float = STAIR_MIN_GRADE_PCT, min_run_m: float = RAMP_MIN_RUN_M,
               landing_max_m: float = LANDING_MAX_M, on_stairs=None, lone_stair_joins: bool = False,
-              window_m: float | None = None, ends=None) -> list[dict]:
+              window_m: float | None = None, ends=None, min_rise_m: float | None = None) -> list[dict]:
     """Decision L301: the ramps of rows (horizontal ``length`` m, height change ``dz`` m, walking order) - a pure
     kernel. A row is a ramp row of sign s when the grade of the centred ``window`` rows around it (their summed dz
     over their summed |length|) is at least ``min_grade_pct`` in size, under ``stair_grade_pct`` (steeper: a stair),
@@ -248,7 +273,8 @@ def ramp_runs(length, dz, window: int = 1, min_grade_pct: float = RAMP_MIN_GRADE
     is noise of several %, L300: one step of 0.15 m over 0.7 m split T3's 1:12 ramp in three). Decision L633: a ramp
     between two stair rows of its own direction is a stair's landing and left out. ``window_m`` (decision W517, the
     lower back's): the rows are judged on :func:`fitted_grades_pct` over that many metres of each walking sequence
-    (``ends``) instead of ``window`` rows, and a row is a stair row when that grade (not its own) is a stair's."""
+    (``ends``) instead of ``window`` rows, and a row is a stair row when that grade (not its own) is a stair's.
+    ``min_rise_m`` (decision W519, the lower back's; None: none): a ramp whose |rise| is under it is left out."""
     length = np.nan_to_num(np.abs(np.asarray(length, dtype=float)))
     dz = np.nan_to_num(np.asarray(dz, dtype=float))
     n = len(length)
@@ -284,6 +310,8 @@ def ramp_runs(length, dz, window: int = 1, min_grade_pct: float = RAMP_MIN_GRADE
             continue
         rows = np.concatenate([np.arange(a, b + 1) for a, b, _ in rs])
         run_l, rise = float(length[rows].sum()), float(dz[rows].sum())
+        if min_rise_m is not None and abs(rise) < min_rise_m:  # decision W519: within the barometer's rest swing
+            continue
         grades = [100.0 * dz[a:b + 1].sum() / length[a:b + 1].sum() for a, b, _ in rs]
         rises = [float(dz[a:b + 1].sum()) for a, b, _ in rs]  # decision L569: each run's own rise
         out.append({"first": rs[0][0], "last": rs[-1][1], "runs": [(a, b) for a, b, _ in rs],
@@ -336,8 +364,24 @@ def track_ramps(steps: pd.DataFrame, info: dict | None) -> FoundRamps:
     found = ramp_runs(length, dz, GRADE_WINDOW_ROWS.get(unit, 1), on_stairs=climb_rows(steps, info),
                       stair_grade_pct=stair_min_grade_pct(steps),  # decision L463
                       lone_stair_joins=waist,  # decision W464: one noisy barometric step splits no ramp
-                      window_m=WAIST_SLOPE_WINDOW_M if waist else None, ends=ends)  # decision W517
+                      window_m=WAIST_SLOPE_WINDOW_M if waist else None, ends=ends,  # decision W517
+                      min_rise_m=rest_rise_floor_m(steps) if waist else None)  # decision W519
     return found, np.abs(length), dz
+
+
+def rest_rise_floor_m(steps: pd.DataFrame) -> float | None:
+    """Decision W519: the smallest |rise| (m) of a lower-back track's ramp - :data:`RAMP_REST_SWING_FACTOR` x
+    :func:`rest_swing_m` of its rows (``still_before_s``, ``pause_dz_m``, the ride rows) - or None (no floor) when
+    the table lacks those columns or holds too few standstills."""
+    if "still_before_s" not in steps or "pause_dz_m" not in steps:
+        return None
+    ride = None
+    if "ride" in steps:
+        r = steps["ride"]
+        ride = (r.notna() & r.astype(str).ne("")).to_numpy(bool)  # a ride row, as curbs.py reads it
+    swing = rest_swing_m(pd.to_numeric(steps["still_before_s"], errors="coerce").to_numpy(float),
+                         pd.to_numeric(steps["pause_dz_m"], errors="coerce").to_numpy(float), ride)
+    return None if swing is None else RAMP_REST_SWING_FACTOR * swing
 
 
 def ramp_table(steps: pd.DataFrame, info: dict | None, trajectory: pd.DataFrame | None = None, *,

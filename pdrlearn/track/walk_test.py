@@ -154,13 +154,16 @@ def _row_turns(st: pd.DataFrame) -> np.ndarray:
 def pass_rows(steps: pd.DataFrame, a: int, b: int) -> list[tuple[int, int]]:
     """Decision L673: the straight passes of the bout ``steps.iloc[a:b]``, as ``(first, last + 1)`` row ranges: each
     run of consecutive rows turning at least L79's :data:`STRAIGHT_MAX_RAD` (:func:`_row_turns`; one slower row
-    between two turning rows bridged, as L104's turns) whose turns add up to :data:`PASS_TURN_DEG`, measured as
-    :data:`PASS_TURN_MIN_DEG` or more, is a turn between two passes: its rows close the pass before it (the walker's
-    deceleration runs into the turn, as a bout's last pass runs into its stop), the next pass starts after it. A
-    smaller run stays in its pass (L313's straightness rule judges it). A bout without such a turn is one pass."""
+    between two turning rows bridged, as L104's turns bridge a turn's slower step) whose turns add up to
+    :data:`PASS_TURN_DEG`, measured as :data:`PASS_TURN_MIN_DEG` or more, is a turn between two passes: its rows close
+    the pass before it (the walker's deceleration runs into the turn, as a bout's last pass runs into its stop), the
+    next pass starts after it. A smaller run stays in its pass (L313's straightness rule judges it). A bout without
+    such a turn is one pass. Decision C188: these are not turns.csv's turns and do not follow them - the bridged row
+    may be a walking stride (L653 ends a turns.csv turn there) and a row turns from 15 deg whatever its rate (L678's
+    rate may leave a slow wide curve out of turns.csv) - a pass ends where the walk's heading has come round."""
     turns = _row_turns(steps.iloc[a:b])
     turning = np.abs(turns) >= STRAIGHT_MAX_RAD
-    turning[1:-1] |= turning[:-2] & turning[2:]  # L673 amended (review R2 finding 3): one slower stride, as L104's
+    turning[1:-1] |= turning[:-2] & turning[2:]  # L673 (R2 finding 3): one slower row, any kind (C188)
     out, start, k = [], a, 0
     while k < b - a:
         if not turning[k]:
