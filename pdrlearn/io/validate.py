@@ -590,11 +590,19 @@ def clipped_samples(values: np.ndarray, kind: str) -> tuple[int, float]:
     consecutive samples (a sensor at its full scale repeats it; a real peak is not held). Decision B311: or all
     of them when :data:`CLIP_PINNED` or more samples sit at that extreme, one at a time or not (impacts at
     100 Hz clip single samples)."""
+    hit, top = clipped_axes(values, kind)
+    return int(hit.any(axis=1).sum()) if hit.size else 0, top
+
+
+def clipped_axes(values: np.ndarray, kind: str) -> tuple[np.ndarray, float]:
+    """Decisions B77 / B311 per axis (the mechanism of :func:`clipped_samples`; decision B454 declips by it): a boolean
+    array shaped like ``values`` (n x axes; empty for a file B77 does not judge) true at each axis's clipped samples,
+    and the largest clipped |value| (0.0: none)."""
     level = CLIP_LEVEL.get(kind)
     v = np.asarray(values, dtype=float)
     if level is None or v.ndim != 2 or v.shape[0] < CLIP_RUN:
-        return 0, 0.0
-    hit = np.zeros(v.shape[0], dtype=bool)
+        return np.zeros((0, 0), dtype=bool), 0.0
+    hit = np.zeros(v.shape, dtype=bool)
     top = 0.0
     for j in range(v.shape[1]):
         col = v[:, j]
@@ -604,7 +612,7 @@ def clipped_samples(values: np.ndarray, kind: str) -> tuple[int, float]:
                 continue
             at = col == ext
             if _pinned(col, ext, at):  # decision B311: a pinned full-scale value, runs or not
-                hit |= at
+                hit[:, j] |= at
                 top = max(top, abs(float(ext)))
                 continue
             # runs of equal extreme samples: a sample counts when its run is CLIP_RUN long or more
@@ -612,9 +620,9 @@ def clipped_samples(values: np.ndarray, kind: str) -> tuple[int, float]:
             starts, ends = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
             for a, b in zip(starts, ends, strict=True):
                 if b - a >= CLIP_RUN:
-                    hit[a:b] = True
+                    hit[a:b, j] = True
                     top = max(top, abs(float(ext)))
-    return int(hit.sum()), top
+    return hit, top
 
 
 #: decision B405: an axis whose resolution (:func:`axis_step`) is more than this fraction of its extreme has under 50
