@@ -8,8 +8,9 @@ clipped flat at +-2 g / 250, +-4 g / 500, +-8 g / 1000 and +-16 g / 2000 deg/s; 
 candidate on and off (the ``declip`` column; the first candidate, a cubic declipping, was measured by this script at
 commit 6f567ac6). Offline track without a model (``get_pipeline("auto")``), scored by ``track_summary`` against
 steps.csv. Run ``python experiments/clip_range_s46.py [WORKER NWORKERS]`` (each worker writes its share of rows), then
-``python experiments/clip_range_s46.py report`` for the tables and B454's verdict (its rule in
-docs/decisions/bad-input.md).
+``python experiments/clip_range_s46.py fused WORKER NWORKERS`` (the stair walks clipped at +-2 / 4 / 8 g tracked
+with ``altitude="fused"``, decision L688), then ``python experiments/clip_range_s46.py report`` for the tables and
+B454's verdict (its rule in docs/decisions/bad-input.md).
 """
 from __future__ import annotations
 
@@ -34,8 +35,7 @@ BRISK = "stand:3, straight:40, turn:90, straight:20, stand:3"
 SPEEDS = ("slow", "normal", "fast", "brisk")
 RANGES = {"none": None, "2g": (2, 250), "4g": (4, 500), "8g": (8, 1000), "16g": (16, 2000)}
 DECLIPPED = ("4g", "8g")
-#: the rows' ``declip`` column -> B454's candidate (clip_noise) off / on; ``python ... default`` scores the shipped
-#: default in both rows instead (None)
+#: the rows' ``declip`` column -> B454's candidate (clip_noise) off / on
 CANDIDATE = {False: False, True: True}
 WORK = Path(sys.argv[0]).resolve().parent / "results"
 SIM = Path("/tmp/lead_s46/scratch_FE/sim")
@@ -65,9 +65,10 @@ def clipped(s: Session, acc_g: float, gyro_dps: float) -> Session:
     return out
 
 
-def score(s: Session, candidate: bool | None) -> dict:
-    """The offline track's figures; ``candidate`` (B454's clip_noise) True / False given, None: the default."""
-    kw = {} if candidate is None else {"params": {"clip_noise": candidate}}
+def score(s: Session, candidate: bool | None, **options) -> dict:
+    """The offline track's figures; ``candidate`` (B454's clip_noise) True / False given, None: the default;
+    ``options`` the pipeline's (``altitude="fused"``)."""
+    kw = {**options, **({} if candidate is None else {"params": {"clip_noise": candidate}})}
     m = track_summary(get_pipeline("auto")(s, **kw), s)
     return {k: m.get(k) for k in ("distance_error_pct", "final_position_error_m", "final_altitude_error_m",
                                   "altitude_change_m")}
@@ -87,7 +88,28 @@ def run(worker: int, n: int) -> None:
         pd.DataFrame(rows).to_csv(WORK / f"clip_range_s46_part{worker}.csv", index=False)
 
 
+def run_fused(worker: int, n: int) -> None:
+    """Decision L688: the clipped copies tracked with ``altitude="fused"`` (L154: the waist barometer's height)."""
+    jobs = [(u, sp) for u in USERS for sp in SPEEDS if sp != "brisk"][worker::n]
+    rows = []
+    for u, sp in jobs:
+        s0 = read_session(simulate(u, sp))
+        for rng in ("2g", "4g", "8g"):
+            r = {"user": u, "speed": sp, "range": rng, **score(clipped(s0, *RANGES[rng]), None, altitude="fused")}
+            print(r, flush=True)
+            rows.append(r)
+        pd.DataFrame(rows).to_csv(WORK / f"clip_range_s46_fused{worker}.csv", index=False)
+
+
 def report() -> None:
+    fused = sorted(WORK.glob("clip_range_s46_fused*.csv"))
+    if fused:
+        f = pd.concat([pd.read_csv(p) for p in fused])
+        print("altitude fused (L154), median |final altitude error| m / median distance error %, by range x speed:")
+        for rng, g in f.groupby("range", sort=False):
+            print(f"  {rng}: " + "; ".join(f"{sp} {h.final_altitude_error_m.abs().median():.2f} / "
+                                           f"{h.distance_error_pct.median():+.2f}" for sp, h in g.groupby("speed",
+                                                                                                       sort=False)))
     df = pd.concat([pd.read_csv(p) for p in sorted(WORK.glob("clip_range_s46_part*.csv"))])
     df["abs_dist"] = df.distance_error_pct.abs()
     df["abs_alt"] = df.final_altitude_error_m.abs()
@@ -123,5 +145,7 @@ if __name__ == "__main__":
     WORK.mkdir(parents=True, exist_ok=True)
     if sys.argv[1:2] == ["report"]:
         report()
+    elif sys.argv[1:2] == ["fused"]:
+        run_fused(int(sys.argv[2]), int(sys.argv[3]))
     else:
         run(int(sys.argv[1]) if len(sys.argv) > 1 else 0, int(sys.argv[2]) if len(sys.argv) > 2 else 1)
