@@ -108,7 +108,7 @@ def test_l688_the_barometer_line_names_the_clipping_and_altitude_fused(walks):
     line = next(w for w in out["info"]["warnings"] if "disagrees with the waist barometer" in w)
     # before L688: it blamed a lift, an escalator or slopes only
     assert "the foot accelerometer clips at +-4 g (B77), the likely cause here" in line
-    assert "`--altitude fused` (L154) takes the height from the barometer instead (decision L688)" in line
+    assert "`track --altitude fused` (L154) takes the height from the barometer instead (decision L688)" in line
     summary = {"altitude_change_m": 2.45, "barometer_altitude_change_m": -0.38, "barometer_unused": True}
     assert "clips" not in barometer_warning(summary)
     fused = barometer_warning({**summary, "barometer_unused": False}, foot_clip_g=4.0)

@@ -52,7 +52,7 @@ def clipped_cause(clip_g: float | None, fused: bool) -> str:
         return ""
     return (f"the foot accelerometer clips at +-{clip_g:.3g} g (B77), the likely cause here: a clipped heel strike "
             "leaves each stride's vertical velocity off, so the foot's height creeps stride by stride"
-            + ("" if fused else "; `--altitude fused` (L154) takes the height from the barometer instead")
+            + ("" if fused else "; `track --altitude fused` (L154) takes the height from the barometer instead")
             + " (decision L688); otherwise ")
 
 
