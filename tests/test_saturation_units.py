@@ -110,7 +110,8 @@ def test_single_sample_clips_at_a_pinned_full_scale_are_said_b311(tmp_path, capl
         read_session(tmp_path / "s")
     lines = [r.getMessage() for r in caplog.records if "clipped" in r.getMessage()]
     assert len(lines) == 1 and "fAccelerometer.csv: 20 of 2000 samples" in lines[0], lines
-    assert "reached by 5+ samples one at a time" in lines[0] and "above +-4 g (decision B77, B311)" in lines[0]
+    # decision B453 (session 46): a foot accelerometer's line names the range to buy
+    assert "reached by 5+ samples one at a time" in lines[0] and "above +-4 g (a foot: +-8 g or more" in lines[0]
 
 
 def _filtered_impact_walk(full: float | None, fs_out: int = 52, seconds: float = 40.0, seed: int = 10180):

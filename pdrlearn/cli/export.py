@@ -1048,9 +1048,10 @@ def _summary(steps, tracker, lat, source, result, session, storey_height_m: floa
     if session is not None:  # decisions L95 / L113, as track's summary: gait range, withheld stride-time CV
         import logging
 
+        from pdrlearn.io.validate import foot_accel_clip_g
         from pdrlearn.track.evaluate import summary_warnings
 
-        for line in summary_warnings(out):
+        for line in summary_warnings(out, foot_clip_g=foot_accel_clip_g(session)):  # decision L688
             logging.getLogger("pdrlearn.cli").warning("%s: %s", session.name, line)
             out["info"] = {**out["info"], "warnings": [*out["info"].get("warnings", []), line]}
     if session is not None:  # decision C142: each unit's frame status, as track's summary.json

@@ -14,6 +14,7 @@ from pdrlearn.errors import DataError
 from pdrlearn.io.session import Session
 from pdrlearn.kernels import foot_rhythm as FR
 from pdrlearn.kernels import stride as SK
+from pdrlearn.kernels.clip_noise import clip_variance
 from pdrlearn.kernels.frozen_foot import FORCE_LOAD_LEVEL
 from pdrlearn.orient import FootAttitude, UnitData
 from pdrlearn.settings import Rule, annotation_words, broken, broken_line
@@ -298,6 +299,9 @@ class FootDisplacement:
         or "time"), as the ZUPT removes the velocity error; False (default; L68: not adopted) = the attitude of
         the gyroscope alone
     timestamps : decision L83: integrate each stride step over its own sample interval t_k - t_(k-1)
+    clip_noise : decision B454: the accelerometer's clipped samples (B77 / B311) carry the velocity error the ZUPT
+        finds at the next rest (:func:`pdrlearn.kernels.clip_noise.clip_variance`; the Kalman integrator's, M2 /
+        M3: M1's integration has no end ZUPT to attribute); False (default; B454: not adopted) = L21 alone
         (dropped samples lengthen it; an interval over B11's 1 s gap counts one period, as the stride
         across it is zeroed); a clock uniform to 1e-6 uses the fixed ``1 / rate`` bit for bit.
         False = the fixed ``1 / rate`` everywhere (the former rule)
@@ -333,7 +337,7 @@ class FootDisplacement:
                  reference_point: str = "sensor", min_rocker_samples: int = 20, gap_yaw: bool = True,
                  zaru_gyro_rad_s: float = 0.4, yaw: str = "twist", tilt_dedrift: bool = False,
                  tilt_clock: str = "rotation", timestamps: bool = False,
-                 upsample_runs: bool = False, rest_bias: bool = False):
+                 upsample_runs: bool = False, rest_bias: bool = False, clip_noise: bool = False):
         check_settings({k: v for k, v in locals().items() if k != "self"}, "FootDisplacement")  # decision B206
         if tilt_clock not in ("time", "rotation"):
             raise DataError(f"FootDisplacement: tilt_clock '{tilt_clock}' is not 'time' or 'rotation'")
@@ -341,6 +345,7 @@ class FootDisplacement:
         self.timestamps = bool(timestamps)
         self.upsample_runs = bool(upsample_runs)
         self.rest_bias = bool(rest_bias)
+        self.clip_noise = bool(clip_noise)
         if yaw not in ("twist", "x-axis"):
             raise DataError(f"FootDisplacement: yaw '{yaw}' is not 'twist' or 'x-axis'")
         self.yaw = yaw
@@ -413,6 +418,7 @@ class FootDisplacement:
         zupt0 = K.erode_runs(stance0, self.zupt_erode, max_cut=int(round(self.zupt_erode_max_s * fs0)))
         t, acc, gyr, fs, k = self._grid(unit)
         self.t_ = t
+        clip_var = clip_variance(unit.acc, k, 1.0 / (fs0 * k)) if self.clip_noise else None  # decision B454
         self.stance_ = np.repeat(stance0, k)
         zupt_stance = np.repeat(zupt0, k)
         period = 1.0 / fs
@@ -481,6 +487,9 @@ class FootDisplacement:
             # decision L21: velocity errors proportional to |a| (scale, bandwidth, clipped impacts)
             dts = dt if np.ndim(dt) == 0 else np.concatenate([np.zeros((B, 1)), dt], axis=1)
             q_vel = s2 * np.sum(a_nav ** 2, axis=2) * dts * dts if s2 > 0 else None
+            if clip_var is not None:  # decision B454: the clipped impacts' missing acceleration
+                q_clip = np.where(mask, clip_var[idx], 0.0)
+                q_vel = q_clip if q_vel is None else q_vel + q_clip
             self.disp_ = K.wnj_displacement(a_nav, mask, dt, sw=self.sw, r=self.r, zupt=self.zupt_end,
                                             zupt_at=zm, q_vel=q_vel)
         else:

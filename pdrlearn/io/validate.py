@@ -590,11 +590,19 @@ def clipped_samples(values: np.ndarray, kind: str) -> tuple[int, float]:
     consecutive samples (a sensor at its full scale repeats it; a real peak is not held). Decision B311: or all
     of them when :data:`CLIP_PINNED` or more samples sit at that extreme, one at a time or not (impacts at
     100 Hz clip single samples)."""
+    hit, top = clipped_axes(values, kind)
+    return int(hit.any(axis=1).sum()) if hit.size else 0, top
+
+
+def clipped_axes(values: np.ndarray, kind: str) -> tuple[np.ndarray, float]:
+    """Decisions B77 / B311 per axis (the mechanism of :func:`clipped_samples`; decision B454 declips by it): a boolean
+    array shaped like ``values`` (n x axes; empty for a file B77 does not judge) true at each axis's clipped samples,
+    and the largest clipped |value| (0.0: none)."""
     level = CLIP_LEVEL.get(kind)
     v = np.asarray(values, dtype=float)
     if level is None or v.ndim != 2 or v.shape[0] < CLIP_RUN:
-        return 0, 0.0
-    hit = np.zeros(v.shape[0], dtype=bool)
+        return np.zeros((0, 0), dtype=bool), 0.0
+    hit = np.zeros(v.shape, dtype=bool)
     top = 0.0
     for j in range(v.shape[1]):
         col = v[:, j]
@@ -604,7 +612,7 @@ def clipped_samples(values: np.ndarray, kind: str) -> tuple[int, float]:
                 continue
             at = col == ext
             if _pinned(col, ext, at):  # decision B311: a pinned full-scale value, runs or not
-                hit |= at
+                hit[:, j] |= at
                 top = max(top, abs(float(ext)))
                 continue
             # runs of equal extreme samples: a sample counts when its run is CLIP_RUN long or more
@@ -612,9 +620,18 @@ def clipped_samples(values: np.ndarray, kind: str) -> tuple[int, float]:
             starts, ends = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
             for a, b in zip(starts, ends, strict=True):
                 if b - a >= CLIP_RUN:
-                    hit[a:b] = True
+                    hit[a:b, j] = True
                     top = max(top, abs(float(ext)))
-    return int(hit.sum()), top
+    return hit, top
+
+
+def foot_accel_clip_g(session) -> float | None:
+    """Decision L688: the full scale (g) of the session's foot accelerometer where B77 / B311 call it clipped
+    (:func:`clipped_samples`), else None (no foot accelerometer, or none clipped)."""
+    if session is None or "fAccelerometer" not in session.streams:
+        return None
+    n, top = clipped_samples(session.streams["fAccelerometer"].values, "accelerometer")
+    return top / STANDARD_GRAVITY if n else None
 
 
 #: decision B405: an axis whose resolution (:func:`axis_step`) is more than this fraction of its extreme has under 50
@@ -725,6 +742,42 @@ FOOT_PEAK_DPS = (560, 990)
 FOOT_GYRO_RANGE_DPS = 1000
 
 
+#: decision B453 (trial T3 finding F1): what a foot accelerometer clipped at a full scale (g) cost the offline foot
+#: track without B454's correction, printed by experiments/clip_range_s46.py (simulated users 14300-14305, 100 Hz,
+#: the foot gyroscope clipped at 250 / 500 / 1000 deg/s alongside): the median distance error (%) at --speed slow,
+#: normal, fast and a brisk 2.26 m/s level walk, and the median |final altitude error| (m) of the normal-speed stair
+#: walks (a 2.04 m flight up and back down); +-16 g cost nothing measurable (the brisk walk's peaks reach ~16 g)
+FOOT_ACCEL_CLIP_COST = {2.0: (-7.12, -15.13, -29.19, -50.77, 4.54), 4.0: (-1.26, -2.75, -8.25, -26.85, 1.06),
+                        8.0: (+0.14, -0.11, -0.37, -3.20, 0.22)}
+#: decision B454: the same figures with ``FootDisplacement(clip_noise=True)`` (a --params JSON file with
+#: {"clip_noise": true}; kept as an option by B454's rule), measured at +-4 g and +-8 g only
+FOOT_ACCEL_CLIP_NOISE = {4.0: (+0.35, -0.39, -1.04, -21.40, 0.01), 8.0: (+0.15, -0.13, -0.11, -0.46, 0.01)}
+#: decision B453: the median distance error (%) of the same walks unclipped reaches at most this far from 0
+FOOT_UNCLIPPED_PCT = 0.20
+#: decision B453: the foot accelerometer ranges to buy (g): walking, brisk walking (the simulator has no running gait)
+FOOT_ACCEL_RANGE_G = (8, 16)
+
+
+def foot_accel_cost(top: float) -> str:
+    """Decision B453: the clause giving a clipped foot accelerometer's cost at the measured full scale nearest
+    ``top`` (m/s^2) in ratio (:data:`FOOT_ACCEL_CLIP_COST`) and, decision B454, what ``clip_noise`` left of it
+    (:data:`FOOT_ACCEL_CLIP_NOISE`); "" above 12 g (+-16 g: nothing measurable)."""
+    g = top / STANDARD_GRAVITY
+    if not g < 12.0:
+        return ""
+    scale = min(FOOT_ACCEL_CLIP_COST, key=lambda k: abs(math.log(k / g)))
+
+    def figures(row: tuple) -> str:
+        return " / ".join(f"{x:+.2f}" for x in row[:4]) + f" %, {row[4]:.2f} m"
+
+    noise = FOOT_ACCEL_CLIP_NOISE.get(scale)
+    fix = ("" if noise is None else '; the offline track with a --params JSON file holding {"clip_noise": true} puts '
+           f"each stride's ZUPT error at the clipped samples: {figures(noise)} (B454)")
+    return (f"; simulated walks clipped at +-{scale:g} g tracked the distance (median at slow / normal / fast / a "
+            f"brisk 2.26 m/s; unclipped within {FOOT_UNCLIPPED_PCT:.2f} %) and the end height after a 2 m flight up "
+            f"and back down: {figures(FOOT_ACCEL_CLIP_COST[scale])} off{fix}")
+
+
 def saturation_warning(where: str, kind: str, n: int, total: int, top: float, unit_name: str = "foot", *,
                        moving: int | None = None, waist: bool = True) -> str:
     """Decision B77's one line: the file, the fraction of clipped samples and what it does to the results;
@@ -739,7 +792,15 @@ def saturation_warning(where: str, kind: str, n: int, total: int, top: float, un
              if unit_name == "foot" else "the lower back's step peaks and the step lengths read from its vertical "
              "movement are cut short")
     effect = accel if kind == "accelerometer" else "the integrated attitude and heading lose the rotation beyond it"
-    share, remedy, codes = "", "", "B77, B311"
+    share, remedy, codes, cost = "", "", "B77, B311", ""
+    if kind == "accelerometer" and unit_name == "foot":  # decision B453: the size of the effect and the range to buy
+        cost = foot_accel_cost(top)
+        walk, brisk = FOOT_ACCEL_RANGE_G
+        if top < 0.99 * walk * STANDARD_GRAVITY:
+            remedy = f" (a foot: +-{walk} g or more for walking, +-{brisk} g for brisk walking or running)"
+        elif top < 0.99 * brisk * STANDARD_GRAVITY:
+            remedy = f" (a foot: +-{brisk} g for brisk walking or running)"
+        codes = "B77, B311, B453" if cost else codes
     if kind == "gyroscope" and moving:  # decision B401: the size of the effect, measured on the file
         share = f"; {100.0 * n / moving:.2g} % of its moving samples (|w| >= {MOVING_RAD_S:g} rad/s) are at full scale"
         codes = "B77, B311, B401"
@@ -759,5 +820,5 @@ def saturation_warning(where: str, kind: str, n: int, total: int, top: float, un
         codes = "B77, B311, B401"
     return coded(f"{where}: {n} of {total} samples ({100.0 * n / total:.2g} %) are clipped at +-{top:.4g} {unit} (the "
             f"sensor's full scale: held for {CLIP_RUN}+ samples in a row, or reached by {CLIP_PINNED}+ samples one at "
-            f"a time){share}: {effect}, so distances and headings come out wrong there; record with a range above "
-            f"+-{rng}{remedy} (decision {codes})", "B77")  # decision E170
+            f"a time){share}: {effect}, so distances and headings come out wrong there{cost}; record with a range "
+            f"above +-{rng}{remedy} (decision {codes})", "B77")  # decision E170

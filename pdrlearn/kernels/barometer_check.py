@@ -44,7 +44,19 @@ def _climb_miss(summary: dict, ridden: dict | None = None) -> tuple[str, float] 
     return max(misses, key=lambda m: m[1]) if misses else None
 
 
-def barometer_warning(summary: dict) -> str | None:
+def clipped_cause(clip_g: float | None, fused: bool) -> str:
+    """Decision L688 (trial T3 finding F2): the words naming a clipped foot accelerometer (B77, at +-``clip_g`` g) as
+    the likely cause of a foot altitude the barometer disagrees with, and ``--altitude fused`` as the remedy when the
+    track did not fuse it; "" when the accelerometer did not clip (None)."""
+    if not clip_g:
+        return ""
+    return (f"the foot accelerometer clips at +-{clip_g:.3g} g (B77), the likely cause here: a clipped heel strike "
+            "leaves each stride's vertical velocity off, so the foot's height creeps stride by stride"
+            + ("" if fused else "; `track --altitude fused` (L154) takes the height from the barometer instead")
+            + " (decision L688); otherwise ")
+
+
+def barometer_warning(summary: dict, *, foot_clip_g: float | None = None) -> str | None:
     """Decision L145: one line when a foot track's ``altitude_change_m`` and the session's waist barometer
     (``barometer_altitude_change_m``, recorded; read by the foot pipeline only with ``altitude="fused"``, L154)
     differ by more than ``barometer_disagree_limit_m`` (:data:`BAROMETER_DISAGREE_M` + the weather's drift over the
@@ -76,6 +88,7 @@ def barometer_warning(summary: dict) -> str | None:
     # decision L632: a track whose rides.csv holds a ride read the lifts; the lower back would read no more of them
     lifts = ("" if ridden is not None and (ridden["ascent"] or ridden["descent"]) else
              "; for floors by lift or escalator track the lower back, `--pipeline waist-pendulum`")
+    cause = clipped_cause(foot_clip_g, fused)  # decision L688
     advice = (lifts + "; for altitude on slopes, hills and ramps "
               + ("" if fused else "fuse the barometer, `--altitude fused` (L154), or ") + "track the lower back")
     if not abs(float(foot) - float(baro)) > float(limit):
@@ -106,7 +119,7 @@ def barometer_warning(summary: dict) -> str | None:
                 f"otherwise {_FOOT_BLIND}{advice} (decision L225)")
     return (f"foot altitude change {float(foot):+.2f} m disagrees with the waist barometer's {float(baro):+.2f} m"
             f"{drifted} {source} by {abs(float(foot) - float(baro)):.2f} m (more than {float(limit):.2f} m){why}; "
-            f"{_FOOT_BLIND}{advice}")
+            f"{cause}{_FOOT_BLIND}{advice}")
 
 
 def _closed_by_floors(summary: dict, foot: float) -> str | None:

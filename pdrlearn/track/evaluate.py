@@ -1514,7 +1514,7 @@ def lower_back_grade_warning(summary: dict) -> str | None:
             + "; a ramp may also be split across a level stretch (decision W463)")
 
 
-def summary_warnings(summary: dict) -> list[str]:
+def summary_warnings(summary: dict, *, foot_clip_g: float | None = None) -> list[str]:
     """The warning lines a track's summary itself gives (``track`` and ``run``): decision L95's gait range,
     L353's reported gait speed below it while L95's judged figures are inside, and L195's bouts above it, decision
     L113's withheld stride-time CV, decision L196's CV pooled over bouts of different rhythm (L380: the stride-length
@@ -1523,7 +1523,9 @@ def summary_warnings(summary: dict) -> list[str]:
     implausible barometer, decision L175's position uncertainty against the distance walked (and L341's radius
     beyond its calibration routes), decision L319's reference trajectory that does not travel, decision L414's
     --toe-off stance times below the contacts they were checked on, decision L574's empty ramps table of a foot
-    track that left a climbing barometer unread, and decision W463's lower-back grades."""
+    track that left a climbing barometer unread, and decision W463's lower-back grades. Decision L688:
+    ``foot_clip_g`` (:func:`pdrlearn.io.validate.foot_accel_clip_g`) names a clipped foot accelerometer in L145's
+    line."""
     from pdrlearn.track.clinical import (
         pooled_cv_warning,
         pooled_length_cv_warning,
@@ -1544,7 +1546,8 @@ def summary_warnings(summary: dict) -> list[str]:
                         bout_range_warning(summary), stride_cv_warning(summary),
                         pooled_cv_warning(summary), pooled_length_cv_warning(summary),  # L380
                         resolution_warning(summary),
-                        barometer_warning(summary), drift_warning(summary), summary.get("barometer_implausible"),
+                        barometer_warning(summary, foot_clip_g=foot_clip_g),  # decision L688
+                        drift_warning(summary), summary.get("barometer_implausible"),
                         weather_drift_warning(summary),  # decision L464
                         climb_total_warning(summary),  # decision L566
                         ramps_need_fused_warning(summary),  # decision L574
@@ -1775,7 +1778,9 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
         placement = foot_placement_line(session, stats, "")  # L352: the loop prefixes session.where; W415
         scale = foot_scale_warning(stats, "")  # decision B201: the foot accelerometer's rest |acc| off 1 g
     add_gait_range_flag(summary)  # decision L195
-    lines = summary_warnings(summary)
+    from pdrlearn.io.validate import foot_accel_clip_g
+
+    lines = summary_warnings(summary, foot_clip_g=foot_accel_clip_g(session))  # decision L688
     if placement:  # its cadence is not a foot's: B134's line replaces L95's "looks like running" guess
         from pdrlearn.track.gait import gait_range_warning
 
