@@ -12,17 +12,18 @@ import pandas as pd
 import pytest
 
 from pdrlearn.cli import main
-from tests.cli_helpers import simulated_session_and_model
+from tests._shared_i2 import cli_sessions
 
 GAITMAP = Path(__file__).resolve().parents[1] / "datasets" / "real" / "gaitmap_stairs_down_left"
 
 
 @pytest.fixture(scope="module")
 def base(tmp_path_factory) -> dict[str, Path]:
-    """A small simulated session (foot + waist, labelled) and a heuristic model trained on it (~3 s)."""
-    root = tmp_path_factory.mktemp("bad_input")
-    good, model = simulated_session_and_model(root)
-    return {"root": root, "good": good, "model": model}
+    """A small simulated session (foot + waist, labelled: the terrain exercise of user 3) and a heuristic model
+    trained on it, made once per test run (:func:`tests._shared_i2.cli_sessions`, the set-up of
+    :func:`tests.cli_helpers.simulated_session_and_model`): read-only, every test that edits one copies it."""
+    shared = cli_sessions(tmp_path_factory)
+    return {"root": shared["root"], "good": shared["terrain"], "model": shared["model"]}
 
 
 def _copy(src: Path, dst: Path) -> Path:
