@@ -32,3 +32,20 @@ def cli_sessions(tmp_path_factory) -> dict[str, Path]:
         _CACHE["root"] = made_once(tmp_path_factory, "cli_sessions_i2", _make_cli_sessions)
     root = _CACHE["root"]
     return {"root": root, "A": root / "A", "terrain": root / "terrain", "model": root / "model"}
+
+
+def edited_copy(src: Path, folder: Path, key: str, edit, copy=None) -> Path:
+    """``folder / key / "session"``: a copy of ``src`` changed by ``edit(copy)``, made at the first call and returned
+    as it is at the next ones (a ``done`` marker beside it: ``edit`` may delete the copy). For the tables of
+    malformed sessions that several commands read (session 46: each case copied and edited its own; the commands
+    stop while reading it or write only into their --out): read-only, like :func:`cli_sessions`'s folders.
+    ``copy(src, dst)``: how to copy (``shutil.copytree`` by default)."""
+    import shutil
+
+    s = folder / key / "session"
+    done = s.with_name("done")
+    if not done.exists():
+        (copy or shutil.copytree)(src, s)
+        edit(s)
+        done.touch()
+    return s

@@ -18,7 +18,7 @@ import pandas as pd
 import pytest
 
 from pdrlearn.cli import main
-from tests._shared_i2 import cli_sessions
+from tests._shared_i2 import cli_sessions, edited_copy
 
 ROOT = Path(__file__).resolve().parents[1]
 BUNDLE = ROOT / "models" / "plasys-sim-default"
@@ -135,16 +135,9 @@ def _session(base, tmp_path, edit) -> Path:
 
 
 def _shared_session(base, key: str, edit) -> Path:
-    """The copy of scenario A edited by ``edit``, made once per module under ``key`` for the commands that read it:
-    each writes only into its own --out / --report (session 46: a copy and an edit per case before, 0.05-0.3 s each;
-    the sweep has ~300 cases)."""
-    s = base["malformed"] / key / "session"
-    done = s.with_name("done")
-    if not done.exists():
-        shutil.copytree(base["A"], s)
-        edit(s)
-        done.touch()
-    return s
+    """The copy of scenario A edited by ``edit``, made once per module under ``key`` for the commands that read it
+    (:func:`tests._shared_i2.edited_copy`; each command writes only into its own --out / --report)."""
+    return edited_copy(base["A"], base["malformed"], key, edit)
 
 
 def _one_error_line(argv, capsys) -> str:
