@@ -49,3 +49,28 @@ def edited_copy(src: Path, folder: Path, key: str, edit, copy=None) -> Path:
         edit(s)
         done.touch()
     return s
+
+
+#: the real foot recordings of the 204.8 Hz terrain bundle (gaitmap, left foot: level, stairs up, stairs down)
+GAITMAP_TRAIN = ("gaitmap_level_left", "gaitmap_stairs_up_left", "gaitmap_stairs_down_left")
+
+
+def _make_gaitmap_bundle(root: Path) -> None:
+    """An SVM terrain model trained on :data:`GAITMAP_TRAIN` (3 folds, seed 0) and its bundle with their foot frame."""
+    from pdrlearn.classify import train_user
+    from pdrlearn.export.from_model import export_model
+    from pdrlearn.io import read_session
+    from tests.conftest import REAL
+
+    train = [read_session(REAL / n) for n in GAITMAP_TRAIN]
+    train_user(train, tasks=["terrain"], cv=3, seed=0, methods=["svm"]).save(root / "model")
+    export_model(root / "model", root / "bundle", frames={"foot": train[0].frames["foot"].to_dict()})
+
+
+def gaitmap_bundle(tmp_path_factory) -> Path:
+    """The folder holding ``model`` and ``bundle`` of :func:`_make_gaitmap_bundle`, made once per test run
+    (test_runtime_resample.py's 204.8 Hz bundle and test_runtime_parity.py's real-recording test trained the same
+    model each); read-only, like :func:`cli_sessions`'s folders."""
+    if "gaitmap" not in _CACHE:
+        _CACHE["gaitmap"] = made_once(tmp_path_factory, "gaitmap_bundle_i2", _make_gaitmap_bundle)
+    return _CACHE["gaitmap"]
