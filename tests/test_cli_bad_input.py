@@ -12,17 +12,19 @@ import pandas as pd
 import pytest
 
 from pdrlearn.cli import main
-from tests.cli_helpers import simulated_session_and_model
+from tests._shared_i2 import cli_sessions, edited_copy
 
 GAITMAP = Path(__file__).resolve().parents[1] / "datasets" / "real" / "gaitmap_stairs_down_left"
 
 
 @pytest.fixture(scope="module")
 def base(tmp_path_factory) -> dict[str, Path]:
-    """A small simulated session (foot + waist, labelled) and a heuristic model trained on it (~3 s)."""
-    root = tmp_path_factory.mktemp("bad_input")
-    good, model = simulated_session_and_model(root)
-    return {"root": root, "good": good, "model": model}
+    """A small simulated session (foot + waist, labelled: the terrain exercise of user 3) and a heuristic model
+    trained on it, made once per test run (:func:`tests._shared_i2.cli_sessions`, the set-up of
+    :func:`tests.cli_helpers.simulated_session_and_model`): read-only, every test that edits one copies it."""
+    shared = cli_sessions(tmp_path_factory)
+    return {"root": shared["root"], "good": shared["terrain"], "model": shared["model"],
+            "edited": tmp_path_factory.mktemp("bad_input_edited")}
 
 
 def _copy(src: Path, dst: Path) -> Path:
@@ -107,8 +109,7 @@ def run(argv: list[str], capsys) -> str:
 @pytest.mark.parametrize("defect", list(DEFECTS))
 def test_bad_session(base, tmp_path, capsys, defect, command):
     edit, expected = DEFECTS[defect]
-    session = _copy(base["good"], tmp_path / "session")
-    edit(session)
+    session = edited_copy(base["good"], base["edited"], defect, edit, copy=_copy)  # one per defect: read-only
     out = tmp_path / "out"
     argv, written = _commands(session, base["model"], out)[command]
     msg = run(argv, capsys)

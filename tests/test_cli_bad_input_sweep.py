@@ -18,6 +18,7 @@ import pandas as pd
 import pytest
 
 from pdrlearn.cli import main
+from tests._shared_i2 import cli_sessions, edited_copy
 
 ROOT = Path(__file__).resolve().parents[1]
 BUNDLE = ROOT / "models" / "plasys-sim-default"
@@ -25,13 +26,10 @@ BUNDLE = ROOT / "models" / "plasys-sim-default"
 
 @pytest.fixture(scope="module")
 def base(tmp_path_factory) -> dict[str, Path]:
-    """Scenario A (26 s, foot + waist, labelled) and a heuristic terrain model (~5 s)."""
-    root = tmp_path_factory.mktemp("sweep")
-    assert main(["simulate", "-s", "A", "-u", "1", "--out", str(root / "A"), "--json"]) == 0
-    assert main(["simulate", "-s", "terrain", "-u", "3", "--out", str(root / "terrain"), "--json"]) == 0
-    assert main(["train", str(root / "terrain"), "--out", str(root / "model"), "--methods", "heuristic", "--tasks",
-                 "terrain", "--cv", "3", "--json"]) == 0
-    return {"root": root, "A": root / "A", "model": root / "model"}
+    """Scenario A (26 s, foot + waist, labelled) and a heuristic terrain model (made once per test run and shared
+    with test_cli_outputs.py: read-only, every test edits a copy); ``malformed``: a folder for the copies that
+    :func:`_malformed` shares between the commands."""
+    return {**cli_sessions(tmp_path_factory), "malformed": tmp_path_factory.mktemp("sweep_malformed")}
 
 
 def _edit(name: str, fn):
@@ -136,6 +134,12 @@ def _session(base, tmp_path, edit) -> Path:
     return s
 
 
+def _shared_session(base, key: str, edit) -> Path:
+    """The copy of scenario A edited by ``edit``, made once per module under ``key`` for the commands that read it
+    (:func:`tests._shared_i2.edited_copy`; each command writes only into its own --out / --report)."""
+    return edited_copy(base["A"], base["malformed"], key, edit)
+
+
 def _one_error_line(argv, capsys) -> str:
     rc = main(argv)
     captured = capsys.readouterr()
@@ -151,8 +155,8 @@ def _one_error_line(argv, capsys) -> str:
 @pytest.mark.parametrize("command", COMMANDS)
 @pytest.mark.parametrize("defect", list(ERRORS))
 def test_malformed_session_is_one_line_naming_the_file(base, tmp_path, capsys, defect, command):
-    edit, expected, filename = ERRORS[defect]
-    s = _session(base, tmp_path, edit)
+    _, expected, filename = ERRORS[defect]
+    s = _shared_session(base, defect, ERRORS[defect][0])
     out = tmp_path / "out"
     msg = _one_error_line(_commands(s, out, base["model"])[command], capsys)
     assert any(e in msg for e in ((expected,) if isinstance(expected, str) else expected)), msg
@@ -169,7 +173,7 @@ NEEDS_FOOT = ["steps", "track-M1", "track-M2", "track-M3", "track-M3-streaming",
 @pytest.mark.parametrize(("kind", "command"), [("foot_only", c) for c in NEEDS_WAIST]
                          + [("waist_only", c) for c in NEEDS_FOOT])
 def test_a_session_without_the_unit_a_command_needs(base, tmp_path, capsys, kind, command):
-    s = _session(base, tmp_path, _drop_unit("w" if kind == "foot_only" else "f"))
+    s = _shared_session(base, kind, _drop_unit("w" if kind == "foot_only" else "f"))
     out = tmp_path / "out"
     msg = _one_error_line(_commands(s, out, base["model"])[command], capsys)
     missing = "wAccelerometer" if kind == "foot_only" else "fAccelerometer"
@@ -222,7 +226,7 @@ WARNINGS = {
 @pytest.mark.parametrize(("defect", "command"), [(d, c) for d, (_, cs) in WARNINGS.items() for c in cs])
 def test_usable_data_succeeds_with_a_warning(base, tmp_path, capsys, defect, command):
     edit, expected = WARNINGS[defect]
-    s = _session(base, tmp_path, edit)
+    s = _shared_session(base, f"usable_{defect}", edit)
     rc = main(_commands(s, tmp_path / "out", base["model"])[command])
     err = capsys.readouterr().err
     lines = [ln for ln in err.splitlines() if ln.strip()]
@@ -342,7 +346,7 @@ def test_meta_json_without_frames(base, tmp_path, capsys, command):
     """A meta.json lacking "frames" on data that does not fix the axes (units turned 45 deg about the
     vertical): the commands that need a unit's axes stop with one line naming the unit, why the data does
     not fix them and the entry to add (info/plot/steps do not need them; run takes the bundle's)."""
-    s = _session(base, tmp_path, _unframed(45.0))
+    s = _shared_session(base, "unframed_yawed", _unframed(45.0))
     out = tmp_path / "out"
     msg = _one_error_line(_commands(s, out, base["model"])[command], capsys)
     assert "frame" in msg and str(s / "meta.json") in msg and "sim_A_u1_normal_s0" in msg, msg
@@ -356,7 +360,7 @@ def test_meta_json_without_frames(base, tmp_path, capsys, command):
 def test_meta_json_without_frames_infers_them_with_a_warning(base, tmp_path, capsys, command):
     """Decision D8: without "frames" the axes come from the data, with one warning line per unit naming
     meta.json, the frame found and the entry to declare if it is wrong."""
-    s = _session(base, tmp_path, _unframed())
+    s = _shared_session(base, "unframed", _unframed())
     rc = main(_commands(s, tmp_path / "out", base["model"])[command])
     err = capsys.readouterr().err
     lines = [ln for ln in err.splitlines() if "inferred from the data" in ln]

@@ -13,6 +13,7 @@ import pandas as pd
 import pytest
 
 from pdrlearn.cli import _hoist_verbose, main
+from tests._shared_i2 import cli_sessions
 
 ROOT = Path(__file__).resolve().parents[1]
 BUNDLE = ROOT / "models" / "plasys-sim-default"
@@ -28,19 +29,13 @@ def _cut(folder: Path, t0_ms: float, t1_ms: float) -> None:
 @pytest.fixture(scope="module")
 def data(tmp_path_factory) -> dict[str, Path]:
     """Scenario A (26 s, foot + waist), the same with a 5 s gap in every stream, and a terrain session with a
-    heuristic model (~6 s)."""
-    root = tmp_path_factory.mktemp("cli_outputs")
-    a = root / "A"
-    assert main(["simulate", "-s", "A", "-u", "1", "--out", str(a), "--json"]) == 0
-    gap = root / "A_gap"
-    shutil.copytree(a, gap)
+    heuristic model (made once per test run and shared with test_cli_bad_input_sweep.py: read-only, a test that
+    edits one copies it)."""
+    shared = cli_sessions(tmp_path_factory)
+    gap = tmp_path_factory.mktemp("cli_outputs") / "A_gap"
+    shutil.copytree(shared["A"], gap)
     _cut(gap, 10_000, 15_000)
-    terrain = root / "terrain"
-    assert main(["simulate", "-s", "terrain", "-u", "3", "--out", str(terrain), "--json"]) == 0
-    model = root / "model"
-    assert main(["train", str(terrain), "--out", str(model), "--methods", "heuristic", "--tasks", "terrain",
-                 "--cv", "3", "--json"]) == 0
-    return {"root": root, "A": a, "gap": gap, "terrain": terrain, "model": model}
+    return {**shared, "gap": gap}
 
 
 def _stderr_of(argv, capsys) -> list[str]:

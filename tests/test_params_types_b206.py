@@ -15,14 +15,16 @@ import pytest
 
 from pdrlearn.cli import main
 from pdrlearn.errors import DataError, ModelError
-from tests.cli_helpers import simulated_session_and_model
+from tests._shared_i2 import cli_sessions
 
 
 @pytest.fixture(scope="module")
 def base(tmp_path_factory):
-    root = tmp_path_factory.mktemp("b206")
-    good, model = simulated_session_and_model(root)
-    return {"root": root, "good": good, "model": model}
+    """The terrain exercise of user 3 and a heuristic model trained on it, made once per test run
+    (:func:`tests._shared_i2.cli_sessions`, the set-up of :func:`tests.cli_helpers.simulated_session_and_model`):
+    read-only, every test that edits one copies it."""
+    shared = cli_sessions(tmp_path_factory)
+    return {"root": shared["root"], "good": shared["terrain"], "model": shared["model"]}
 
 
 def error_line(argv: list[str], capsys) -> str:

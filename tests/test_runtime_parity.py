@@ -239,22 +239,19 @@ def test_step_windows_equal_training_side_on_real_204hz_foot_data(gaitmap_level_
     np.testing.assert_allclose(W, ref, atol=1e-8, equal_nan=True)
 
 
-def test_real_foot_recordings_stream_like_the_training_side(real_dir, tmp_path):
+def test_real_foot_recordings_stream_like_the_training_side(real_dir, tmp_path_factory):
     """Terrain model trained on the real gaitmap foot recordings (204.8 Hz), exported, and the real
-    right-foot walk streamed through the runtime: every streamed step classified as predict_steps does."""
+    right-foot walk streamed through the runtime: every streamed step classified as predict_steps does (the saved
+    model, made once per test run and shared with test_runtime_resample.py)."""
     import pandas as pd
 
-    from pdrlearn.classify import train_user
-    from pdrlearn.export.from_model import export_model
     from pdrlearn.io import read_session
+    from tests._shared_i2 import GAITMAP_TRAIN, gaitmap_bundle
 
-    train = [read_session(real_dir / n) for n in
-             ("gaitmap_level_left", "gaitmap_stairs_up_left", "gaitmap_stairs_down_left")]
-    model = train_user(train, tasks=["terrain"], cv=3, seed=0, methods=["svm"])
-    model.save(tmp_path / "model")
-    export_model(tmp_path / "model", tmp_path / "bundle", frames={"foot": train[0].frames["foot"].to_dict()})
-    for s in (read_session(real_dir / "gaitmap_level_right"), train[1]):
-        tr = Tracker(tmp_path / "bundle", frames={p: f.to_dict() for p, f in s.frames.items()})
+    root = gaitmap_bundle(tmp_path_factory)
+    model = load_model(root / "model")
+    for s in (read_session(real_dir / "gaitmap_level_right"), read_session(real_dir / GAITMAP_TRAIN[1])):
+        tr = Tracker(root / "bundle", frames={p: f.to_dict() for p, f in s.frames.items()})
         t = s.streams["fAccelerometer"].t
         steps = []
         for a in np.arange(t[0], t[-1] + 0.5, 0.5):

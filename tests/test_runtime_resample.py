@@ -360,17 +360,11 @@ def test_run_verbose_says_the_resampling_once(dirs, tmp_path, capsys):
 
 @pytest.fixture(scope="module")
 def real_bundle(tmp_path_factory):
-    from pdrlearn.classify import train_user
-    from pdrlearn.export.from_model import export_model
-    from pdrlearn.io import read_session
-    from tests.conftest import REAL
+    """An SVM terrain model of three gaitmap foot recordings and its bundle (made once per test run and shared
+    with test_runtime_parity.py: read-only)."""
+    from tests._shared_i2 import gaitmap_bundle
 
-    root = tmp_path_factory.mktemp("real204")
-    train = [read_session(REAL / n) for n in ("gaitmap_level_left", "gaitmap_stairs_up_left",
-                                              "gaitmap_stairs_down_left")]
-    train_user(train, tasks=["terrain"], cv=3, seed=0, methods=["svm"]).save(root / "model")
-    export_model(root / "model", root / "bundle", frames={"foot": train[0].frames["foot"].to_dict()})
-    return root
+    return gaitmap_bundle(tmp_path_factory)
 
 
 def _decimated(src, dst, every=2, acc_short_s=0.0):
