@@ -178,7 +178,7 @@ def test_sigterm_is_handled_as_ctrl_c(walk, tmp_path):
             "    real(tmp, tracked)\n"
             "    os.kill(os.getpid(), signal.SIGTERM)  # while the output is being written\n"
             "T.write_track = write\n"
-            f"sys.exit(main(['track', {str(walk)!r}, '--out', {str(out)!r}]))\n")
+            f"sys.exit(main(['track', '--no-plot', {str(walk)!r}, '--out', {str(out)!r}]))\n")  # no figure read
     run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300,
                          env={**os.environ, "PYTHONPATH": str(Path(__file__).resolve().parents[1])})
     assert run.returncode == 143, run.stderr[-500:]

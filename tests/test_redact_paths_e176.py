@@ -43,7 +43,8 @@ def test_track_redact_paths_leaves_no_folder_in_any_output(layout, tmp_path, mon
     """E176: track from the patient's folder, session typed relative: without the option summary.json and run.json
     name the patient folder (the trial's finding); with it no file does, run.json says paths_redacted."""
     monkeypatch.chdir(layout / "walks")
-    assert main(["track", "w", "--out", str(tmp_path / "plain"), "--json"]) == 0
+    # --no-plot (session 46) for the run without the option only: the redacted run's path.png is scanned too
+    assert main(["track", "--no-plot", "w", "--out", str(tmp_path / "plain"), "--json"]) == 0
     assert main(["track", "w", "--out", str(tmp_path / "red"), "--redact-paths", "--json"]) == 0
     printed = capsys.readouterr().out.strip().splitlines()[-1]
     assert set(_leaks(tmp_path / "plain", layout)) >= {"run.json", "summary.json"}
@@ -69,7 +70,7 @@ def test_track_all_redact_paths_covers_the_hidden_record_and_resumes(layout, tmp
     assert json.loads((out / "run.json").read_text())["root"] == REDACTED
     assert main(["track-all", "study", "--out", str(out), "--redact-paths", "--resume", "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["n_reused"] == 2
-    assert main(["track-all", "study", "--out", str(tmp_path / "plain"), "--json"]) == 0
+    assert main(["track-all", "--no-plot", "study", "--out", str(tmp_path / "plain"), "--json"]) == 0
     capsys.readouterr()
     assert ".track-all-session.json" in " ".join(_leaks(tmp_path / "plain", layout))  # the trial's finding
 
@@ -89,7 +90,7 @@ def test_run_and_calibrate_redact_paths(layout, tmp_path, monkeypatch, capsys):
     assert main(["calibrate", "w", "-d", str(distance), "--out", str(tmp_path / "p.json"), "--redact-paths"]) == 0
     params = json.loads((tmp_path / "p.json").read_text())
     assert params["fit"] == [REDACTED] and params["paths_redacted"] is True
-    assert main(["track", "w", "--pipeline", "waist-pendulum", "--params", str(tmp_path / "p.json"),
+    assert main(["track", "--no-plot", "w", "--pipeline", "waist-pendulum", "--params", str(tmp_path / "p.json"),
                  "--out", str(tmp_path / "t")]) == 0  # the redacted file is still a calibration track reads
 
 
@@ -117,8 +118,8 @@ def test_track_redact_paths_keeps_keys_and_other_values(layout, tmp_path, monkey
 
     shutil.copytree(layout / "walks" / "w", tmp_path / name)
     monkeypatch.chdir(tmp_path)
-    assert main(["track", name, "--out", "plain", "--json"]) == 0
-    assert main(["track", name, "--out", "red", "--redact-paths"]) == 0
+    assert main(["track", "--no-plot", name, "--out", "plain", "--json"]) == 0  # no figure read (session 46)
+    assert main(["track", "--no-plot", name, "--out", "red", "--redact-paths"]) == 0
     plain = json.loads((tmp_path / "plain" / "summary.json").read_text())
     red = json.loads((tmp_path / "red" / "summary.json").read_text())
     assert red["input_dir"] == REDACTED

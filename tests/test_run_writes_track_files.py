@@ -42,8 +42,9 @@ def _wrapped_diff(a, b):
 
 
 def test_run_heading_is_wrapped_as_track_writes_it(root, walk, tmp_path, capsys):
-    assert main(["run", str(root / "bundle"), str(walk), "--out", str(tmp_path / "r")]) == 0
-    assert main(["track", str(walk), "--model", str(root / "model"), "--streaming", "--out", str(tmp_path / "t")]) == 0
+    assert main(["run", "--no-plot", str(root / "bundle"), str(walk), "--out", str(tmp_path / "r")]) == 0
+    assert main(["track", "--no-plot", str(walk), "--model", str(root / "model"), "--streaming",
+                 "--out", str(tmp_path / "t")]) == 0
     # without --start neither summary has lat/lon keys
     for d in ("r", "t"):
         assert set(json.loads((tmp_path / d / "summary.json").read_text())["final_position"]) == set("xyz")
@@ -101,9 +102,9 @@ def test_run_writes_path_png_and_lat_lon_with_start(root, walk, tmp_path, capsys
 
 def test_start_altitude_shifts_z_only(root, walk, tmp_path, capsys):
     b, w = str(root / "bundle"), str(walk)
-    assert main(["run", b, w, "--start", START, "--out", str(tmp_path / "r0")]) == 0
+    assert main(["run", "--no-plot", b, w, "--start", START, "--out", str(tmp_path / "r0")]) == 0
     capsys.readouterr()
-    assert main(["run", b, w, "--start", START + ",12.5", "--out", str(tmp_path / "r1"), "--json"]) == 0
+    assert main(["run", "--no-plot", b, w, "--start", START + ",12.5", "--out", str(tmp_path / "r1"), "--json"]) == 0
     s1 = json.loads(capsys.readouterr().out)
     r0, r1 = (pd.read_csv(tmp_path / d / "trajectory.csv") for d in ("r0", "r1"))
     assert r1["z"].iloc[0] == 12.5
@@ -115,10 +116,11 @@ def test_start_altitude_shifts_z_only(root, walk, tmp_path, capsys):
     assert pd.read_csv(tmp_path / "r1" / "steps.csv")["z"].iloc[0] == pytest.approx(12.5 + r0["z"].iloc[1])
     # track: the same option, the same rule
     m = str(root / "model")
-    assert main(["track", w, "--model", m, "--streaming", "--start", START, "--out", str(tmp_path / "t0")]) == 0
+    assert main(["track", "--no-plot", w, "--model", m, "--streaming", "--start", START,
+                 "--out", str(tmp_path / "t0")]) == 0
     capsys.readouterr()
-    assert main(["track", w, "--model", m, "--streaming", "--start", START + ",-3", "--out", str(tmp_path / "t1"),
-                 "--json"]) == 0
+    assert main(["track", "--no-plot", w, "--model", m, "--streaming", "--start", START + ",-3",
+                 "--out", str(tmp_path / "t1"), "--json"]) == 0
     t1s = json.loads(capsys.readouterr().out)
     t0, t1 = (pd.read_csv(tmp_path / d / "trajectory.csv") for d in ("t0", "t1"))
     assert t1["z"].iloc[0] == -3.0
@@ -145,7 +147,8 @@ def test_bad_start_is_one_line_naming_the_form(root, walk, tmp_path, capsys):
 
 
 def test_units_foot_on_a_session_with_a_waist_does_not_say_no_waist_unit(root, walk, tmp_path, capsys):
-    assert main(["run", str(root / "bundle"), str(walk), "--units", "foot", "--out", str(tmp_path / "r")]) == 0
+    assert main(["run", "--no-plot", str(root / "bundle"), str(walk), "--units", "foot",
+                 "--out", str(tmp_path / "r")]) == 0
     err = capsys.readouterr().err.strip().splitlines()
     # the toy model's C28 line (E47, as track's), the toy walk's L95 line (0.13 m/s, as track --streaming's) and
     # L145's (the toy model's foot altitude +0.95 m against the barometer's -0.05 m), and the toy model's C89 line on
@@ -158,7 +161,7 @@ def test_units_foot_on_a_session_with_a_waist_does_not_say_no_waist_unit(root, w
     assert err == ["warning: turning: waist unit not used (--units foot): heading from the foot's own integrated "
                    "yaw (relative to the start)"], err
     # a foot-only bundle on the same two-unit session: no heading line claiming the waist is absent
-    assert main(["run", str(root / "bundle_foot"), str(walk), "--out", str(tmp_path / "f")]) == 0
+    assert main(["run", "--no-plot", str(root / "bundle_foot"), str(walk), "--out", str(tmp_path / "f")]) == 0
     assert "no waist unit" not in capsys.readouterr().err
 
 
@@ -170,12 +173,12 @@ def test_run_takes_track_bout_options_and_detects_the_bouts_once(root, walk, tmp
     calls = []
     real = bouts_mod.detected_bouts
     monkeypatch.setattr(bouts_mod, "detected_bouts", lambda *a, **k: calls.append(1) or real(*a, **k))
-    assert main(["run", str(root / "bundle"), str(walk), "--out", str(tmp_path / "d")]) == 0
+    assert main(["run", "--no-plot", str(root / "bundle"), str(walk), "--out", str(tmp_path / "d")]) == 0
     assert len(calls) == 1  # was 2: evaluate_track's n_bouts and _write's bouts.csv
     default = json.loads((tmp_path / "d" / "summary.json").read_text())
     assert default["n_bouts"] == len(pd.read_csv(tmp_path / "d" / "bouts.csv")) >= 1
-    assert main(["run", str(root / "bundle"), str(walk), "--bout-break-s", "3", "--bout-min-strides", "1000",
-                 "--out", str(tmp_path / "r")]) == 0
+    assert main(["run", "--no-plot", str(root / "bundle"), str(walk), "--bout-break-s", "3",
+                 "--bout-min-strides", "1000", "--out", str(tmp_path / "r")]) == 0
     summary = json.loads((tmp_path / "r" / "summary.json").read_text())
     assert summary["bout_definition"] == {"break_s": 3.0, "min_strides": 1000, "gap": "rhythm"}
     assert summary["n_bouts"] == 0
@@ -192,10 +195,11 @@ def test_streamed_foot_only_tracks_get_their_own_sigma_model(root, walk, tmp_pat
     run and track write the same pos_sigma_m."""
     from pdrlearn.track.position_sigma import SIGMA_PARAMS
 
-    assert main(["run", str(root / "bundle_foot"), str(walk), "--out", str(tmp_path / "r")]) == 0
-    assert main(["run", str(root / "bundle"), str(walk), "--units", "foot", "--out", str(tmp_path / "u")]) == 0
-    assert main(["track", str(walk), "--model", str(root / "model_foot"), "--streaming", "--units", "foot",
-                 "--out", str(tmp_path / "t")]) == 0
+    assert main(["run", "--no-plot", str(root / "bundle_foot"), str(walk), "--out", str(tmp_path / "r")]) == 0
+    assert main(["run", "--no-plot", str(root / "bundle"), str(walk), "--units", "foot",
+                 "--out", str(tmp_path / "u")]) == 0
+    assert main(["track", "--no-plot", str(walk), "--model", str(root / "model_foot"), "--streaming",
+                 "--units", "foot", "--out", str(tmp_path / "t")]) == 0
     for d in ("r", "u", "t"):
         info = json.loads((tmp_path / d / "summary.json").read_text())["info"]["position_sigma"]
         assert info == {"model": "plasys-foot-streaming", **SIGMA_PARAMS["plasys-foot-streaming"],

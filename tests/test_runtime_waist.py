@@ -124,24 +124,26 @@ def test_export_and_run_of_a_waist_bundle_on_the_command_line(sim, sim_ref, tmp_
                  "--force"]) == 0  # a run
 
 
-def test_run_of_a_waist_bundle_counts_floors_in_the_storey_height_given(sim, tmp_path, capsys):
-    """Decision L142: `run WAIST_BUNDLE --storey-height M` had counted storeys of 3 m, whatever was given."""
+def test_run_of_a_waist_bundle_counts_floors_in_the_storey_height_given(sim, stairs3040, stairs_ref, tmp_path,
+                                                                        capsys):
+    """Decision L142: `run WAIST_BUNDLE --storey-height M` had counted storeys of 3 m, whatever was given. On the
+    module's stairs route and its realtime track (session 46: a scenario D walk of its own and its track before)."""
     from pdrlearn.track.evaluate import evaluate_track
 
-    stairs = simulate("D", 402, rate_hz=100.0)  # thesis scenario D: 21 stairs
+    stairs, ref = stairs3040, stairs_ref
     walk = write_session(stairs, tmp_path / "walk")
     assert main(["run", "--no-plot", str(sim["bundle"]), str(walk), "--storey-height", "1.5", "--json"]) == 0
     summary = json.loads(capsys.readouterr().out)
-    ref = track_waist(stairs, pipeline="waist-pendulum", realtime=True, params=str(sim["cal"]))
     want = evaluate_track(ref, stairs, storey_height_m=1.5)
+    default = evaluate_track(ref, stairs)  # storeys of 3 m
     assert summary["storey_height_m"] == 1.5
     keys = [k for k in want if k.startswith(("floors_", "storeys_")) and k.endswith("_ref")]
     assert keys and {k: summary[k] for k in keys} == {k: want[k] for k in keys}
-    assert want["floors_up_ref"] != evaluate_track(ref, stairs)["floors_up_ref"]  # 1.5 m counts otherwise
+    assert want["floors_up_ref"] != default["floors_up_ref"]  # 1.5 m counts otherwise
     # decision E106: the tracked storeys too (the runtime had no barometer: 0 / 0 whatever the storey height)
     tracked = [k for k in want if k.startswith(("floors_", "storeys_")) and not k.endswith("_ref")]
     assert {k: summary[k] for k in tracked} == {k: want[k] for k in tracked} and want["floors_up"] >= 1
-    assert want["floors_up"] != evaluate_track(ref, stairs)["floors_up"]
+    assert want["floors_up"] != default["floors_up"]
 
 
 def _push_with_barometer(tr, s, chunks) -> list:

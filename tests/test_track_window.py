@@ -25,7 +25,7 @@ def walk(tmp_path_factory):
 
 def _track(root, *args):
     out = root / ("t" + "_".join(a.replace(",", "-") for a in args))
-    assert main(["track", str(root / "walk"), "--out", str(out), "--json", *args]) == 0
+    assert main(["track", "--no-plot", str(root / "walk"), "--out", str(out), "--json", *args]) == 0  # no figure read
     return json.loads((out / "summary.json").read_text()), out
 
 
@@ -96,7 +96,7 @@ def test_window_counts_from_the_recording_start_with_common_span(walk, tmp_path,
     g[g.timestamp >= g.timestamp.iloc[0] + 3e3].to_csv(d / "fGyroscope.csv", index=False)  # starts 3 s late
     whole, _ = _track(root, "--window", "5,15")
     out = tmp_path / "cut"
-    assert main(["track", str(d), "--out", str(out), "--json", "--common-span", "--window", "5,15"]) == 0
+    assert main(["track", "--no-plot", str(d), "--out", str(out), "--json", "--common-span", "--window", "5,15"]) == 0
     capsys.readouterr()
     cut = json.loads((out / "summary.json").read_text())
     assert cut["info"]["window"] == {"start_s": 5.0, "end_s": 15.0}

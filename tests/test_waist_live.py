@@ -148,16 +148,26 @@ def test_dropped_samples_and_a_gap_as_the_replay():
     assert sum("1 gap(s) longer than 1 s" in w for w in tr.warnings) == 1
 
 
+def _inferred(s):
+    """HA001 pushed in 50-sample pieces without its frame (meta without "frames"), merge_fragments off: (the steps,
+    the tracker), made once per module (session 46: the W65 test and the B108 hint test each pushed it)."""
+    key = ("inferred", s.name, len(s["wAccelerometer"].t))
+    if key not in _CACHE:
+        meta = {k: v for k, v in s.meta.items() if k not in ("source_project", "frames")}
+        a, g = s["wAccelerometer"], s["wGyroscope"]
+        tr = WaistTracker(a.rate_hz, meta=meta, merge_fragments=False)
+        out = []
+        for i in range(0, len(a.t), 50):
+            out += tr.push(a.t[i:i + 50], a.values[i:i + 50], g.values[i:i + 50])
+        out += tr.flush()
+        _CACHE[key] = (out, tr)
+    return _CACHE[key]
+
+
 def test_frame_inferred_from_the_first_walking():
     """W65: without a frame the tracker holds the samples until the inference fixes one, then tracks them all."""
     s = _session("ha001")
-    meta = {k: v for k, v in s.meta.items() if k not in ("source_project", "frames")}
-    a, g = s["wAccelerometer"], s["wGyroscope"]
-    tr = WaistTracker(a.rate_hz, meta=meta, merge_fragments=False)
-    out = []
-    for i in range(0, len(a.t), 50):
-        out += tr.push(a.t[i:i + 50], a.values[i:i + 50], g.values[i:i + 50])
-    out += tr.flush()
+    out, tr = _inferred(s)
     assert any("inferred from the first" in w and "decision W65" in w for w in tr.warnings)
     _assert_equals_replay(s, out, merge_fragments=False)
 
@@ -281,8 +291,7 @@ def _push_all(s, **kw):
 
 def test_the_inferred_frame_hint_is_json_to_paste_into_meta_json():
     s = _session("ha001")
-    meta = {k: v for k, v in s.meta.items() if k not in ("source_project", "frames")}
-    (w,) = [w for w in _push_all(s, meta=meta, merge_fragments=False).warnings if "inferred from the first" in w]
+    (w,) = [w for w in _inferred(s)[1].warnings if "inferred from the first" in w]
     frames, _ = json.JSONDecoder().raw_decode(w[w.index('"frames": ') + len('"frames": '):])
     assert frames == {"waist": s.require_frame("waist").to_dict()}
 
