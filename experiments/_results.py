@@ -3,7 +3,7 @@ and D8 in session 45): the ``--users lo-hi`` option and its seeds, the simulated
 protocol scripts, the median |error| table of a candidate against the defaults, and a result written under
 experiments/results and printed.
 
-    from experiments._results import add_users, user_range, write_result
+    from _results import add_users, user_range, write_result
 """
 
 from __future__ import annotations

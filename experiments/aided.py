@@ -25,8 +25,7 @@ from pdrlearn.aid.sporadic import SporadicFixFusion
 from pdrlearn.aid.synth import pdr_with_drift, position_errors, synthetic_waist_session, synthetic_walk
 
 OUT = Path(__file__).resolve().parent / "results"
-sys.path.insert(0, str(OUT.parents[1]))  # experiments.partial when run as a script
-from experiments.partial import parsed_with_names, partial_note  # noqa: E402
+from partial import parsed_with_names, partial_note  # noqa: E402
 
 #: options that make a run partial (steps decision 67, amended by review R2): aided*_partial.* files
 PARTIAL_OPTIONS = ("users", "length", "source", "imu_users", "imu_duration")

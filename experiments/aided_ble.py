@@ -13,13 +13,11 @@ fixes every U(10, 30) s from 20 s (the trial T5's mkfix.py) = the pelvis truth +
 from __future__ import annotations
 
 import argparse
-import sys
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 from aided_streamed import _cli, truth_at  # noqa: E402
 
 ROUTE = ("stand:3, straight:20, turn:90, straight:15, turn:-90, straight:20, turn:-90, straight:10, turn:90, "

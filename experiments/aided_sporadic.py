@@ -14,7 +14,6 @@ uses only APIs both have), then ``--compare``. Each walk: ``simulate("walk", u, 
 from __future__ import annotations
 
 import argparse
-import sys
 import tempfile
 from pathlib import Path
 
@@ -77,7 +76,6 @@ def user_row(u: int, tmp: Path) -> dict:
 
 def existing_rows() -> pd.DataFrame:
     """The seed 004 rows of experiments/aided.py with its defaults (5 users x 1000 m, 3 IMU users x 120 s)."""
-    sys.path.insert(0, str(Path(__file__).resolve().parent))
     import aided
 
     rows = []

@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 
 import pdrlearn.io.handedness as H
-from experiments.handedness_check import sessions, write_report
+from handedness_check import sessions, write_report
 from pdrlearn.io.handedness import (
     AXES_MIN_LOG_RATIO,
     MIN_SEGMENTS,

@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from experiments.handedness_check import sessions, write_report
+from handedness_check import sessions, write_report
 from pdrlearn.io.handedness import PERMUTATIONS, TURN_MAX_DEG, TURN_MIN_WINDOWS, turn_axis, unit_imu_arrays
 
 ROOT = Path(__file__).resolve().parents[1]

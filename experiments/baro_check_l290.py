@@ -15,8 +15,6 @@ from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
 from pdrlearn.track.evaluate import barometer_warning, track_summary
 from pdrlearn.track.plasys import track_plasys
-
-sys.path.insert(0, "experiments")
 from ramp_ascent_w229 import ROUTES  # noqa: E402
 
 

@@ -16,22 +16,19 @@ from __future__ import annotations
 
 import argparse
 import logging
-import sys
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 from level_dz import LEVEL, folder, raw_track  # noqa: E402
-from slopes import users  # noqa: E402
-
 from pdrlearn.io import read_session  # noqa: E402
 from pdrlearn.kernels.barometer import fuse_altitude, relative_altitude  # noqa: E402
 from pdrlearn.kernels.distance import level_dz  # noqa: E402
 from pdrlearn.sim import UserProfile, simulate, simulate_path  # noqa: E402
 from pdrlearn.sim.route import parse_route  # noqa: E402
 from pdrlearn.track.evaluate import count_floors_by_climb  # noqa: E402
+from slopes import users  # noqa: E402
 
 HILL = "stand:3, straight:5, slope:60:{g}, straight:5, turn:180, slope:60:-{g}, straight:5, stand:3"
 RAMP = "stand:3, straight:5, slope:60:{g}, straight:5, stand:3"

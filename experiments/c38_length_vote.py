@@ -24,7 +24,7 @@ import logging
 import numpy as np
 import pandas as pd
 
-from experiments.localization import stride_rows
+from localization import stride_rows
 from pdrlearn.classify import train_user
 from pdrlearn.sim import simulate
 from pdrlearn.track.evaluate import evaluate_track

@@ -17,22 +17,19 @@ from __future__ import annotations
 import argparse
 import contextlib
 import logging
-import sys
 import time
 from pathlib import Path
 from unittest import mock
 
 import pandas as pd
 
+from c50_rest_default import summary, task_rows  # noqa: E402  (the same rows and pooling as C50)
 from pdrlearn.classify import detected
 from pdrlearn.classify.evaluation import evaluate_model
 from pdrlearn.classify.training import train_user
 from pdrlearn.sim.simulate import simulate
 from pdrlearn.track.evaluate import evaluate_track
 from pdrlearn.track.plasys import track_plasys
-
-sys.path.insert(0, str(Path(__file__).parent))
-from c50_rest_default import summary, task_rows  # noqa: E402  (the same rows and pooling as C50)
 
 CALIBRATION = ("terrain", "direction", "length")
 RATE_HZ = 20.0

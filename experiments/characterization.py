@@ -28,7 +28,6 @@ from __future__ import annotations
 
 import argparse
 import logging
-import sys
 import time
 from pathlib import Path
 
@@ -36,9 +35,8 @@ import numpy as np
 import pandas as pd
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
 
-from experiments.partial import partial_note, partial_options, result_name  # noqa: E402
+from partial import partial_note, partial_options, result_name  # noqa: E402
 from pdrlearn.classify import evaluate_model, train_user  # noqa: E402
 from pdrlearn.classify.evaluation import ROW_ORDER  # noqa: E402
 from pdrlearn.classify.thesis import THESIS_ACCURACY, THESIS_TABLE  # noqa: E402

@@ -10,12 +10,12 @@ from __future__ import annotations
 import argparse
 import logging
 
-from experiments.live_clock_check_l177 import BUNDLE, live
-from experiments.unit_offset_l161 import shifted
+from live_clock_check_l177 import BUNDLE, live
 from pdrlearn.io.session import Stream
 from pdrlearn.kernels.align import unit_offset_message
 from pdrlearn.sim import simulate
 from pdrlearn.steps.align import align_estimate
+from unit_offset_l161 import shifted
 
 #: the clock origins (s): the simulator's 0, one hour of device uptime, an epoch clock (2024)
 ORIGINS = (0.0, 3600.0, 1.7e9)

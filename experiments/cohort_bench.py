@@ -34,9 +34,8 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
 
-from experiments.partial import partial_note, partial_options, result_name  # noqa: E402
+from partial import partial_note, partial_options, result_name  # noqa: E402
 from pdrlearn.cli import main as cli  # noqa: E402
 from pdrlearn.io import write_session  # noqa: E402
 from pdrlearn.sim import simulate  # noqa: E402

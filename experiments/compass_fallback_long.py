@@ -23,7 +23,6 @@ from pdrlearn.track.evaluate import STOREY_HEIGHT_M, track_summary
 from pdrlearn.track.plasys import track_plasys
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "experiments"))
 from compass_check_long import R1  # noqa: E402  the trial's R1
 
 SHORT = ("straight:30, turn:90, straight:30", ", ".join(["straight:15, curve:-90:1"] * 8))  # L182's level routes

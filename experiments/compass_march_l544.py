@@ -26,7 +26,6 @@ from pdrlearn.io.plasys import read_session
 from pdrlearn.track.evaluate import STOREY_HEIGHT_M
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "experiments"))
 from compass_check_long import R1  # noqa: E402  the navigation trial's R1 (L226)
 from compass_span_l280 import err, summarise  # noqa: E402  (L280's track summary and compass check)
 from compass_window_shift import LOOP, ROUTE1, SHORT, fmt, simulate  # noqa: E402  (L264's routes, runner)

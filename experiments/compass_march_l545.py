@@ -9,16 +9,13 @@ Run: ``OMP_NUM_THREADS=1 PYTHONPATH=$PWD python experiments/compass_march_l545.p
 from __future__ import annotations
 
 import logging
-import sys
 import tempfile
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "experiments"))
 from compass_check_long import R1  # noqa: E402  the navigation trial's R1 (L226)
 from compass_march_l544 import run_part  # noqa: E402  L544 runner (today, candidate, clean-compass)
 from compass_window_shift import LOOP, SHORT  # noqa: E402  L264 routes
-
 from pdrlearn.track.evaluate import STOREY_HEIGHT_M  # noqa: E402
 
 LONG_MARCH = ("straight:2000:fast, slope:800:6, curve:90:50, straight:1500, slope:800:-6, "

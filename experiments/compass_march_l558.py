@@ -18,12 +18,10 @@ import tempfile
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "experiments"))
 from compass_check_long import R1  # noqa: E402  the navigation trial's R1 (L226)
 from compass_march_l544 import MARCH, run_part  # noqa: E402  march and runner (L544)
 from compass_march_l545 import LONG_MARCH  # noqa: E402  the ~70 min march (L545)
 from compass_window_shift import LOOP, ROUTE1, SHORT  # noqa: E402  routes (L264)
-
 from pdrlearn.track.evaluate import STOREY_HEIGHT_M  # noqa: E402
 
 D30 = ("--mag-disturbance", "30")

@@ -11,7 +11,6 @@ Run: ``OMP_NUM_THREADS=1 PYTHONPATH=$PWD python experiments/compass_span_l280.py
 from __future__ import annotations
 
 import logging
-import sys
 import tempfile
 from pathlib import Path
 
@@ -22,7 +21,6 @@ from pdrlearn.io.plasys import read_session
 from pdrlearn.track.evaluate import STOREY_HEIGHT_M, track_summary
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "experiments"))
 from compass_check_long import R1  # noqa: E402  the navigation trial's R1 (L226)
 from compass_window_shift import LOOP, ROUTE1, SHORT, fmt, simulate  # noqa: E402  (L264's routes, runner)
 

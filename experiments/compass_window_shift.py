@@ -24,7 +24,6 @@ from pdrlearn.io.plasys import read_session
 from pdrlearn.track.evaluate import STOREY_HEIGHT_M, track_summary
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "experiments"))
 from compass_check_long import R1  # noqa: E402  the navigation trial's R1 (L226)
 
 # the session-29 trial's shift routes (/tmp/occ/route1.txt; route2 = route1 + 3 flights up / down, trolley, curve)

@@ -12,7 +12,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from experiments.corridor_walk_test import CONFIGS, PDR, ROUTE, prepare_user
+from corridor_walk_test import CONFIGS, PDR, ROUTE, prepare_user
 
 USERS = range(7920, 7926)
 

@@ -21,16 +21,14 @@ import contextlib
 import json
 import logging
 import shutil
-import sys
 from pathlib import Path
 from unittest import mock
 
 import pandas as pd
 from typer.testing import CliRunner
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the repo root, for `python experiments/x.py` (E294)
 import pdrlearn.io.plasys as P  # noqa: E402
-from experiments._results import add_users, user_range, write_result, write_table  # noqa: E402
+from _results import add_users, user_range, write_result, write_table  # noqa: E402
 from pdrlearn.cli import app  # noqa: E402
 
 ROUTES = {"straight": ["--scenario", "walk", "--length-m", "20"],

@@ -18,13 +18,11 @@ Writes experiments/results/drops_runs_<users>.md and .csv.
 from __future__ import annotations
 
 import argparse
-import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the repo root, for `python experiments/x.py` (E294)
-from experiments._results import add_users, write_result, write_table  # noqa: E402
-from experiments.drops import REAL, by_drop, by_rate_route, same  # noqa: E402
-from experiments.drops_timestamps import track, track_walks  # noqa: E402
+from _results import add_users, write_result, write_table  # noqa: E402
+from drops import REAL, by_drop, by_rate_route, same  # noqa: E402
+from drops_timestamps import track, track_walks  # noqa: E402
 
 TAGS = {"fixed": {}, "ts": {"timestamps": True}, "runs": {"timestamps": True, "upsample_runs": True}}
 EXTERNAL = REAL.parent / "external"

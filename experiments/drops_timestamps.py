@@ -20,16 +20,14 @@ import argparse
 import json
 import logging
 import shutil
-import sys
 from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the repo root, for `python experiments/x.py` (E294)
-from experiments._results import add_users, user_range, write_result, write_table  # noqa: E402
-from experiments.drops import REAL, by_drop, by_rate_route, cli_json, walks  # noqa: E402
+from _results import add_users, user_range, write_result, write_table  # noqa: E402
+from drops import REAL, by_drop, by_rate_route, cli_json, walks  # noqa: E402
 
 TAGS = {"fixed": {"timestamps": False}, "ts": {"timestamps": True}}  # --params of each configuration
 

@@ -13,17 +13,13 @@ from __future__ import annotations
 
 import argparse
 import shutil
-import sys
 from pathlib import Path
 
 import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-sys.path.insert(0, str(ROOT / "experiments"))
 
 from contact_timing_cv import tracked, true_cv  # noqa: E402
-
 from pdrlearn.io import write_session  # noqa: E402
 from pdrlearn.sim import simulate  # noqa: E402
 from pdrlearn.sim.body import ROCKER_MODES  # noqa: E402

@@ -11,16 +11,12 @@ Users 10131-10136 (scenario A, normal, 100 Hz, with force): per user the median 
 from __future__ import annotations
 
 import logging
-import sys
-from pathlib import Path
 
 import numpy as np
 
 import pdrlearn.track.plasys as P
-from pdrlearn.sim import UserProfile, simulate
-
-sys.path.insert(0, str(Path(__file__).parent))
 from force_events_s33 import true_stance_pct  # noqa: E402
+from pdrlearn.sim import UserProfile, simulate
 
 
 def main() -> None:

@@ -66,7 +66,6 @@ def sim(lo: float, hi: float, users: range) -> str:
 if __name__ == "__main__":
     if sys.argv[1] == "--hapt":
         use_candidate(sys.argv[2] if len(sys.argv) > 3 else None)
-        sys.path.insert(0, "experiments")
         import hapt_transfers
 
         hapt_transfers.main(["--out", sys.argv[-1]])

@@ -11,16 +11,14 @@ Run: ``OMP_NUM_THREADS=1 PYTHONPATH=$PWD python experiments/frame_misdeclared.py
 from __future__ import annotations
 
 import argparse
-import sys
 import tempfile
 from pathlib import Path
 
 import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
 
-from experiments.frame_check_evidence import sim  # noqa: E402  (one simulate call, shared)
+from frame_check_evidence import sim  # noqa: E402  (one simulate call, shared)
 from pdrlearn.io.plasys import read_session  # noqa: E402
 from pdrlearn.track.frame_inference import check_declared_frame, remount  # noqa: E402,I001
 

@@ -29,11 +29,10 @@ import sys
 import time
 from pathlib import Path
 
+import _repo  # noqa: F401  (the repository root at the end of sys.path, for tests.*: E301)
 from pdrlearn.errors import DataError
 from pdrlearn.io import read_session
 from pdrlearn.track.frame_inference import UNIT_STREAMS, infer_session_frame, remount, right_handed_orientations
-
-sys.path.append(str(Path(__file__).resolve().parents[1]))  # the repository root: tests.cli_helpers
 from tests.cli_helpers import json_numbers  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -200,11 +200,9 @@ def judge(ss: list[dict]) -> bool:
 
 def real_overlay() -> bool:
     """(d) L154 (e)'s construction: the real gaitmap level walks under the mobgap Test11 barometers."""
-    sys.path.insert(0, str(ROOT / "experiments"))
     from baro_fusion import LONG, folder
     from level_dz import LEVEL as REAL_LEVEL
     from level_dz import raw_track
-
     from pdrlearn.io import read_session
     from pdrlearn.kernels.barometer import barometric_climb, fuse_altitude
     from pdrlearn.kernels.distance import level_dz

@@ -20,18 +20,15 @@ import contextlib
 import functools
 import io
 import json
-import sys
 from pathlib import Path
 from unittest import mock
 
 import numpy as np
 import pandas as pd
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from slopes import users  # noqa: E402
-
 from pdrlearn.cli import main as cli  # noqa: E402
 from pdrlearn.kernels import barometer  # noqa: E402
+from slopes import users  # noqa: E402
 
 ROUTES = {
     "T": "stand:3, straight:20, slope:300:10, straight:30, slope:300:-10, stand:3",

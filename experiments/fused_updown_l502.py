@@ -11,17 +11,14 @@ Usage::
 from __future__ import annotations
 
 import argparse
-import sys
 from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 from fused_ramp_l478 import ROUTES, report  # noqa: E402
 from fused_ramp_l478 import session as l478_session  # noqa: E402
-from slopes import users  # noqa: E402
-
 from pdrlearn.kernels import barometer  # noqa: E402
+from slopes import users  # noqa: E402
 
 ROUTES = {**ROUTES, "U": "stand:3, straight:10, slope:150:15, slope:150:-15, straight:10, stand:3"}
 #: (label, fuse_altitude's climb_bias, bias_mode)

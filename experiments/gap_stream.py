@@ -19,7 +19,7 @@ import logging
 
 import numpy as np
 
-from experiments.gap_heading import GAP_S, STRAIGHT, TURNING, _crossing, with_gap
+from gap_heading import GAP_S, STRAIGHT, TURNING, _crossing, with_gap
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
 from pdrlearn.track.evaluate import evaluate_track

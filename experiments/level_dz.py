@@ -151,9 +151,7 @@ def settings_rows(names: list[str]) -> pd.DataFrame:
 
 def rate_rows(names: list[str], rate: float = 102.4) -> pd.DataFrame:
     """The same recordings resampled (anti-aliased, experiments/robustness.py) to ``rate`` Hz."""
-    import sys
 
-    sys.path.insert(0, str(ROOT / "experiments"))
     from robustness import resample
 
     rows = []

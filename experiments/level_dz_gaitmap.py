@@ -15,8 +15,8 @@ import warnings
 
 import numpy as np
 import pandas as pd
-from level_dz import CHOOSE, LEVEL, STAIRS, folder  # experiments/ on the path (see Usage)
 
+from level_dz import CHOOSE, LEVEL, STAIRS, folder  # experiments/ on the path (see Usage)
 from pdrlearn.io import read_session
 
 

@@ -9,15 +9,13 @@ from __future__ import annotations
 
 import argparse
 import logging
-import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the repo root, for `python experiments/x.py` (E294)
-from experiments._results import add_users, user_range  # noqa: E402
-from experiments.unit_offset_l161 import rule_met, sessions  # noqa: E402
+from _results import add_users, user_range  # noqa: E402
 from pdrlearn.runtime import Tracker, load_bundle  # noqa: E402
 from pdrlearn.runtime.replay import replay_chunks  # noqa: E402
 from pdrlearn.steps.align import align_units  # noqa: E402
+from unit_offset_l161 import rule_met, sessions  # noqa: E402
 
 BUNDLE = Path(__file__).resolve().parents[1] / "models" / "plasys-sim-default"
 

@@ -21,7 +21,6 @@ from __future__ import annotations
 
 import argparse
 import logging
-import sys
 import time
 from pathlib import Path
 
@@ -35,8 +34,7 @@ from pdrlearn.track.plasys import track_plasys
 from pdrlearn.track.plots import plot_paths
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))  # experiments.partial when run as a script
-from experiments.partial import partial_note, partial_options, result_name  # noqa: E402
+from partial import partial_note, partial_options, result_name  # noqa: E402
 
 RESULTS = ROOT / "experiments" / "results"
 REAL = ROOT / "datasets" / "real"

@@ -18,7 +18,6 @@ Usage::
 from __future__ import annotations
 
 import logging
-import sys
 from pathlib import Path
 
 import pandas as pd
@@ -27,7 +26,6 @@ from pdrlearn.io import read_session
 from pdrlearn.steps import get_detector, score_steps
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "experiments"))
 from robustness import resample  # noqa: E402  (the robustness sweep's anti-aliased resampling, reused)
 
 OUT = ROOT / "experiments" / "results"

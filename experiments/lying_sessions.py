@@ -83,7 +83,7 @@ def w259() -> None:
     """Decision W259's rule, item (a): fresh users 6294-6297 (the four routes), today vs the candidate."""
     import contextlib
 
-    from experiments.hapt_transfers import before_w259
+    from hapt_transfers import before_w259
 
     fresh = [(u + 4, r) for u, r in SESSIONS]
     for label, v in (("today", False), ("candidate", True)):

@@ -39,7 +39,6 @@ import argparse
 import json
 import logging
 import os
-import sys
 import tempfile
 import time
 import warnings
@@ -208,7 +207,6 @@ def run_mobgap(ext: Path, names: list[str]) -> tuple[pd.DataFrame, list[dict], l
 
 
 def run_ours_waist(ext: Path) -> tuple[pd.DataFrame, list[dict]]:
-    sys.path.insert(0, str(ROOT / "experiments"))
     import waist as W  # experiments/waist.py: the protocol and the scoring of our own rows
 
     bouts: list = []
@@ -386,7 +384,6 @@ def _fmt_ic(m, sd) -> str:
 
 
 def waist_table(mob: pd.DataFrame, ours: pd.DataFrame, mob_b: list, ours_b: list) -> tuple[pd.DataFrame, pd.DataFrame]:
-    sys.path.insert(0, str(ROOT / "experiments"))
     import waist as W
 
     ours = ours.assign(pipeline="pdrlearn waist-pendulum", step_precision=ours.tp / ours.n_detected,
@@ -548,7 +545,6 @@ def previous_part(md: str, csv: pd.DataFrame | None, peer: str) -> tuple[list[st
 
 
 def _runs(ext: Path):
-    sys.path.insert(0, str(ROOT / "experiments"))
     import waist as W
 
     return W.external_runs(ext) if ext.exists() else []

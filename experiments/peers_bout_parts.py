@@ -10,13 +10,9 @@ Run: make peers && PYTHONPATH=. .venv-peers/bin/python experiments/peers_bout_pa
 
 from __future__ import annotations
 
-import sys
-from pathlib import Path
-
 import numpy as np
 import pandas as pd
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 import peers as P  # noqa: E402
 import waist as W  # noqa: E402
 

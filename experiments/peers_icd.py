@@ -29,7 +29,6 @@ import numpy as np
 import pandas as pd
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 PAD_S = 1.0  # the padded variant (added after the first run): data on either side of a bout
 RECORDINGS = ("HA001_Test11_Trial1", "HA002_Test11_Trial1", "MS001_Test11_Trial1", "HA001_Test5_Trial1",
               "HA001_Test5_Trial2", "MS001_Test5_Trial1", "MS001_Test5_Trial2")  # INDIP bouts (HA002 Test5: none)

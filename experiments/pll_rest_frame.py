@@ -21,12 +21,10 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from lying_heading import errors  # noqa: E402 -- W270's end / heading errors (experiments/lying_heading.py)
 from pdrlearn.cli import main as cli
 from pdrlearn.io import read_session
 from pdrlearn.track import get_pipeline
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from lying_heading import errors  # noqa: E402 -- W270's end / heading errors (experiments/lying_heading.py)
 
 # W286's groups: (key, route, users, has a rest over 60 s)
 GROUPS = [

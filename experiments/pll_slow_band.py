@@ -20,10 +20,10 @@ from pathlib import Path
 import numpy as np
 
 import pdrlearn.kernels.waist as kw
-from experiments.waist_kid_steps import span
 from pdrlearn.io import read_session
 from pdrlearn.steps import PLLStepDetector
 from pdrlearn.steps.evaluate import score_steps
+from waist_kid_steps import span
 
 ROOT = Path(__file__).resolve().parents[1]
 #: the variants: W117 alone (the slow band off), candidate A, candidate B

@@ -20,11 +20,9 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 from aided_streamed import R1  # noqa: E402
-from position_sigma import errors  # noqa: E402
-
 from pdrlearn.track.position_sigma import SIGMA_PARAMS, sigma_per_row  # noqa: E402
+from position_sigma import errors  # noqa: E402
 
 #: main's `plasys-fused` parameters before L220 (decision L128), today's model
 TODAY = {k: v for k, v in SIGMA_PARAMS["plasys-fused"].items() if k != "path_rel"}

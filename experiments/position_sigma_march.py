@@ -21,7 +21,6 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 from position_sigma import ROUTE, errors  # noqa: E402
 
 LONG_USERS = range(6320, 6332)

@@ -28,16 +28,14 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 from aided_streamed import R1  # noqa: E402
-from position_sigma import errors  # noqa: E402
-
 from pdrlearn.track.position_sigma import (  # noqa: E402
     EXTENT_HEADING_RAD,
     PLACE_DIFFUSION_M2,
     SIGMA_PARAMS,
     sigma_per_row,
 )
+from position_sigma import errors  # noqa: E402
 
 SHORT_ROUTES = ("straight:30, turn:90, straight:30", ", ".join(["straight:15, curve:-90:1"] * 8))  # L182's level walks
 #: the first of the 40 users of a run: L237/L238 used 4700-4739, L239/L240 the fresh users 5040-5079, L241/L242 the

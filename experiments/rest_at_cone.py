@@ -10,12 +10,12 @@ import logging
 
 import numpy as np
 
-from experiments.still_pauses import before_l372
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
 from pdrlearn.track import clinical
 from pdrlearn.track.plasys import track_plasys
 from pdrlearn.track.waist import track_waist
+from still_pauses import before_l372
 
 logging.disable(logging.WARNING)
 

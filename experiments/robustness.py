@@ -62,7 +62,6 @@ from pdrlearn.track.evaluate import evaluate_track
 from pdrlearn.track.plasys import track_plasys
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "experiments"))
 import waist as waist_exp  # noqa: E402  (experiments/waist.py: the waist protocol, reused)
 
 OUT = ROOT / "experiments" / "results"

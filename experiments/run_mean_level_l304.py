@@ -15,14 +15,10 @@ from __future__ import annotations
 
 import argparse
 import logging
-import sys
-from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 from level_dz import LEVEL, STAIRS, folder, raw_track  # noqa: E402
-
 from pdrlearn.io import read_session  # noqa: E402
 from pdrlearn.kernels.distance import level_dz  # noqa: E402
 from pdrlearn.sim import UserProfile, simulate, simulate_path  # noqa: E402

@@ -24,9 +24,8 @@ from __future__ import annotations
 
 import logging
 import sys
-from pathlib import Path
 
-sys.path.append(str(Path(__file__).resolve().parents[1]))  # after PYTHONPATH: an old pdrlearn there wins
+import _repo  # noqa: F401  (the repository root at the end of sys.path, for tests.*: E301)
 
 
 def main(bundle: str, session_dir: str, passes: int, mode: str = "steps") -> None:

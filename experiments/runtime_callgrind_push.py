@@ -27,9 +27,8 @@ import functools
 import itertools
 import logging
 import sys
-from pathlib import Path
 
-sys.path.append(str(Path(__file__).resolve().parents[1]))  # after PYTHONPATH: an old pdrlearn there wins
+import _repo  # noqa: F401  (the repository root at the end of sys.path, for tests.*: E301)
 
 
 def _starmap(g):

@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.append(str(Path(__file__).resolve().parents[1]))  # after PYTHONPATH: an old pdrlearn there wins
+import _repo  # noqa: F401  (the repository root at the end of sys.path, for tests.*: E301)
 
 
 def chunks_of(streams: dict, n: int) -> list[dict]:

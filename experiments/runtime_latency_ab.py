@@ -21,11 +21,10 @@ from __future__ import annotations
 
 import logging
 import sys
-from pathlib import Path
 
 import numpy as np
 
-sys.path.append(str(Path(__file__).resolve().parents[1]))  # after PYTHONPATH: an old pdrlearn there wins
+import _repo  # noqa: F401  (the repository root at the end of sys.path, for tests.*: E301)
 
 
 def main(bundle: str, session_dir: str, passes: int = 5) -> None:

@@ -18,16 +18,14 @@ from __future__ import annotations
 
 import argparse
 import math
-import sys
 import tempfile
 from pathlib import Path
 
 import pandas as pd
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
 
-from experiments.default_model_length_c104 import matched, pct, user_range  # noqa: E402
+from default_model_length_c104 import matched, pct, user_range  # noqa: E402
 from pdrlearn.io import write_session  # noqa: E402
 from pdrlearn.sim import UserProfile, simulate, simulate_path  # noqa: E402
 from pdrlearn.sim.path import Straight, Turn  # noqa: E402

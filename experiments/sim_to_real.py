@@ -38,8 +38,7 @@ from pdrlearn.sim import simulate
 ROOT = Path(__file__).resolve().parents[1]
 REAL = ROOT / "datasets" / "real"
 RESULTS = ROOT / "experiments" / "results"
-sys.path.insert(0, str(ROOT))  # experiments.partial when run as a script
-from experiments.partial import partial_note, partial_options, result_name  # noqa: E402
+from partial import partial_note, partial_options, result_name  # noqa: E402
 
 #: options that make a run partial (steps decision 67, amended by review R2): the stem gets ``_partial``
 PARTIAL_OPTIONS = ("users", "first_user", "cv", "seed")

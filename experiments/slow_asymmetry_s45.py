@@ -15,7 +15,7 @@ import warnings
 
 import numpy as np
 
-from experiments.labelled_asymmetry_s34 import walk_contacts
+from labelled_asymmetry_s34 import walk_contacts
 from pdrlearn.sim import Stand, Straight, UserProfile, simulate_path
 from pdrlearn.track.labelled_asymmetry import (
     UNCERTAIN_SE_POINTS,

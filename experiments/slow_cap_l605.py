@@ -13,8 +13,6 @@ from pathlib import Path
 
 from pdrlearn.cli.track import track_session, track_settings
 from pdrlearn.kernels import contact
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 from slow_rests_l596 import _sim as simulate_once  # noqa: E402
 
 OUT = Path(sys.argv[1]) if len(sys.argv) > 1 else Path("/tmp/slow_cap_l605")

@@ -11,10 +11,8 @@ from __future__ import annotations
 
 import logging
 import sys
-from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from experiments.stopgo_pauses_l482 import ONE_STEP, SG1, real, run_cases  # noqa: E402
+from stopgo_pauses_l482 import ONE_STEP, SG1, real, run_cases  # noqa: E402
 
 logging.disable(logging.WARNING)  # the slow walks' L95 speed lines
 SLOW_ROUTE = "stand:3, straight:10, stand:3"

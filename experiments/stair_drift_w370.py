@@ -17,7 +17,6 @@ from pathlib import Path
 
 import numpy as np
 
-from experiments.ramp_ascent_w229 import level_check
 from pdrlearn.io.plasys import read_session
 from pdrlearn.kernels import altitude_check
 from pdrlearn.kernels.altitude_check import ASCENT_BAND_BARO_M, CLIMB_WINDOW_S, ascent_descent, climbs_within_weather
@@ -25,6 +24,7 @@ from pdrlearn.sim import UserProfile, simulate, simulate_path
 from pdrlearn.sim.route import parse_route
 from pdrlearn.track.plasys import track_plasys
 from pdrlearn.track.waist import track_waist
+from ramp_ascent_w229 import level_check
 
 ROUTES = {
     "STAIRS": "stand:3, straight:3, up:12, turn:180, down:12, straight:3, stand:3",

@@ -20,11 +20,11 @@ from pathlib import Path
 import pandas as pd
 
 import pdrlearn.track.stair_flights as sf
-from experiments.stair_flights_l433 import tracked_steps
 from pdrlearn.cli import main
 from pdrlearn.track.clinical import bout_rows
 from pdrlearn.track.gait import stair_rows, stride_rows
 from pdrlearn.track.walk_test import ten_metre_walk
+from stair_flights_l433 import tracked_steps
 
 REAL = ("gaitmap_level_left", "gaitmap_level_right", "gaitmap_stairs_up_left", "gaitmap_stairs_down_left")
 #: name -> (route, rise m, true flights as signed stair counts): review R3's routes

@@ -44,7 +44,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from experiments.localization import train_model
+from localization import train_model
 from pdrlearn.track.evaluate import evaluate_track, match_by_overlap
 from pdrlearn.track.plasys import track_plasys
 

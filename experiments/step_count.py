@@ -35,7 +35,6 @@ from __future__ import annotations
 
 import argparse
 import logging
-import sys
 import time
 import warnings
 from pathlib import Path
@@ -50,8 +49,7 @@ from pdrlearn.steps import DETECTORS as REGISTRY
 from pdrlearn.steps import get_detector, score_steps
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))  # experiments.partial when run as a script
-from experiments.partial import parsed_with_names, partial_note  # noqa: E402
+from partial import parsed_with_names, partial_note  # noqa: E402
 
 OUT = ROOT / "experiments" / "results"
 SPEEDS = ("slow", "normal", "fast")

@@ -13,12 +13,12 @@ import logging
 import sys
 
 import numpy as np
-from turn_steps import real_tracks
 
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
 from pdrlearn.track.waist import track_waist
 from pdrlearn.waist.turn_steps import missed_turn_steps, stepless_turns
+from turn_steps import real_tracks
 
 logging.disable(logging.WARNING)
 

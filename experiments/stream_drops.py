@@ -16,14 +16,11 @@ from __future__ import annotations
 
 import argparse
 import logging
-import sys
-from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the repo root, for `python experiments/x.py` (E294)
-from experiments._results import add_users, user_range, write_result, write_table  # noqa: E402
+from _results import add_users, user_range, write_result, write_table  # noqa: E402
 from pdrlearn.io import Stream  # noqa: E402
 from pdrlearn.sim.simulate import simulate  # noqa: E402
 from pdrlearn.track.evaluate import evaluate_track  # noqa: E402

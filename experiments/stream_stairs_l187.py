@@ -73,7 +73,7 @@ def route_walk(route: str, user: int):
 
 
 def measure(users: list[int], model_users: int, cache: Path | None) -> dict:
-    from experiments.localization import train_model
+    from localization import train_model
     from pdrlearn.sim import simulate
     from pdrlearn.track.evaluate import evaluate_track, match_by_overlap
     from pdrlearn.track.plasys import track_plasys
@@ -131,9 +131,9 @@ R3_RUNS = {"offline projected": {}, "streamed norm3": {"streaming": True, "down_
 
 def r3_table(users: list[int]) -> str:
     """L63's R3 with the labels: where the streamed walk ends, per down mode and kernel (medians over users)."""
-    from experiments.stairs_down import route_walk as stairs_route
     from pdrlearn.track.evaluate import evaluate_track
     from pdrlearn.track.plasys import track_plasys
+    from stairs_down import route_walk as stairs_route
 
     out: dict = {k: ([], []) for k in R3_RUNS}
     for user in users:

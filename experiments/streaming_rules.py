@@ -30,7 +30,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from experiments.localization import train_model
+from localization import train_model
 from pdrlearn.track.evaluate import evaluate_track
 from pdrlearn.track.plasys import track_plasys
 

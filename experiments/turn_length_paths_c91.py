@@ -22,7 +22,6 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from experiments.turn_length_c88 import turn_rule, walks
 from pdrlearn.classify import train_user
 from pdrlearn.export import export_model
 from pdrlearn.kernels import turn_length
@@ -32,6 +31,7 @@ from pdrlearn.sim import simulate
 from pdrlearn.track.evaluate import match_by_overlap, with_reference_columns
 from pdrlearn.track.plasys import track_plasys
 from pdrlearn.track.turn_classes import measured_length_class
+from turn_length_c88 import turn_rule, walks
 
 OUT = Path(__file__).parent / "results"
 

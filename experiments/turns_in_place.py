@@ -14,12 +14,8 @@ as ``pdrlearn track`` does.
 """
 import logging
 import sys
-from pathlib import Path
 
 import numpy as np
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from turns_transfers import match_truth_rows, med, true_turns  # noqa: E402
 
 from pdrlearn.sim import UserProfile, simulate_path  # noqa: E402
 from pdrlearn.sim.route import parse_route  # noqa: E402
@@ -27,6 +23,7 @@ from pdrlearn.track.bouts import detected_bouts  # noqa: E402
 from pdrlearn.track.clinical import turn_table  # noqa: E402
 from pdrlearn.track.plasys import track_plasys  # noqa: E402
 from pdrlearn.track.waist import track_waist  # noqa: E402
+from turns_transfers import match_truth_rows, med, true_turns  # noqa: E402
 
 logging.disable(logging.WARNING)
 

@@ -8,11 +8,8 @@ from __future__ import annotations
 
 import argparse
 import logging
-import sys
-from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the repo root, for `python experiments/x.py` (E294)
-from experiments._results import add_users, user_range  # noqa: E402
+from _results import add_users, user_range  # noqa: E402
 from pdrlearn.io.session import Stream  # noqa: E402
 from pdrlearn.sim import simulate  # noqa: E402
 from pdrlearn.steps.align import align_units  # noqa: E402

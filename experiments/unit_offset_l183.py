@@ -14,12 +14,12 @@ import logging
 import tempfile
 from pathlib import Path
 
-from experiments.live_clock_check_l177 import BUNDLE, live
-from experiments.unit_offset_l161 import shifted
+from live_clock_check_l177 import BUNDLE, live
 from pdrlearn.io import read_session
 from pdrlearn.kernels.align import offset_locked, unit_offset_message
 from pdrlearn.sim import simulate
 from pdrlearn.steps.align import align_estimate
+from unit_offset_l161 import shifted
 
 QUEUE = ", ".join(["stand:4, straight:0.5"] * 12)  # the trial's queue route (session 26, finding 10)
 

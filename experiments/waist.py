@@ -24,7 +24,6 @@ from __future__ import annotations
 
 import argparse
 import logging
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -38,8 +37,7 @@ from pdrlearn.waist.evaluate import waist_metrics
 from pdrlearn.waist.params import resolve_params
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))  # experiments.partial when run as a script
-from experiments.partial import parsed_with_names, partial_note  # noqa: E402
+from partial import parsed_with_names, partial_note  # noqa: E402
 
 PAPERS = {
     "seed 000 (Basso 2017)": "position error 0.9-2.1 % of path (Table I), length error 0.3-1.5 %",

@@ -12,10 +12,6 @@ Writes experiments/results/waist_ap_above_mean_w265.md.
 
 from __future__ import annotations
 
-import sys
-from pathlib import Path
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 import waist_side_at_contact_w235 as M  # noqa: E402  (the measurement of W235: real, sim, hapt)
 
 M.OPTION = "ap_above_mean"

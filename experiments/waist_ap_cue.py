@@ -22,17 +22,12 @@ Run: PYTHONPATH=. .venv/bin/python experiments/waist_ap_cue.py [--external datas
 
 from __future__ import annotations
 
-import sys
-from pathlib import Path
-
 import numpy as np
 import pandas as pd
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 import waist as W  # noqa: E402
 import waist_bout_parts as BP  # noqa: E402
 import waist_turn_spot as TS  # noqa: E402
-
 from pdrlearn.waist.ahrs import waist_imu  # noqa: E402
 from pdrlearn.waist.lengths import sample_index, walking_sequences  # noqa: E402
 

@@ -9,17 +9,14 @@ from __future__ import annotations
 
 import argparse
 import logging
-import sys
 from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).parent))
 from gyro_rest_rate_w421 import degraded  # noqa: E402 (the degraded copies, shared)
-from waist_rest_bias_w126 import final_error  # noqa: E402 (W126's measure, shared)
-
 from pdrlearn.io import read_session  # noqa: E402
 from pdrlearn.waist.plausibility import waist_bias_line  # noqa: E402
+from waist_rest_bias_w126 import final_error  # noqa: E402 (W126's measure, shared)
 
 KINDS = {"clean": ("rate=52",), "b2": ("rate=52", "bias_dps=2"), "dr2": ("rate=52", "bias_dps=1", "drift_dps=2")}
 

@@ -30,14 +30,11 @@ Run: PYTHONPATH=. .venv/bin/python experiments/waist_bout_terms.py [--external d
 from __future__ import annotations
 
 import sys
-from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 import waist as W  # noqa: E402
-
 from pdrlearn.io import read_session  # noqa: E402
 from pdrlearn.steps.evaluate import DEFAULT_TOLERANCE_S, match_events  # noqa: E402
 from pdrlearn.track import get_pipeline  # noqa: E402

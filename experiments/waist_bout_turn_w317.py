@@ -23,15 +23,12 @@ from __future__ import annotations
 
 import os
 import sys
-from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 import waist as W  # noqa: E402
 import waist_bout_terms as T  # noqa: E402
-
 from pdrlearn.track import get_pipeline  # noqa: E402
 from pdrlearn.waist.evaluate import reference_bouts  # noqa: E402
 from pdrlearn.waist.heading import TurnClassifier  # noqa: E402

@@ -26,12 +26,10 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 import _results as R  # noqa: E402  (the shared options and tables, E294)
 import waist as W  # noqa: E402
 import waist_calibration_speed as CS  # noqa: E402  (W211's walkways)
 import waist_pivot_steps as PV  # noqa: E402  (W150's protocol: its _track and turning route)
-
 from pdrlearn.track import get_pipeline  # noqa: E402
 from pdrlearn.waist.calibration import calibrate  # noqa: E402
 from pdrlearn.waist.params import WaistParams, resolve_params  # noqa: E402

@@ -33,16 +33,13 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import logging
-import sys
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 import waist as W  # noqa: E402  (experiments/waist.py: the same runs, metrics and simulator protocol)
 import waist_k_shrinkage as S  # noqa: E402  (W48's evidence and leave-one-subject-out tau)
-
 from pdrlearn.waist import _kernels as K  # noqa: E402
 from pdrlearn.waist.calibration import calibration_walks  # noqa: E402
 from pdrlearn.waist.params import DEFAULT_K, TAU_K  # noqa: E402

@@ -16,20 +16,17 @@ from __future__ import annotations
 
 import argparse
 import logging
-import sys
 from pathlib import Path
 
 import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-
-from waist_stand import SIM_ROUTES, matched_truth  # noqa: E402
 
 from pdrlearn.track.waist import track_waist  # noqa: E402
 from pdrlearn.waist.ahrs import waist_imu  # noqa: E402
 from pdrlearn.waist.contact_model import MODEL_PATH, contact_features, fit_contact_model, save_contact_model  # noqa: E402
 from pdrlearn.waist.events import gate_threshold  # noqa: E402
+from waist_stand import SIM_ROUTES, matched_truth  # noqa: E402
 
 TRAIN_USERS = range(4600, 4640)  # the lead's training users for W203
 FRESH_USERS = range(4640, 4660)  # the lead's fresh users for W203 (a)

@@ -10,10 +10,6 @@ Writes experiments/results/waist_fast_fill_w242.md.
 
 from __future__ import annotations
 
-import sys
-from pathlib import Path
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 import waist_side_at_contact_w235 as M  # noqa: E402  (the measurement of W235: real, sim, hapt)
 
 M.OPTION = "fast_fill"

@@ -11,14 +11,12 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).parent))
-from turns_transfers import true_turn  # noqa: E402  the truth's turn (the waist unit's true heading change)
-
 from pdrlearn.io import read_session  # noqa: E402
 from pdrlearn.sim import UserProfile, simulate_path  # noqa: E402
 from pdrlearn.sim.route import parse_route  # noqa: E402
 from pdrlearn.track.clinical import turn_table  # noqa: E402
 from pdrlearn.track.waist import track_waist  # noqa: E402
+from turns_transfers import true_turn  # noqa: E402  the truth's turn (the waist unit's true heading change)
 
 logging.disable(logging.WARNING)
 

@@ -18,11 +18,9 @@ from pathlib import Path
 
 import numpy as np
 
-from pdrlearn.track.waist import track_waist
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 import waist_ic_classes as W  # noqa: E402 - f1
 import waist_stand as S  # noqa: E402 - W218's routes, matched_truth
+from pdrlearn.track.waist import track_waist
 from waist_freeze_veto import simulate  # noqa: E402 - a route at a given gait
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -11,16 +11,11 @@ walks): on every route the true contacts matched with the veto are at least 99.5
 from __future__ import annotations
 
 import dataclasses
-import sys
-from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-
-from waist_stand import SIM_ROUTES, matched_truth  # noqa: E402
-
 from pdrlearn.track.waist import track_waist  # noqa: E402
+from waist_stand import SIM_ROUTES, matched_truth  # noqa: E402
 
 USERS = range(5000, 5040)  # the lead's fresh users for W214
 FREEZE_ROUTE = "stand:3, straight:4, freeze:10:{hz}:{acc}, straight:4, stand:3"

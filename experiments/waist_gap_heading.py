@@ -18,6 +18,7 @@ from unittest import mock
 
 import numpy as np
 
+import _repo  # noqa: F401  (the repository root at the end of sys.path, for tests.*: E301)
 from pdrlearn.kernels import stride as SK
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route

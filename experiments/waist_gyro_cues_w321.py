@@ -31,22 +31,19 @@ Writes experiments/results/waist_gyro_cues_w321.md.
 
 from __future__ import annotations
 
-import sys
 from pathlib import Path
 
 import numpy as np
 
+import waist_ic_classes as W  # noqa: E402  experiments/waist_ic_classes.py: scoring
+import waist_ic_misses_w235 as M  # noqa: E402  experiments/waist_ic_misses_w235.py: the stage of each miss
+import waist_stand as S  # noqa: E402  experiments/waist_stand.py: matched_truth
 from pdrlearn.io import read_session
 from pdrlearn.kernels.yaw_turns import yaw_rate_turns
 from pdrlearn.steps.detectors import PelvicGyroStepDetector
 from pdrlearn.track.waist import MAX_STEP_S, track_waist
 from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.ahrs import waist_imu
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-import waist_ic_classes as W  # noqa: E402  experiments/waist_ic_classes.py: scoring
-import waist_ic_misses_w235 as M  # noqa: E402  experiments/waist_ic_misses_w235.py: the stage of each miss
-import waist_stand as S  # noqa: E402  experiments/waist_stand.py: matched_truth
 from waist_freeze_veto import simulate  # noqa: E402  (a route at a given gait)
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -26,7 +26,6 @@ from __future__ import annotations
 
 import argparse
 import logging
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -40,7 +39,6 @@ from pdrlearn.waist.evaluate import waist_metrics
 from pdrlearn.waist.params import resolve_params
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "experiments"))
 from waist import external_runs, walked_between_contacts  # noqa: E402
 
 BASE = KK.vertical_excursion

@@ -32,12 +32,12 @@ import argparse
 import contextlib
 import io
 import logging
-import sys
 import warnings
 from pathlib import Path
 
 import numpy as np
 
+import waist_ic_context as C  # noqa: E402  experiments/waist_ic_context.py: the scoring and its context flags
 from pdrlearn.io import read_session
 from pdrlearn.steps.evaluate import match_events
 from pdrlearn.track.waist import track_waist
@@ -46,9 +46,6 @@ from pdrlearn.waist.ahrs import waist_imu
 from pdrlearn.waist.evaluate import step_metrics
 from pdrlearn.waist.plausibility import contact_lateral_velocity
 from pdrlearn.waist.posture import TRANSFER_HALF_S, flexion_events
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-import waist_ic_context as C  # noqa: E402  experiments/waist_ic_context.py: the scoring and its context flags
 
 ROOT = Path(__file__).resolve().parents[1]
 FP_CLASSES = ("timing", "transfer", "turn", "pause", "edge", "split", "other")

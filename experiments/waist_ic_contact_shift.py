@@ -19,20 +19,17 @@ from __future__ import annotations
 
 import contextlib
 import io
-import sys
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
+import waist_ic_classes as W  # noqa: E402  experiments/waist_ic_classes.py
+import waist_vault_veto as V  # noqa: E402  experiments/waist_vault_veto.py: W119's rule, shared
 from pdrlearn.track.waist import MAX_STEP_S, track_waist
 from pdrlearn.waist.ahrs import waist_imu
 from pdrlearn.waist.events import InitialContactDetector, gate_threshold
 from pdrlearn.waist.params import resolve_params
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-import waist_ic_classes as W  # noqa: E402  experiments/waist_ic_classes.py
-import waist_vault_veto as V  # noqa: E402  experiments/waist_vault_veto.py: W119's rule, shared
 
 ROOT = Path(__file__).resolve().parents[1]
 USERS = range(2000, 2050)  # fresh for W131 (the lead's 2000-2099)

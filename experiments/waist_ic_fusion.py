@@ -40,7 +40,6 @@ Writes experiments/results/waist_ic_fusion.md.
 from __future__ import annotations
 
 import itertools
-import sys
 import time
 from pathlib import Path
 from unittest import mock
@@ -65,7 +64,6 @@ from pdrlearn.waist import events as E
 from pdrlearn.waist.ahrs import waist_imu
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 from waist_ic_loso import SUBJECTS, TEST5, _folder, parse_args, sim_sessions  # noqa: E402
 
 OUT = ROOT / "experiments" / "results"

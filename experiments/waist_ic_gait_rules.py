@@ -52,7 +52,6 @@ from pdrlearn.waist.lengths import PendulumLength
 from pdrlearn.waist.params import resolve_params
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 from waist_ic_loso import SUBJECTS, TEST5, _folder, f1, parse_args, sim_sessions  # noqa: E402
 
 OUT = ROOT / "experiments" / "results"

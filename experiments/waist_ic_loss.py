@@ -34,7 +34,6 @@ from __future__ import annotations
 import contextlib
 import io
 import logging
-import sys
 import warnings
 from pathlib import Path
 
@@ -42,15 +41,13 @@ import numpy as np
 import pandas as pd
 from scipy import signal as sg
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from waist_ic_context import scored  # noqa: E402  (decision 25's scorer, = score_steps)
-
 from pdrlearn.io import read_session  # noqa: E402
 from pdrlearn.steps.detectors import get_detector  # noqa: E402
 from pdrlearn.steps.evaluate import in_intervals, match_events, reference_events  # noqa: E402
 from pdrlearn.waist import _kernels as K  # noqa: E402
 from pdrlearn.waist.ahrs import waist_imu  # noqa: E402
 from pdrlearn.waist.events import InitialContactDetector, walking_gate  # noqa: E402
+from waist_ic_context import scored  # noqa: E402  (decision 25's scorer, = score_steps)
 
 ROOT = Path(__file__).resolve().parents[1]
 EXT = ROOT / "datasets" / "external"

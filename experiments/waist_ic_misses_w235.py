@@ -48,21 +48,18 @@ import argparse
 import contextlib
 import io
 import logging
-import sys
 import warnings
 from pathlib import Path
 
 import numpy as np
 
+import waist_ic_classes as W  # noqa: E402  experiments/waist_ic_classes.py: scoring and classes
 from pdrlearn.io import read_session
 from pdrlearn.track.waist import MAX_STEP_S, track_waist
 from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.ahrs import waist_imu
 from pdrlearn.waist.events import InitialContactDetector, gate_threshold
 from pdrlearn.waist.params import resolve_params
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-import waist_ic_classes as W  # noqa: E402  experiments/waist_ic_classes.py: scoring and classes
 
 ROOT = Path(__file__).resolve().parents[1]
 TOL = 0.25  # decision 7: the scoring tolerance (s)

@@ -31,22 +31,19 @@ import argparse
 import contextlib
 import io
 import logging
-import sys
 import warnings
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
+import waist as WX  # noqa: E402  experiments/waist.py: the external protocol (bouts)
+import waist_ic_classes as W  # noqa: E402  experiments/waist_ic_classes.py
+import waist_ic_weak_fill as WF  # noqa: E402  experiments/waist_ic_weak_fill.py: W148's read-out and rule
 from pdrlearn.io import read_session
 from pdrlearn.track.waist import MAX_STEP_S
 from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.evaluate import step_metrics
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-import waist as WX  # noqa: E402  experiments/waist.py: the external protocol (bouts)
-import waist_ic_classes as W  # noqa: E402  experiments/waist_ic_classes.py
-import waist_ic_weak_fill as WF  # noqa: E402  experiments/waist_ic_weak_fill.py: W148's read-out and rule
 
 ROOT = Path(__file__).resolve().parents[1]
 USERS = range(2880, 2940)  # fresh for W152 (the lead's 2880-2939)

@@ -33,7 +33,6 @@ import dataclasses
 import hashlib
 import logging
 import pickle
-import sys
 import time
 from pathlib import Path
 
@@ -44,7 +43,6 @@ from pdrlearn.steps.evaluate import score_steps
 from pdrlearn.waist.evaluate import reference_bouts
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 import waist_ic_learned as W  # noqa: E402
 
 OUT = ROOT / "experiments" / "results" / "waist_ic_peruser.md"

@@ -23,19 +23,16 @@ from __future__ import annotations
 
 import contextlib
 import io
-import sys
 from pathlib import Path
 
 import numpy as np
 
+import waist_ic_classes as W  # noqa: E402  experiments/waist_ic_classes.py
 from pdrlearn.io import read_session
 from pdrlearn.steps.evaluate import match_events
 from pdrlearn.track.waist import track_waist
 from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.ahrs import waist_imu
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-import waist_ic_classes as W  # noqa: E402  experiments/waist_ic_classes.py
 
 ROOT = Path(__file__).resolve().parents[1]
 C = W.C

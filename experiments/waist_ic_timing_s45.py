@@ -25,7 +25,6 @@ from __future__ import annotations
 
 import argparse
 import logging
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -37,8 +36,7 @@ from pdrlearn.track import get_pipeline
 from pdrlearn.waist.evaluate import step_metrics
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-from experiments.waist import external_runs, walked_between_contacts  # noqa: E402
+from waist import external_runs, walked_between_contacts  # noqa: E402
 
 TOLERANCE_S = 0.25  # the scorer's matching tolerance (pdrlearn.steps.evaluate.DEFAULT_TOLERANCE_S)
 SIM_USERS = list(range(12740, 12750))  # session 45's fresh users for I5

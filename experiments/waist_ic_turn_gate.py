@@ -19,8 +19,6 @@ from pathlib import Path
 
 import numpy as np
 
-from experiments.waist_ic_period import SUBJECTS, TEST5, f1, real_counts
-from experiments.waist_turn_gaps import ROUTES
 from pdrlearn.io import read_session
 from pdrlearn.sim import UserProfile, simulate, simulate_path
 from pdrlearn.sim.route import parse_route
@@ -28,6 +26,8 @@ from pdrlearn.steps.detectors import get_detector
 from pdrlearn.steps.evaluate import score_events
 from pdrlearn.waist.ahrs import waist_imu
 from pdrlearn.waist.events import InitialContactDetector
+from waist_ic_period import SUBJECTS, TEST5, f1, real_counts
+from waist_turn_gaps import ROUTES
 
 ROOT = Path(__file__).resolve().parents[1]
 TURN_GATE_RPS = 0.45  # decision 28: DEFAULT_TURN_GMM's turning mean (W7)

@@ -11,7 +11,7 @@ Run: PYTHONPATH=$PWD python experiments/waist_ic_turn_shift.py [--external datas
 
 from __future__ import annotations
 
-from experiments.waist_ic_turn_gate import measure
+from waist_ic_turn_gate import measure
 
 TURN_SHIFT_RPS = 0.45  # decision 29 = decision 28: DEFAULT_TURN_GMM turning mean (W7)
 

@@ -39,13 +39,15 @@ import argparse
 import contextlib
 import io
 import logging
-import sys
 import warnings
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
+import waist as WX  # noqa: E402  experiments/waist.py: the external protocol (bout distance medians)
+import waist_ic_classes as W  # noqa: E402  experiments/waist_ic_classes.py
+import waist_vault_veto as V  # noqa: E402  experiments/waist_vault_veto.py: W119's simulation
 from pdrlearn.io import read_session
 from pdrlearn.track.waist import MAX_STEP_S, track_waist
 from pdrlearn.waist import _kernels as K
@@ -53,11 +55,6 @@ from pdrlearn.waist.ahrs import waist_imu
 from pdrlearn.waist.evaluate import step_metrics
 from pdrlearn.waist.events import InitialContactDetector, gate_threshold
 from pdrlearn.waist.params import resolve_params
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-import waist as WX  # noqa: E402  experiments/waist.py: the external protocol (bout distance medians)
-import waist_ic_classes as W  # noqa: E402  experiments/waist_ic_classes.py
-import waist_vault_veto as V  # noqa: E402  experiments/waist_vault_veto.py: W119's simulation
 
 ROOT = Path(__file__).resolve().parents[1]
 USERS = range(2700, 2760)  # fresh for W148 (the lead's 2700-2759)

@@ -26,7 +26,7 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 def _sim(users: list[int]) -> pd.DataFrame:
-    import experiments.waist as W
+    import waist as W
 
     rows = []
     for integ in (False, True):

@@ -35,15 +35,12 @@ from __future__ import annotations
 
 import argparse
 import logging
-import sys
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 import waist as W  # noqa: E402  (experiments/waist.py: the same runs, metrics and simulator protocol)
-
 from pdrlearn.io import read_session  # noqa: E402
 from pdrlearn.waist import _kernels as K  # noqa: E402
 from pdrlearn.waist.calibration import calibrate  # noqa: E402

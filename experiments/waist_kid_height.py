@@ -17,12 +17,12 @@ from pathlib import Path
 
 import numpy as np
 
-from experiments.kid_profiles import child, child_age, walk
-from experiments.waist_kid_steps import span
+from kid_profiles import child, child_age, walk
 from pdrlearn.io import read_session
 from pdrlearn.sim.user import UserProfile
 from pdrlearn.track import get_pipeline
 from pdrlearn.waist.params import subject_height
+from waist_kid_steps import span
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -18,13 +18,13 @@ from pathlib import Path
 import numpy as np
 
 import pdrlearn.track.waist as track_waist
-from experiments.kid_profiles import child, child_age, walk
-from experiments.waist_kid_steps import cohort_args, span
+from kid_profiles import child, child_age, walk
 from pdrlearn.io import read_session
 from pdrlearn.sim.user import UserProfile
 from pdrlearn.steps import PLLStepDetector
 from pdrlearn.track import get_pipeline
 from pdrlearn.waist.params import line_leg_m, subject_height
+from waist_kid_steps import cohort_args, span
 
 ROOT = Path(__file__).resolve().parents[1]
 #: (PLL upper clamp, W118 line): today's, W117 alone, W118 on today's PLL, both

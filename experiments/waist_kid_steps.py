@@ -14,7 +14,7 @@ import logging
 from collections import defaultdict
 from pathlib import Path
 
-from experiments.kid_profiles import child, child_age, walk
+from kid_profiles import child, child_age, walk
 from pdrlearn.io import read_session
 from pdrlearn.sim.user import UserProfile
 from pdrlearn.steps.waist_ic import WaistICStepDetector

@@ -20,16 +20,13 @@ from __future__ import annotations
 
 import argparse
 import logging
-import sys
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 import waist as W  # noqa: E402
 import waist_pause_steps as P  # noqa: E402
-
 from pdrlearn.sim import UserProfile, simulate_path  # noqa: E402
 from pdrlearn.sim.route import parse_route  # noqa: E402
 from pdrlearn.steps.evaluate import score_events  # noqa: E402

@@ -12,15 +12,12 @@ from __future__ import annotations
 
 import argparse
 import logging
-import sys
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 import waist as W  # noqa: E402
-
 from pdrlearn.sim import UserProfile, simulate_path  # noqa: E402
 from pdrlearn.sim.route import parse_route  # noqa: E402
 from pdrlearn.track.evaluate import path_length  # noqa: E402

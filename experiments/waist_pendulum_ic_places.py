@@ -41,22 +41,19 @@ from __future__ import annotations
 
 import argparse
 import logging
-import sys
 from collections import Counter
 from pathlib import Path
 
 import numpy as np
-
-sys.path.insert(0, str(Path(__file__).parent))
-from waist_freeze_veto import simulate  # noqa: E402
-from waist_pll_edges import mobgap_check  # noqa: E402
-from waist_stand import TOL_S, W218_ROUTES, matched_truth  # noqa: E402
 
 from pdrlearn.kernels import waist as K  # noqa: E402
 from pdrlearn.kernels.dsp import find_peaks  # noqa: E402
 from pdrlearn.track.waist import track_waist  # noqa: E402
 from pdrlearn.waist.ahrs import waist_imu  # noqa: E402
 from pdrlearn.waist.events import gate_threshold  # noqa: E402
+from waist_freeze_veto import simulate  # noqa: E402
+from waist_pll_edges import mobgap_check  # noqa: E402
+from waist_stand import TOL_S, W218_ROUTES, matched_truth  # noqa: E402
 
 USERS = range(8760, 8780)  # the lead's fresh users for W374's diagnosis (session 36)
 RULE_USERS = range(8780, 8800)  # the lead's fresh users for W374's rule (session 36)

@@ -18,16 +18,13 @@ from __future__ import annotations
 
 import argparse
 import logging
-import sys
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 import _results as R  # noqa: E402  (the shared options and tables, E294)
 import waist as W  # noqa: E402
-
 from pdrlearn.io import read_session  # noqa: E402
 from pdrlearn.track import get_pipeline  # noqa: E402
 from pdrlearn.waist.calibration import calibrate  # noqa: E402

@@ -15,19 +15,15 @@ Run: PYTHONPATH=$PWD python experiments/waist_pll_calibration_w369.py   (about a
 from __future__ import annotations
 
 import logging
-import sys
-from pathlib import Path
 
 import numpy as np
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from waist import walked_between_contacts  # noqa: E402  (experiments/waist.py's calibration distance)
 
 from pdrlearn.sim import simulate  # noqa: E402
 from pdrlearn.track.evaluate import evaluate_track  # noqa: E402
 from pdrlearn.track.waist import track_waist  # noqa: E402
 from pdrlearn.waist.calibration import calibrate  # noqa: E402
 from pdrlearn.waist.params import resolve_params  # noqa: E402
+from waist import walked_between_contacts  # noqa: E402  (experiments/waist.py's calibration distance)
 
 USERS = (1, 2, 3)  # experiments/waist.py's simulated users
 CONFIGS = (("off/off", False, False), ("off/walk-end", False, "walk-end"), ("walk-end/walk-end", "walk-end",

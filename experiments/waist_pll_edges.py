@@ -31,10 +31,10 @@ import math
 from pathlib import Path
 
 import numpy as np
-from waist_freeze_veto import simulate
-from waist_stand import W218_ROUTES, matched_truth, track_waist
 
 import pdrlearn.kernels.step_events as SE
+from waist_freeze_veto import simulate
+from waist_stand import W218_ROUTES, matched_truth, track_waist
 
 USERS = range(7370, 7390)  # the lead's fresh users for W345 (session 33)
 EDGE_USERS = range(7750, 7790)  # the lead's fresh users for W356 (session 34)

@@ -20,7 +20,6 @@ import argparse
 import contextlib
 import dataclasses
 import logging
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -34,8 +33,7 @@ from pdrlearn.track import get_pipeline
 from pdrlearn.track.evaluate import evaluate_track
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-from experiments.waist import external_runs, pooled, real  # noqa: E402
+from waist import external_runs, pooled, real  # noqa: E402
 
 SLOW_WALKS = list(zip(range(12740, 12748), np.repeat([1.6, 1.8, 2.0, 2.2], 2), strict=True))
 A_USERS = list(range(12740, 12750))

@@ -16,10 +16,8 @@ from __future__ import annotations
 
 import argparse
 import logging
-import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 import waist as W  # noqa: E402
 import waist_pause_steps as P  # noqa: E402
 

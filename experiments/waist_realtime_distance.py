@@ -28,7 +28,6 @@ from __future__ import annotations
 
 import argparse
 import logging
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -42,7 +41,6 @@ from pdrlearn.waist.ahrs import waist_imu
 from pdrlearn.waist.evaluate import bout_stride_length, reference_bouts, steps_in_interval
 from pdrlearn.waist.events import _window, walking_gate
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 # W31's padded side-cue variant, one definition for both scripts
 from waist_realtime_ic import _padded_lateral_velocity as _padded_lv  # noqa: E402
 
@@ -234,7 +232,6 @@ def decision_variants(ext: Path) -> pd.DataFrame:
     Test11 step F1 and median |per-bout error| vs `Length` / vs strides per subject, pooled over the bouts."""
     from unittest import mock
 
-    sys.path.insert(0, str(Path(__file__).resolve().parent))
     import waist as W
 
     runs = [r for r in W.external_runs(ext) if "Test11" in r[1]]

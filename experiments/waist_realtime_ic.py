@@ -15,7 +15,6 @@ from __future__ import annotations
 import argparse
 import contextlib
 import logging
-import sys
 from pathlib import Path
 from unittest import mock
 
@@ -28,8 +27,6 @@ from pdrlearn.steps.evaluate import match_events, score_events
 from pdrlearn.waist import _kernels as K
 from pdrlearn.waist.ahrs import waist_imu
 from pdrlearn.waist.events import InitialContactDetector
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 from waist_ic_errors import SUBJECTS, TEST5, TOL, f1, scored  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -9,17 +9,14 @@ Writes experiments/results/waist_rhythm_w339.md.
 from __future__ import annotations
 
 import dataclasses
-import sys
 from pathlib import Path
 
 import numpy as np
 
+import waist_foot_rest_w337 as F  # noqa: E402 - W337's routes and ride
 from pdrlearn.io import read_session
 from pdrlearn.track.units import keep_units
 from pdrlearn.track.waist import track_waist
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-import waist_foot_rest_w337 as F  # noqa: E402 - W337's routes and ride
 from waist_freeze_veto import simulate  # noqa: E402 - a route at a given gait
 
 ROOT = Path(__file__).resolve().parents[1]

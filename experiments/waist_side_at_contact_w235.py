@@ -18,21 +18,18 @@ import argparse
 import contextlib
 import io
 import logging
-import sys
 import warnings
 from pathlib import Path
 
 import numpy as np
 
-from pdrlearn.io import read_session
-from pdrlearn.track.waist import track_waist
-from pdrlearn.waist.evaluate import step_metrics
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 import hapt as H  # noqa: E402  experiments/hapt.py: the HAPT static / gait read-out
 import waist_ic_classes as W  # noqa: E402  experiments/waist_ic_classes.py: f1
 import waist_stand as S  # noqa: E402  experiments/waist_stand.py: W218's routes, matched_truth
 import waist_vault_veto as V  # noqa: E402  experiments/waist_vault_veto.py: counts
+from pdrlearn.io import read_session
+from pdrlearn.track.waist import track_waist
+from pdrlearn.waist.evaluate import step_metrics
 from waist_freeze_veto import simulate  # noqa: E402  (W214's route at a given gait)
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import argparse
 import logging
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -27,8 +26,7 @@ from pdrlearn.steps.evaluate import match_events
 from pdrlearn.track.waist import track_waist
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))  # experiments.partial when run as a script
-from experiments.partial import parsed_with_names, partial_note  # noqa: E402
+from partial import parsed_with_names, partial_note  # noqa: E402
 
 TOL_S = 0.25
 #: decision W497: the option that makes a run partial (waist_sides_partial.md); --external is where the same

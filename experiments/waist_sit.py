@@ -124,7 +124,6 @@ def real(sit_veto=True, *, strict: bool = False, bases=(("waist-pendulum", "wais
 
     import pandas as pd
 
-    sys.path.insert(0, str(Path(__file__).resolve().parent))
     import waist as W  # experiments/waist.py
 
     ext = Path("datasets/external")
@@ -312,21 +311,26 @@ def where() -> None:
               f"{int(inside.sum())}, outside {int((~inside).sum())}; within 0.25 s of a reference IC {int(near.sum())}")
 
 
-if sys.argv[1:] == ["count"]:
-    count(range(620, 640))
-elif sys.argv[1:] == ["veto"]:
-    veto()
-elif sys.argv[1:] == ["real"]:
-    real()
-elif sys.argv[1:] == ["where"]:
-    where()
-elif sys.argv[1:] == ["rhythm"]:
-    rhythm()
-elif sys.argv[1:] == ["today"]:
-    today()
-elif sys.argv[1:] == ["alternation"]:
-    alternation()
-elif sys.argv[1:] == ["opposite"]:
-    opposite()
-elif sys.argv[1:] == ["causal"]:
-    causal()
+def main() -> None:
+    if sys.argv[1:] == ["count"]:
+        count(range(620, 640))
+    elif sys.argv[1:] == ["veto"]:
+        veto()
+    elif sys.argv[1:] == ["real"]:
+        real()
+    elif sys.argv[1:] == ["where"]:
+        where()
+    elif sys.argv[1:] == ["rhythm"]:
+        rhythm()
+    elif sys.argv[1:] == ["today"]:
+        today()
+    elif sys.argv[1:] == ["alternation"]:
+        alternation()
+    elif sys.argv[1:] == ["opposite"]:
+        opposite()
+    elif sys.argv[1:] == ["causal"]:
+        causal()
+
+
+if __name__ == "__main__":
+    main()

@@ -16,12 +16,10 @@ from __future__ import annotations
 
 import argparse
 import logging
-import sys
 from pathlib import Path
 
 import pandas as pd
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 from waist import external_runs, pooled, real, simulated, summarize_sim  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]

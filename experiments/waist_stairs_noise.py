@@ -13,17 +13,14 @@ from __future__ import annotations
 
 import argparse
 import logging
-import sys
 from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from waist_stairs import LEVEL, STAIRS, sim  # noqa: E402  (W91's routes and sessions, one definition)
-
 from pdrlearn.io import read_session  # noqa: E402
 from pdrlearn.track import get_pipeline  # noqa: E402
 from pdrlearn.track.evaluate import evaluate_track  # noqa: E402
+from waist_stairs import LEVEL, STAIRS, sim  # noqa: E402  (W91's routes and sessions, one definition)
 
 #: a step is truly on stairs when the reference altitude changes by half a 0.17 m riser during it
 HALF_RISER_M = 0.085

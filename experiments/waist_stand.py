@@ -334,7 +334,6 @@ def sim_check(value=True, users=SIM_USERS, routes=SIM_ROUTES, decision: str = "W
 def measure(root: Path, value=True, decision: str = "W189") -> None:
     """The adoption rule of ``decision`` (W189: ``stand_veto=True``, users 4060-4099; W191: ``"turns"``, users
     4180-4239 and the TUG with the pendulum bounce too)."""
-    sys.path.insert(0, str(Path(__file__).resolve().parent))
     import hapt as H  # experiments/hapt.py
 
     cfgs = [c for c in H.configs(value) if c[1] == "waist-pendulum" and not c[2].get("sit_veto")]

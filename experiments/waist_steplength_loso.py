@@ -331,10 +331,8 @@ def turn_per_step(ext: Path) -> pd.DataFrame:
 def turn_power_sim(powers=(1.0, 1.5), users=(1, 2, 3)) -> pd.DataFrame:
     """W36: the simulator (`experiments/waist.py`'s protocol: users x scenarios A-D, calibrated on a measured
     60 m walk) with the W19 factor raised to each power, offline and realtime `waist-pendulum`."""
-    import sys
     from unittest import mock
 
-    sys.path.insert(0, str(Path(__file__).resolve().parent))
     import waist as W
 
     base = K.turning_step_factor

@@ -20,11 +20,11 @@ from pathlib import Path
 
 import numpy as np
 
-from experiments.waist_gap_yaw import ROUTES as L61_ROUTES
 from pdrlearn.sim import UserProfile, simulate, simulate_path
 from pdrlearn.sim.route import parse_route
 from pdrlearn.track import get_pipeline
 from pdrlearn.track.evaluate import evaluate_track
+from waist_gap_yaw import ROUTES as L61_ROUTES
 
 ROUTES = {"tug": "stand:3, straight:3, turn:180, straight:3, turn:180, stand:3", **L61_ROUTES}
 MODES = ("offline", "realtime")

@@ -20,15 +20,12 @@ from __future__ import annotations
 
 import json
 import sys
-from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 import waist as W  # noqa: E402
 import waist_bout_parts as BP  # noqa: E402
-
 from pdrlearn.waist.ahrs import waist_imu  # noqa: E402
 from pdrlearn.waist.evaluate import distance_metrics, reference_bouts, steps_in_interval  # noqa: E402
 

@@ -21,21 +21,18 @@ from __future__ import annotations
 
 import contextlib
 import io
-import sys
 from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
 
+import waist_ic_classes as W  # noqa: E402  experiments/waist_ic_classes.py
 from pdrlearn.io import read_session
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
 from pdrlearn.steps.evaluate import score_events
 from pdrlearn.track.waist import track_waist
 from pdrlearn.waist.evaluate import step_metrics
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-import waist_ic_classes as W  # noqa: E402  experiments/waist_ic_classes.py
 
 ROOT = Path(__file__).resolve().parents[1]
 #: decision -> (the candidate's option value, its fresh simulated users, its results file)

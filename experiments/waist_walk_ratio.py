@@ -78,7 +78,7 @@ def main() -> None:
                 add(group, f"user {u} {sl}/{st} {bounce}",
                     simulate_path(ROUTE, short, speed="normal", rate_hz=100, seed=u, bounce=bounce), TRUE_M)
     if args.kids:  # W116: children walking normally (their walk ratio is smaller)
-        from experiments.kid_profiles import child, child_age, walk
+        from kid_profiles import child, child_age, walk
         k0, k1 = (int(x) for x in args.kids.split("-"))
         for u in range(k0, k1 + 1):
             add("d children", f"user {u} age {child_age(u, k0)} A normal", walk(child(u, child_age(u, k0))))

@@ -19,15 +19,12 @@ from __future__ import annotations
 
 import argparse
 import logging
-import sys
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-from experiments.waist import external_runs  # noqa: E402
 from pdrlearn.io import read_session  # noqa: E402
 from pdrlearn.track import get_pipeline  # noqa: E402
 from pdrlearn.track.bouts import bout_rule, detected_bouts, track_bouts  # noqa: E402
@@ -36,6 +33,7 @@ from pdrlearn.track.wb_scores import DMOS, wb_evaluation, wb_score_summary  # no
 from pdrlearn.waist.calibration import calibrate  # noqa: E402
 from pdrlearn.waist.evaluate import reference_wbs  # noqa: E402
 from pdrlearn.waist.params import resolve_params  # noqa: E402
+from waist import external_runs  # noqa: E402
 
 RULE = bout_rule(preset="mobgap")
 TRIMMED = bout_rule(preset="mobgap-indip")  # decision W495: each bout from its second contact to its last-but-one

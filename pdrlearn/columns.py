@@ -398,8 +398,10 @@ SESSIONS: tuple[Column, ...] = (
     ("per_align", _ID, "text", "--per-align clock or first-step only: clock (periods.csv cut at the clock's whole "
                                "periods, L299) or first-step (from the first tracked step, L381; the default with "
                                "--walk-test-duration, C178)"),
-    ("per_start_s", "s", "number", "--per only: the first period's start (the recording's or --window's start, or "
-                                   "the first step's with --per-align first-step; L381)"),
+    ("per_start_s", "s", "number", "--per only: the periods' grid origin, where the first period's edge lies (the "
+                                   "recording's or --window's start, or the first step's with --per-align "
+                                   "first-step; L381); after a --common-span cut periods.csv's first row starts later, "
+                                   "at the first held sample (C185 amended, D54)"),
     ("recording_start", "date-time", "text", "the clock time of the recording's first sample, ISO 8601 at its own "
                                              f"offset; {_WITH_START}"),
     ("pdrlearn_version", _ID, "text", "the pdrlearn version that wrote the row (run.json names the commit, L136)"),

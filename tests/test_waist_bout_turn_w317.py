@@ -10,9 +10,8 @@ import numpy as np
 import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "experiments"))
-from waist_bout_turn_w317 import CLASSES, classify  # noqa: E402
-
 from tests.test_waist_bout_terms import REF_IC, _session, _steps  # noqa: E402
+from waist_bout_turn_w317 import CLASSES, classify  # noqa: E402
 
 # every reference step 0.5 s (120 steps/min) and 0.6 m (W220's hand-made bout)
 NORMAL_CAL_SPM, SLOW_CAL_SPM = 120.0, 140.0  # 120 < 0.9 x 140: the steps are slow against 140 (W211's x0.9)

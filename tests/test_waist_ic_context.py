@@ -26,10 +26,9 @@ def _session(name: str):
 @pytest.mark.parametrize("subject", ["HA002", "MS001"])
 def test_context_errors_are_those_of_score_steps(subject):
     sys.path.insert(0, str(EXPERIMENTS))
-    from waist_ic_context import analyse
-
     from pdrlearn.steps.detectors import get_detector
     from pdrlearn.steps.evaluate import score_steps
+    from waist_ic_context import analyse
 
     s = _session(f"{subject}_Test11_Trial1")
     ev = np.sort(get_detector("waist-ic").detect(s)["event_s"].to_numpy(float))
@@ -48,10 +47,9 @@ def test_context_errors_are_those_of_score_steps(subject):
 
 def test_period_candidate_baseline_is_waist_ic():
     sys.path.insert(0, str(EXPERIMENTS))
-    from waist_ic_period import contacts
-
     from pdrlearn.steps.detectors import get_detector
     from pdrlearn.waist.ahrs import waist_imu
+    from waist_ic_period import contacts
 
     s = _session("HA002_Test11_Trial1")
     imu = waist_imu(s)

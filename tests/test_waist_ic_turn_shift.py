@@ -61,11 +61,10 @@ def test_turn_shift_option_is_off_by_default_and_adds_turning_contacts():
 
 def test_loss_diagnosis_partitions_the_errors_of_score_steps():
     sys.path.insert(0, str(EXPERIMENTS))
-    from waist_ic_loss import analyse
-
     from pdrlearn.io import read_session
     from pdrlearn.steps.detectors import get_detector
     from pdrlearn.steps.evaluate import score_steps
+    from waist_ic_loss import analyse
 
     s = read_session(external_session("mobgap_HA002_Test11_Trial1"))
     before = {"contact_shift": False, "parity_fill": False}  # decision 29's table: the detector before W131, W160

@@ -4,6 +4,7 @@ dropped (:class:`Reorderer`). Numpy only."""
 
 from __future__ import annotations
 
+import logging
 import math
 from collections.abc import Iterable, Iterator
 
@@ -13,6 +14,12 @@ from pdrlearn.errors import DataError
 from pdrlearn.kernels.counter_wrap import unwrap_near
 from pdrlearn.runtime.samples import SENSOR_WIDTH, checked_samples
 
+log = logging.getLogger(__name__)
+
+#: decision E302 (amended after measuring): a restart is told from at least this many pushes of a sensor set aside
+#: in a row (one or two overtaken packets span more than a short ``hold_s`` too)
+RESTART_PUSHES = 3
+
 
 class CounterUnwrapper:
     """Decision E297: one pod's ``bits``-bit sample counter of ``tick_s`` s ticks (a uint32 ms tick: ``bits=32,
@@ -21,7 +28,9 @@ class CounterUnwrapper:
     :func:`~pdrlearn.kernels.counter_wrap.unwrap_near`), so a wrap, a packet that arrives late and a repeat all keep
     their place, and one call may hold a stored buffer longer than half the period (review R1 finding F4). A packet
     lost across a wrap is fine; a silence of half the counter's period or more (24.9 days for uint32 ms, 32.8 s for
-    uint16 ms) is not (its wraps are not known). One per pod: ``t = unwrap(packet_counter)``."""
+    uint16 ms) is not (its wraps are not known). One per pod: ``t = unwrap(packet_counter)``. A pod that restarted
+    reads as a step back (returned as one; the :class:`Reorderer` tells it, decision E302) or, past half the
+    period, as a jump forward that no counter rule can tell from a silence."""
 
     def __init__(self, bits: int = 32, tick_s: float = 1e-3):
         if isinstance(bits, bool) or not isinstance(bits, int | np.integer) or not 8 <= bits <= 62:
@@ -62,6 +71,10 @@ class Reorderer:
     place, dropped (``late``: per sensor). It adds ``hold_s`` of latency (plus up to a packet): ``max_latency_s``
     the most seen (the released sample's time against its sensor's newest). ``flush()`` releases what is held (the
     end of a stream); ``reset()`` the same, and forgets the clock (a pod that reconnected with its counter restarted).
+    A restart the gateway missed is told here (decision E302): a sensor's samples dropped as ``late`` in 3 pushes or
+    more with none in place between, that themselves span more than ``hold_s`` (the clock behind moved on further
+    than any packet is overtaken), are its restarted clock: one warning line, ``restarts`` counted (per sensor), the
+    sensor reset and those samples kept as the new clock's (``late`` counts them no more).
     ``hold_s``: the link's longest reordering delay in sample time (a packet overtaken by the next
     one: the next packet's span plus the arrival jitter; 1.2 s for packets of up to 20 samples at 20 Hz)."""
 
@@ -76,6 +89,8 @@ class Reorderer:
         self._width: dict[str, int] = {}  # values per sample of a sensor not in SENSOR_WIDTH: its first samples'
         self.duplicates: dict[str, int] = {}
         self.late: dict[str, int] = {}
+        self.restarts: dict[str, int] = {}
+        self._aside: dict[str, list[tuple[np.ndarray, np.ndarray]]] = {}  # the late samples since the last in place
         self.max_latency_s = 0.0
 
     def push(self, chunk: dict) -> dict:
@@ -96,10 +111,38 @@ class Reorderer:
             if t.size:
                 checked.append((name, t, v))
         for name, t, v in checked:
+            prev = self._released.get(name)
+            if prev is not None and prev.size and (t > prev[-1]).any():  # in place: those set aside were late
+                self._aside.pop(name, None)
             self._width.setdefault(name, v.shape[1])
             self._held.setdefault(name, []).append((t, v))
             self._newest[name] = max(self._newest.get(name, -math.inf), float(t.max()))
-        return self._release(lambda name: self._newest[name] - self.hold_s)
+        out = self._release(lambda name: self._newest[name] - self.hold_s, aside=True)
+        for name in [n for n, _, _ in checked if self._restarted(n)]:
+            t_back = float(np.concatenate([p[0] for p in self._aside[name]]).min())
+            line = (f"Reorderer: {name}'s clock went back from {self._newest[name]:.3f} s to {t_back:.3f} s and its "
+                    f"samples behind moved on over hold_s={self.hold_s:g} s: a restarted pod (decision E302); its "
+                    "held samples released, the new clock's kept (the Tracker's ClockWentBack gives the rebase)")
+            log.warning("%s", line)
+            self._count(self.restarts, name, 1)
+            aside = self._aside[name]
+            self._count(self.late, name, -sum(len(p[0]) for p in aside))
+            if not self.late[name]:
+                del self.late[name]
+            for k, (t, v) in self.reset([name]).items():  # the old clock's rest, after what this push released
+                out[k] = (np.concatenate([out[k][0], t]), np.concatenate([out[k][1], v])) if k in out else (t, v)
+            self._held[name] = aside  # the samples behind the old clock are the new clock's first
+            self._newest[name] = float(max(p[0].max() for p in aside))
+        return out
+
+    def _restarted(self, name: str) -> bool:
+        """Decision E302: the samples of ``name`` set aside as late, from :data:`RESTART_PUSHES` pushes or more, span
+        more than ``hold_s`` of sample time."""
+        parts = self._aside.get(name)
+        if not parts:
+            return False
+        t = np.concatenate([p[0] for p in parts])
+        return len(parts) >= RESTART_PUSHES and float(t.max() - t.min()) > self.hold_s
 
     def flush(self) -> dict:
         """Everything still held, in sample-time order (the end of the stream)."""
@@ -116,7 +159,7 @@ class Reorderer:
             names = {sensors} if isinstance(sensors, str) else set(sensors)
         out = self._release(lambda name: math.inf, names)
         for name in names:
-            for state in (self._newest, self._released, self._width):
+            for state in (self._newest, self._released, self._width, self._aside):
                 state.pop(name, None)
         return out
 
@@ -136,7 +179,7 @@ class Reorderer:
         """The samples held, every sensor."""
         return sum(len(t) for parts in self._held.values() for t, _ in parts)
 
-    def _release(self, until, names=None) -> dict:
+    def _release(self, until, names=None, aside=False) -> dict:
         out = {}
         for name in [n for n in self._held if names is None or n in names]:
             parts = self._held[name]
@@ -152,6 +195,8 @@ class Reorderer:
             late = ~repeat & (t <= last)
             self._count(self.duplicates, name, int(repeat.sum()))
             self._count(self.late, name, int(late.sum()))
+            if aside and late.any():  # kept aside in case they are a restarted clock's (E302)
+                self._aside.setdefault(name, []).append((t[late], v[late]))
             keep = ~repeat & ~late
             t, v = t[keep], v[keep]
             due = t <= until(name)

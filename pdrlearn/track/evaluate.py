@@ -1467,6 +1467,10 @@ def add_gait_range_flag(summary: dict) -> dict:
 # decisions L321, L441: a declared treadmill (pdrlearn.track.belt; the names kept here for their callers)
 from pdrlearn.track.belt import BELT_KEY, belt_line, belt_summary  # noqa: E402, F401
 
+#: decision L680: L602's band in each direction grows to this fraction of the stair flights' height that way (ours:
+#: the flights' summed height and the barometer's counted climbs each err in proportion to the climb)
+FLIGHT_BAND_FRACTION = 0.10
+
 
 def ramps_need_fused_warning(summary: dict) -> str | None:
     """Decision L574 (trial T3 finding F8): one line when a foot track did not read the session's waist barometer
@@ -1476,23 +1480,29 @@ def ramps_need_fused_warning(summary: dict) -> str | None:
     the track's stair flights do not explain - the barometer's ascent less their rise (``flights_rise_m``), its
     descent less their drop (``flights_drop_m``) - counts, and only over L146's band
     (:data:`pdrlearn.kernels.altitude_check.ASCENT_BAND_BARO_M`, 0.5 m: the least climb the barometer counts), so a
-    stair walk whose flights the track lists stays quiet (``--altitude fused`` would add no ramp to it)."""
+    stair walk whose flights the track lists stays quiet (``--altitude fused`` would add no ramp to it).
+    Decision L680: each direction's band is the larger of that and :data:`FLIGHT_BAND_FRACTION` of the flights'
+    height that way (their disagreement with the barometer grows with the climb: a 17 m stair loop's flights missed
+    0.58 m of the barometer's descent, streamed)."""
     from pdrlearn.kernels.altitude_check import ASCENT_BAND_BARO_M
 
     up = float(summary.get("barometer_ascent_m") or 0.0)
     down = float(summary.get("barometer_descent_m") or 0.0)
     ridden = ridden_climbs(summary) or {"ascent": 0.0, "descent": 0.0}  # decision L632: rides.csv's lifts
-    left_up = up - ridden["ascent"] - float(summary.get("flights_rise_m") or 0.0)  # decision L602
-    left_down = down - ridden["descent"] - float(summary.get("flights_drop_m") or 0.0)
+    rise, drop = float(summary.get("flights_rise_m") or 0.0), float(summary.get("flights_drop_m") or 0.0)
+    left_up, left_down = up - ridden["ascent"] - rise, down - ridden["descent"] - drop  # decision L602
+    band_up, band_down = (max(ASCENT_BAND_BARO_M, FLIGHT_BAND_FRACTION * h) for h in (rise, drop))  # decision L680
     if (not summary.get("barometer_unused") or summary.get("grade_source") is not None
-            or not max(left_up, left_down) > ASCENT_BAND_BARO_M
+            or not (left_up > band_up or left_down > band_down)
             or barometer_warning(summary) is not None):  # decision L632: one line, L145's, names ramps too
         return None
-    what = " and ".join(w for w, on in (("stairs.csv's flights", summary.get("flights_rise_m")
-                                         or summary.get("flights_drop_m")),
+    what = " and ".join(w for w, on in (("stairs.csv's flights", rise or drop),
                                         ("rides.csv's rides", ridden["ascent"] or ridden["descent"])) if on)
+    band = max(band_up if left_up > band_up else 0.0, band_down if left_down > band_down else 0.0)
+    bands = ("" if band <= ASCENT_BAND_BARO_M else
+             f", over {band:.2f} m: {100 * FLIGHT_BAND_FRACTION:g} % of the flights' climb, L680")
     flights = ("" if not what else f" ({max(left_up, 0.0):.2f} m / {max(left_down, 0.0):.2f} m more than {what}, "
-               "L602, L632)")
+               f"L602, L632{bands})")
     return (f"the waist barometer climbed {up:.2f} m and descended {down:.2f} m{flights}, but ramps.csv is empty and "
             "steps.csv has no grade_pct: ramps / grades need --altitude fused (L300) - a foot track's own height "
             "levels every stride under 0.10 m (L39), a 1:12 ramp's at strides under 1.2 m (decision L574)")

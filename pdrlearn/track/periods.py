@@ -426,6 +426,14 @@ def rise_times(transfers) -> np.ndarray | None:
     return tr.loc[tr["kind"] == SIT_TO_STAND, "start_s"].to_numpy(float)
 
 
+def held_starts(session, starts, ends) -> tuple[np.ndarray, np.ndarray]:
+    """Decision C185 (amended) / D53: intervals ``[starts, ends)`` (s of the session's clock) accounted from the first
+    sample the session holds (after a ``--common-span`` cut the cut's start: its seconds are ``common_span_cut_s``,
+    not "no steps"): the starts moved up to it, and whether each interval holds any time after it."""
+    lo = float(session.t_start)
+    return np.maximum(np.asarray(starts, float), lo), np.asarray(ends, float) > lo + 1e-9
+
+
 def interval_rows(result, session, starts, ends, closed, *, unit: str | None, bouts: pd.DataFrame | None,
                   turns: pd.DataFrame | None, storey_height_m: float = 3.0) -> list[dict]:
     """Decision L277's row mechanism, shared by periods.csv (:func:`period_table`) and segments.csv (decision L619,
@@ -504,9 +512,8 @@ def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.D
     # decision C185 amended (review R2 finding 5): the edges stay the recording's (B81), but each period is accounted
     # from the first sample the session holds (held_span: after a --common-span cut its start), so the periods add up
     # to time_span_s; a period wholly cut off is none
-    lo = float(session.t_start)
-    held = ends > lo + 1e-9
-    starts, ends, closed = np.maximum(edges, lo)[held], ends[held], closed[held]
+    starts, held = held_starts(session, edges, ends)
+    starts, ends, closed = starts[held], ends[held], closed[held]
     rows = interval_rows(result, session, starts, ends, closed, unit=unit, bouts=bouts, turns=turns,
                          storey_height_m=storey_height_m)
     for k, row in enumerate(rows):

@@ -13,6 +13,10 @@ in :func:`check_legs`, before the session is tracked).
 Decision L619: each leg is ``[start_s, end_s)`` when the next leg starts at its end (back-to-back legs: an instant
 on the edge is counted once, in the later leg, as periods.csv's periods are), else ``[start_s, end_s]`` - so legs equal
 to ``--per``'s periods give its totals row for row.
+
+Decision D53: after a ``--common-span`` cut a leg is accounted from the first sample the session holds, as
+periods.csv's periods (C185 amended): its ``start_s`` and ``duration_s`` say so, and the cut's seconds stay
+``common_span_cut_s``, not "no steps"; a leg wholly before the cut is one ``error:`` line.
 """
 
 from __future__ import annotations
@@ -97,6 +101,14 @@ def check_legs(legs: pd.DataFrame, session, unit: str | None, path) -> pd.DataFr
         raise DataError(f"{session.where}: --segments {path}: line {k + 2}, leg {legs['start_s'].iloc[k]:g},"
                         f"{legs['end_s'].iloc[k]:g} s ends after the recording{whose}, which lasts {dur:.2f} s; "
                         f"end it at {dur:.2f} s or earlier, or drop it (decision L618)")
+    held = float(session.t_start) - t0  # decision D53: after a --common-span cut, the first second the session holds
+    cut = np.flatnonzero(legs["end_s"].to_numpy(float) <= held + 1e-9)
+    if len(cut):
+        k = int(cut[0])
+        raise DataError(f"{session.where}: --segments {path}: line {k + 2}, leg {legs['start_s'].iloc[k]:g},"
+                        f"{legs['end_s'].iloc[k]:g} s ends before {held:.2f} s, where --common-span's cut starts the "
+                        f"session (its first {held:.2f} s are common_span_cut_s, B267); start it at {held:.2f} s or "
+                        "later, or drop it (decision D53)")
     out = legs.copy()
     out["start_s"], out["end_s"] = out["start_s"] + t0, out["end_s"] + t0
     return out
@@ -114,10 +126,13 @@ def segment_table(result, session, legs: pd.DataFrame, *, unit: str | None, bout
     """Decision L619: segments.csv of a whole-session track: one row per leg of ``legs`` (:func:`check_legs`'s, on
     the session's clock) with periods.csv's totals (:func:`pdrlearn.track.periods.interval_rows`); a leg holds its
     end unless the next leg starts there (module docstring)."""
-    from pdrlearn.track.periods import interval_rows
+    from pdrlearn.track.periods import held_starts, interval_rows
 
     a, b = legs["start_s"].to_numpy(float), legs["end_s"].to_numpy(float)
-    rows = interval_rows(result, session, a, b, closed_legs(a, b), unit=unit, bouts=bouts, turns=turns,
+    # decision D53: as periods.csv (C185 amended), a leg is accounted from the first sample the session holds, so the
+    # seconds a --common-span cut took are not "no steps" (check_legs refused a leg wholly before it)
+    held, _ = held_starts(session, a, b)
+    rows = interval_rows(result, session, held, b, closed_legs(a, b), unit=unit, bouts=bouts, turns=turns,
                          storey_height_m=storey_height_m)
     for k, (row, label) in enumerate(zip(rows, legs["label"], strict=True)):
         row["segment"], row["label"] = k + 1, label
