@@ -33,20 +33,17 @@ from __future__ import annotations
 import argparse
 import logging
 import os
-import sys
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 import waist as W  # noqa: E402
 import waist_bout_terms as T  # noqa: E402
-from waist_bout_error_w273 import length_by_foot  # noqa: E402
-
-from experiments._results import write_result  # noqa: E402
+from _results import write_result  # noqa: E402
 from pdrlearn.track import get_pipeline  # noqa: E402
 from pdrlearn.waist.evaluate import reference_bouts  # noqa: E402
+from waist_bout_error_w273 import length_by_foot  # noqa: E402
 
 RESULT = "waist_bout_error_s46_w521"  # experiments/results/<RESULT>.md (E294's write_result)
 SLOW = 0.9  # W211: the calibration's cadence range starts at x0.9 (as W317)

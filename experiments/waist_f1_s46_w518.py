@@ -39,11 +39,12 @@ Writes experiments/results/waist_f1_s46_w518.md.
 
 from __future__ import annotations
 
-import sys
 from pathlib import Path
 
 import numpy as np
 
+import waist_ic_classes as W  # noqa: E402  experiments/waist_ic_classes.py: scoring, flags, W119's classes
+import waist_ic_misses_w235 as M  # noqa: E402  experiments/waist_ic_misses_w235.py: the detector's stages
 from pdrlearn.io import read_session
 from pdrlearn.steps.evaluate import in_intervals, match_events
 from pdrlearn.track.waist import track_waist
@@ -52,10 +53,6 @@ from pdrlearn.waist.ahrs import waist_imu
 from pdrlearn.waist.evaluate import step_metrics
 from pdrlearn.waist.plausibility import contact_lateral_velocity
 from pdrlearn.waist.transfers import seated_spans
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-import waist_ic_classes as W  # noqa: E402  experiments/waist_ic_classes.py: scoring, flags, W119's classes
-import waist_ic_misses_w235 as M  # noqa: E402  experiments/waist_ic_misses_w235.py: the detector's stages
 
 SUBJECTS = ("HA001", "HA002", "MS001")
 TOL = W.C.TOL  # decision 7: the scoring tolerance (s)
