@@ -153,8 +153,10 @@ def rest_to_rest(t: np.ndarray, stance: np.ndarray, starts: np.ndarray, ends: np
 
 def _latest_per_stride(i0: np.ndarray, i1: np.ndarray, ev: np.ndarray) -> np.ndarray:
     """Steps decision 34 / localization L675: of the (stride, row) pairs ``i0``, ``i1`` with events ``ev`` (NaN = no
-    event, taken as the earliest), the positions of one pair per stride, the one with the latest event."""
-    order = np.lexsort((np.nan_to_num(ev, nan=-np.inf), i1, i0))  # by stride, the latest event last
+    event, taken as the earliest), the positions of one pair per stride, the one with the latest event; of equal
+    events (several rows without one) the first row, as :func:`rest_to_rest` keeps without events."""
+    first_last = -np.arange(len(ev))  # ties: the first row sorts last, so it is the one kept
+    order = np.lexsort((first_last, np.nan_to_num(ev, nan=-np.inf), i1, i0))  # by stride, the latest event last
     pair = np.column_stack([i0, i1])[order]
     last = np.r_[np.any(pair[1:] != pair[:-1], axis=1), True]
     return order[last]

@@ -1729,31 +1729,55 @@ STANDING_SHARE = 0.5
 STANDS_MAX_SHARE = 0.25
 
 
+def stands_within_share(n_stands: np.ndarray, n_steps: np.ndarray) -> np.ndarray:
+    """Decisions W516 / W529: whether a stand step is kept when ``n_stands`` of the ``n_steps`` steps of its walking
+    sequence (W516: all of them; W529, causal: those up to it, this one included) read as W134's stands: at most
+    :data:`STANDS_MAX_SHARE`. The live tracker counts them step by step, the realtime model over its table (W165)."""
+    return np.asarray(n_stands, dtype=np.float64) <= STANDS_MAX_SHARE * np.asarray(n_steps, dtype=np.float64)
+
+
+def _sequence_ids(closes: np.ndarray) -> np.ndarray:
+    """Each row's walking sequence (0, 1, ...): a sequence ends at a row that ``closes`` it."""
+    closes = np.asarray(closes, dtype=bool)
+    return np.concatenate([[0], np.cumsum(closes)[:-1]]) if closes.size else np.zeros(0, int)
+
+
 def standing_step_mask(still_run_s: np.ndarray, duration_s: np.ndarray, use: np.ndarray,
-                       closes: np.ndarray) -> np.ndarray:
+                       closes: np.ndarray, *, causal: bool = False) -> np.ndarray:
+    """Rows whose step holds a stand, not a slow phase of walking: W134's :func:`standing_candidates`, kept while
+    they are rare in their walking sequence (decision W516, :func:`stands_within_share`): over the whole sequence,
+    or with ``causal`` over its steps up to each one (decision W529: the realtime replay and the live tracker, which
+    decide a step before the walk ends)."""
+    stand = standing_candidates(still_run_s, duration_s, use, closes)
+    use, closes = np.asarray(use, dtype=bool), np.asarray(closes, dtype=bool)
+    seq = _sequence_ids(closes)
+    for sid in np.unique(seq[use]):  # W516 / W529: stands are events of a walk, not every other step of it
+        rows = np.flatnonzero(use & (seq == sid))
+        if causal:
+            stand[rows] &= stands_within_share(np.cumsum(stand[rows]), np.arange(1, rows.size + 1))
+        else:
+            stand[rows] &= stands_within_share(stand[rows].sum(), rows.size)
+    return stand
+
+
+def standing_candidates(still_run_s: np.ndarray, duration_s: np.ndarray, use: np.ndarray,
+                        closes: np.ndarray) -> np.ndarray:
     """Rows whose step holds a stand, not a slow phase of walking (decision W134): the step's longest still run
     (``still_run_s``, s; NaN without a still sample) lasts at least :data:`STANDING_SHARE` of its local step period
     (W18's :func:`local_medians` of ``duration_s``), and the step is neither the first nor the last row of
     ``use`` in its walking sequence (a walk's first / last step starts from / ends in quiet standing, which the
     still window runs into while the pelvis still travels). Rows without a local period are never flagged.
-    Decision W516: a walking sequence in which over :data:`STANDS_MAX_SHARE` of the steps would be stands has none
-    (a walking aid's steadied trunk is still half of every other step; stands are events).
     ``use``, ``closes``: as :func:`local_medians`."""
     run = np.asarray(still_run_s, dtype=np.float64)
     use, closes = np.asarray(use, dtype=bool), np.asarray(closes, dtype=bool)
     per = local_medians(duration_s, use, closes)
     inner = np.zeros(run.size, dtype=bool)
-    seq = np.concatenate([[0], np.cumsum(closes)[:-1]]) if run.size else np.zeros(0, int)
+    seq = _sequence_ids(closes)
     for sid in np.unique(seq[use]):
         rows = np.flatnonzero(use & (seq == sid))
         inner[rows[1:-1]] = True
     ok = inner & np.isfinite(per) & np.isfinite(run)
-    stand = ok & (np.where(ok, run, 0.0) >= STANDING_SHARE * np.where(ok, per, np.inf))
-    for sid in np.unique(seq[use]):  # W516: stands are events of a walk, not every other step of it
-        rows = use & (seq == sid)
-        if stand[rows].sum() > STANDS_MAX_SHARE * rows.sum():
-            stand[rows] = False
-    return stand
+    return ok & (np.where(ok, run, 0.0) >= STANDING_SHARE * np.where(ok, per, np.inf))
 
 
 def frequency_length(f_hz: np.ndarray, a: float, b: float) -> np.ndarray:

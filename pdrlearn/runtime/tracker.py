@@ -119,6 +119,9 @@ _ONE = (1,)
 _WAIST_ACC = frozenset(("waist_acc_x", "waist_acc_y", "waist_acc_z"))
 #: samples kept before a step's start: the window margin (1 s) and L31's gap-yaw look-back
 _LOOK_BACK_S = max(1.0, GAP_YAW_MAX_S)
+#: decisions E285 / E305: the rings :func:`~pdrlearn.kernels.carried_yaw.carried_yaw` reads, kept from CARRY_BACK_S
+#: before the next stride's start; the other rings keep the foot's bound
+_CARRIED_RINGS = ("wAccelerometer", "wGyroscope")
 #: decision E30: an interval between two pushed samples of a stream longer than this (s) is a gap the tracker
 #: warns about (once per gap); longer than B11's 1 s (``pdrlearn.track.gaps.MIN_GAP_S``) in a foot stream, the
 #: stride across it moves 0 m, as offline ``pdrlearn track`` (plasys) does
@@ -1106,7 +1109,7 @@ class Tracker(OwnGuard, FixInput):
         if ring is None:
             ring = self._buf[name] = Ring(v.shape[1])
             self._oldest = min(self._oldest, t0)
-            if name.startswith("w"):  # decision E285: the waist's rings keep their own bound
+            if name in _CARRIED_RINGS:  # decisions E285 / E305: carried_yaw's rings keep their own bound
                 self._drop_at_w = min(self._drop_at_w, t0)
             else:
                 self._drop_at = min(self._drop_at, t0)
@@ -2376,8 +2379,12 @@ class Tracker(OwnGuard, FixInput):
         if self._loops.held:
             keep_from = min(keep_from, self._loops.held[0][0][0] - _LOOK_BACK_S)
         # decision E285: a waist-headed stride reads the waist's samples from CARRY_BACK_S before its start (the next,
-        # a waiting and a held one's); the foot's samples and state keep their own bound
-        starts = [x for x in (self.segmenter.last_boundary, self._pending[0][0] if self._pending else None,
+        # a waiting and a held one's); the foot's samples and state keep their own bound. Decision E305: the next
+        # stride starts after the latest sample less buffer_s whatever the last boundary (a stand or sit ends at a
+        # stance a rest-to-rest stride starts at most max_rest_s into), so a long stop no longer holds its samples
+        last = self.segmenter.last_boundary
+        last = None if last is None else max(last, self._latest - self.buffer_s)
+        starts = [x for x in (last, self._pending[0][0] if self._pending else None,
                               self._loops.held[0][0][0] if self._loops.held else None) if x is not None]
         carry = "waist" in self.units and self.heading_source != "foot" and starts
         waist_from = min(keep_from, min(starts) - _carried_yaw.CARRY_BACK_S - _LOOK_BACK_S) if carry else keep_from
@@ -2395,13 +2402,13 @@ class Tracker(OwnGuard, FixInput):
         if keep_from <= self._drop_at and waist_from <= self._drop_at_w:  # nothing to drop (the common case between
             return  # two steps)
         self._trims += 1  # a computed-ahead step is recomputed (decision E24)
-        for name, ring in self._buf.items():
-            ring.drop_before(waist_from if name.startswith("w") else keep_from)
+        for name, ring in self._buf.items():  # E305: carried_yaw reads the waist's accelerometer and gyroscope only
+            ring.drop_before(waist_from if name in _CARRIED_RINGS else keep_from)
         if self._foot is not None:
             if self._foot_q:
                 self._feed_foot()
             self._foot.drop_before(keep_from)
         self._oldest = min(float(r.t[r.i0]) for r in self._buf.values())
         at = {n: float(r.t[r.i0 + 1] if r.i1 - r.i0 > 1 else r.t[r.i0]) for n, r in self._buf.items()}
-        self._drop_at = min((v for n, v in at.items() if not n.startswith("w")), default=math.inf)
-        self._drop_at_w = min((v for n, v in at.items() if n.startswith("w")), default=math.inf)  # decision E285
+        self._drop_at = min((v for n, v in at.items() if n not in _CARRIED_RINGS), default=math.inf)
+        self._drop_at_w = min((v for n, v in at.items() if n in _CARRIED_RINGS), default=math.inf)  # E285, E305

@@ -173,6 +173,7 @@ class WaistStream(OwnGuard, FixInput):
         # decision W165: W134's stand steps (the option's value "standing"; a bundle exported before has none: off)
         self._pause = options.get("pause_steps") == "standing"
         self._wait = PAUSE_LOOKAHEAD_ROWS if self._pause else LOOKAHEAD_ROWS
+        self._seq_steps = self._seq_stands = 0  # W529: the open sequence's steps and W134 stands so far
         self._ba = np.zeros((0, 3))  # with it: navigation-frame specific force (m/s^2) and rate (rad/s)
         self._bg = np.zeros((0, 3))
         self._alt = None  # decision E106: the barometric altitude (kernels.barometer.LiveAltitude), once pushed
@@ -553,11 +554,10 @@ class WaistStream(OwnGuard, FixInput):
         offline pendulum model computes it (``PendulumLength(pause_steps="standing")``: the kernels
         ``still_samples``, ``step_still_travel``, ``standing_step_mask``, ``progression_factor``), on the rows of its
         walking sequence known now (up to PAUSE_LOOKAHEAD_ROWS after it, or the sequence's end: the three steps
-        W18's local period reads) and the buffered samples of the step; 1 where the step holds no stand."""
+        W18's local period reads) and the buffered samples of the step; 1 where the step holds no stand. Called once
+        per step of a sequence in order (W516 / W529 count the sequence's steps and stands so far)."""
         from pdrlearn.kernels import waist as K
 
-        if not length > 0:
-            return 1.0
         s = self._rows[k]["seq"]
         ids = []
         for j in range(max(s, k - FRAGMENT_CONTEXT_STEPS, min(self._rows)), min(k + self._wait + 1, self._n_rows)):
@@ -584,7 +584,10 @@ class WaistStream(OwnGuard, FixInput):
         disp, run_s = K.step_still_travel(self._ba[lo:hi, :2], still, self.fs, i0 - lo, i1 - lo)
         runs = np.full(len(ids), np.nan)
         runs[jk] = run_s
-        if not K.standing_step_mask(runs, span, use, ~hn)[jk]:
+        stand = bool(K.standing_candidates(runs, span, use, ~hn)[jk])
+        self._seq_steps += 1  # W516 / W529: the sequence's steps and W134 stands so far, as the model counts them
+        self._seq_stands += stand
+        if not (stand and K.stands_within_share(self._seq_stands, self._seq_steps)) or not length > 0:
             return 1.0
         return float(K.progression_factor(np.array([disp]), np.array([length]))[0])
 
@@ -633,6 +636,7 @@ class WaistStream(OwnGuard, FixInput):
         if self._cum_first is None:
             self._cum_first = float(np.interp(row["t"], self._bt, self._bc))
         if k == s:  # a walking sequence starts: track_waist's ``current`` (and the turn made standing, W: opt)
+            self._seq_steps = self._seq_stands = 0  # W516 / W529's counts
             if self._seen_seq and o["integrate_stops"] and self._stop_cum is not None:
                 self._cur_gyro += self._rest_turn(row["t"])
             self._seen_seq = True

@@ -258,7 +258,8 @@ def rest_swing_m(still_s, pause_dz, ride=None) -> float | None:
 def ramp_runs(length, dz, window: int = 1, min_grade_pct: float = RAMP_MIN_GRADE_PCT,
               stair_grade_pct: float = STAIR_MIN_GRADE_PCT, min_run_m: float = RAMP_MIN_RUN_M,
               landing_max_m: float = LANDING_MAX_M, on_stairs=None, lone_stair_joins: bool = False,
-              window_m: float | None = None, ends=None, min_rise_m: float | None = None) -> list[dict]:
+              window_m: float | None = None, ends=None, min_rise_m: float | None = None,
+              stair_ends: bool = False) -> list[dict]:
     """Decision L301: the ramps of rows (horizontal ``length`` m, height change ``dz`` m, walking order) - a pure
     kernel. A row is a ramp row of sign s when the grade of the centred ``window`` rows around it (their summed dz
     over their summed |length|) is at least ``min_grade_pct`` in size, under ``stair_grade_pct`` (steeper: a stair),
@@ -274,7 +275,9 @@ def ramp_runs(length, dz, window: int = 1, min_grade_pct: float = RAMP_MIN_GRADE
     between two stair rows of its own direction is a stair's landing and left out. ``window_m`` (decision W517, the
     lower back's): the rows are judged on :func:`fitted_grades_pct` over that many metres of each walking sequence
     (``ends``) instead of ``window`` rows, and a row is a stair row when that grade (not its own) is a stair's.
-    ``min_rise_m`` (decision W519, the lower back's; None: none): a ramp whose |rise| is under it is left out."""
+    ``min_rise_m`` (decision W519, the lower back's; None: none): a ramp whose |rise| is under it is left out.
+    ``stair_ends`` (decision W530, the lower back's, with ``window_m``): a ramp next to a stair row climbing its own
+    way whose horizontal run is at most ``window_m`` is that flight's end (:func:`_stair_end`), left out."""
     length = np.nan_to_num(np.abs(np.asarray(length, dtype=float)))
     dz = np.nan_to_num(np.asarray(dz, dtype=float))
     n = len(length)
@@ -310,6 +313,9 @@ def ramp_runs(length, dz, window: int = 1, min_grade_pct: float = RAMP_MIN_GRADE
             continue
         rows = np.concatenate([np.arange(a, b + 1) for a, b, _ in rs])
         run_l, rise = float(length[rows].sum()), float(dz[rows].sum())
+        if stair_ends and window_m is not None and run_l <= window_m and _stair_end(
+                stair, dz, rs[0][0] - 1, rs[-1][1] + 1, rs[0][2]):  # decision W530
+            continue
         if min_rise_m is not None and abs(rise) < min_rise_m:  # decision W519: within the barometer's rest swing
             continue
         grades = [100.0 * dz[a:b + 1].sum() / length[a:b + 1].sum() for a, b, _ in rs]
@@ -331,6 +337,12 @@ def _stair_landing(stair: np.ndarray, dz: np.ndarray, before: int, after: int, s
     if before < 0 or after >= len(stair):
         return False
     return bool(stair[before] and stair[after] and np.sign(dz[before]) == sign == np.sign(dz[after]))
+
+
+def _stair_end(stair: np.ndarray, dz: np.ndarray, before: int, after: int, sign: int) -> bool:
+    """Decision W530: whether the row ``before`` or the row ``after`` a ramp is a stair row climbing its own way
+    (``sign``): the flight the fitted slope blurred the ramp's rows from."""
+    return any(0 <= k < len(stair) and bool(stair[k]) and np.sign(dz[k]) == sign for k in (before, after))
 
 
 def _lone(mask: np.ndarray) -> np.ndarray:
@@ -365,7 +377,8 @@ def track_ramps(steps: pd.DataFrame, info: dict | None) -> FoundRamps:
                       stair_grade_pct=stair_min_grade_pct(steps),  # decision L463
                       lone_stair_joins=waist,  # decision W464: one noisy barometric step splits no ramp
                       window_m=WAIST_SLOPE_WINDOW_M if waist else None, ends=ends,  # decision W517
-                      min_rise_m=rest_rise_floor_m(steps) if waist else None)  # decision W519
+                      min_rise_m=rest_rise_floor_m(steps) if waist else None,  # decision W519
+                      stair_ends=waist)  # decision W530: a flight's blurred ends are no ramps
     return found, np.abs(length), dz
 
 

@@ -1565,6 +1565,8 @@ def _configure_model(model: StepLengthModel, spec, realtime: bool, options: dict
     if not realtime:
         return
     mine = model.get_params()
+    if "causal_stands" in mine:  # decision W529: W516's share over the steps so far, as the live tracker counts it
+        model.set_params(causal_stands=True)
     if str(mine.get("length_smoothing", "none")) != "none":
         raise DataError(f"step-length model {model.name}: length_smoothing '{mine['length_smoothing']}' looks up to "
                         "1 s ahead and the realtime detector does not (decision W56); drop realtime or the setting")

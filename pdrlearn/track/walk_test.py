@@ -236,7 +236,8 @@ def _ramp_note(steps: pd.DataFrame, a: int, k: int, need: float, timed_m: float,
     n = int(on[on > 0][0])
     rows = np.flatnonzero(ramps == n)
     t0, t1 = float(steps["start_s"].iloc[rows[0]]), float(steps["end_s"].iloc[rows[-1]])
-    return (f"the first {need:g} m of the walk hold {int((on == n).sum())} stride(s) of ramp {n} of ramps.csv "
+    rows_are = "step(s)" if _is_lower_back(steps) else "stride(s)"  # a lower back's rows are steps (W515's words)
+    return (f"the first {need:g} m of the walk hold {int((on == n).sum())} {rows_are} of ramp {n} of ramps.csv "
             f"({t0:.1f}-{t1:.1f} s): a {timed_m:g} m walk test is timed on a level walkway (decisions L434, L679); "
             "not timed")
 

@@ -491,6 +491,7 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
     notes_count: list[str] = []
     cadence_law: bool | str = False  # decision W240: the tracks' option, read from the calibration walks' own tracks
     edge_lock = None  # decision W369: the pll_edge_lock the walks' waist-pll tracks counted their contacts with
+    pause_steps: bool | str = OPTION_DEFAULTS["pause_steps"]  # W514: the value the walks' tracks shortened steps by
     if belt and distances is not None:
         raise DataError("calibrate: --belt takes each walk's distance from meta.json belt_speed_mps x its contact "
                         "span; give --belt or --distance, not both (decision W378)")
@@ -502,6 +503,7 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
             res = track_waist(s, pipeline=pipeline, params=base, detector=det)
         cadence_law = cadence_law or res.info.get("options", {}).get("cadence_law") or False  # W261: its value
         edge_lock = res.info.get("options", {}).get("pll_edge_lock", edge_lock)  # W369: one value (base's options)
+        pause_steps = res.info.get("options", {}).get("pause_steps", pause_steps)  # W514: one value (base's options)
         if not res.steps["has_next"].any():  # W61: a standing-only recording, not a model failure
             raise DataError(f"calibrate: 0 steps detected in {s.folder or s.name}; calibrate needs a walk of known "
                             "length (give a recording of walking, with --distance or bouts.csv)")
@@ -558,10 +560,11 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
                      f"{total:.2f} m: {how}")
     n_paused = sum(w.paused for w in walks)  # decision W514: the walk's steps the tracker shortened as stands
     if pipeline == "waist-pendulum":
-            out.notes.append(f"{n_paused} of the {n_steps} steps shortened as pauses / stands (pause_factor < 1, "
+        out.notes.append(f"{n_paused} of the {n_steps} steps shortened as pauses / stands (pause_factor < 1, "
                          "decisions W111, W134, W514); the fit sums them as the track does (W21)")
-    if pause_scaled_message(n_paused, n_steps):
-        log.warning("calibrate: %s", pause_scaled_message(n_paused, n_steps))
+    pause_line = pause_scaled_message(n_paused, n_steps, pause_steps)  # W514: the option the tracks ran with
+    if pause_line:
+        log.warning("calibrate: %s", pause_line)
     if shrunk is not None:
         out.notes.append(shrunk)
     if n_steps < MIN_CALIBRATION_STEPS:  # decision W169: a short walk's gain varies from walk to walk

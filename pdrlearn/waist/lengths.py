@@ -156,12 +156,13 @@ class PendulumLength(StepLengthModel):
     """``K 2 sqrt(2 L h - h^2) + F`` (seed 003 eq. 1; ``h`` the vertical excursion IC to next IC, decision W10),
     K, F and L from the profile; the waist-pendulum pipeline's model. Settings (the pipeline's options of the same
     name): ``merge_fragments`` (decision W27), ``length_smoothing`` (W56), ``pause_steps`` (W111; ``"progression"``:
-    W122; ``"standing"``: W134)."""
+    W122; ``"standing"``: W134); ``causal_stands`` (decision W529, set by the realtime track): W516's share of stands
+    counted over each walk's steps so far, as the live tracker counts it."""
 
     name = "pendulum"
 
     def __init__(self, *, merge_fragments: bool = True, length_smoothing: str = "none",
-                 pause_steps: bool | str = False):
+                 pause_steps: bool | str = False, causal_stands: bool = False):
         self._store(locals())
 
     def _check_params(self, params: dict) -> None:
@@ -206,7 +207,8 @@ class PendulumLength(StepLengthModel):
         if self.pause_steps in ("progression", "standing"):  # W122: the trunk's travel over a step with a standstill
             disp, run_s = _still_displacements(signals, idx, use, win)
             if self.pause_steps == "standing":  # W134: only a stand of half a local period, not at a walk's edges
-                stand = K.standing_step_mask(run_s, _spans(start, end, win), use, ~has_next)
+                stand = K.standing_step_mask(run_s, _spans(start, end, win), use, ~has_next,
+                                             causal=bool(self.causal_stands))  # W529: realtime as live
                 disp = np.where(stand, disp, np.nan)
             factor = K.progression_factor(disp, lengths)
             lengths = lengths * factor
