@@ -35,6 +35,31 @@ def stride_period(w: np.ndarray, fs: float, *, lo_s: float = PERIOD_RANGE_S[0],
     return float((lo - 1 + peak[np.argmax(seg[peak])]) / fs)
 
 
+#: decision L684: the |w| the streamed stance segmenter keeps to read the foot's period online (s): two of the longest
+#: periods searched, what :func:`stride_period` asks of a whole recording
+TRAILING_WINDOW_S = 2 * PERIOD_RANGE_S[1]
+
+
+def trailing_period(t: np.ndarray, w: np.ndarray) -> float:
+    """Decision L684: :func:`stride_period` of the trailing samples ``t (n,)`` s, ``w (n,)`` (the foot's |w| window
+    mean) kept by a streamed segmenter, the longest lag searched cut to half their span (a walk's first seconds);
+    the rate is the samples' mean rate. NaN when they span under two of the shortest periods."""
+    t = np.asarray(t, dtype=float)
+    if len(t) < 3 or not t[-1] > t[0]:
+        return float("nan")
+    span = float(t[-1] - t[0])
+    fs = (len(t) - 1) / span
+    return stride_period(w, fs, hi_s=min(PERIOD_RANGE_S[1], span / 2))
+
+
+def min_rest_s(period_s: float, window_s: float, frac: float = RHYTHM_FRAC) -> float:
+    """Decisions L596/L597 (L684: shared by the offline and the streamed rest): the shortest rest (s) the foot's
+    rhythm asks, ``frac`` x its stride period where that is longer than the rest test's own ``window_s`` (a shorter
+    rest is that test's own to decide), else 0 (no rule; also for a NaN period or ``frac`` 0)."""
+    need = float(frac) * float(period_s)
+    return need if np.isfinite(need) and need > window_s else 0.0
+
+
 def foot_period(gyr: np.ndarray, fs: float, window_s: float = 0.1) -> float:
     """:func:`stride_period` of a foot gyroscope ``(n, 3)`` (rad/s) at ``fs`` Hz: of its |w|'s ``window_s`` mean (the
     rest test's own window, L27)."""
