@@ -17,9 +17,8 @@ from pdrlearn.cli import main as cli
 from pdrlearn.kernels import stride as SK
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from stream_side_l667 import REAL, WALK_ROUTE, WALK_USERS, _sim, _three  # noqa: E402
-
 from _results import write_result  # noqa: E402
+from stream_side_l667 import REAL, WALK_ROUTE, WALK_USERS, _sim, _three  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 LIMP_ROUTE = "stand:3, straight:30, stand:3"

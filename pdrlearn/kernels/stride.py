@@ -198,7 +198,7 @@ class StanceSegmenter:
     def from_params(cls, params: Mapping) -> StanceSegmenter:
         """From a bundle's ``displacement`` parameters (unknown keys ignored)."""
         keys = ("stance_gyro_rad_s", "min_stance_s", "stance_half_s", "min_step_s", "max_step_s",
-                "stance_rhythm_frac", *STANCE_L27_DEFAULTS)  # with decision L120's stance_gap_swing_frac, stance_gap_max_s
+                "stance_rhythm_frac", *STANCE_L27_DEFAULTS)  # L684; L120: stance_gap_swing_frac, stance_gap_max_s
         return cls(**{k: float(params[k]) for k in keys if k in params})
 
     def _gap_now(self) -> float:
