@@ -22,9 +22,10 @@ from stream_side_l667 import REAL, WALK_ROUTE, WALK_USERS, _sim, _three  # noqa:
 
 ROOT = Path(__file__).resolve().parents[1]
 LIMP_ROUTE = "stand:3, straight:30, stand:3"
-LIMP_USERS = range(14200, 14220)
+FIRST = int(sys.argv[sys.argv.index("--first") + 1]) if "--first" in sys.argv else 14200  # candidate 2: 14220
+LIMP_USERS = range(FIRST, FIRST + 20)
 OLD = '{"stance_rhythm_frac": 0}'
-NEW = "{}"  # the default: kernels.foot_rhythm.RHYTHM_FRAC
+NEW = "{}"  # the default (candidate 2: kernels.foot_rhythm.STREAMED_RHYTHM_FRAC where L597 finds the rhythm slow)
 
 
 def limp_gait(i: int) -> list[str]:
@@ -106,9 +107,9 @@ def main(parts: str) -> int:
                 f"old {o[1]:.1f} new {n[1]:.1f} ms; steps old {o[2]} new {n[2]}")
         ok = all(n[0] <= 1.5 * o[0] and n[1] <= 1.5 * o[1] for o, n in res)
         say(f"(c) p50 new <= 1.5 x old: {ok}")
-    write_result(f"streamed_limp_l684_{parts}", lines)
+    write_result(f"streamed_limp_l684_{parts}_{FIRST}", lines)
     return 0
 
 
 if __name__ == "__main__":
-    sys.exit(main("".join(a for a in sys.argv[1:] if a in "abc") or "abc"))
+    sys.exit(main("".join(a for a in sys.argv[1:] if a in ("a", "b", "c")) or "abc"))

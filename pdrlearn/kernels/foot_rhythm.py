@@ -10,6 +10,10 @@ import numpy as np
 
 #: decision L596: a rest run shorter than this fraction of the foot's stride period is motion (a swing's lull)
 RHYTHM_FRAC = 0.06
+#: decision L684: the shortest streamed stance, as a fraction of the foot's stride period, where L597's rule finds the
+#: rhythm slow (:class:`pdrlearn.kernels.stride.StanceSegmenter`: gyroscope alone, E7's 0.8 rad/s, so a lull passes it
+#: for longer than the offline rest test)
+STREAMED_RHYTHM_FRAC = 0.1
 #: decision L596: the stride periods searched (s): a running stride (0.6 s) to a 5 s exoskeleton stride, with margin
 PERIOD_RANGE_S = (0.5, 6.0)
 

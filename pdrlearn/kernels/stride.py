@@ -139,9 +139,9 @@ class StanceSegmenter:
     and from its end (opening the next), so standing still neither delays a stride nor stretches it.
     Strides lasting ``min_step_s``..``max_step_s`` are returned by :meth:`update` as ``(start_s, end_s)``.
     Decision L684 (L597's rule, shared with the offline rest through
-    :func:`pdrlearn.kernels.foot_rhythm.min_rest_s`): a stance must also last ``stance_rhythm_frac`` x the foot's own
-    stride period where that asks more than its minimum run (a slow swing's lull before the heel strike is not a
-    stance); the period is read when a stance starts, from the last
+    :func:`pdrlearn.kernels.foot_rhythm.min_rest_s`): where L597's rule finds the foot's own stride period slow (0.06 x
+    the period asks more than the minimum run), a stance must also last ``stance_rhythm_frac`` x the period (a slow
+    swing's lull before the heel strike is not a stance); the period is read when a stance starts, from the last
     :data:`~pdrlearn.kernels.foot_rhythm.TRAILING_WINDOW_S` of the |w| means (0: no such rule).
     """
 
@@ -154,7 +154,7 @@ class StanceSegmenter:
                  stance_mean_min_s: float = STANCE_L27_DEFAULTS["stance_mean_min_s"],
                  stance_gap_swing_frac: float = STANCE_L27_DEFAULTS["stance_gap_swing_frac"],
                  stance_gap_max_s: float = STANCE_L27_DEFAULTS["stance_gap_max_s"],
-                 stance_rhythm_frac: float = FR.RHYTHM_FRAC):
+                 stance_rhythm_frac: float = FR.STREAMED_RHYTHM_FRAC):
         self.thr = float(stance_gyro_rad_s)
         self.min_stance_s = float(min_stance_s)
         self.half = float(stance_half_s)
@@ -331,12 +331,14 @@ class StanceSegmenter:
         return (start, end) if self._step_ok(end - start) else None
 
     def _rhythm_rest(self, min_run: float) -> float:
-        """Decision L684: the shortest stance (s) the foot's period asks, read from the trailing |w| means
-        (:func:`pdrlearn.kernels.foot_rhythm.min_rest_s` against the stance's own minimum run; 0 = none)."""
+        """Decision L684: the shortest stance (s) the foot's period asks, read from the trailing |w| means:
+        ``stance_rhythm_frac`` x the period where L597's rule (:func:`pdrlearn.kernels.foot_rhythm.min_rest_s` against
+        the stance's own minimum run) finds it slow; 0 = none."""
         if self.rhythm_frac == 0 or len(self._rhythm_q) < 3:
             return 0.0
         t, m = np.array(self._rhythm_q).T
-        return FR.min_rest_s(FR.trailing_period(t, m), min_run, self.rhythm_frac)
+        period = FR.trailing_period(t, m)
+        return self.rhythm_frac * period if FR.min_rest_s(period, min_run) > 0 else 0.0  # where L597 acts
 
     def _keep_run(self) -> None:
         """Decision L120: remember the still run that just ended inside a bridged stance when it is the longest."""
