@@ -46,14 +46,16 @@ TRAILING_WINDOW_S = 2 * PERIOD_RANGE_S[1]
 
 def trailing_period(t: np.ndarray, w: np.ndarray) -> float:
     """Decision L684: :func:`stride_period` of the trailing samples ``t (n,)`` s, ``w (n,)`` (the foot's |w| window
-    mean) kept by a streamed segmenter, the longest lag searched cut to half their span (a walk's first seconds);
-    the rate is the samples' mean rate. NaN when they span under two of the shortest periods."""
+    mean) kept by a streamed segmenter, the longest lag searched cut to half of what they hold (a walk's first
+    seconds); the rate is their median rate, so a gap in them (dropped samples, a restart) neither stretches the lags
+    nor that cut. NaN when they hold under two of the shortest periods."""
     t = np.asarray(t, dtype=float)
-    if len(t) < 3 or not t[-1] > t[0]:
+    if len(t) < 3:
         return float("nan")
-    span = float(t[-1] - t[0])
-    fs = (len(t) - 1) / span
-    return stride_period(w, fs, hi_s=min(PERIOD_RANGE_S[1], span / 2))
+    dt = float(np.median(np.diff(t)))
+    if not dt > 0:
+        return float("nan")
+    return stride_period(w, 1.0 / dt, hi_s=min(PERIOD_RANGE_S[1], len(t) * dt / 2))
 
 
 def min_rest_s(period_s: float, window_s: float, frac: float = RHYTHM_FRAC) -> float:
