@@ -41,9 +41,12 @@ def test_streamed_slow_strides_are_not_split(slow_walk, tmp_path):
     assert off["n_strides_one_foot"] == st["n_strides_one_foot"] == n_true, (off["n_strides_one_foot"],
                                                                              st["n_strides_one_foot"], n_true)
     assert abs(st["distance_error_pct"]) < 5.0
-    # the default (the option off) is the old segmenter: the split is there
-    old = _track(slow_walk, tmp_path / "old", "--streaming")
+    # without L120's option and without L684's rhythm rule (the old segmenter) the split is there
+    (tmp_path / "old.json").write_text(json.dumps({"stance_rhythm_frac": 0}))
+    old = _track(slow_walk, tmp_path / "old", "--streaming", "--params", str(tmp_path / "old.json"))
     assert old["n_strides_one_foot"] >= 1.5 * n_true
+    # decision L684 (session 46): the default's rhythm rule keeps this slow walk whole too (printed: 7 strides for 7)
+    assert _track(slow_walk, tmp_path / "new", "--streaming")["n_strides_one_foot"] == n_true
 
 
 def test_a_long_foot_flat_ends_on_the_fixed_gap():

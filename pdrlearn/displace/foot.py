@@ -86,8 +86,8 @@ def inertial_stance(acc: np.ndarray, gyr: np.ndarray, fs: float, *, window_s: fl
     rest = standstill_mask(acc, gyr, fs, window_s=window_s, acc_tol=acc_tol, gyr_tol=tol)
     rhythm_frac = FR.RHYTHM_FRAC if rhythm_frac is None else rhythm_frac
     if rhythm_frac > 0 and len(gyr):
-        min_rest_s = rhythm_frac * FR.foot_period(gyr, fs, window_s)
-        if min_rest_s > window_s:  # decision L597: shorter rests are the window test's own to decide
+        min_rest_s = FR.min_rest_s(FR.foot_period(gyr, fs, window_s), window_s, rhythm_frac)
+        if min_rest_s > 0:  # decision L597: shorter rests are the window test's own to decide
             rest = FR.drop_short_rests(rest, int(np.floor(min_rest_s * fs)))
     return rest
 

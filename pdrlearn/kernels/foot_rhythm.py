@@ -10,6 +10,10 @@ import numpy as np
 
 #: decision L596: a rest run shorter than this fraction of the foot's stride period is motion (a swing's lull)
 RHYTHM_FRAC = 0.06
+#: decision L684: the shortest streamed stance, as a fraction of the foot's stride period, where L597's rule finds the
+#: rhythm slow (:class:`pdrlearn.kernels.stride.StanceSegmenter`: gyroscope alone, E7's 0.8 rad/s, so a lull passes it
+#: for longer than the offline rest test)
+STREAMED_RHYTHM_FRAC = 0.1
 #: decision L596: the stride periods searched (s): a running stride (0.6 s) to a 5 s exoskeleton stride, with margin
 PERIOD_RANGE_S = (0.5, 6.0)
 
@@ -33,6 +37,33 @@ def stride_period(w: np.ndarray, fs: float, *, lo_s: float = PERIOD_RANGE_S[0],
     if not len(peak):
         return float("nan")
     return float((lo - 1 + peak[np.argmax(seg[peak])]) / fs)
+
+
+#: decision L684: the |w| the streamed stance segmenter keeps to read the foot's period online (s): two of the longest
+#: periods searched, what :func:`stride_period` asks of a whole recording
+TRAILING_WINDOW_S = 2 * PERIOD_RANGE_S[1]
+
+
+def trailing_period(t: np.ndarray, w: np.ndarray) -> float:
+    """Decision L684: :func:`stride_period` of the trailing samples ``t (n,)`` s, ``w (n,)`` (the foot's |w| window
+    mean) kept by a streamed segmenter, the longest lag searched cut to half of what they hold (a walk's first
+    seconds); the rate is their median rate, so a gap in them (dropped samples, a restart) neither stretches the lags
+    nor that cut. NaN when they hold under two of the shortest periods."""
+    t = np.asarray(t, dtype=float)
+    if len(t) < 3:
+        return float("nan")
+    dt = float(np.median(np.diff(t)))
+    if not dt > 0:
+        return float("nan")
+    return stride_period(w, 1.0 / dt, hi_s=min(PERIOD_RANGE_S[1], len(t) * dt / 2))
+
+
+def min_rest_s(period_s: float, window_s: float, frac: float = RHYTHM_FRAC) -> float:
+    """Decisions L596/L597 (L684: shared by the offline and the streamed rest): the shortest rest (s) the foot's
+    rhythm asks, ``frac`` x its stride period where that is longer than the rest test's own ``window_s`` (a shorter
+    rest is that test's own to decide), else 0 (no rule; also for a NaN period or ``frac`` 0)."""
+    need = float(frac) * float(period_s)
+    return need if np.isfinite(need) and need > window_s else 0.0
 
 
 def foot_period(gyr: np.ndarray, fs: float, window_s: float = 0.1) -> float:

@@ -27,6 +27,7 @@ import numpy as np
 
 from pdrlearn.errors import DataError
 from pdrlearn.kernels import bayes as B
+from pdrlearn.kernels import foot_rhythm as FR
 from pdrlearn.kernels.backward import BACKWARD_MAX_TURN_DEG
 from pdrlearn.kernels.contact import MAX_STRIDE_S
 from pdrlearn.kernels.histospline import upsample_block_means
@@ -137,6 +138,11 @@ class StanceSegmenter:
     Its boundary is its middle, but at most ``stance_half_s`` from its start (closing the stride before)
     and from its end (opening the next), so standing still neither delays a stride nor stretches it.
     Strides lasting ``min_step_s``..``max_step_s`` are returned by :meth:`update` as ``(start_s, end_s)``.
+    Decision L684 (L597's rule, shared with the offline rest through
+    :func:`pdrlearn.kernels.foot_rhythm.min_rest_s`): where L597's rule finds the foot's own stride period slow (0.06 x
+    the period asks more than the minimum run), a stance must also last ``stance_rhythm_frac`` x the period (a slow
+    swing's lull before the heel strike is not a stance); the period is read when a stance starts, from the last
+    :data:`~pdrlearn.kernels.foot_rhythm.TRAILING_WINDOW_S` of the |w| means (0: no such rule).
     """
 
     def __init__(self, *, stance_gyro_rad_s: float = 0.8, min_stance_s: float = 0.1, stance_half_s: float = 0.3,
@@ -147,7 +153,8 @@ class StanceSegmenter:
                  stance_gap_s: float = STANCE_L27_DEFAULTS["stance_gap_s"],
                  stance_mean_min_s: float = STANCE_L27_DEFAULTS["stance_mean_min_s"],
                  stance_gap_swing_frac: float = STANCE_L27_DEFAULTS["stance_gap_swing_frac"],
-                 stance_gap_max_s: float = STANCE_L27_DEFAULTS["stance_gap_max_s"]):
+                 stance_gap_max_s: float = STANCE_L27_DEFAULTS["stance_gap_max_s"],
+                 stance_rhythm_frac: float = FR.STREAMED_RHYTHM_FRAC):
         self.thr = float(stance_gyro_rad_s)
         self.min_stance_s = float(min_stance_s)
         self.half = float(stance_half_s)
@@ -166,6 +173,12 @@ class StanceSegmenter:
                             f"{stance_gap_s!r} and stance_mean_min_s {stance_mean_min_s!r} must be >= 0, "
                             f"stance_floor_window_s {stance_floor_window_s!r} > 0 (decisions L27, L29; all "
                             "three 0 = the fixed rule E7)")
+        self.rhythm_frac = float(stance_rhythm_frac)
+        if not self.rhythm_frac >= 0:
+            raise DataError(f"StanceSegmenter: stance_rhythm_frac {stance_rhythm_frac!r} must be >= 0 (decision L684; "
+                            "0 = no rhythm rule)")
+        self._rhythm_q: deque = deque()  # decision L684: trailing (t, |w| mean) to read the foot's period
+        self.rest_s = 0.0  # decision L684: the rhythm's shortest stance (s), read when the stance in progress started
         self.stance_start: float | None = None
         self.last_still = -np.inf
         self.closed = False
@@ -185,7 +198,7 @@ class StanceSegmenter:
     def from_params(cls, params: Mapping) -> StanceSegmenter:
         """From a bundle's ``displacement`` parameters (unknown keys ignored)."""
         keys = ("stance_gyro_rad_s", "min_stance_s", "stance_half_s", "min_step_s", "max_step_s",
-                *STANCE_L27_DEFAULTS)  # with decision L120's stance_gap_swing_frac, stance_gap_max_s
+                "stance_rhythm_frac", *STANCE_L27_DEFAULTS)  # L684; L120: stance_gap_swing_frac, stance_gap_max_s
         return cls(**{k: float(params[k]) for k in keys if k in params})
 
     def _gap_now(self) -> float:
@@ -212,6 +225,11 @@ class StanceSegmenter:
         while mq[0][0] <= ti - self.min_stance_s + TIE_S:
             self._mean_sum -= mq.popleft()[1]
         m = self._mean_sum / len(mq)
+        if self.rhythm_frac > 0:  # decision L684: the means the foot's period is read from
+            rq = self._rhythm_q
+            rq.append((ti, m))
+            while rq[0][0] <= ti - FR.TRAILING_WINDOW_S + TIE_S:
+                rq.popleft()
         if self.factor == 0:
             return m, self.thr
         nq = self._min_q
@@ -255,6 +273,7 @@ class StanceSegmenter:
             if still:
                 if self.stance_start is None:
                     self.stance_start, self.run_start, self.best_run, self.closed = ti, ti, None, False
+                    self.rest_s = self._rhythm_rest(min_run)
                 elif self.swing_frac > 0 and self.moved and ti - self.last_still > self.gap + TIE_S:
                     self._keep_run()  # L120: a new still run after motion only L120's gap bridged
                     self.run_start = ti
@@ -265,7 +284,7 @@ class StanceSegmenter:
             self.moved = True
             if self.stance_start is not None and ti - self.last_still > self._gap_now() + TIE_S:  # L27, L120
                 s0, s1 = self._stance_run()
-                if s1 - s0 >= min_run - TIE_S:
+                if s1 - s0 >= max(min_run, self.rest_s) - TIE_S:  # L684: and the rhythm's shortest stance
                     mid = 0.5 * (s0 + s1)
                     if not self.closed:
                         self._close(mid, out)
@@ -306,10 +325,20 @@ class StanceSegmenter:
                 return (start, end) if self._step_ok(end - start) else None
             if tn - self.last_still <= self._gap_now() + TIE_S:  # within the gap (L27, L120): ends no stance
                 return None
-        if s1 - s0 < min_run - TIE_S:
+        if s1 - s0 < max(min_run, self.rest_s) - TIE_S:  # L684: and the rhythm's shortest stance
             return None
         end = 0.5 * (s0 + s1)
         return (start, end) if self._step_ok(end - start) else None
+
+    def _rhythm_rest(self, min_run: float) -> float:
+        """Decision L684: the shortest stance (s) the foot's period asks, read from the trailing |w| means:
+        ``stance_rhythm_frac`` x the period where L597's rule (:func:`pdrlearn.kernels.foot_rhythm.min_rest_s` against
+        the stance's own minimum run) finds it slow; 0 = none."""
+        if self.rhythm_frac == 0 or len(self._rhythm_q) < 3:
+            return 0.0
+        t, m = np.array(self._rhythm_q).T
+        period = FR.trailing_period(t, m)
+        return self.rhythm_frac * period if FR.min_rest_s(period, min_run) > 0 else 0.0  # where L597 acts
 
     def _keep_run(self) -> None:
         """Decision L120: remember the still run that just ended inside a bridged stance when it is the longest."""
