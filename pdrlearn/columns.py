@@ -1181,8 +1181,8 @@ FOOT_STEPS: tuple[Column, ...] = (
                                    "(its IC-to-IC holds the stop) and the first stride has none; the opt-in "
                                    "gait.add_gait_columns(rest_speed=True) takes the shorter of its own and the "
                                    "next stride's time (L509, L512)"),
-    ("turn_angle_rad", "rad", "number", "the foot's own heading change from rest to rest over the stride (wrapped "
-                                        "to +-pi)"),
+    ("turn_angle_rad", "rad", "number", "the foot's own heading change from rest to rest over the stride, left + "
+                                        "(not wrapped: a spin of 180-360 deg inside one stride is itself, L690)"),
     ("tc_s", "s", "number", "--toe-off only: the toe-off inside the stride, the one ending the stance of the contact "
                             "at cycle_start_s (foot gyroscope push-off peak; L73); against gaitmap's mocap ~21 ms "
                             "early (L672)"),
