@@ -933,6 +933,11 @@ PERIODS: tuple[Column, ...] = (
     ("dy_m", "m", "number", "end_y_m - start_y_m (L514)"),
     ("n_sit_to_stand", "count", "integer", "lower back: sit-to-stand transfers (transfers.csv) starting in the "
                                            "period; empty on a foot track (W448)"),
+    ("n_turns_left", "count", "integer", "the period's n_turns that turn left (turns.csv angle_deg > 0; L691)"),
+    ("n_turns_right", "count", "integer", "the period's n_turns that turn right (angle_deg < 0); with n_turns_left "
+                                          "it sums to n_turns (L691)"),
+    ("net_rotation_deg", "deg", "number", "the signed sum of those turns' angle_deg, left + (a 360 deg spin "
+                                          "reads 360, L690; L691); 0 without a turn"),
     *_clocks("start_s", "end_s"),
 )
 
