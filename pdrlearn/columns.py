@@ -935,6 +935,11 @@ PERIODS: tuple[Column, ...] = (
     ("dy_m", "m", "number", "end_y_m - start_y_m (L514)"),
     ("n_sit_to_stand", "count", "integer", "lower back: sit-to-stand transfers (transfers.csv) starting in the "
                                            "period; empty on a foot track (W448)"),
+    ("n_turns_left", "count", "integer", "the period's n_turns that turn left (turns.csv angle_deg > 0; L691)"),
+    ("n_turns_right", "count", "integer", "the period's n_turns that turn right (angle_deg < 0); with n_turns_left "
+                                          "it sums to n_turns (L691)"),
+    ("net_rotation_deg", "deg", "number", "the signed sum of those turns' angle_deg, left + (a 360 deg spin "
+                                          "reads 360, L690; L691); 0 without a turn"),
     *_clocks("start_s", "end_s"),
 )
 
@@ -1183,8 +1188,8 @@ FOOT_STEPS: tuple[Column, ...] = (
                                    "(its IC-to-IC holds the stop) and the first stride has none; the opt-in "
                                    "gait.add_gait_columns(rest_speed=True) takes the shorter of its own and the "
                                    "next stride's time (L509, L512)"),
-    ("turn_angle_rad", "rad", "number", "the foot's own heading change from rest to rest over the stride (wrapped "
-                                        "to +-pi)"),
+    ("turn_angle_rad", "rad", "number", "the foot's own heading change from rest to rest over the stride, left + "
+                                        "(not wrapped: a spin of 180-360 deg inside one stride is itself, L690)"),
     ("tc_s", "s", "number", "--toe-off only: the toe-off inside the stride, the one ending the stance of the contact "
                             "at cycle_start_s (foot gyroscope push-off peak; L73); against gaitmap's mocap ~21 ms "
                             "early (L672)"),

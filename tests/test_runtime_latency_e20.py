@@ -76,7 +76,8 @@ def _stride_headings_e19(forward_s, acc, Y, s=0, t=None):
     else:
         R = [[sum(Re[i][k] * Rs[j][k] for k in range(3)) for j in range(3)] for i in range(3)]
         d = _twist_e19(R)
-    return (d if t is None else d + _coning_e19(t, Y, s)), psi0
+    # decision L690 (session 46): the twist on the branch of the levelled vertical rate's integral, as the kernel's
+    return (d if t is None else KW._unwrapped(d + _coning_e19(t, Y, s), t, Y, s)), psi0
 
 
 def test_stride_headings_and_coning_unchanged_with_the_axis_as_array_or_list():

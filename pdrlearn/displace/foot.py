@@ -16,6 +16,7 @@ from pdrlearn.kernels import foot_rhythm as FR
 from pdrlearn.kernels import stride as SK
 from pdrlearn.kernels.clip_noise import clip_variance
 from pdrlearn.kernels.frozen_foot import FORCE_LOAD_LEVEL
+from pdrlearn.kernels.turn import unwrapped_turn, unwrapped_twists
 from pdrlearn.orient import FootAttitude, UnitData
 from pdrlearn.settings import Rule, annotation_words, broken, broken_line
 from pdrlearn.signal import standstill_mask
@@ -479,6 +480,8 @@ class FootDisplacement:
         a_nav, self.yaw_change_ = K.strapdown(acc, gyr, dt, idx, mask, g_body, bias, init, q=q)
         if self.yaw == "twist" and B:
             self.yaw_change_ = twist_yaw(q[:, 0], q[np.arange(B), mask.sum(axis=1) - 1])
+        if B:  # decision L690: a spin of 180-360 deg inside a stride is itself (the twist unwrapped along the stride)
+            self.yaw_change_ = unwrapped_turn(self.yaw_change_, unwrapped_twists(twist_yaw(q[:, :1], q))[:, -1])
         self.gap_yaw_ = self._gap_yaw(acc, gyr, tclock, i0, i1, bias) if self.gap_yaw else np.zeros(B)
         zm = K.zupt_mask(zupt_stance, idx, mask)
         heel = self.reference_point == "heel" and B

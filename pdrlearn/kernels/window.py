@@ -24,6 +24,7 @@ from pdrlearn.kernels.stats import (
     row_norm,
 )
 from pdrlearn.kernels.strapdown import CONING_COEF  # decision L35 (L626: shared with the offline strapdown)
+from pdrlearn.kernels.turn import integrated_yaw, unwrapped_turn  # decision L690
 
 #: Sensor groups and their channels, in the order of :data:`CHANNELS` (after ``t_s``).
 GROUPS: dict[str, tuple[str, ...]] = {
@@ -308,13 +309,15 @@ def stride_dpsi(forward_s: np.ndarray, acc: np.ndarray, Y: np.ndarray, s: int = 
     measured from the stride's own first sample, which is the previous stride's last one (decision L33).
 
     ``t`` (the samples' times, s) given, the coning term the mean-rate attitude misses is added
-    (:func:`coning_yaw`, decision L35); the levelled rows ``Y`` (the step window's signals) are not changed."""
+    (:func:`coning_yaw`, decision L35) and the twist is unwrapped on the levelled vertical rate's integral (decision
+    L690: a spin of 180-360 deg inside the stride); the levelled rows ``Y`` (the step window's signals) are not
+    changed."""
     if s == 0 and len(Y) == 1:
         return 0.0
     fwd = np.asarray(forward_s, dtype=float).tolist()  # Python floats, each row fetched once (runtime E17)
     ys = np.asarray(Y[s], dtype=float).tolist()  # rows acc, gyro, fwd
     d = _dpsi(fwd, acc, Y, ys, _attitude(fwd, np.asarray(acc[s], dtype=float).tolist(), ys[2], ys[0]))
-    return d if t is None else d + coning_yaw(t, Y, s)
+    return d if t is None else _unwrapped(d + coning_yaw(t, Y, s), t, Y, s)
 
 
 def stride_headings(forward_s: np.ndarray, acc: np.ndarray, Y: np.ndarray, s: int = 0,
@@ -328,7 +331,13 @@ def stride_headings(forward_s: np.ndarray, acc: np.ndarray, Y: np.ndarray, s: in
     if s == 0 and len(Y) == 1:
         return 0.0, psi0
     d = _dpsi(fwd, acc, Y, ys, Rs)
-    return (d if t is None else d + coning_yaw(t, Y, s)), psi0
+    return (d if t is None else _unwrapped(d + coning_yaw(t, Y, s), t, Y, s)), psi0
+
+
+def _unwrapped(d: float, t: np.ndarray, Y: np.ndarray, s: int) -> float:
+    """Decision L690: the twist ``d`` (rad, modulo 2 pi) on the branch of the levelled vertical rate (``Y[k, 1, 2]``)
+    integrated from sample ``s`` to the stride's last: a spin of 180-360 deg inside one stride is itself."""
+    return unwrapped_turn(d, integrated_yaw(t[s:], Y[s:, 1, 2]))
 
 
 

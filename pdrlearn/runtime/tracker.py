@@ -2215,17 +2215,17 @@ class Tracker(OwnGuard, FixInput):
         self.position = np.array((x, y, z))
         self.n_steps += 1
         self._heights.append(classes.get("terrain"), raw_dz, dz)  # decision E47
-        turn_wrapped = float(np.angle(np.exp(1j * turn)))
+        turn = float(turn)  # decision E51: the stride's own turn (L690: not wrapped, a spin of 180-360 deg is itself)
         length, direction = travel_sign_one(length, direction, dx,  # L654: the measured travel, after the position
                                             self._side_rows.decided,  # decision C137: a side step is no backward
-                                            turn_wrapped)  # decision L578: nor a turn on the spot
+                                            turn)  # decision L578: nor a turn on the spot
         if self._session_length is not None and "length" in classes:  # decision C117: the reported class only
             label, lp = self._session_length.stride(classes["length"], proba.get("length"), abs(length),
                                                     terrain=classes.get("terrain"),
-                                                    direction=classes.get("direction"), turn_rad=turn_wrapped)
+                                                    direction=classes.get("direction"), turn_rad=turn)
             classes, proba = {**classes, "length": label}, {**proba, "length": lp}
         return Step(t0, t1, classes, proba, length, dz, direction, x, y, z, event_s=event_s,
-                    turn_angle_rad=turn_wrapped, impossible=impossible,
+                    turn_angle_rad=turn, impossible=impossible,
                     pivot_rad=float(np.angle(np.exp(1j * (dyaw - turn)))),  # decision L106
                     sideways=self._side_rows.decided)  # decision L243
 

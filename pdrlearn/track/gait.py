@@ -2,7 +2,7 @@
 
 One foot's strides, one row each: ``stride_time_s`` (initial contact to initial contact, from the ``event_s``
 of consecutive strides), ``cadence_spm`` (steps per minute: two steps per stride of one foot), ``speed_mps``
-(``|length_m| / stride_time_s``) and ``turn_angle_rad`` (the foot's heading change over the stride, wrapped).
+(``|length_m| / stride_time_s``) and ``turn_angle_rad`` (the foot's heading change over the stride, not wrapped: L690).
 No stance/swing times: the pipeline's stance detection (the ZUPT rest, :func:`swing_times`) is the foot at
 rest, not initial contact to toe-off; against the mocap of the gaitmap level walks its "swing" came out
 +488 / +453 ms long (``experiments/gait_parameters.py``), so it is not given as the gait-lab swing (L66).
@@ -142,7 +142,8 @@ def add_gait_columns(table: pd.DataFrame, *, turn_rad=None, valid=None, tc_s=Non
     n = len(table)
     stride = stride_times(table["start_s"], table["end_s"], table["event_s"], valid, max_s=max_stride_s)
     moving = resumed_times(table["start_s"], table["end_s"], stride, valid) if rest_speed else stride
-    turn = np.full(n, np.nan) if turn_rad is None else np.angle(np.exp(1j * np.asarray(turn_rad, dtype=float)))
+    # decision L690: the turn as given (a spin of 180-360 deg inside one stride is itself; no wrap)
+    turn = np.full(n, np.nan) if turn_rad is None else np.array(turn_rad, dtype=float)
     turn_valid = valid if turn_valid is None else turn_valid
     if turn_valid is not None:
         turn[~np.asarray(turn_valid, dtype=bool)] = np.nan

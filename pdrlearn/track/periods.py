@@ -57,7 +57,8 @@ PERIOD_COLUMNS = ("session", "subject", "visit", "period", "start_s", "end_s", "
                   *PERIOD_GAIT_KEYS, *TIME_KEYS,
                   *POSTURE_KEYS, "floors_up", "floors_down", "ascent_m", "descent_m", "n_bouts", "n_turns",
                   "n_backward_strides", "n_side_strides", "data_gap", "position_sigma_end_m",
-                  *POSITION_KEYS, "n_sit_to_stand")  # decision W448: last, the columns before it kept in place
+                  *POSITION_KEYS, "n_sit_to_stand",  # decision W448: after the columns before it, kept in place
+                  "n_turns_left", "n_turns_right", "net_rotation_deg")  # decision L691: W448's way, last
 #: decision L277: ``--per`` units (s); decision B305: no "m" (every distance the tool prints is in metres)
 PER_UNITS = {"s": 1.0, "min": 60.0, "h": 3600.0}
 PER_USAGE = "give --per a period such as 1h, 30min, 15min or 3600 (seconds)"
@@ -413,6 +414,14 @@ def period_displacement(traj: pd.DataFrame, start, end, a: float, b: float, *, l
             "end_y_m": float(xy[j, 1]), "dx_m": float(xy[j, 0] - xy[i, 0]), "dy_m": float(xy[j, 1] - xy[i, 1])}
 
 
+def turn_totals(angle_deg) -> dict:
+    """Decision L691: ``n_turns_left`` / ``n_turns_right`` (turns.csv's ``angle_deg`` positive / negative: left +)
+    and ``net_rotation_deg`` (their signed sum, deg; 0.0 without a turn) of an interval's turns."""
+    a = np.asarray(angle_deg, dtype=float)
+    return {"n_turns_left": int((a > 0).sum()), "n_turns_right": int((a < 0).sum()),
+            "net_rotation_deg": float(a.sum())}
+
+
 def rise_times(transfers) -> np.ndarray | None:
     """Decision W448: the start times (s) of a track's sit-to-stand transfers (``info["transfers"]``, a table or
     its records); None without transfers (a foot track: not measured, not zero)."""
@@ -456,6 +465,7 @@ def interval_rows(result, session, starts, ends, closed, *, unit: str | None, bo
 
     turns = None if turns is None else walked_turns(turns)  # decision L622: n_turns sums to turn_count
     turn_t = turns["start_s"].to_numpy(float) if turns is not None and len(turns) else np.zeros(0)
+    turn_deg = turns["angle_deg"].to_numpy(float) if turns is not None and len(turns) else np.zeros(0)  # L691
     rise_t = rise_times(result.info.get("transfers"))  # decision W448: None on a track without a trunk unit
     traj = result.trajectory
     sigma = traj["pos_sigma_m"].to_numpy(float) if "pos_sigma_m" in traj and len(traj) else None
@@ -482,6 +492,7 @@ def interval_rows(result, session, starts, ends, closed, *, unit: str | None, bo
         row["floors_down"] = int(-climb_n[c & (climb_n < 0)].sum()) if climbs is not None else None
         row["ascent_m"], row["descent_m"] = interval_ascent(result, a, b)  # decision L467
         row["n_bouts"], row["n_turns"] = int(inside(bout_t).sum()), int(inside(turn_t).sum())
+        row.update(turn_totals(turn_deg[inside(turn_t)]))  # decision L691: the same turns, by side and summed
         row["n_sit_to_stand"] = None if rise_t is None else int(inside(rise_t).sum())  # decision W448
         row["n_backward_strides"], row["n_side_strides"] = ((None, None) if travel is None  # L484: lower back
                                                             else (int(travel[0][m].sum()), int(travel[1][m].sum())))

@@ -2244,10 +2244,10 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             table[c] = classes[c].to_numpy()
     # decision L654 (as the runtime's Step): length_m's sign is the measured travel; the path is the same
     rep_length, rep_head = SK.travel_sign(length, head, raw_disp[:, 0], sideways,  # decision C137
-                                          np.angle(np.exp(1j * turn)))  # decision L578: E51's wrapped own turn
+                                          turn)  # decision L578: E51's own turn (L690: not wrapped)
     table.insert(3, "length_m", rep_length)
     table.insert(5, "heading_rad", wrap_angle(rep_head))
-    table["turn_angle_rad"] = np.angle(np.exp(1j * turn))  # decision E51, wrapped as offline's L66 column
+    table["turn_angle_rad"] = turn  # decision E51 (L690: not wrapped, as offline's L66 column)
     table["pivot_rad"] = np.angle(np.exp(1j * (dyaw - turn)))  # decision L106: the turn between strides (the runtime's)
     table["impossible"] = impossible & ~in_gap  # decision L97: the strides L94 moved 0 m (no gait values)
     table["gap_s"] = np.where(in_gap, longest_gap_in(table["start_s"], table["end_s"], foot_gaps), 0.0)  # E37, L67
