@@ -1211,6 +1211,12 @@ FOOT_STEPS: tuple[Column, ...] = (
     ("tc_angle_deg", "deg", "number", "offline foot track with a toe-off (--toe-off): the sole angle at tc_s "
                                       "(gaitmap's tc_angle; L421)"),
     ("impossible", _ID, "true/false", "the last-line guard (L94) moved the stride 0 m: no gait values (L97)"),
+    ("trunk_pause_s", "s", "number", "offline, with the lower-back unit: the pause before the stride, its time "
+                                     "from the previous stride's start beyond the walker's stride (two of the lower "
+                                     "back's median contact intervals, or the foot's median movement window when "
+                                     "shorter) when 1 s or more, else 0 (n_pauses counts these; the stride is left "
+                                     "out of the median cadence; L687); absent where the lower back's contacts are "
+                                     "too dense to judge (the foot's own rule)"),
     ("gap_s", "s", "number", "the longest foot-data gap inside the stride; > 0: a 0 m gap row (L67)"),
     ("unit", _ID, "text", "the unit tracked: foot"),
     ("x", "m", "number", "pdrlearn run: the position east at the stride's end"),

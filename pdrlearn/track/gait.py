@@ -577,13 +577,15 @@ def trimmed_gait_summary(steps: pd.DataFrame, cadence_from: str | None = None) -
             out.update(streamed_gait_summary(steps))
         return out
     from pdrlearn.track.steady import trimmed_rows
+    from pdrlearn.track.trunk_pauses import stop_rows
 
     keep = ~trimmed_rows(steps)  # decision L415: --steady-trim leaves each bout's first / last strides out
-    st = np.where(keep, steps["stride_time_s"].to_numpy(float), np.nan)
+    rhythm = keep & ~stop_rows(steps)  # decision L687: a stride holding the lower back's stop is no rhythm
+    st = np.where(rhythm, steps["stride_time_s"].to_numpy(float), np.nan)
     out["n_stride_times"] = int(np.isfinite(st).sum())
     for key, col in (("median_stride_time_s", "stride_time_s"), ("median_cadence_spm", "cadence_spm"),
                      ("median_speed_mps", "speed_mps")):
-        out[key] = _median(steps[col].to_numpy(float)[keep])
+        out[key] = _median(steps[col].to_numpy(float)[rhythm])
     if cadence_from == "strides":  # decision L176's formula on the foot (an option; W225 adopted it on the waist)
         out["median_cadence_spm"] = median_cadence(out["median_stride_time_s"], None)
     valid = stride_rows(steps) & keep  # decisions L67, L97; L415

@@ -1810,6 +1810,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         res.info.update(trunk.info)
     elif transfers:  # decision W439: callers that read no TUG (the distance calibration) skip the inner waist work
         add_trunk_transfers(res, work)  # decision W418 (W430: the waist on the aligned clock, as --clock-offset)
+    from pdrlearn.track.trunk_pauses import add_trunk_pauses
+
+    add_trunk_pauses(res)  # decision L687: the lower back's stops are the two-unit track's pauses
     return res
 
 
