@@ -55,3 +55,5 @@ def test_t1_step_to_return_flight_on_the_lower_back(tmp_path):
     assert main(["track", str(s), "--units", "waist", "--out", str(out)]) == 0
     summary = json.loads((out / "summary.json").read_text())
     assert (summary["floors_up"], summary["floors_down"], summary["storeys_changed"]) == (1, 1, 0)
+    # decision W527: its steps on the stairs (24 each way) counted from the climbs (main: 8 / 8)
+    assert summary["n_stair_strides_up"] >= 20 and summary["n_stair_strides_down"] >= 20
