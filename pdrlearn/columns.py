@@ -307,8 +307,11 @@ SESSIONS: tuple[Column, ...] = (
                                               "direction_changes.csv's rows, L412); a turn is not one; empty on "
                                               "the lower back"),
     ("n_stair_strides", "count", "integer", "strides climbing or descending 0.10 m or more (L179)"),
-    ("n_stair_strides_up", "count", "integer", "n_stair_strides that climb (L432)"),
-    ("n_stair_strides_down", "count", "integer", "n_stair_strides that descend (L432)"),
+    ("n_stair_strides_up", "count", "integer", "n_stair_strides that climb (L432); lower back: steps inside a "
+                                               "barometric climb up (W108, W526) and steps outside one rising 0.10 m "
+                                               "(W527)"),
+    ("n_stair_strides_down", "count", "integer", "n_stair_strides that descend (L432); lower back: as _up, down "
+                                                 "(W527)"),
     ("n_flights_up", "count", "integer", "foot: stair flights up, stairs.csv's rows (L432); empty on the lower back"),
     ("n_flights_down", "count", "integer", "foot: stair flights down (L432); empty on the lower back"),
     ("flights_rise_m", "m", "number", "foot: what the stair flights up climb, stairs.csv's height_m summed (L602); "

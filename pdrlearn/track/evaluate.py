@@ -273,6 +273,7 @@ def _climb_parts(steps: pd.DataFrame):
     (W158's ``pause_dz_m``) where it is W231's ``RIDE_MIN_M`` or more (a ride), else 0; ``kind`` steps.csv's ``ride``
     column (L376; None without it); ``climb_sign`` +1 / -1 on a lower-back track's W108 climb rows (steps.csv
     ``climb``; each run of them signed by its walking height), 0 elsewhere, None without the column or on a foot."""
+    from pdrlearn.kernels.barometer import climb_turn_pieces
     from pdrlearn.kernels.pause_ride import RIDE_MIN_M
 
     pause = np.nan_to_num(steps["pause_dz_m"].to_numpy(float)) if "pause_dz_m" in steps else np.zeros(len(steps))
@@ -286,7 +287,8 @@ def _climb_parts(steps: pd.DataFrame):
     sign = np.zeros(len(steps), dtype=int)
     edges = np.flatnonzero(np.diff(np.concatenate([[0], on.astype(int), [0]])))
     for a, b in zip(edges[::2], edges[1::2], strict=True):
-        sign[a:b] = int(np.sign(walk[a:b].sum()))
+        for p, q in climb_turn_pieces(walk[a:b]):  # decision W526: an up and a down flight, adjacent, are two climbs
+            sign[a + p:a + q] = int(np.sign(walk[a + p:a + q].sum()))
     return ride, kind, sign
 
 

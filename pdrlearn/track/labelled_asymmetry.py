@@ -20,6 +20,19 @@ LABEL_TOLERANCE_STEPS = 0.25
 #: with a note that it is uncertain (L493's gate withholding it, and L490's window centred on the lower back's lag,
 #: were not adopted; L507 removed those options, commit d3ffb129 holds them)
 UNCERTAIN_SE_POINTS = 3.0
+#: decision L671: an index under this many standard errors (L490's) is within noise: its two-sided 95 % interval
+#: reaches 0 (the normal quantile)
+WITHIN_NOISE_SE = 1.96
+
+
+def asymmetry_flags(pct: float, se: float) -> list[str]:
+    """Decisions L671, L677: the words a step-time asymmetry index ``pct`` (%) with standard error ``se`` (points,
+    L490) carries - "within noise" under :data:`WITHIN_NOISE_SE` standard errors, "uncertain: over 3 points" over
+    :data:`UNCERTAIN_SE_POINTS`; the console's gait line and clinical.md (decision C190) say the same."""
+    return ((["within noise"] if pct < WITHIN_NOISE_SE * se else [])
+            + ([f"uncertain: over {UNCERTAIN_SE_POINTS:g} points"] if se > UNCERTAIN_SE_POINTS else []))
+
+
 #: decision L416: a foot stride longer than this times the median stride (a stop, a missed contact) gives no phase
 MAX_STRIDE_FACTOR = 1.5
 #: decision L416: the fewest strides with one other-foot contact for an index (L123's minimum for a figure)
