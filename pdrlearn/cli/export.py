@@ -396,7 +396,7 @@ def run(
 
         pdrlearn run out/bundle/u1 out/sim/D_u1 --no-plot --out out/run_tables   # no path.png (L533)
 
-        pdrlearn run out/bundle/u1 out/sim/D_u1 --no-cycling --out out/run_dance   # no bicycles: no pedalling hold (E304)
+        pdrlearn run out/bundle/u1 out/sim/D_u1 --no-cycling --out out/run_dance   # no pedalling hold (E304)
     """
     # decision L122: every option as given (defaults included) and the start, for OUT/run.json, as track's
     record = _run_json(dict(locals()), time.perf_counter(), time.process_time())
