@@ -491,6 +491,10 @@ class Tracker(OwnGuard, FixInput):
         (True, decision L189: offline's L184 function) or on the summed dz of its run of such strides (``"summed"``,
         L206); both measured and not adopted (L189, L207). False (default): raw heights. Decision L550: this keyword,
         as ``track_plasys(streaming=True, gated_level_dz=...)``; only with a bundle that classifies terrain.
+    cycling : True (default): L611's pedalling check (E280): a stride is held until its verdict is final (up to three
+        later strides: a short turning stride in a spin waits 1.7-3.8 s) and a pedalling one is removed. False
+        (decision E304, ``pdrlearn run --no-cycling``, ``track_plasys(cycling=False)``): for an activity without
+        bicycles (dance, a clinic), no stride is judged pedalling and none is held.
     """
 
     _one_at_a_time = "push/flush/add_fix"  # decisions E231, E256: the calls one_call_at_a_time guards
@@ -582,6 +586,7 @@ class Tracker(OwnGuard, FixInput):
         first_walk: bool = False,
         drop_duplicate_timestamps: bool = False,
         gated_level_dz: bool | str = False,
+        cycling: bool = True,
     ):
         self._busy = new_guard()  # decision E231: push / flush one thread at a time
         start_xyz = enu_start(start, start_enu_m)  # decision L159
@@ -590,7 +595,8 @@ class Tracker(OwnGuard, FixInput):
         #: decision C117: "session" reports a flat forward stride's length class against the session's median stride
         self._session_length = (_relative_length.SessionLength()
                                 if _relative_length.check_length_reference(length_reference) == "session" else None)
-        for key, flag in (("clock_check", clock_check), ("stream_checks", stream_checks)):  # L177, E230: flags
+        for key, flag in (("clock_check", clock_check), ("stream_checks", stream_checks),  # L177, E230: flags
+                          ("cycling", cycling)):  # decision E304
             if not isinstance(flag, bool | np.bool_):
                 raise DataError(f"{key}={flag!r} must be True or False")
         if (isinstance(waist_clock_offset_s, bool) or not isinstance(waist_clock_offset_s, int | float | np.number)
@@ -743,7 +749,7 @@ class Tracker(OwnGuard, FixInput):
         #: decision E272: the waist gyroscope's bias read at the last stop (None without the waist unit)
         self._stop_bias = _stop_bias.StopBias() if "waist" in self.units else None
         #: decision E280: L611's verdicts stride by stride, the foot's rest reading (L621) and the warning line
-        self._loops, self._foot_rest, self._pedal_line = _pedal.LiveLoops(), _pedal.LiveRest(), None
+        self._loops, self._foot_rest, self._pedal_line = _pedal.LiveLoops(cycling), _pedal.LiveRest(), None
         #: decision E280: no stride starting within L611's CHAIN_PAUSE_S of the last one's end can still be detected
         #: this long (s) after that end: the longest stride, its closing stance and the wait before a step is measured
         self._chain_quiet_s = _pedal.CHAIN_PAUSE_S + self.segmenter.max_step_s + 2.0 + self._lookahead_s
