@@ -2217,7 +2217,8 @@ class Tracker(OwnGuard, FixInput):
         self.n_steps += 1
         self._heights.append(classes.get("terrain"), raw_dz, dz)  # decision E47
         turn = float(turn)  # decision E51: the stride's own turn (L690: not wrapped, a spin of 180-360 deg is itself)
-        chord = float(signed_chord(dx, dy, turn, _sideways.step_frame(lev)))  # decision L692: the measured travel
+        chord = float(signed_chord(dx, dy, _sideways.foot_turn(lev),  # decision L692: the measured travel
+                                   _sideways.step_frame(lev)))  # against the foot's own mid-stride facing
         length, direction = travel_sign_one(length, direction, chord,  # L654: the measured travel, after the position
                                             self._side_rows.decided,  # decision C137: a side step is no backward
                                             turn)  # decisions L578, L692: nor a turn on the spot

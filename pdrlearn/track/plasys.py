@@ -2238,7 +2238,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     for i in range(len(table)):  # the runtime's own position update, stride by stride
         xyz[i + 1] = SK.advance(xyz[i], float(head[i]), float(length[i]), float(dz[i]))
     table["event_s"] = ic  # decisions E49-E51 (it was the stride end; NaN without contacts)
-    table["raw_length_m"] = signed_chord(raw_disp[:, 0], raw_disp[:, 1], turn, frame)  # decision L692
+    table["raw_length_m"] = signed_chord(raw_disp[:, 0], raw_disp[:, 1], foot_turn, frame)  # L692: the foot's
     table["dz_m"] = dz
     for c in classes.columns:
         if not c.startswith("ood_feature_"):
