@@ -1135,7 +1135,8 @@ FOOT_STEPS: tuple[Column, ...] = (
                                 "turn on the spot), whatever the direction class (L654, amending L65; C137, L578); 0 "
                                 "for a gap row or an impossible stride"),
     ("raw_length_m", "m", "number", "the estimate before the rules, signed with the foot's forward axis at the "
-                                    "stride start (< 0: it moved backwards in that frame)"),
+                                    "stride start (< 0: it moved backwards in that frame); a stride turning 30 deg or "
+                                    "more against its mid-stride facing (< 0: within 60 deg of straight back, L692)"),
     ("heading_rad", "rad", "number", "the direction the stride is placed along (ENU, 0 = east or the start "
                                      "direction, counter-clockwise)"),
     ("dz_m", "m", "number", "the stride's height change"),
@@ -1156,7 +1157,8 @@ FOOT_STEPS: tuple[Column, ...] = (
                                            "L224)"),
     ("travel", _ID, "text", "the stride's travel direction from the foot's facing (L412): forward, backward (as "
                             "backward_travel), left / right (a side-stepping run's stride, sideways; side when "
-                            "streamed), turn (the foot turned 30 deg or more), empty (a gap, impossible or under "
+                            "streamed), turn (the foot turned 30 deg or more on a chord under 0.6 m: on the spot, "
+                            "L692), empty (a gap, impossible or under "
                             "0.15 m); model-free, unlike direction"),
     ("length_class", _ID, "text", "M3's length class (empty without a model)"),
     ("confidence", "fraction", "number", "the class confidence (1 without a model)"),

@@ -33,6 +33,7 @@ from pdrlearn.kernels import sideways as _sideways
 from pdrlearn.kernels import stop_bias as _stop_bias
 from pdrlearn.kernels import turn_length as _turn_length
 from pdrlearn.kernels.align import MAX_CLOCK_DRIFT
+from pdrlearn.kernels.backward import signed_chord
 from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, SIGMA_REL, check_rules, confident_one
 from pdrlearn.kernels.contact import force_at, stride_contact, stride_times
 from pdrlearn.kernels.counter_wrap import live_wrap
@@ -2222,9 +2223,11 @@ class Tracker(OwnGuard, FixInput):
         self.n_steps += 1
         self._heights.append(classes.get("terrain"), raw_dz, dz)  # decision E47
         turn = float(turn)  # decision E51: the stride's own turn (L690: not wrapped, a spin of 180-360 deg is itself)
-        length, direction = travel_sign_one(length, direction, dx,  # L654: the measured travel, after the position
+        chord = float(signed_chord(dx, dy, _sideways.foot_turn(lev),  # decision L692: the measured travel
+                                   _sideways.step_frame(lev)))  # against the foot's own mid-stride facing
+        length, direction = travel_sign_one(length, direction, chord,  # L654: the measured travel, after the position
                                             self._side_rows.decided,  # decision C137: a side step is no backward
-                                            turn)  # decision L578: nor a turn on the spot
+                                            turn)  # decisions L578, L692: nor a turn on the spot
         if self._session_length is not None and "length" in classes:  # decision C117: the reported class only
             label, lp = self._session_length.stride(classes["length"], proba.get("length"), abs(length),
                                                     terrain=classes.get("terrain"),

@@ -64,6 +64,7 @@ from pdrlearn.kernels.altitude_check import (
     terrain_dz_check,
     zeroed_climb_check,
 )
+from pdrlearn.kernels.backward import signed_chord
 from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, DEFAULT_MODEL_RULES, SIGMA_REL, check_rules
 from pdrlearn.kernels.contact import force_at, stride_cap_s, stride_contact
 from pdrlearn.kernels.distance import (
@@ -1651,7 +1652,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     table = strides[["start_s", "end_s"]].copy()
     table["event_s"] = strides["event_s"] if "event_s" in strides else strides["end_s"]
     table["length_m"] = length
-    table["raw_length_m"] = np.hypot(raw_disp[:, 0], raw_disp[:, 1]) * np.where(raw_disp[:, 0] < 0, -1.0, 1.0)
+    table["raw_length_m"] = signed_chord(raw_disp[:, 0], raw_disp[:, 1], fd.yaw_change_)  # decision L692
     table["heading_rad"] = wrap_angle(head)
     table["dz_m"] = dz
     for c in ("terrain", "direction", "length_class"):
@@ -2249,13 +2250,14 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     for i in range(len(table)):  # the runtime's own position update, stride by stride
         xyz[i + 1] = SK.advance(xyz[i], float(head[i]), float(length[i]), float(dz[i]))
     table["event_s"] = ic  # decisions E49-E51 (it was the stride end; NaN without contacts)
-    table["raw_length_m"] = np.hypot(raw_disp[:, 0], raw_disp[:, 1]) * np.where(raw_disp[:, 0] < 0, -1.0, 1.0)
+    table["raw_length_m"] = signed_chord(raw_disp[:, 0], raw_disp[:, 1], foot_turn, frame)  # L692: the foot's
     table["dz_m"] = dz
     for c in classes.columns:
         if not c.startswith("ood_feature_"):
             table[c] = classes[c].to_numpy()
     # decision L654 (as the runtime's Step): length_m's sign is the measured travel; the path is the same
-    rep_length, rep_head = SK.travel_sign(length, head, raw_disp[:, 0], sideways,  # decision C137
+    rep_length, rep_head = SK.travel_sign(length, head, table["raw_length_m"].to_numpy(float),  # L692
+                                          sideways,  # decision C137
                                           turn)  # decision L578: E51's own turn (L690: not wrapped)
     table.insert(3, "length_m", rep_length)
     table.insert(5, "heading_rad", wrap_angle(rep_head))
