@@ -76,7 +76,8 @@ def replay(bundle_dir: Path, session_dir: Path, *, chunk_s: float = 1.0, units: 
     tracker = Tracker(bundle, frames=session_frames(meta, bundle, asked or bundle.body_units, f"session {session_dir}"),
                       units=asked, sensors=list(ends), methods=methods,
                       input_rates_hz={n: 1.0 / p if p > 0 else float("nan") for n, p in periods.items()},
-                      stream_ends_s=ends, check_domain=True)  # decision E105: C61's out-of-domain line, as pdrlearn run
+                      stream_ends_s=ends, check_domain=True,  # decision E105: C61's out-of-domain line, as pdrlearn run
+                      full_scale=(meta or {}).get("full_scale"))  # decision B456: the session's declared ranges
     if not domain_line:  # decision E198: checked, never said
         tracker.quiet_domain()
     if fallback_line and asked is None and tracker.units != bundle.body_units:  # decision E26, as run says it
