@@ -133,3 +133,9 @@ def test_e303_run_does_not_repeat_the_lines_it_read(walks, tmp_path, capsys):
     assert main(["run", str(BUNDLE), str(flat), "--out", str(tmp_path / "run")]) == 0
     err = capsys.readouterr().err
     assert "E303" not in err and err.count("are clipped at") == 2
+
+
+def test_b456_full_scale_is_a_known_meta_key():
+    from pdrlearn.io.meta_keys import unknown_meta_keys
+
+    assert unknown_meta_keys({"full_scale": {"fAccelerometer": "4 g"}}) == []
