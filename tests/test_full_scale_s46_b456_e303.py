@@ -139,3 +139,10 @@ def test_b456_full_scale_is_a_known_meta_key():
     from pdrlearn.io.meta_keys import unknown_meta_keys
 
     assert unknown_meta_keys({"full_scale": {"fAccelerometer": "4 g"}}) == []
+
+
+def test_e303_evaluate_of_a_bundle_does_not_repeat_the_lines_it_read(walks, capsys):
+    _, flat, _ = walks
+    assert main(["evaluate", str(BUNDLE), str(flat)]) == 0
+    err = capsys.readouterr().err
+    assert "E303" not in err and err.count("are clipped at") == 2

@@ -2295,6 +2295,11 @@ class Tracker(OwnGuard, FixInput):
         training ranges (exported before E105) or no stride was checked."""
         return None if self._domain is None else self._domain.report(self._warn_ood)
 
+    def quiet_clipping(self) -> None:
+        """Decision E303: no live clipping / stuck-axis lines (a caller that read the session with ``read_session``
+        said B77 / B455 already: ``pdrlearn evaluate BUNDLE``)."""
+        self._clip = None
+
     def quiet_domain(self) -> None:
         """Decision E198: keep checking the strides against the training ranges (:meth:`domain_report`) but never
         say E105's line (``pdrlearn evaluate BUNDLE`` pools the sessions and warns only with its option)."""
