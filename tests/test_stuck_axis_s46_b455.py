@@ -102,3 +102,15 @@ def test_b455_e303_the_live_tracker_says_the_stuck_axis(walks):
     assert len(lines) == 1 and lines[0].startswith("stream fGyroscope: axis z held one value")
     tracker, _ = replay(BUNDLE, clean)
     assert not [w for w in tracker.warnings if "B455" in w or "E303" in w]
+
+
+def test_b455_no_line_on_a_clean_simulated_50_hz_walk():
+    """The second amendment (STUCK_S 0.05 -> 0.08 s): user 7960's simulated 50 Hz walk (tests/test_machine_contract's)
+    holds its foot accelerometer's z for 3 samples (0.06 s) 3 times while the foot moves; no stuck axis."""
+    from pdrlearn.io.sensors import SENSORS
+    from pdrlearn.sim import simulate
+
+    walk = simulate("walk", 7960, length_m=30, rate_hz=50.0)
+    for name, s in walk.streams.items():
+        if SENSORS[name].kind in ("accelerometer", "gyroscope"):
+            assert all(len(r) < STUCK_MIN_RUNS for r in stuck_runs(s.values, 0.02, SENSORS[name].kind)), name
