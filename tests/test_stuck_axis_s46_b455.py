@@ -104,13 +104,17 @@ def test_b455_e303_the_live_tracker_says_the_stuck_axis(walks):
     assert not [w for w in tracker.warnings if "B455" in w or "E303" in w]
 
 
-def test_b455_no_line_on_a_clean_simulated_50_hz_walk():
-    """The second amendment (STUCK_S 0.05 -> 0.08 s): user 7960's simulated 50 Hz walk (tests/test_machine_contract's)
-    holds its foot accelerometer's z for 3 samples (0.06 s) 3 times while the foot moves; no stuck axis."""
+@pytest.mark.parametrize(("user", "rate", "length"), [(7960, 50.0, 30), (3, 20.0, None)])
+def test_b455_no_line_on_clean_simulated_walks_at_50_and_20_hz(user, rate, length):
+    """The amendments: user 7960's simulated 50 Hz walk (tests/test_machine_contract's) holds its foot accelerometer's
+    z for 3 samples (0.06 s) 3 times while the foot moves (STUCK_S 0.05 -> 0.08 s); user 3's 20 Hz walk (the
+    simulator's default rate) holds it 3 samples (0.15 s) before heel strikes 11 times, left by a step or two of the
+    axis (the jump against the axis's typical change, not its smallest step, which float noise makes 1e-4)."""
     from pdrlearn.io.sensors import SENSORS
     from pdrlearn.sim import simulate
 
-    walk = simulate("walk", 7960, length_m=30, rate_hz=50.0)
+    walk = simulate("walk", user, **({"length_m": length} if length else {}), rate_hz=rate)
     for name, s in walk.streams.items():
         if SENSORS[name].kind in ("accelerometer", "gyroscope"):
-            assert all(len(r) < STUCK_MIN_RUNS for r in stuck_runs(s.values, 0.02, SENSORS[name].kind)), name
+            runs = stuck_runs(s.values, 1.0 / rate, SENSORS[name].kind)
+            assert all(len(r) < STUCK_MIN_RUNS for r in runs), name

@@ -148,7 +148,8 @@ def declared_clipped(values: np.ndarray, full_scale: float) -> tuple[np.ndarray,
 STUCK_S = 0.08
 #: decision B455: each other axis of the sensor changes value at this share of the run's sample steps or more
 STUCK_OTHERS_MOVING = 0.8
-#: decision B455: the axis leaves the run by more than this many of its own resolution steps (B405/B406's axis_step)
+#: decision B455: the axis leaves the run by more than this many of its typical steps (B405/B406's axis_step as
+#: stated first; amended: the median non-zero change between its samples, :func:`_typical_change`)
 STUCK_JUMP_STEPS = 4
 #: decision B455: the stuck runs on one axis a file needs for a warning
 STUCK_MIN_RUNS = 3
@@ -156,11 +157,6 @@ STUCK_MIN_RUNS = 3
 #: (B120's thresholds, :data:`~pdrlearn.kernels.units.MOVING_RPS` / ``MOVING_ACC``, widened by B405's quantisation
 #: margin): a resting sensor's noise hops between a few levels on every axis and repeats one now and then
 STUCK_MOVING_SHARE = 0.5
-#: decision B455 (amended): an axis's resolution step is taken on its values rounded to this many significant digits
-#: (B412: converted values carry float noise, 5.6e-17 m/s^2 steps, that is no sensor step)
-STUCK_STEP_DIGITS = 9
-
-
 def _sensor_moving(v: np.ndarray, kind: str, step: float) -> np.ndarray:
     """Decision B455 (B120's test on one sensor): its samples at which it moves, beyond B405's rounding margin."""
     norm = np.linalg.norm(v, axis=1)
@@ -170,14 +166,12 @@ def _sensor_moving(v: np.ndarray, kind: str, step: float) -> np.ndarray:
     return np.abs(norm - STANDARD_GRAVITY) > MOVING_ACC + margin
 
 
-def _rounded_step(col: np.ndarray) -> float:
-    """Decision B455 (amended): :func:`axis_step` of an axis's values rounded to :data:`STUCK_STEP_DIGITS`
-    significant digits of its largest |value| (float noise of converted counts is no step)."""
-    big = float(np.max(np.abs(col))) if col.size else 0.0
-    if not big > 0:
-        return 0.0
-    decimals = STUCK_STEP_DIGITS - int(np.floor(np.log10(big))) - 1
-    return axis_step(np.round(col, decimals))
+def _typical_change(col: np.ndarray) -> float:
+    """Decision B455 (second amendment): the median of an axis's non-zero sample-to-sample changes (its typical step:
+    a quantised slow axis leaves a held level by one or two of them, a stuck axis by what it missed)."""
+    d = np.abs(np.diff(col))
+    d = d[d > 0]
+    return float(np.median(d)) if d.size else 0.0
 
 
 def stuck_runs(values: np.ndarray, dt: float, kind: str, full_scale: float | None = None) -> list[list[tuple]]:
@@ -186,14 +180,15 @@ def stuck_runs(values: np.ndarray, dt: float, kind: str, full_scale: float | Non
     :data:`CLIP_RUN` samples or more) while each other axis changes at :data:`STUCK_OTHERS_MOVING` of the run's steps
     or more, left by a jump of more than :data:`STUCK_JUMP_STEPS` of the axis's resolution steps, and not at the
     axis's extreme at or beyond :data:`CLIP_LEVEL` (or within B456's margin of a declared ``full_scale``): B77's;
-    amended: while the sensor moves at :data:`STUCK_MOVING_SHARE` of the run's samples, the steps on rounded values."""
+    amended: while the sensor moves at :data:`STUCK_MOVING_SHARE` of the run's samples; the jump against the axis's
+    typical change (:func:`_typical_change`)."""
     v = np.asarray(values, dtype=float)
     if v.ndim != 2 or v.shape[1] != 3 or len(v) < CLIP_RUN + 1 or not dt > 0:
         return [[] for _ in range(v.shape[1] if v.ndim == 2 else 0)]
     need = max(CLIP_RUN, int(np.ceil(STUCK_S / dt - 1e-9)))
     level = CLIP_LEVEL.get(kind, np.inf)
     changes = np.diff(v, axis=0) != 0  # (n-1, 3): sample k -> k+1 changed
-    moves = _sensor_moving(v, kind, max(_rounded_step(v[:, j]) for j in range(3)))
+    moves = _sensor_moving(v, kind, max(axis_step(v[:, j]) for j in range(3)))
     out = []
     for j in range(3):
         col = v[:, j]
@@ -201,7 +196,7 @@ def stuck_runs(values: np.ndarray, dt: float, kind: str, full_scale: float | Non
         edges = np.diff(np.concatenate([[0], same.astype(np.int8), [0]]))
         starts, ends = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)  # steps same[a:b]: samples a..b
         runs = []
-        step = _rounded_step(col)
+        step = _typical_change(col)
         extremes = (col.max(), col.min())
         others = [k for k in range(3) if k != j]
         for a, b in zip(starts, ends, strict=True):
