@@ -692,6 +692,10 @@ def run(
         result.info.update(written_floats(tracker.height_checks()))  # decision E47: track's L69 / C28 checks; E157
         # decision E105: track's C16 report (flush warned C61's); E157: at the CSVs' digits
         result.info["out_of_domain"] = written_floats(tracker.domain_report())
+        if session is not None:  # decision B456: the clipped share of each IMU file, as track's info
+            from pdrlearn.io.plasys import clipped_shares
+
+            result.info["clipped_share"] = clipped_shares(session)
         if stair_rise_m is not None:  # decision L432: stairs.csv's n_stairs, as track's info
             result.info["stair_rise_m"] = stair_rise_m
         record_stair_grade(result, stair_grade_pct)  # decision L469: the summary's and stairs.csv's grade
