@@ -274,6 +274,7 @@ def _validators() -> dict[tuple[str, str], object]:
     from pdrlearn.io.importer import _TIME_SCALE, _resolve_unit, _time_word, parse_frame
     from pdrlearn.io.sensors import PLACEMENTS
     from pdrlearn.kernels.bayes import RULES
+    from pdrlearn.kernels.clipping import parse_full_scale
     from pdrlearn.kernels.relative_length import LENGTH_REFERENCES
     from pdrlearn.kernels.stride import HEADING_SOURCES
     from pdrlearn.kernels.window import BOUNDARIES
@@ -383,6 +384,8 @@ def _validators() -> dict[tuple[str, str], object]:
         ("import", "heel_unit"): unit_word("heel"),  # decision B397
         ("import", "toe_unit"): unit_word("toe"),
         ("import", "frames"): parse_frame,
+        ("import", "acc_range"): lambda v: parse_full_scale(v, "accelerometer"),  # decision B456: "4 g"
+        ("import", "gyro_range"): lambda v: parse_full_scale(v, "gyroscope"),  # decision B456: "500 deg/s"
         ("import", "encoding"): codecs.lookup,  # decision B344: a text encoding Python knows (cp1252, latin-1 ...)
         ("export", "frame"): parse_frame,  # decision E57: the waist unit's axes, as import --frames
         # cohort C35; decision L340: a table's name without .csv too
