@@ -307,8 +307,11 @@ SESSIONS: tuple[Column, ...] = (
                                               "direction_changes.csv's rows, L412); a turn is not one; empty on "
                                               "the lower back"),
     ("n_stair_strides", "count", "integer", "strides climbing or descending 0.10 m or more (L179)"),
-    ("n_stair_strides_up", "count", "integer", "n_stair_strides that climb (L432)"),
-    ("n_stair_strides_down", "count", "integer", "n_stair_strides that descend (L432)"),
+    ("n_stair_strides_up", "count", "integer", "n_stair_strides that climb (L432); lower back: steps inside a "
+                                               "barometric climb up (W108, W526) and steps outside one rising 0.10 m "
+                                               "(W527)"),
+    ("n_stair_strides_down", "count", "integer", "n_stair_strides that descend (L432); lower back: as _up, down "
+                                                 "(W527)"),
     ("n_flights_up", "count", "integer", "foot: stair flights up, stairs.csv's rows (L432); empty on the lower back"),
     ("n_flights_down", "count", "integer", "foot: stair flights down (L432); empty on the lower back"),
     ("flights_rise_m", "m", "number", "foot: what the stair flights up climb, stairs.csv's height_m summed (L602); "
@@ -1132,7 +1135,8 @@ FOOT_STEPS: tuple[Column, ...] = (
                                 "turn on the spot), whatever the direction class (L654, amending L65; C137, L578); 0 "
                                 "for a gap row or an impossible stride"),
     ("raw_length_m", "m", "number", "the estimate before the rules, signed with the foot's forward axis at the "
-                                    "stride start (< 0: it moved backwards in that frame)"),
+                                    "stride start (< 0: it moved backwards in that frame); a stride turning 30 deg or "
+                                    "more against its mid-stride facing (< 0: within 60 deg of straight back, L692)"),
     ("heading_rad", "rad", "number", "the direction the stride is placed along (ENU, 0 = east or the start "
                                      "direction, counter-clockwise)"),
     ("dz_m", "m", "number", "the stride's height change"),
@@ -1153,7 +1157,8 @@ FOOT_STEPS: tuple[Column, ...] = (
                                            "L224)"),
     ("travel", _ID, "text", "the stride's travel direction from the foot's facing (L412): forward, backward (as "
                             "backward_travel), left / right (a side-stepping run's stride, sideways; side when "
-                            "streamed), turn (the foot turned 30 deg or more), empty (a gap, impossible or under "
+                            "streamed), turn (the foot turned 30 deg or more on a chord under 0.6 m: on the spot, "
+                            "L692), empty (a gap, impossible or under "
                             "0.15 m); model-free, unlike direction"),
     ("length_class", _ID, "text", "M3's length class (empty without a model)"),
     ("confidence", "fraction", "number", "the class confidence (1 without a model)"),
@@ -1211,6 +1216,12 @@ FOOT_STEPS: tuple[Column, ...] = (
     ("tc_angle_deg", "deg", "number", "offline foot track with a toe-off (--toe-off): the sole angle at tc_s "
                                       "(gaitmap's tc_angle; L421)"),
     ("impossible", _ID, "true/false", "the last-line guard (L94) moved the stride 0 m: no gait values (L97)"),
+    ("trunk_pause_s", "s", "number", "offline, with the lower-back unit: the pause before the stride, its time "
+                                     "from the previous stride's start beyond the walker's stride (two of the lower "
+                                     "back's median contact intervals, or the foot's median movement window when "
+                                     "shorter) when 1 s or more, else 0 (n_pauses counts these; the stride is left "
+                                     "out of the median cadence; L687); absent where the lower back's contacts are "
+                                     "too dense to judge (the foot's own rule)"),
     ("gap_s", "s", "number", "the longest foot-data gap inside the stride; > 0: a 0 m gap row (L67)"),
     ("unit", _ID, "text", "the unit tracked: foot"),
     ("x", "m", "number", "pdrlearn run: the position east at the stride's end"),

@@ -19,6 +19,7 @@ ROUTE_FORMS = {
     "turn": "'turn:DEG' turning in place by stepping (+ left; S9)",
     "pivot": "'pivot:DEG[:N[:STEP]]' turning on the spot without stopping, in N short steps (0, the default: one "
              "per few degrees) each moving the body STEP m (default 0.15; S41)",
+    "inplace": "'inplace:N' N steps on the spot, marking time (no turn, no travel; S105)",
     "stand": "'stand:S' standing S seconds",
     "sit": "'sit:S' sitting down, seated S seconds, standing up (a chair; transfers.csv)",
     "lift": "'lift:+M' / 'lift:-M' a lift M metres up / down, no steps ('lift:+9': three storeys; S45)",

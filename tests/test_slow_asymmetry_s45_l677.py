@@ -33,6 +33,8 @@ def test_standard_error_counts_the_lag_l677():
     phases, lags = la._phases_and_lags(foot, waist, tolerance_steps=la.LABEL_TOLERANCE_STEPS)
     old = la.index_standard_error_pct(phases)
     want = 400.0 * np.hypot(la.median_standard_error(phases), la.median_standard_error(lags) / 1.8)
+    # decision L686: a 0.9 s step also carries the slow asymmetric walk's bias allowance, in quadrature
+    want = np.hypot(want, la.bias_allowance_points(res["step_time_asymmetry_pct"], 1.8))
     assert res["standard_error_points"] == pytest.approx(want, rel=1e-9)
     assert old <= la.UNCERTAIN_SE_POINTS < res["standard_error_points"], (old, res)
     assert res["step_time_asymmetry_pct"] is not None and res["n_strides"] >= 70

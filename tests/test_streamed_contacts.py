@@ -144,6 +144,9 @@ def test_run_contacts_fill_the_steps_and_summary_as_track_streaming(sim_a, tmp_p
     a, b, t = (x.drop(columns=list(REFERENCE_COLUMNS)) for x in (a, b, t))
     assert "in_freeze" in t  # W397: a foot track whose freeze index ran has it as a last column (run writes it too)
     a, b, t = (x.drop(columns=["in_freeze"], errors="ignore") for x in (a, b, t))
+    # decision L687: the offline two-unit track's pauses against the lower back's stride (not streamed)
+    assert "trunk_pause_s" in t and "trunk_pause_s" not in a and "trunk_pause_s" not in b
+    t = t.drop(columns=["trunk_pause_s"])
     cols = list(a.columns)
     tail = ["stride_time_s", "cadence_spm", "speed_mps", "turn_angle_rad", "impossible", "gap_s", "unit",  # L97
             "grade_pct"]  # L300

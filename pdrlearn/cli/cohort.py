@@ -970,6 +970,7 @@ def track_all(
     ignore_force: bool = _track.IGNORE_FORCE_OPT,
     contacts: bool = _track.CONTACTS_OPT,
     drop_neighbour: bool = _track.DROP_NEIGHBOUR_OPT,
+    no_cycling: bool = _track.NO_CYCLING_OPT,  # decision E304
     detector: str = _track.DETECTOR_OPT,
     gate: bool = _track.GATE_OPT,
     length_model: str = _track.LENGTH_MODEL_OPT,

@@ -29,6 +29,7 @@ from pdrlearn.table_csv import (  # noqa: F401  (decision E169: the library's, u
     write_table_csv,
 )
 from pdrlearn.textfile import read_json
+from pdrlearn.track.labelled_asymmetry import WITHIN_NOISE_SE, asymmetry_flags  # noqa: F401  (L671; C190 shares it)
 
 
 def json_default(o):
@@ -683,11 +684,6 @@ def gait_line(summary: dict, streamed: bool | None = None) -> str:
             + (NO_STANCE_CLAUSE + force_toe_off_note(summary) if no_toe_off(summary) else stance_clause(summary)))
 
 
-#: decision L671: an index under this many standard errors (L490's) is within noise: its two-sided 95 % interval
-#: reaches 0 (the normal quantile)
-WITHIN_NOISE_SE = 1.96
-
-
 def asymmetry_clause(summary: dict) -> str:
     """Decision L671: what the gait line adds when the summary gives ``step_time_asymmetry_pct``: the index, with
     its standard error (a foot track with the lower-back unit too, L490) and "within noise" under
@@ -698,11 +694,9 @@ def asymmetry_clause(summary: dict) -> str:
         return ""
     se = summary.get("step_time_asymmetry_se_points")
     if se is not None:
-        from pdrlearn.track.labelled_asymmetry import UNCERTAIN_SE_POINTS
-
-        noise = ", within noise" if pct < WITHIN_NOISE_SE * se else ""
-        if se > UNCERTAIN_SE_POINTS:  # decision L677: L490's note on the console too
-            noise += f", uncertain: over {UNCERTAIN_SE_POINTS:g} points, see summary.json step_time_asymmetry_reason"
+        noise = "".join(f", {flag}" for flag in asymmetry_flags(pct, se))
+        if noise.endswith("points"):  # decision L677: L490's note on the console too, with where its reason is
+            noise += ", see summary.json step_time_asymmetry_reason"
         return f"; step-time asymmetry {pct:.1f} % (standard error {se:.1f} points{noise}; decisions L416, L671)"
     return (f"; step-time asymmetry {pct:.1f} % (the lower back alone misreads its size: summary.json "
             "step_time_asymmetry_reason; decisions L121, L671)")

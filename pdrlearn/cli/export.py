@@ -331,6 +331,10 @@ def run(
                                         "0.25 s (under 1 s) takes the length and height change of the stride before "
                                         "it (decision L167, not the default; E101; as `track --streaming "
                                         "--drop-neighbour`)."),
+    no_cycling: bool = typer.Option(False, "--no-cycling", help="An activity without bicycles (dance, a clinic): no "
+                                    "stride is judged pedalling (L611) and none is held for that verdict, which "
+                                    "holds a short turning stride up to 3 later strides (decision E304; as `track "
+                                    "--no-cycling`)."),
     warn_out_of_domain: float = _track.warn_ood_option(
         "A bundle exported since decision E105 (it stores the training ranges; an older one checks nothing): ",
         "bundle's model"),
@@ -391,6 +395,8 @@ def run(
         pdrlearn run out/bundle/u1 out/sim/D_u1 --length-reference session --out out/run_rel   # C117's length class
 
         pdrlearn run out/bundle/u1 out/sim/D_u1 --no-plot --out out/run_tables   # no path.png (L533)
+
+        pdrlearn run out/bundle/u1 out/sim/D_u1 --no-cycling --out out/run_dance   # no pedalling hold (E304)
     """
     # decision L122: every option as given (defaults included) and the start, for OUT/run.json, as track's
     record = _run_json(dict(locals()), time.perf_counter(), time.process_time())
@@ -458,6 +464,7 @@ def run(
                                                          ("--common-span", common_span),
                                                          ("--warn-out-of-domain", warn_out_of_domain is not None),
                                                          ("--drop-neighbour", drop_neighbour),
+                                                         ("--no-cycling", no_cycling),  # decision E304
                                                          ("--stair-rise", stair_rise is not None),
                                                          ("--length-reference", length_reference != "model"),
                                                          ("--heading-source", heading_source != "auto"),  # E285
@@ -513,6 +520,7 @@ def run(
                               resample=resample_mode(resample, no_resample), rules=rules, min_confidence=min_confidence,
                               units=use, start=(0.0, 0.0, start_alt), contacts=contacts, heading_rad=heading0,
                               methods=methods, drop_neighbour=drop_neighbour,  # E101
+                              cycling=not no_cycling,  # decision E304
                               length_reference=length_reference,  # decision C117
                               check_domain=True, warn_out_of_domain=warn_out_of_domain)  # decision E105
             if protocol == "-":
@@ -623,6 +631,7 @@ def run(
                               stream_ends_s={n: float(st.t[-1]) for n, st in session.streams.items() if len(st)},
                               max_gap_s=math.inf,  # B141: a recording's gaps are its own (its clock checked: B73)
                               drop_neighbour=drop_neighbour,  # E101
+                              cycling=not no_cycling,  # decision E304
                               length_reference=length_reference,  # decision C117
                               check_domain=True, warn_out_of_domain=warn_out_of_domain)  # decision E105
             dropped = "waist" in bundle.body_units and "waist" not in tracker.units  # --units foot (E26)
@@ -683,6 +692,10 @@ def run(
         result.info.update(written_floats(tracker.height_checks()))  # decision E47: track's L69 / C28 checks; E157
         # decision E105: track's C16 report (flush warned C61's); E157: at the CSVs' digits
         result.info["out_of_domain"] = written_floats(tracker.domain_report())
+        if session is not None:  # decision B456: the clipped share of each IMU file, as track's info
+            from pdrlearn.io.plasys import clipped_shares
+
+            result.info["clipped_share"] = clipped_shares(session)
         if stair_rise_m is not None:  # decision L432: stairs.csv's n_stairs, as track's info
             result.info["stair_rise_m"] = stair_rise_m
         record_stair_grade(result, stair_grade_pct)  # decision L469: the summary's and stairs.csv's grade

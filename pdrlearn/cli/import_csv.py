@@ -89,6 +89,11 @@ def import_command(
                                  "'(g)' or '_g', else m/s2)."),
     gyro_unit: str = typer.Option(None, "--gyro-unit", help="rad/s or deg/s, or the size of one count, '1/16.4 "
                                   "deg/s' (B313) (default: the header's, else rad/s)."),
+    acc_range: str = typer.Option(None, "--acc-range", help="The accelerometer's full scale from its datasheet, e.g. "
+                                  "'4 g' (meta.json full_scale): clipping is judged at it, samples within 5 % of it "
+                                  "count (decision B456)."),
+    gyro_range: str = typer.Option(None, "--gyro-range", help="The gyroscope's full scale, e.g. '500 deg/s' "
+                                   "(meta.json full_scale; decision B456)."),
     heel_unit: str = typer.Option(None, "--heel-unit", help="The --heel force column's unit: N, kgf (kg, kp; x "
                                   "9.80665) or counts (raw ADC, unitless; B286) (default: the header's '(kg)' or "
                                   "'_kg', '_N', '_adc', else N; B397)."),
@@ -353,6 +358,7 @@ def import_command(
         mixup = unit_mixup(session)  # decision B91: before anything is written
         if mixup:
             raise DataError(f"{csv}: {mixup} (nothing written)")
+    session = _declare_ranges(session, unit, acc_range, gyro_range)  # decision B456: before anything is written
     existed = out.is_dir() and any(out.iterdir())
     write_session(session, out, overwrite=True)
     if not unit_given:  # decision B287: the assumed foot unit said, and a lower back's data named
@@ -373,6 +379,45 @@ def import_command(
         typer.echo(f"warning: {out}: {axes_warning}", err=True)
     if frame_warning:
         typer.echo(f"warning: {out}: {frame_warning}", err=True)
+    _say_clipping(session, out)  # decisions B77, B456, B455: at once, as info / track will
+
+
+def _declare_ranges(session, unit: str, acc_range: str | None, gyro_range: str | None):
+    """Decision B456: ``--acc-range`` / ``--gyro-range`` as meta.json's ``full_scale`` of the imported unit's
+    accelerometer / gyroscope (a --merge keeps the other unit's); a one-line error naming the option otherwise."""
+    from pdrlearn.kernels.clipping import FULL_SCALE_KEY, parse_full_scale
+
+    given = {k: v for k, v in (("accelerometer", acc_range), ("gyroscope", gyro_range)) if v is not None}
+    if not given:
+        return session
+    prefix = "w" if unit == "waist" else "f"
+    declared = dict(session.meta.get(FULL_SCALE_KEY) or {})
+    for kind, text in given.items():
+        opt = "--acc-range" if kind == "accelerometer" else "--gyro-range"
+        try:
+            parse_full_scale(text, kind)
+        except ValueError as exc:
+            raise DataError(f"{opt} {text}: {exc} (decision B456; nothing written)") from None
+        name = prefix + kind.capitalize()
+        if name not in session.streams:
+            raise DataError(f"{opt} {text}: the import maps no {kind} columns ({name}); name them with "
+                            f"{'--acc' if kind == 'accelerometer' else '--gyro'} COLUMNS or leave {opt} out")
+        declared[name] = text.strip()
+    session.meta[FULL_SCALE_KEY] = declared
+    return session
+
+
+def _say_clipping(session, out: Path) -> None:
+    """Decisions B77 / B311 / B456 and B455: the clipping and stuck-axis lines ``info`` and ``track`` give for the
+    files just written, said by ``import`` at once (trial T3 finding F6)."""
+    import copy
+
+    from pdrlearn.io.plasys import warn_saturation, warn_stuck
+
+    written = copy.copy(session)
+    written.folder = out
+    warn_saturation(written)
+    warn_stuck(written)
 
 
 def _check_force_unit_used(csv: Path, record: dict, heel_unit: str | None, toe_unit: str | None) -> None:

@@ -123,6 +123,9 @@ DROP_NEIGHBOUR_OPT = typer.Option(False, "--drop-neighbour", help="plasys --stre
                                   "before it (decision L167, measured and not the default: it kept the distance "
                                   "under burst loss, not the altitude; E101; `pdrlearn run --drop-neighbour` gives "
                                   "the same).")
+NO_CYCLING_OPT = typer.Option(False, "--no-cycling", help="plasys: an activity without bicycles (dance, a clinic): "
+                              "no foot stride is judged pedalling and removed (L611; decision E304; `pdrlearn run "
+                              "--no-cycling` gives the same, without L611's hold of short turning strides).")
 ALTITUDE_OPT = typer.Option(None, "--altitude", help="plasys: the altitude from the foot's strides alone (foot, "
                             "the default) or fused with the session's waist barometer (fused: slopes and hills "
                             "read; an option, decision L154 - the barometer's wander moves a level walk by up to "
@@ -382,6 +385,7 @@ def track(
     ignore_force: bool = IGNORE_FORCE_OPT,
     contacts: bool = CONTACTS_OPT,
     drop_neighbour: bool = DROP_NEIGHBOUR_OPT,
+    no_cycling: bool = NO_CYCLING_OPT,
     detector: str = DETECTOR_OPT,
     gate: bool = GATE_OPT,
     length_model: str = LENGTH_MODEL_OPT,
@@ -567,7 +571,8 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    freeze_index: bool = False, gait_quality: bool = False,
                    reference_point: str | None = None, toe_off: bool = False, ignore_force: bool = False,
                    contacts: bool = False,
-                   drop_neighbour: bool = False, dpi: int | None = None, no_plot: bool = False,
+                   drop_neighbour: bool = False, no_cycling: bool = False, dpi: int | None = None,
+                   no_plot: bool = False,
                    initial_heading: float | None = None, start_xy: str | None = None,
                    turn_to_heading: bool = False, at_times: Path | None = None,
                    common_span: bool = False, window: str | None = None, per: str | None = None,
@@ -777,7 +782,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "freeze_index": freeze_index, "gait_quality": gait_quality,
             "reference_point": reference_point, "toe_off": toe_off, "ignore_force": ignore_force,
             "contacts": contacts,
-            "drop_neighbour": drop_neighbour, "dpi": dpi, "plot": plot,
+            "drop_neighbour": drop_neighbour, "no_cycling": no_cycling, "dpi": dpi, "plot": plot,
             "initial_heading_rad": heading0, "start_xy": xy0, "turn_to_heading": turn_to_heading,  # L635, L637
             "at_times": at_times_file, "at_times_table": at_times_rows,  # decision L638
             "common_span": common_span, "window": win, "per_s": per_s,
@@ -1097,6 +1102,8 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
                                 "strides across dropped samples take their neighbours' height change (L160) - add "
                                 "--streaming or drop --drop-neighbour")
             kw["drop_neighbour"] = True
+        if o.get("no_cycling"):  # decision E304: an activity without bicycles
+            kw["cycling"] = False
         if o.get("detector") is not None:  # decision L149
             kw["steps"] = o["detector"]
         if o.get("align_units"):  # decision L162
@@ -1521,7 +1528,8 @@ def _print_summary(summary: dict, out: Path, aided: bool, waist_unit: bool = Fal
 #: Options only the plasys pipeline reads (decision B27); the waist pipelines have no step classifier
 _PLASYS_OPTIONS = ("--method", "--model", "--rules", "--min-confidence", "--length-bounds", "--length-reference",
                    "--streaming",
-                   "--toe-off", "--ignore-force", "--contacts", "--drop-neighbour", "--detector", "--altitude",
+                   "--toe-off", "--ignore-force", "--contacts", "--drop-neighbour", "--no-cycling", "--detector",
+                   "--altitude",
                    "--align-units", "--compass",
                    "--clock-offset", "--clock-drift-ppm")
 #: Options only plasys M3 reads: the step classes and their rules (M1/M2 move every stride the same way)
@@ -1534,7 +1542,8 @@ def _plasys_options_given(o: dict, method: str, model, streaming: bool, toe_off:
             "--min-confidence": o["min_confidence"] is not None, "--length-bounds": o["length_bounds_given"],
             "--length-reference": o.get("length_reference", "model") != "model", "--streaming": streaming,
             "--toe-off": toe_off, "--ignore-force": bool(o.get("ignore_force")), "--contacts": contacts,
-            "--drop-neighbour": bool(o.get("drop_neighbour")), "--detector": o.get("detector_unit") == "foot",
+            "--drop-neighbour": bool(o.get("drop_neighbour")), "--no-cycling": bool(o.get("no_cycling")),
+            "--detector": o.get("detector_unit") == "foot",
             "--altitude": o.get("altitude") is not None, "--align-units": bool(o.get("align_units")),
             "--compass": o.get("compass", "auto") != "auto", "--clock-offset": o.get("clock_offset_s") is not None,
             "--clock-drift-ppm": o.get("clock_drift") is not None}

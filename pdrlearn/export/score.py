@@ -136,7 +136,8 @@ def score_bundle(bundle_dir: Path, session_dirs: list[Path], *, advance=lambda *
     for d in session_dirs:
         with session_with_folder(d) as (session, folder):  # a zip unpacked once for labels and replay (B359)
             names.append(session.name)
-            tracker, steps = replay(bundle_dir, folder, fallback_line=False, domain_line=False)
+            tracker, steps = replay(bundle_dir, folder, fallback_line=False, domain_line=False,
+                                    clip_lines=False)  # decision E303: reading the session said B77 / B455
         domains.append(tracker.domain_report())
         if tracker.units != bundle.body_units:
             fallback.append(session.name)

@@ -17,6 +17,7 @@ READ = frozenset({
     "belt_speed_mps",  # decision L321: a declared treadmill's belt speed
     "belt_incline_pct",  # decision L442: a declared treadmill's incline
     "walk_test_start_s",  # decision L642: a session's timed walk test's "go" (s)
+    "full_scale",  # decision B456: the accelerometers' / gyroscopes' declared ranges
 })
 #: keys the simulator and the importers write as provenance (read by people, not by the pipelines)
 WRITTEN = frozenset({

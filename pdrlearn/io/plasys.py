@@ -1468,6 +1468,7 @@ def _read_session(folder, *, check_units, uniform_clock, bridge_drops, streamed,
                                str(folder / "trajectory.csv"), basis=basis)
     warn_low_rate(session)
     warn_saturation(session)
+    warn_stuck(session)  # decision B455
     warn_frozen(session)  # decision B120
     for name, s in streams.items():
         gaps = s.gaps()
@@ -1512,14 +1513,58 @@ def _stream_where(session: Session, name: str) -> str:
             else f"session '{session.name}', stream {name}")
 
 
-def warn_saturation(session: Session) -> None:
-    """Decision B77: one warning per accelerometer / gyroscope file with clipped samples (runs of an axis's
-    extreme value at a sensor's full scale), naming the file, the fraction clipped and the consequence."""
-    from pdrlearn.io.validate import MOVING_RAD_S, clipped_samples, saturation_warning
+def declared_full_scales(session: Session) -> dict[str, float]:
+    """Decision B456: meta.json's ``"full_scale"`` (stream name -> ``"4 g"``, ``"500 deg/s"``) in SI units, for the
+    session's accelerometer / gyroscope streams; a one-line :class:`DataError` naming meta.json and the key for a value
+    that is no full scale or a stream that is no accelerometer / gyroscope."""
+    from pdrlearn.kernels.clipping import FULL_SCALE_KEY, parse_full_scale
 
+    declared = (session.meta or {}).get(FULL_SCALE_KEY)
+    if declared is None:
+        return {}
+    where = (f"{session.folder / 'meta.json'}" if session.folder is not None else f"session '{session.name}' meta")
+    if not isinstance(declared, dict):
+        raise DataError(f"{where}: {FULL_SCALE_KEY} is a {type(declared).__name__}; give an object of sensor name -> "
+                        "range, e.g. {\"fAccelerometer\": \"4 g\", \"fGyroscope\": \"500 deg/s\"} (decision B456)")
+    out = {}
+    for name, text in declared.items():
+        spec = SENSORS.get(name)
+        if spec is None or spec.kind not in ("accelerometer", "gyroscope"):
+            raise DataError(f"{where}: {FULL_SCALE_KEY}: {name!r} is no accelerometer or gyroscope file's name; use "
+                            "one of " + ", ".join(n for n, sp in SENSORS.items() if sp.kind in ("accelerometer",
+                                                                                          "gyroscope"))
+                            + " (decision B456)")
+        try:
+            out[name] = parse_full_scale(text, spec.kind)
+        except ValueError as exc:
+            raise DataError(f"{where}: {FULL_SCALE_KEY}.{name}: {exc} (decision B456)") from None
+    return out
+
+
+def clipped_shares(session: Session) -> dict[str, float]:
+    """Decision B456: the share of each accelerometer / gyroscope stream's samples that B77 / B311 (or, with a
+    declared full scale, B456) call clipped (0.0: none): summary.json's ``info.clipped_share``."""
+    from pdrlearn.kernels.clipping import clipped_samples
+
+    scales = declared_full_scales(session)
+    out = {}
     for name, s in session.streams.items():
         kind = SENSORS[name].kind
-        n, top = clipped_samples(s.values, kind)
+        if kind in ("accelerometer", "gyroscope") and len(s):
+            out[name] = clipped_samples(s.values, kind, scales.get(name))[0] / len(s)
+    return out
+
+
+def warn_saturation(session: Session) -> None:
+    """Decision B77: one warning per accelerometer / gyroscope file with clipped samples (runs of an axis's
+    extreme value at a sensor's full scale), naming the file, the fraction clipped and the consequence. Decision
+    B456: a stream with a declared full scale (meta.json ``full_scale``) is judged at it."""
+    from pdrlearn.io.validate import MOVING_RAD_S, clipped_samples, saturation_warning
+
+    scales = declared_full_scales(session)
+    for name, s in session.streams.items():
+        kind = SENSORS[name].kind
+        n, top = clipped_samples(s.values, kind, scales.get(name))
         if n:
             where = _stream_where(session, name)
             gyro = kind == "gyroscope"  # decision B401: the share of the motion at full scale, and the foot's remedy
@@ -1527,7 +1572,24 @@ def warn_saturation(session: Session) -> None:
             waist = session.has("wAccelerometer", "wGyroscope") and session.has_frame("waist")  # decision L530
             log.warning("%s", saturation_warning(where, kind, n, len(s), top,
                                                  "waist" if name.startswith("w") else "foot",  # T3 finding 9
-                                                 moving=moving, waist=waist))
+                                                 moving=moving, waist=waist, declared=name in scales))
+
+
+def warn_stuck(session: Session) -> None:
+    """Decision B455: one warning per axis of an accelerometer / gyroscope file with :data:`~pdrlearn.kernels.
+    clipping.STUCK_MIN_RUNS` or more stuck runs (one axis held while the others move)."""
+    from pdrlearn.kernels.clipping import STUCK_MIN_RUNS, stuck_message, stuck_runs
+
+    scales = declared_full_scales(session)
+    for name, s in session.streams.items():
+        kind = SENSORS[name].kind
+        if kind not in ("accelerometer", "gyroscope") or s.values.ndim != 2 or s.values.shape[1] != 3 or len(s) < 4:
+            continue
+        dt = float(np.median(np.diff(s.t)))
+        for axis, runs in zip(SENSORS[name].columns, stuck_runs(s.values, dt, kind, scales.get(name)), strict=True):
+            if len(runs) >= STUCK_MIN_RUNS:
+                log.warning("%s", stuck_message(_stream_where(session, name), axis, runs, dt,
+                                                float(s.t[runs[0][0]] - s.t[0])))
 
 
 def warn_frozen(session: Session) -> None:

@@ -9,6 +9,26 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.errors import DataError
+from pdrlearn.kernels.clipping import (  # noqa: F401 - re-exported: the clipping test is numpy only (E303)
+    CLIP_COARSE,
+    CLIP_LEVEL,
+    CLIP_PINNED,
+    CLIP_RUN,
+    FOOT_ACCEL_CLIP_COST,
+    FOOT_ACCEL_CLIP_NOISE,
+    FOOT_ACCEL_RANGE_G,
+    FOOT_GYRO_RANGE_DPS,
+    FOOT_PEAK_DPS,
+    FOOT_UNCLIPPED_PCT,
+    MOVING_RAD_S,
+    _pinned,
+    axis_step,
+    clipped_axes,
+    clipped_samples,
+    distinct_steps,
+    foot_accel_cost,
+    saturation_warning,
+)
 from pdrlearn.kernels.clock import batch_size
 from pdrlearn.kernels.units import (  # noqa: F401 - re-exported: the checks live in the numpy-only kernel (B119)
     GRAVITY_FACTOR_MAX,
@@ -43,7 +63,6 @@ from pdrlearn.kernels.units import (  # noqa: F401 - re-exported: the checks liv
     quiet_acc_norm,
     tilt_rate_ratio,
 )
-from pdrlearn.warning_lines import coded
 
 log = logging.getLogger(__name__)
 
@@ -567,90 +586,16 @@ def check_session(session) -> None:
             check_units(SENSORS[s.name], s.values, where, declare="", t=s.t)
 
 
-#: decision B77: the smallest full scale of a body-worn accelerometer / gyroscope (2 g: MEMS ranges are +-2, 4, 8,
-#: 16 g; 250 deg/s: +-250 ... 2000 deg/s, thesis Tables 5, 13). An axis's extreme value at or beyond it, held by
-#: :data:`CLIP_RUN` or more consecutive samples, is a clipped (saturated) reading (3: a smooth peak sampled
-#: symmetrically and rounded repeats its top value twice).
-CLIP_LEVEL = {"accelerometer": 2.0 * STANDARD_GRAVITY, "gyroscope": float(np.deg2rad(250.0))}
-CLIP_RUN = 3
-#: decision B311: an axis's extreme value (at or beyond :data:`CLIP_LEVEL`) that this many samples or more sit at
-#: exactly, consecutive or not, is a pinned full-scale value: 100 Hz impacts clip one sample at a time, which B77's
-#: runs never see. An unclipped axis reaches its extreme once: its impact peaks spread over metres per second squared
-#: (rad/s for a gyroscope) while a converter's step is under 0.08 m/s^2 (12 bits at +-16 g) or 0.02 rad/s (12 bits at
-#: +-2000 deg/s), so 4 more peaks in the top step, (step / spread)^4 < 1e-6 per axis, do not happen by chance; a
-#: smooth peak repeats its top value twice (B77), a held sample once more. 5 is that argument's count, not a fit.
-#: And the rail must hold more samples than any other value near it (:func:`_pinned`).
-CLIP_PINNED = 5
-
-
-def clipped_samples(values: np.ndarray, kind: str) -> tuple[int, float]:
-    """Decision B77: (number of samples with a clipped axis, the largest clipped |value|) of an accelerometer
-    or gyroscope file: on each axis, the samples equal to the axis's maximum (or minimum) over the file, where
-    that extreme is at least :data:`CLIP_LEVEL` in magnitude, in runs of :data:`CLIP_RUN` or more equal
-    consecutive samples (a sensor at its full scale repeats it; a real peak is not held). Decision B311: or all
-    of them when :data:`CLIP_PINNED` or more samples sit at that extreme, one at a time or not (impacts at
-    100 Hz clip single samples)."""
-    hit, top = clipped_axes(values, kind)
-    return int(hit.any(axis=1).sum()) if hit.size else 0, top
-
-
-def clipped_axes(values: np.ndarray, kind: str) -> tuple[np.ndarray, float]:
-    """Decisions B77 / B311 per axis (the mechanism of :func:`clipped_samples`; decision B454 declips by it): a boolean
-    array shaped like ``values`` (n x axes; empty for a file B77 does not judge) true at each axis's clipped samples,
-    and the largest clipped |value| (0.0: none)."""
-    level = CLIP_LEVEL.get(kind)
-    v = np.asarray(values, dtype=float)
-    if level is None or v.ndim != 2 or v.shape[0] < CLIP_RUN:
-        return np.zeros((0, 0), dtype=bool), 0.0
-    hit = np.zeros(v.shape, dtype=bool)
-    top = 0.0
-    for j in range(v.shape[1]):
-        col = v[:, j]
-        step = axis_step(col)
-        for ext in (col.max(), col.min()):
-            if not abs(ext) >= level or step > CLIP_COARSE * abs(ext):  # decision B405: coarse levels repeat
-                continue
-            at = col == ext
-            if _pinned(col, ext, at):  # decision B311: a pinned full-scale value, runs or not
-                hit[:, j] |= at
-                top = max(top, abs(float(ext)))
-                continue
-            # runs of equal extreme samples: a sample counts when its run is CLIP_RUN long or more
-            edges = np.diff(np.concatenate([[0], at.astype(np.int8), [0]]))
-            starts, ends = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
-            for a, b in zip(starts, ends, strict=True):
-                if b - a >= CLIP_RUN:
-                    hit[a:b, j] = True
-                    top = max(top, abs(float(ext)))
-    return hit, top
-
-
 def foot_accel_clip_g(session) -> float | None:
     """Decision L688: the full scale (g) of the session's foot accelerometer where B77 / B311 call it clipped
     (:func:`clipped_samples`), else None (no foot accelerometer, or none clipped)."""
     if session is None or "fAccelerometer" not in session.streams:
         return None
-    n, top = clipped_samples(session.streams["fAccelerometer"].values, "accelerometer")
+    from pdrlearn.io.plasys import declared_full_scales  # decision B456: at a declared full scale
+
+    n, top = clipped_samples(session.streams["fAccelerometer"].values, "accelerometer",
+                             declared_full_scales(session).get("fAccelerometer"))
     return top / STANDARD_GRAVITY if n else None
-
-
-#: decision B405: an axis whose resolution (:func:`axis_step`) is more than this fraction of its extreme has under 50
-#: levels up to it, so its peak level repeats by quantisation (an 8-bit +-2000 deg/s gyroscope: 15.6 deg/s steps,
-#: its 359 deg/s peaks 4.3 %); B77/B311 do not call it clipped. A clipped 8-bit +-250 deg/s one: 0.8 %, still said.
-CLIP_COARSE = 0.02
-
-
-def distinct_steps(col: np.ndarray) -> np.ndarray:
-    """Decision B405/B406: the steps between the sorted distinct finite values of one axis (empty with fewer than two
-    distinct values): the kernel of :func:`axis_step` and :func:`resolution`."""
-    return np.diff(np.unique(np.asarray(col, dtype=float)[np.isfinite(col)]))
-
-
-def axis_step(col: np.ndarray) -> float:
-    """Decision B405/B406: the smallest step between the distinct values of one axis (its resolution; 0.0 with
-    fewer than two distinct values)."""
-    d = distinct_steps(col)
-    return float(d.min()) if d.size else 0.0
 
 
 #: decision B412: a stream's smallest step is a resolution only when the values lie on a grid: at least this share of
@@ -676,19 +621,6 @@ def resolution(values: np.ndarray, *, grid: bool = False) -> float | None:
     if grid and not (steps and all(_on_grid(d) for d in steps)):
         return None
     return min((float(d.min()) for d in steps), default=0.0)
-
-
-def _pinned(col: np.ndarray, ext: float, at: np.ndarray) -> bool:
-    """Decision B311: ``CLIP_PINNED`` or more samples sit at the axis's extreme ``ext`` (``at``), and more than at any
-    other value in the top tenth of the axis's range: a rail piles up every sample beyond it, while the top of an
-    unclipped signal is its rarest part (an exactly periodic synthetic sine repeats its top once a cycle, its
-    shoulders twice)."""
-    k = int(np.count_nonzero(at))
-    if k < CLIP_PINNED:
-        return False
-    band = 0.1 * float(col.max() - col.min())
-    near = col[~at & (np.abs(col - ext) <= band)]
-    return k > (int(np.unique(near, return_counts=True)[1].max()) if near.size else 0)
 
 
 #: decision B403: an accelerometer axis needs this many peaks (strides) at or above B77's 2 g floor to be judged for
@@ -733,92 +665,3 @@ def ceiling_clip(values: np.ndarray) -> float:
     return found
 
 
-#: decision B401: a gyroscope sample is "moving" at |w| >= this (rad/s): the stance segmenter's default threshold
-#: (``kernels.stride.StanceSegmenter.stance_gyro_rad_s``), so the share of clipped samples is of the swings'
-MOVING_RAD_S = 0.8
-#: decision B401: the per-axis peak rates (deg/s) of walking feet measured on the real gaitmap recordings in
-#: datasets/external (lwalk, level, stairs, walk4x10, ms: 560-987 deg/s); a foot needs a range above them
-FOOT_PEAK_DPS = (560, 990)
-FOOT_GYRO_RANGE_DPS = 1000
-
-
-#: decision B453 (trial T3 finding F1): what a foot accelerometer clipped at a full scale (g) cost the offline foot
-#: track without B454's correction, printed by experiments/clip_range_s46.py (simulated users 14300-14305, 100 Hz,
-#: the foot gyroscope clipped at 250 / 500 / 1000 deg/s alongside): the median distance error (%) at --speed slow,
-#: normal, fast and a brisk 2.26 m/s level walk, and the median |final altitude error| (m) of the normal-speed stair
-#: walks (a 2.04 m flight up and back down); +-16 g cost nothing measurable (the brisk walk's peaks reach ~16 g)
-FOOT_ACCEL_CLIP_COST = {2.0: (-7.12, -15.13, -29.19, -50.77, 4.54), 4.0: (-1.26, -2.75, -8.25, -26.85, 1.06),
-                        8.0: (+0.14, -0.11, -0.37, -3.20, 0.22)}
-#: decision B454: the same figures with ``FootDisplacement(clip_noise=True)`` (a --params JSON file with
-#: {"clip_noise": true}; kept as an option by B454's rule), measured at +-4 g and +-8 g only
-FOOT_ACCEL_CLIP_NOISE = {4.0: (+0.35, -0.39, -1.04, -21.40, 0.01), 8.0: (+0.15, -0.13, -0.11, -0.46, 0.01)}
-#: decision B453: the median distance error (%) of the same walks unclipped reaches at most this far from 0
-FOOT_UNCLIPPED_PCT = 0.20
-#: decision B453: the foot accelerometer ranges to buy (g): walking, brisk walking (the simulator has no running gait)
-FOOT_ACCEL_RANGE_G = (8, 16)
-
-
-def foot_accel_cost(top: float) -> str:
-    """Decision B453: the clause giving a clipped foot accelerometer's cost at the measured full scale nearest
-    ``top`` (m/s^2) in ratio (:data:`FOOT_ACCEL_CLIP_COST`) and, decision B454, what ``clip_noise`` left of it
-    (:data:`FOOT_ACCEL_CLIP_NOISE`); "" above 12 g (+-16 g: nothing measurable)."""
-    g = top / STANDARD_GRAVITY
-    if not g < 12.0:
-        return ""
-    scale = min(FOOT_ACCEL_CLIP_COST, key=lambda k: abs(math.log(k / g)))
-
-    def figures(row: tuple) -> str:
-        return " / ".join(f"{x:+.2f}" for x in row[:4]) + f" %, {row[4]:.2f} m"
-
-    noise = FOOT_ACCEL_CLIP_NOISE.get(scale)
-    fix = ("" if noise is None else '; the offline track with a --params JSON file holding {"clip_noise": true} puts '
-           f"each stride's ZUPT error at the clipped samples: {figures(noise)} (B454)")
-    return (f"; simulated walks clipped at +-{scale:g} g tracked the distance (median at slow / normal / fast / a "
-            f"brisk 2.26 m/s; unclipped within {FOOT_UNCLIPPED_PCT:.2f} %) and the end height after a 2 m flight up "
-            f"and back down: {figures(FOOT_ACCEL_CLIP_COST[scale])} off{fix}")
-
-
-def saturation_warning(where: str, kind: str, n: int, total: int, top: float, unit_name: str = "foot", *,
-                       moving: int | None = None, waist: bool = True) -> str:
-    """Decision B77's one line: the file, the fraction of clipped samples and what it does to the results;
-    ``unit_name`` the body unit (``"foot"`` or ``"waist"``: its consequence named for it, trial T3 finding 9).
-    Decision B401, a gyroscope: ``moving`` (the file's samples with |w| >= :data:`MOVING_RAD_S`) gives the share of
-    the motion at full scale, and a foot's line says what the offline track does about it (L525; decision L530: by
-    the heading ``waist`` gives, a session with a waist unit or not; L529: nothing under its share) and the range a
-    foot needs."""
-    unit = "m/s^2" if kind == "accelerometer" else "rad/s"
-    rng = f"{top / STANDARD_GRAVITY:.3g} g" if kind == "accelerometer" else f"{np.rad2deg(top):.4g} deg/s"
-    accel = ("the foot's integrated stride lengths and the step detector's impact peaks are cut short"
-             if unit_name == "foot" else "the lower back's step peaks and the step lengths read from its vertical "
-             "movement are cut short")
-    effect = accel if kind == "accelerometer" else "the integrated attitude and heading lose the rotation beyond it"
-    share, remedy, codes, cost = "", "", "B77, B311", ""
-    if kind == "accelerometer" and unit_name == "foot":  # decision B453: the size of the effect and the range to buy
-        cost = foot_accel_cost(top)
-        walk, brisk = FOOT_ACCEL_RANGE_G
-        if top < 0.99 * walk * STANDARD_GRAVITY:
-            remedy = f" (a foot: +-{walk} g or more for walking, +-{brisk} g for brisk walking or running)"
-        elif top < 0.99 * brisk * STANDARD_GRAVITY:
-            remedy = f" (a foot: +-{brisk} g for brisk walking or running)"
-        codes = "B77, B311, B453" if cost else codes
-    if kind == "gyroscope" and moving:  # decision B401: the size of the effect, measured on the file
-        share = f"; {100.0 * n / moving:.2g} % of its moving samples (|w| >= {MOVING_RAD_S:g} rad/s) are at full scale"
-        codes = "B77, B311, B401"
-    if kind == "gyroscope" and unit_name == "foot":
-        from pdrlearn.track.gyro_clip import CLIPPED_MOVING_MIN_SHARE, clipping_acts
-
-        if not clipping_acts(n, moving):  # decision L529: too rare a clipping for L525 to act on
-            effect += (f" (the foot's stride pitch and yaw; under {100 * CLIPPED_MOVING_MIN_SHARE:g} % of the moving "
-                       "samples, the offline track keeps its usual settings, decision L529)")
-        else:  # decision L530: the heading named by the units present
-            effect += (" (the foot's stride pitch and yaw: the offline track re-levels each stride at its end rest "
-                       + ("and heads by the waist unit" if waist else
-                          "and keeps the foot's own stride yaw, which the clipping turns (no waist unit)")
-                       + ", decision L525)")
-        remedy = (f" (+-{FOOT_GYRO_RANGE_DPS} deg/s or more for a foot: walking feet turned at {FOOT_PEAK_DPS[0]}-"
-                  f"{FOOT_PEAK_DPS[1]} deg/s in the real gaitmap recordings)")
-        codes = "B77, B311, B401"
-    return coded(f"{where}: {n} of {total} samples ({100.0 * n / total:.2g} %) are clipped at +-{top:.4g} {unit} (the "
-            f"sensor's full scale: held for {CLIP_RUN}+ samples in a row, or reached by {CLIP_PINNED}+ samples one at "
-            f"a time){share}: {effect}, so distances and headings come out wrong there{cost}; record with a range "
-            f"above +-{rng}{remedy} (decision {codes})", "B77")  # decision E170

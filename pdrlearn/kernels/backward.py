@@ -4,9 +4,11 @@ A stride travels backward when its signed length is negative (the displacement p
 forward axis; a replayed stride's ``length_m`` carries that measured sign, decision L654),
 unless it is a 0 m gap row (L67), a stride the last-line guard moved 0 m (``impossible``, L97), or a turn: a stride
 turning :data:`BACKWARD_MAX_TURN_DEG` or more is a turn on the spot whose short chord can point anywhere (L203
-amended), or a side step (decision L270): a stride of a side-stepping run (L219 / L228's ``sideways`` column; a
-streamed table's runs whole, L243) travels sideways, and its chord's small backward component (the simulator's
-``side`` item reads -0.38 to -0.44 m) is no backward travel. Standard library and numpy only.
+amended) when its chord is under :data:`SPOT_MAX_CHORD_M` (L692: a longer one travelled, and its sign,
+:func:`signed_chord`, is judged against the foot's mid-stride facing), or a side step (decision L270): a stride of
+a side-stepping run (L219 / L228's ``sideways`` column; a streamed table's runs whole, L243) travels sideways, and
+its chord's small backward component (the simulator's ``side`` item reads -0.38 to -0.44 m) is no backward travel.
+Standard library and numpy only.
 """
 
 from __future__ import annotations
@@ -18,6 +20,42 @@ import numpy as np
 #: decision L203 (amended): a stride turning this much (deg) or more is a turn, not backward travel -- L119's turn
 #: cue, :data:`pdrlearn.track.clinical.PAUSE_MAX_TURN_DEG` (a test pins the two equal)
 BACKWARD_MAX_TURN_DEG = 30.0
+#: decision L692: a stride turning BACKWARD_MAX_TURN_DEG or more is on the spot only when its horizontal chord is
+#: shorter than this (m): two of S41's pivot steps (``sim.path.PIVOT_MAX_STEP_M`` 0.3 m, "beyond this it is a
+#: curve"; a foot stride spans two steps; a test pins the two)
+SPOT_MAX_CHORD_M = 0.6
+
+
+def _turning(turn_rad) -> np.ndarray:
+    """(n,) bool: the strides whose own turn ``turn_rad`` is :data:`BACKWARD_MAX_TURN_DEG` or more (NaN: not)."""
+    with np.errstate(invalid="ignore"):
+        return np.abs(np.asarray(turn_rad, dtype=float)) >= math.radians(BACKWARD_MAX_TURN_DEG)
+
+
+def on_the_spot(turn_rad, chord_m) -> np.ndarray:
+    """Decision L692 (amends L203 / L578): (n,) bool, the strides that turn on the spot - their own turn
+    ``turn_rad`` :data:`BACKWARD_MAX_TURN_DEG` or more and their chord ``|chord_m|`` (m; a NaN chord: on the spot)
+    under :data:`SPOT_MAX_CHORD_M`. Their short chord points anywhere: no travel direction (steps.csv travel turn)."""
+    with np.errstate(invalid="ignore"):
+        return _turning(turn_rad) & ~(np.abs(np.asarray(chord_m, dtype=float)) >= SPOT_MAX_CHORD_M)
+
+
+def signed_chord(dx, dy, turn_rad, frame_rad=0.0) -> np.ndarray:
+    """Decision L692: (n,) each stride's horizontal chord ``hypot(dx, dy)`` (m) signed by its measured travel
+    (steps.csv ``raw_length_m``): a stride turning under :data:`BACKWARD_MAX_TURN_DEG` (or NaN) by the sign of its x
+    along the foot's facing at its start (as before); a turning stride negative when its chord points within 60 deg
+    of straight back from the foot's mid-stride facing (the facing at its start turned by half its own turn; outside
+    L219's 60-120 deg side window, ``kernels.sideways.SIDE_ANGLE_DEG``). ``dx``, ``dy`` in the step frame, which is
+    turned ``frame_rad`` from the foot's facing at the stride's start (decision L34's; 0 offline)."""
+    from pdrlearn.kernels.sideways import SIDE_ANGLE_DEG
+
+    dx, dy = np.asarray(dx, dtype=float), np.asarray(dy, dtype=float)
+    turn = np.asarray(turn_rad, dtype=float)
+    chord = np.hypot(dx, dy)
+    with np.errstate(invalid="ignore"):
+        mid = np.arctan2(dy, dx) + np.asarray(frame_rad, dtype=float) - 0.5 * turn  # from the mid-stride facing
+        back = np.where(_turning(turn), np.cos(mid) < math.cos(math.radians(SIDE_ANGLE_DEG[1])), dx < 0)
+    return chord * np.where(back, -1.0, 1.0)
 
 
 def backward_mask(length_m, gap_s=None, impossible=None, turn_angle_rad=None, sideways=None,
@@ -35,8 +73,7 @@ def backward_mask(length_m, gap_s=None, impossible=None, turn_angle_rad=None, si
     if impossible is not None:
         keep &= ~np.asarray(impossible, dtype=bool)
     if turn_angle_rad is not None:
-        with np.errstate(invalid="ignore"):
-            keep &= ~(np.abs(np.degrees(np.asarray(turn_angle_rad, dtype=float))) >= BACKWARD_MAX_TURN_DEG)
+        keep &= ~on_the_spot(turn_angle_rad, length)  # decision L692: a turn with a long chord travels
     if sideways is not None:
         keep &= ~np.asarray(sideways, dtype=bool)  # decision L270: a side step is no backward travel
     return (length < 0) & keep

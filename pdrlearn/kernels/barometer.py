@@ -418,6 +418,32 @@ def climb_runs(proposed: np.ndarray, start_h: np.ndarray, end_h: np.ndarray,
             if s[a] != 0 and s[a] * (end_h[b - 1] - start_h[a]) >= need]
 
 
+def climb_turn_pieces(dz: np.ndarray, min_turn_m: float = STAIR_CLIMB_MIN_M) -> list[tuple[int, int]]:
+    """Decision W526: a run of climb rows of walking height change ``dz`` (m per row) cut at its turns, as
+    ``(first, stop)`` pieces covering every row. The height is cumulated from the run's start; where it reaches an
+    extreme - at least ``min_turn_m`` (W108's least climb) from the piece's start - and then returns by at least
+    ``min_turn_m``, the piece ends after that extreme's row and the rest is read the same way. An up flight and the
+    down flight after it whose rows are adjacent (a stand and a turn at the top hold no step) are two pieces."""
+    dz = np.nan_to_num(np.asarray(dz, dtype=float).ravel())
+    c = np.concatenate([[0.0], np.cumsum(dz)])  # the height at each row boundary
+    n, s, out = len(dz), 0, []
+    hi = lo = 0
+    j = 1
+    while j <= n:
+        hi = j if c[j] > c[hi] else hi
+        lo = j if c[j] < c[lo] else lo
+        k = (hi if c[hi] - c[s] >= min_turn_m and c[hi] - c[j] >= min_turn_m else
+             lo if c[s] - c[lo] >= min_turn_m and c[j] - c[lo] >= min_turn_m else None)
+        if k is None:
+            j += 1
+            continue
+        out.append((s, k))
+        s = hi = lo = k
+        j = k + 1
+    out.append((s, n))
+    return [(a, b) for a, b in out if b > a]
+
+
 def climb_mask(proposed: np.ndarray, start_h: np.ndarray, end_h: np.ndarray, noise_sd: float) -> np.ndarray:
     """Decision W108: the steps of a climb (:func:`climb_runs`), a mask over the steps."""
     return runs_mask(len(np.asarray(proposed).ravel()), climb_runs(proposed, start_h, end_h, noise_sd))

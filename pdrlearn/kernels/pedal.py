@@ -255,9 +255,13 @@ class LiveLoops:
 
     A row is ``(start s, end s, raw dz m, unrested, raw horizontal travel m, judged)``; an unjudged row (a stride
     across a foot gap or bridged samples, a posture) is in its chain but has dz 0, no missing rest and is never
-    pedalling (the lead's amendment of L611, as ``track --streaming``'s ``unjudged``)."""
+    pedalling (the lead's amendment of L611, as ``track --streaming``'s ``unjudged``).
 
-    def __init__(self) -> None:
+    ``judge=False`` (decision E304, ``pdrlearn run --no-cycling``: an activity without bicycles) judges nothing: every
+    row is released at once as walking (no hold, as ``track --no-cycling`` removes no stride)."""
+
+    def __init__(self, judge: bool = True) -> None:
+        self.judge = bool(judge)
         self.history: list[tuple] = []
         self.held: list[tuple[tuple, object]] = []  # (row, payload)
         self.seen = 0
@@ -287,7 +291,9 @@ class LiveLoops:
             i = len(self.history)  # the first held row
             after = len(rows) - 1 - i
             ended = after >= 1 and rows[i + 1][0] - rows[i][1] > CHAIN_PAUSE_S
-            if final or ended or after >= REACH:
+            if not self.judge:  # decision E304: no pedalling check, no hold
+                pedal = False
+            elif final or ended or after >= REACH:
                 pedal = self._verdict(rows, i)
             elif not self._verdict(rows + self._worst(rows[-1]), i):
                 pedal = False

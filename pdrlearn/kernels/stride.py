@@ -28,7 +28,7 @@ import numpy as np
 from pdrlearn.errors import DataError
 from pdrlearn.kernels import bayes as B
 from pdrlearn.kernels import foot_rhythm as FR
-from pdrlearn.kernels.backward import BACKWARD_MAX_TURN_DEG
+from pdrlearn.kernels.backward import on_the_spot
 from pdrlearn.kernels.contact import MAX_STRIDE_S
 from pdrlearn.kernels.histospline import upsample_block_means
 from pdrlearn.kernels.rest_heading import REST_BIAS_MIN_S
@@ -631,13 +631,6 @@ def waist_forward_flip(foot_headed: bool, direction, length: float, side_offset:
     return math.pi
 
 
-def _turns_on_the_spot(turn_rad) -> np.ndarray:
-    """Decision L578: (n,) bool, the strides turning :data:`pdrlearn.kernels.backward.BACKWARD_MAX_TURN_DEG` or more
-    (steps.csv ``travel`` = turn, L203 amended / L412): a turn on the spot, no backward travel."""
-    with np.errstate(invalid="ignore"):
-        return np.abs(np.asarray(turn_rad, dtype=float)) >= math.radians(BACKWARD_MAX_TURN_DEG)
-
-
 def travel_sign_one(length: float, heading: float, measured_x: float = math.nan, sideways: bool = False,
                     turn_rad: float = math.nan) -> tuple[float, float]:
     """Decision L654 (amends L65): the ``(length_m, heading_rad)`` a stride is REPORTED with - the same displacement
@@ -652,8 +645,9 @@ def travel_sign_one(length: float, heading: float, measured_x: float = math.nan,
     Decision C137: a ``sideways`` stride (L219 / L486's side step) is no backward travel (L270), so it keeps no
     negative length; decision L578: nor does a stride turning ``turn_rad`` (its own turn) through
     ``BACKWARD_MAX_TURN_DEG`` or more (travel = turn: a pivot's or a turnaround's chord points anywhere, L65's
-    -1.3 m turnaround stride)."""
-    back = bool(measured_x < 0.0) and not sideways and not bool(_turns_on_the_spot([turn_rad])[0])
+    -1.3 m turnaround stride) on a chord under ``SPOT_MAX_CHORD_M`` (decision L692: |``measured_x``|, the signed
+    chord of :func:`pdrlearn.kernels.backward.signed_chord`, judged against the mid-stride facing)."""
+    back = bool(measured_x < 0.0) and not sideways and not bool(on_the_spot([turn_rad], [measured_x])[0])
     if length != 0.0 and (length < 0.0) != back:
         return -length, heading + math.pi
     return length, heading
@@ -661,9 +655,9 @@ def travel_sign_one(length: float, heading: float, measured_x: float = math.nan,
 
 def travel_sign(length: np.ndarray, heading: np.ndarray, measured_x=None,
                 sideways=None, turn_rad=None) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`travel_sign_one` on arrays (``measured_x``: (n,) each stride's measured x, or None: no stride travels
-    backward; ``sideways``: (n,) bool, decision C137, or None: none; ``turn_rad``: (n,) each stride's own turn,
-    decision L578, or None: none)."""
+    """:func:`travel_sign_one` on arrays (``measured_x``: (n,) each stride's signed chord, L692's
+    :func:`pdrlearn.kernels.backward.signed_chord`, or None: no stride travels backward; ``sideways``: (n,) bool,
+    decision C137, or None: none; ``turn_rad``: (n,) each stride's own turn, decision L578, or None: none)."""
     length = np.asarray(length, dtype=float)
     heading = np.asarray(heading, dtype=float)
     with np.errstate(invalid="ignore"):
@@ -671,8 +665,8 @@ def travel_sign(length: np.ndarray, heading: np.ndarray, measured_x=None,
                 else np.asarray(measured_x, dtype=float) < 0.0)  # decision L654: the measured travel
     if sideways is not None:
         back &= ~np.asarray(sideways, dtype=bool)  # decision C137: a side step keeps no negative length
-    if turn_rad is not None:
-        back &= ~_turns_on_the_spot(turn_rad)  # decision L578: nor does a turn on the spot
+    if turn_rad is not None:  # decisions L578, L692: nor does a turn on the spot (a short chord)
+        back &= ~on_the_spot(turn_rad, np.nan if measured_x is None else measured_x)
     flip = (length != 0.0) & ((length < 0.0) != back)
     return np.where(flip, -length, length), np.where(flip, heading + math.pi, heading)
 

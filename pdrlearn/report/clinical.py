@@ -22,6 +22,7 @@ import pandas as pd
 
 from pdrlearn.errors import DataError
 from pdrlearn.report.daily_living import daily_living_lines
+from pdrlearn.report.stairs_asymmetry import asymmetry_line, stairs_line
 from pdrlearn.report.travel import travel_lines
 from pdrlearn.report.walking import walking_line
 from pdrlearn.track.stair_lead import FLIGHT_WORDS, flight_line
@@ -275,6 +276,7 @@ def clinical_lines(summary: dict, folder: Path) -> list[str]:
                            or (summary.get("gait_speed_mps") or 0.0) >= VALIDATED_MIN_MPS)  # W515, W446
     if walking:
         lines.append(walking)
+    lines += [x for x in (stairs_line(summary, folder, unit), asymmetry_line(summary, unit)) if x]  # decision C190
     lines += travel_lines(summary, folder, unit)  # decision L582: backward / side strides, turns
     lines += daily_living_lines(summary, folder)
     warnings = warnings_line(summary)

@@ -45,12 +45,14 @@ def _parser() -> argparse.ArgumentParser:
 
 def replay(bundle_dir: Path, session_dir: Path, *, chunk_s: float = 1.0, units: str | None = None,
            method: str | None = None, fallback_line: bool = True, domain_line: bool = True,
-           block_rows: int | None = None):
+           block_rows: int | None = None, clip_lines: bool = True):
     """The tracker after replaying ``session_dir`` through ``bundle_dir`` and its steps, as ``pdrlearn run`` pushes
     a session (same input rates, stream ends, frames when the session declares them; decision E76).
     ``fallback_line=False``: no E26 line about the foot unit only (``evaluate`` says it its own way, E196);
     ``domain_line=False``: the strides are still checked against the training ranges (``tracker.domain_report()``)
     but the C61 line is not said (``evaluate`` pools the sessions and warns only when asked, E198).
+    ``clip_lines=False``: no live clipping / stuck-axis lines (decision E303: ``evaluate`` read the session, which
+    said them).
     ``block_rows``: the sensor files are read this many data rows at a time (default ``chunked.BLOCK_ROWS``;
     decision E274: bounded memory, the same pushes as the whole files'; a file the block reader finds unusual is
     read whole, as before)."""
@@ -76,9 +78,12 @@ def replay(bundle_dir: Path, session_dir: Path, *, chunk_s: float = 1.0, units: 
     tracker = Tracker(bundle, frames=session_frames(meta, bundle, asked or bundle.body_units, f"session {session_dir}"),
                       units=asked, sensors=list(ends), methods=methods,
                       input_rates_hz={n: 1.0 / p if p > 0 else float("nan") for n, p in periods.items()},
-                      stream_ends_s=ends, check_domain=True)  # decision E105: C61's out-of-domain line, as pdrlearn run
+                      stream_ends_s=ends, check_domain=True,  # decision E105: C61's out-of-domain line, as pdrlearn run
+                      full_scale=(meta or {}).get("full_scale"))  # decision B456: the session's declared ranges
     if not domain_line:  # decision E198: checked, never said
         tracker.quiet_domain()
+    if not clip_lines:  # decision E303: said when the caller read the session
+        tracker.quiet_clipping()
     if fallback_line and asked is None and tracker.units != bundle.body_units:  # decision E26, as run says it
         logging.getLogger("pdrlearn.runtime").warning(
             "session %s has no waist unit the bundle also uses: the foot unit only (--units foot chooses this "

@@ -34,6 +34,7 @@ from pdrlearn.kernels.units import (
     swapped_units,
     swing_rate,
 )
+from pdrlearn.runtime.clip_watch import take_before
 
 #: decision B119: seconds of a stream the unit checks judge (5 s: a few strides of foot-flats for B78's quietest
 #: windows, B91's swing needs walking; the steps of these seconds are emitted before the check, so short)
@@ -380,33 +381,8 @@ class FrozenFootWatch:
 
     def _take(self, name: str, end: float) -> tuple[np.ndarray, np.ndarray]:
         """The samples of ``name`` before ``end`` (removed from the watch) as ``(t, values)`` arrays."""
-        ts, vs, keep, one_t, one_v = [], [], [], [], []
-        for item in self.items[name]:
-            t, v = item
-            if isinstance(t, float):  # the one-sample path's (t, list of floats)
-                if t < end:
-                    one_t.append(t)
-                    one_v.append(v)
-                else:
-                    keep.append(item)
-                continue
-            if one_t:
-                ts.append(np.array(one_t))
-                vs.append(np.array(one_v, dtype=float).reshape(len(one_t), -1))
-                one_t, one_v = [], []
-            n = int(np.searchsorted(t, end, side="left"))
-            if n:
-                ts.append(np.asarray(t[:n], dtype=float))
-                vs.append(np.asarray(v[:n], dtype=float).reshape(n, -1))
-            if n < len(t):
-                keep.append((t[n:], v[n:]))
-        if one_t:
-            ts.append(np.array(one_t))
-            vs.append(np.array(one_v, dtype=float).reshape(len(one_t), -1))
-        self.items[name] = keep
-        if not ts:
-            return np.zeros(0), np.zeros((0, 1))
-        return np.concatenate(ts), np.concatenate(vs)
+        self.items[name], t, v = take_before(self.items[name], end)
+        return t, v
 
     def _judge(self, block: dict, begin: float, end: float) -> str | None:
         """B203's test on the samples of the block from ``begin`` to ``end`` s; the warning line or None."""

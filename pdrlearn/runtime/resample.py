@@ -72,11 +72,14 @@ def lowpass_taps(rate_in: float, rate_out: float) -> np.ndarray:
 
 
 def native_message(rates: dict[str, float], rate_hz: float) -> str:
-    """The one line that says streams at another rate are tracked at their own rate (E22 amended)."""
+    """The one line that says streams at another rate are tracked at their own rate (E22 amended); decision E304:
+    it names the delay ``--resample``'s low-pass filter would add (the longest of the streams', ``latency_s``)."""
     what = ", ".join(f"{n} {r:.4g} Hz" for n, r in rates.items())
+    delay = max((StreamResampler(r, rate_hz).latency_s for r in rates.values() if r > rate_hz), default=0.0)
+    added = f" (its low-pass filter delays every step by {delay * 1e3:.0f} ms more)" if delay else ""
     return (f"{what}: not the bundle's {rate_hz:.4g} Hz; tracked at the data's own rate, as `pdrlearn track "
             "--streaming` does (the features are defined in seconds); `--resample` resamples to the bundle's "
-            "rate instead, `--no-resample` refuses")
+            f"rate instead{added}, `--no-resample` refuses")
 
 
 class StreamResampler:

@@ -33,6 +33,7 @@ from pdrlearn.kernels import sideways as _sideways
 from pdrlearn.kernels import stop_bias as _stop_bias
 from pdrlearn.kernels import turn_length as _turn_length
 from pdrlearn.kernels.align import MAX_CLOCK_DRIFT
+from pdrlearn.kernels.backward import signed_chord
 from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, SIGMA_REL, check_rules, confident_one
 from pdrlearn.kernels.contact import force_at, stride_contact, stride_times
 from pdrlearn.kernels.counter_wrap import live_wrap
@@ -96,6 +97,7 @@ from pdrlearn.kernels.window import (
 from pdrlearn.runtime.baro_check import BaroCheck
 from pdrlearn.runtime.bundle import Bundle, load_bundle, waist_only_hint
 from pdrlearn.runtime.classify import StepGraph, TaskClassifier
+from pdrlearn.runtime.clip_watch import ClipWatch
 from pdrlearn.runtime.clocks import SENSORS as CLOCK_SENSORS
 from pdrlearn.runtime.clocks import ClockCheck, offset_remedy, waist_on_foot_clock
 from pdrlearn.runtime.domain import DomainLog
@@ -491,6 +493,14 @@ class Tracker(OwnGuard, FixInput):
         (True, decision L189: offline's L184 function) or on the summed dz of its run of such strides (``"summed"``,
         L206); both measured and not adopted (L189, L207). False (default): raw heights. Decision L550: this keyword,
         as ``track_plasys(streaming=True, gated_level_dz=...)``; only with a bundle that classifies terrain.
+    cycling : True (default): L611's pedalling check (E280): a stride is held until its verdict is final (up to three
+        later strides: a short turning stride in a spin waits 1.7-3.8 s) and a pedalling one is removed. False
+        (decision E304, ``pdrlearn run --no-cycling``, ``track_plasys(cycling=False)``): for an activity without
+        bicycles (dance, a clinic), no stride is judged pedalling and none is held.
+    full_scale : decision B456: the sensors' declared ranges, stream name -> ``"4 g"`` / ``"500 deg/s"`` (meta.json's
+        ``full_scale``): clipping is judged at them (samples within 5 % of the range). Decision E303: with
+        ``check_input`` and ``stream_checks``, each IMU stream's 10 s blocks are checked for clipping (B77 / B311, or
+        at the declared range) and stuck axes (B455): one line per stream, and per stream and axis, in ``warnings``.
     """
 
     _one_at_a_time = "push/flush/add_fix"  # decisions E231, E256: the calls one_call_at_a_time guards
@@ -530,6 +540,7 @@ class Tracker(OwnGuard, FixInput):
     _guard = None  # decision B119 (a bare Tracker.__new__ checks nothing)
     _domain: DomainLog | None = None  # decision E105 (a bare Tracker.__new__ scores nothing)
     _frozen_foot: FrozenFootWatch | None = None  # decision B213 (a bare Tracker.__new__ watches nothing)
+    _clip: ClipWatch | None = None  # decision E303 (likewise)
     _warn_ood: float | None = None
     _domain_said = False
     #: decision L134: a resumed tracker's last measured stride end (s; strides found again up to it are dropped)
@@ -582,6 +593,8 @@ class Tracker(OwnGuard, FixInput):
         first_walk: bool = False,
         drop_duplicate_timestamps: bool = False,
         gated_level_dz: bool | str = False,
+        cycling: bool = True,
+        full_scale: dict | None = None,
     ):
         self._busy = new_guard()  # decision E231: push / flush one thread at a time
         start_xyz = enu_start(start, start_enu_m)  # decision L159
@@ -590,7 +603,8 @@ class Tracker(OwnGuard, FixInput):
         #: decision C117: "session" reports a flat forward stride's length class against the session's median stride
         self._session_length = (_relative_length.SessionLength()
                                 if _relative_length.check_length_reference(length_reference) == "session" else None)
-        for key, flag in (("clock_check", clock_check), ("stream_checks", stream_checks)):  # L177, E230: flags
+        for key, flag in (("clock_check", clock_check), ("stream_checks", stream_checks),  # L177, E230: flags
+                          ("cycling", cycling)):  # decision E304
             if not isinstance(flag, bool | np.bool_):
                 raise DataError(f"{key}={flag!r} must be True or False")
         if (isinstance(waist_clock_offset_s, bool) or not isinstance(waist_clock_offset_s, int | float | np.number)
@@ -743,7 +757,7 @@ class Tracker(OwnGuard, FixInput):
         #: decision E272: the waist gyroscope's bias read at the last stop (None without the waist unit)
         self._stop_bias = _stop_bias.StopBias() if "waist" in self.units else None
         #: decision E280: L611's verdicts stride by stride, the foot's rest reading (L621) and the warning line
-        self._loops, self._foot_rest, self._pedal_line = _pedal.LiveLoops(), _pedal.LiveRest(), None
+        self._loops, self._foot_rest, self._pedal_line = _pedal.LiveLoops(cycling), _pedal.LiveRest(), None
         #: decision E280: no stride starting within L611's CHAIN_PAUSE_S of the last one's end can still be detected
         #: this long (s) after that end: the longest stride, its closing stance and the wait before a step is measured
         self._chain_quiet_s = _pedal.CHAIN_PAUSE_S + self.segmenter.max_step_s + 2.0 + self._lookahead_s
@@ -808,6 +822,11 @@ class Tracker(OwnGuard, FixInput):
         #: checked, or ``check_input=False``); decision B120: frozen sensors
         self._guard = UnitGuard(self.used_sensors) if check_input else None
         self._frozen = FrozenWatch()
+        #: decision E303: B77 / B311 clipping (B456: at the ``full_scale`` declared, stream -> "4 g" / "500 deg/s") and
+        #: B455's stuck axes on each IMU stream's 10 s blocks (None: ``check_input=False``, or ``stream_checks=False``:
+        #: ``pdrlearn run`` said them when it read the session)
+        self._clip = (ClipWatch(self.used_sensors, full_scale, waist="waist" in self.units)
+                      if check_input and self.stream_checks else None)
         #: decision B213: B203's frozen foot IMU beside stepping force sensors, judged live (None: decided, no foot IMU
         #: or force sensor, or ``check_input=False``)
         self._frozen_foot = (FrozenFootWatch() if check_input and {"fAccelerometer", "fGyroscope"} <= set(
@@ -1209,6 +1228,9 @@ class Tracker(OwnGuard, FixInput):
             self._warn(msg)
         if self._frozen_foot is not None:  # decision B213: B203's frozen foot IMU, live
             self._frozen_foot_said(self._frozen_foot.push(checked, fast))
+        if self._clip is not None:  # decision E303: clipping and stuck axes, live
+            for msg in self._clip.push(checked, fast):
+                self._warn(msg)
         if self._paused:  # decision E115: a paused waist stream that came back
             self._unpause()
         if self._pushed_gaps:
@@ -1591,6 +1613,9 @@ class Tracker(OwnGuard, FixInput):
             self._append(name, t, v)
         if self._frozen_foot is not None:  # decision B213: the last block, on what it holds
             self._frozen_foot_said(self._frozen_foot.flush())
+        clip, self._clip = self._clip, None  # decision E303: the last blocks, once
+        for msg in clip.flush() if clip is not None else ():
+            self._warn(msg)
         self._detect()
         steps = self._process_ready(force=True)
         steps += self._release(self._loops.flush())  # decision E280: the last strides, judged on what is known
@@ -2216,9 +2241,11 @@ class Tracker(OwnGuard, FixInput):
         self.n_steps += 1
         self._heights.append(classes.get("terrain"), raw_dz, dz)  # decision E47
         turn = float(turn)  # decision E51: the stride's own turn (L690: not wrapped, a spin of 180-360 deg is itself)
-        length, direction = travel_sign_one(length, direction, dx,  # L654: the measured travel, after the position
+        chord = float(signed_chord(dx, dy, _sideways.foot_turn(lev),  # decision L692: the measured travel
+                                   _sideways.step_frame(lev)))  # against the foot's own mid-stride facing
+        length, direction = travel_sign_one(length, direction, chord,  # L654: the measured travel, after the position
                                             self._side_rows.decided,  # decision C137: a side step is no backward
-                                            turn)  # decision L578: nor a turn on the spot
+                                            turn)  # decisions L578, L692: nor a turn on the spot
         if self._session_length is not None and "length" in classes:  # decision C117: the reported class only
             label, lp = self._session_length.stride(classes["length"], proba.get("length"), abs(length),
                                                     terrain=classes.get("terrain"),
@@ -2279,6 +2306,11 @@ class Tracker(OwnGuard, FixInput):
         ``warn_out_of_domain``); None when the tracker does not check (``check_domain`` off), the bundle holds no
         training ranges (exported before E105) or no stride was checked."""
         return None if self._domain is None else self._domain.report(self._warn_ood)
+
+    def quiet_clipping(self) -> None:
+        """Decision E303: no live clipping / stuck-axis lines (a caller that read the session with ``read_session``
+        said B77 / B455 already: ``pdrlearn evaluate BUNDLE``)."""
+        self._clip = None
 
     def quiet_domain(self) -> None:
         """Decision E198: keep checking the strides against the training ranges (:meth:`domain_report`) but never

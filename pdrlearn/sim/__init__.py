@@ -2,7 +2,7 @@
 
 Entry points: :func:`simulate` (thesis scenarios and calibration exercises), :func:`simulate_path`
 (your own path of :class:`Straight`, :class:`Curve`, :class:`Stairs`, :class:`Slope`, :class:`Backward`, :class:`Turn`,
-:class:`Stand`, :class:`Sit`, :class:`Lift`, :class:`Escalator`, :class:`Trolley`, :class:`Side`,
+:class:`InPlace`, :class:`Stand`, :class:`Sit`, :class:`Lift`, :class:`Escalator`, :class:`Trolley`, :class:`Side`,
 :class:`Freeze`, :class:`Lie`, :class:`Vehicle`, :class:`Cycle` segments) and :class:`UserProfile`
 (anthropometry, gait, mounting, sensor errors).
 See docs/simulator.md.
@@ -15,6 +15,7 @@ from pdrlearn.sim.path import (
     Escalator,
     Footstep,
     Freeze,
+    InPlace,
     Lie,
     Lift,
     Pivot,
@@ -48,6 +49,7 @@ __all__ = [
     "Slope",
     "Backward",
     "Turn",
+    "InPlace",
     "Pivot",
     "Sit",
     "Lie",

@@ -152,6 +152,14 @@ class Pivot:
 
 
 @dataclass(frozen=True)
+class InPlace:
+    """Decision S105: ``n_steps`` steps on the spot (marking time): each foot lifts and is set down beside the other,
+    alternating, with a turning step's kinematics (S9: a short, low swing) and no turn; the body does not move."""
+
+    n_steps: int
+
+
+@dataclass(frozen=True)
 class Side:
     """Side-step ``length_m`` metres (> 0 = to the left, < 0 = to the right) facing ahead (decision S49): the lead
     foot steps sideways, the trail foot closes beside it; the heading does not change."""
@@ -255,8 +263,8 @@ class Lie:
     turns_per_h: float | None = None
 
 
-Segment = (Straight | Curve | Stairs | Slope | Backward | Turn | Pivot | Stand | Sit | Lift | Escalator | Trolley | Side
-           | Freeze | Lie | Vehicle | Cycle)
+Segment = (Straight | Curve | Stairs | Slope | Backward | Turn | Pivot | InPlace | Stand | Sit | Lift | Escalator
+           | Trolley | Side | Freeze | Lie | Vehicle | Cycle)
 
 
 @dataclass
@@ -551,19 +559,21 @@ class _Walker:
         """Decision S41: the turn's steps continue the walk's alternation (a walk-through turn, no stop); each
         moves the body centre ``step_m`` along the heading it turns to."""
         self._change_direction("forward")
-        if not (math.isfinite(seg.angle_rad) and seg.angle_rad != 0):
-            raise DataError(f"{seg}: a pivot needs a finite, non-zero angle")
-        if not (math.isfinite(seg.step_m) and 0 <= seg.step_m <= PIVOT_MAX_STEP_M):
-            raise DataError(f"{seg}: step_m must be 0-{PIVOT_MAX_STEP_M:g} m (a longer turning step is a Curve)")
-        n = int(seg.n_steps) or max(1, math.ceil(abs(seg.angle_rad) / PIVOT_STEP_RAD - 1e-9))
-        if n < 1 or abs(seg.angle_rad) / n > MAX_TURN_STEP_RAD + 1e-9:
-            raise DataError(f"{seg}: n_steps must be >= 1 and turn at most {math.degrees(MAX_TURN_STEP_RAD):.0f} "
-                            "deg per step")
+        n = check_pivot(seg.angle_rad, seg.n_steps, seg.step_m, str(seg))
         psi0, c = self.psi, self.c.copy()
         for k in range(1, n + 1):
             psi = psi0 + k * seg.angle_rad / n
             c = c + seg.step_m * _ahead(psi)
             self.step(c, self.z, psi, "turn")
+
+    def in_place(self, seg: InPlace) -> None:
+        """Decision S105: the steps on the spot continue the walk's alternation (a walk that marks time, no stop);
+        each sets the foot down where it stands beside the other, heading kept."""
+        if not (isinstance(seg.n_steps, int | np.integer) and seg.n_steps >= 1):
+            raise DataError(f"{seg}: n_steps must be a whole number >= 1")
+        self._change_direction("forward")
+        for _ in range(int(seg.n_steps)):
+            self.step(self.c, self.z, self.psi, "turn")
 
     def stand(self, seg: Stand) -> None:
         self.close(pause=max(0.0, float(seg.duration_s)))
@@ -633,6 +643,28 @@ class _Walker:
         self.pending_pause += RIDE_MARGIN_S + ride.duration_s + RIDE_MARGIN_S
 
 
+def check_pivot(angle_rad: float, n_steps: int, step_m: float, where: str, item: str | None = None) -> int:
+    """Decision S41's limits of a :class:`Pivot`, its number of steps (``n_steps`` 0: one per
+    :data:`PIVOT_STEP_RAD`), else one :class:`DataError` line starting ``where``. Decision S103: the route parser calls
+    it with the route ``item`` (its own words, degrees), the planner with the segment; decision S104: a pivot turns at
+    most :data:`MAX_TURN_STEP_RAD` per step (a spin inside one stride is ``curve:DEG:R`` with a small R)."""
+    deg = math.degrees(angle_rad) if math.isfinite(angle_rad) else angle_rad
+    if not (math.isfinite(angle_rad) and angle_rad != 0):
+        raise DataError(f"{where}: a pivot needs a finite, non-zero angle")
+    if not (math.isfinite(step_m) and 0 <= step_m <= PIVOT_MAX_STEP_M):
+        raise DataError(f"{where}: the step must be 0-{PIVOT_MAX_STEP_M:g} m (a longer turning step is a "
+                        f"{'curve' if item else 'Curve'}; decision S41)")
+    n = int(n_steps) or max(1, math.ceil(abs(angle_rad) / PIVOT_STEP_RAD - 1e-9))
+    if n < 1 or abs(angle_rad) / n > MAX_TURN_STEP_RAD + 1e-9:
+        cap = math.degrees(MAX_TURN_STEP_RAD)
+        least = max(1, math.ceil(abs(angle_rad) / MAX_TURN_STEP_RAD - 1e-9))
+        fix = (f"use pivot:{deg:g}:{least} or more steps, or for a spin turning more per step curve:{deg:g}:0.3 "
+               "(decision S104)" if item else f"n_steps >= {least}")
+        raise DataError(f"{where}: a pivot turns at most {cap:.0f} deg per step ({abs(deg):g} deg in {n} step(s) "
+                        f"is {abs(deg) / max(n, 1):.0f} deg per step); {fix}")
+    return n
+
+
 def path_length(segments: list[Segment], user: UserProfile | None = None) -> float:
     """Horizontal length (m) of the centre line of ``segments`` (backward steps at 0.55 step length); walked only:
     an escalator's horizontal travel is not counted (decision S45)."""
@@ -696,6 +728,7 @@ def plan_footsteps(
         Backward: w.backward,
         Turn: w.turn,
         Pivot: w.pivot,
+        InPlace: w.in_place,
         Stand: w.stand,
         Sit: w.sit,
         Lift: w.ride,

@@ -13,6 +13,7 @@
 | ``backward:N[:direct]`` | N backward steps (N >= 0.25, 0.5: half a step, S89); ``direct``: no stop (S67) |
 | ``turn:DEG`` | turn DEG degrees on the spot (> 0 left) |
 | ``pivot:DEG[:N[:STEP_M]]`` | turn DEG degrees on the spot inside the walk, N steps of STEP_M m (S41) |
+| ``inplace:N`` | N steps on the spot, marking time (a turning step's swing, no turn, no travel; S105) |
 | ``stand:S`` | stand still S seconds |
 | ``sit:S`` | sit down on a chair, stay seated S seconds, stand up (no steps; decision S36) |
 | ``lie:S[:TURNS_PER_H]`` | sit on a bed edge, lie S s turning over TURNS_PER_H an hour (2), get up (no steps; S58) |
@@ -43,6 +44,7 @@ from pdrlearn.sim.path import (
     Cycle,
     Escalator,
     Freeze,
+    InPlace,
     Lie,
     Lift,
     Pivot,
@@ -56,6 +58,7 @@ from pdrlearn.sim.path import (
     Trolley,
     Turn,
     Vehicle,
+    check_pivot,
     stair_pace_error,
     stair_size_error,
 )
@@ -270,7 +273,11 @@ def parse_route(spec: str) -> list[Segment]:
                 raise DataError(f"--route item {item!r}: a pivot needs a non-zero angle")
             n = int(_number(item, parts[2], integer=True)) if len(parts) > 2 else 0
             step = _number(item, parts[3], positive=False) if len(parts) > 3 else 0.15
+            check_pivot(math.radians(angle), n, step, f"--route item {item!r}", item)  # decision S103: its words
             segments.append(Pivot(math.radians(angle), n_steps=n, step_m=step))
+        elif kind == "inplace":  # decision S105: steps on the spot
+            _arity(item, parts, (1,))
+            segments.append(InPlace(int(_number(item, parts[1], integer=True))))
         elif kind == "side":  # decision S49
             _arity(item, parts, (1,))
             metres = _number(item, parts[1], positive=False)

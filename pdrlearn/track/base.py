@@ -124,6 +124,9 @@ def _wrap(name: str, fn: Pipeline) -> Pipeline:
             result.info["warnings"] = merged_warnings(result.info.get("warnings") or [],
                                                       [*getattr(session, "_read_warnings", []), *logged],
                                                       getattr(session, "wheres", None))  # B359 (R1)
+            from pdrlearn.io.plasys import clipped_shares
+
+            result.info["clipped_share"] = clipped_shares(session)  # decision B456: summary.json's clip figures
         add_position_sigma(result, session)  # decision L128: every pipeline's track gets pos_sigma_m
         result.tracked = session_identity(session)  # decision B181: summary() checks the session it is given
         return result

@@ -199,7 +199,10 @@ def _intervals(st: pd.DataFrame, min_s: float = PAUSE_MIN_S, turn_gaps=None) -> 
     pair = ok[:-1] & ok[1:] & np.isfinite(d)
     if not pair.any():
         return np.zeros(len(d)), np.zeros(len(d), bool)
-    excess = d - rhythm_s(st, d, pair)
+    from pdrlearn.track.trunk_pauses import trunk_pauses
+
+    trunk = trunk_pauses(st)  # decision L687: a two-unit foot table's pauses are the lower back's stops
+    excess = d - rhythm_s(st, d, pair) if trunk is None else trunk[1:]
     if "heading_rad" in st:  # decision L119: a turn across the interval takes its time, the rest is standing
         with np.errstate(invalid="ignore"):
             dh = np.abs(np.diff(np.degrees(unwrapped_heading(st))))

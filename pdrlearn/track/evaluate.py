@@ -273,6 +273,7 @@ def _climb_parts(steps: pd.DataFrame):
     (W158's ``pause_dz_m``) where it is W231's ``RIDE_MIN_M`` or more (a ride), else 0; ``kind`` steps.csv's ``ride``
     column (L376; None without it); ``climb_sign`` +1 / -1 on a lower-back track's W108 climb rows (steps.csv
     ``climb``; each run of them signed by its walking height), 0 elsewhere, None without the column or on a foot."""
+    from pdrlearn.kernels.barometer import climb_turn_pieces
     from pdrlearn.kernels.pause_ride import RIDE_MIN_M
 
     pause = np.nan_to_num(steps["pause_dz_m"].to_numpy(float)) if "pause_dz_m" in steps else np.zeros(len(steps))
@@ -286,7 +287,8 @@ def _climb_parts(steps: pd.DataFrame):
     sign = np.zeros(len(steps), dtype=int)
     edges = np.flatnonzero(np.diff(np.concatenate([[0], on.astype(int), [0]])))
     for a, b in zip(edges[::2], edges[1::2], strict=True):
-        sign[a:b] = int(np.sign(walk[a:b].sum()))
+        for p, q in climb_turn_pieces(walk[a:b]):  # decision W526: an up and a down flight, adjacent, are two climbs
+            sign[a + p:a + q] = int(np.sign(walk[a + p:a + q].sum()))
     return ride, kind, sign
 
 
@@ -541,7 +543,9 @@ def backward_travel(steps: pd.DataFrame) -> np.ndarray | None:
     L67) and ``impossible`` strides (L97) are not, as :func:`median_stride_length`; amended in the same session (a
     feature-tour trial): a stride turning :data:`BACKWARD_MAX_TURN_DEG` or more is a turn on the spot, whose short
     chord can point anywhere (user 5's ``straight:10, turn:180, straight:10``: two turn strides of 120 and 60 deg
-    with -0.25 / -0.15 m), not backward travel. None for a lower-back track (no raw length per step) or a table
+    with -0.25 / -0.15 m), not backward travel - decision L692: when its chord is under
+    :data:`pdrlearn.kernels.backward.SPOT_MAX_CHORD_M` (a longer one's sign is judged against the mid-stride facing,
+    :func:`pdrlearn.kernels.backward.signed_chord`). None for a lower-back track (no raw length per step) or a table
     without ``raw_length_m`` / ``length_m``. Decision L270: a stride of a side-stepping run (``sideways``, L228 /
     L243) is no backward travel either."""
     from pdrlearn.track.gait import sideways_rows
@@ -555,7 +559,7 @@ def backward_travel(steps: pd.DataFrame) -> np.ndarray | None:
     return backward_mask(steps[column].to_numpy(float),
                          steps["gap_s"].to_numpy(float) if "gap_s" in steps else None,
                          steps["impossible"].eq(True).to_numpy(bool) if "impossible" in steps else None,
-                         # L203 amended: a turning stride is no backward travel
+                         # L203 amended, L692: a turning stride on a short chord is no backward travel
                          steps["turn_angle_rad"].to_numpy(float) if "turn_angle_rad" in steps else None,
                          sideways_rows(steps),  # decision L270: nor is a side step (L228's runs; L243 streamed)
                          streamed="pivot_rad" in steps)  # decision L505: nor a stream's first stride

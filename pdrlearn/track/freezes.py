@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from pdrlearn.kernels.freeze import FI_WINDOW_S, FREEZE_MIN_S, freeze_episodes, inside_episodes
+from pdrlearn.kernels.freeze import FI_STEP_S, FI_WINDOW_S, FREEZE_MIN_S, freeze_episodes, inside_episodes
 from pdrlearn.track.bouts import contact_times
 
 #: decision W213: the freeze-index threshold of a foot or lower-back unit (2 x Baechlin et al. 2010's 1.5)
@@ -75,19 +75,46 @@ def side_step_freezes(rows: list[dict] | None, steps) -> tuple[list[dict] | None
         return rows, []
     from pdrlearn.track.gait import sideways_rows
 
-    side = steps[sideways_rows(steps)]
-    a, b = side["start_s"].to_numpy(float), side["end_s"].to_numpy(float)
+    is_side = sideways_rows(steps)
+    a, b = steps["start_s"].to_numpy(float)[is_side], steps["end_s"].to_numpy(float)[is_side]
+    oa, ob = steps["start_s"].to_numpy(float)[~is_side], steps["end_s"].to_numpy(float)[~is_side]
     kept, lines = [], []
     for r in rows:
         s0, s1 = float(r["start_s"]), float(r["end_s"])
         covered = float(np.sum(np.clip(np.minimum(b, s1) - np.maximum(a, s0), 0.0, None)))
         if s1 > s0 and covered >= SIDE_SHARE_MIN * (s1 - s0):
-            lines.append(f"the freeze index's episode at {s0:.1f}-{s1:.1f} s (peak {r.get('peak_fi')}) is left out of "
-                         f"freezes.csv: the foot track's strides there are a side-stepping run ({covered:.1f} s of "
-                         "sideways strides, steps.csv sideways), which the index reads as freezing (decision L413)")
+            why = "decision L413"
+        elif side_echo(s0, s1, a, b, oa, ob):
+            why = f"its index windows reach back {SIDE_REACH_S:g} s to them, decision L693"
+        else:
+            kept.append({**r, "freeze": len(kept) + 1})
             continue
-        kept.append({**r, "freeze": len(kept) + 1})
+        lines.append(f"the freeze index's episode at {s0:.1f}-{s1:.1f} s (peak {r.get('peak_fi')}) is left out of "
+                     f"freezes.csv: the foot track's strides there are a side-stepping run ({covered:.1f} s of "
+                     f"sideways strides, steps.csv sideways), which the index reads as freezing ({why})")
     return kept, lines
+
+
+#: decision L693: how far (s) a centred freeze-index window at an episode's edge reaches beyond it (half of Baechlin
+#: et al. 2010's 4 s window less half the 0.5 s step each window stands for)
+SIDE_REACH_S = FI_WINDOW_S / 2 - FI_STEP_S / 2
+
+
+def side_echo(s0: float, s1: float, side_a, side_b, other_a, other_b) -> bool:
+    """Decision L693: whether the episode ``[s0, s1]`` s is read from side steps only - the side-stepping strides
+    (``side_a`` / ``side_b``, their start / end s), each widened by :data:`SIDE_REACH_S` either side, cover it whole
+    (every index window of it holds part of a side stride), and no other stride (``other_a`` / ``other_b``)
+    overlaps it."""
+    if np.any((np.asarray(other_b, float) > s0) & (np.asarray(other_a, float) < s1)):
+        return False
+    reach = sorted(zip(np.asarray(side_a, float) - SIDE_REACH_S, np.asarray(side_b, float) + SIDE_REACH_S,
+                       strict=True))
+    at = s0
+    for lo, hi in reach:  # the widened side strides, in order, must leave no hole in [s0, s1]
+        if lo > at:
+            break
+        at = max(at, hi)
+    return bool(reach) and at >= s1
 
 
 #: decision L617: a foot freeze-index episode is kept only with a stride within this many seconds of it (one index

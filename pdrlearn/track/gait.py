@@ -264,6 +264,25 @@ def stair_rows(steps: pd.DataFrame, ramp_not_stair: bool = False) -> np.ndarray:
     return stair
 
 
+def stair_counts(steps: pd.DataFrame, valid) -> tuple[int, int]:
+    """Decisions L179, L432: the ``valid`` rows climbing and descending a stair, ``(up, down)``: :func:`stair_rows`
+    by their own ``dz_m``'s sign. Decision W527: on a lower-back track (W108's ``climb`` column) the rows inside a
+    barometric climb count by their climb's sign (W526's pieces, ``evaluate._climb_parts``) whatever their own dz -
+    a step-to flight's steps split each riser ~0.03 / ~0.15 m - and only the rows outside a climb by L179's rule."""
+    from pdrlearn.track.evaluate import _climb_parts
+
+    valid = np.asarray(valid, dtype=bool)
+    stair = stair_rows(steps) & valid
+    rising = np.nan_to_num(pd.to_numeric(steps["dz_m"], errors="coerce").to_numpy(float)) > 0 if "dz_m" in steps \
+        else np.zeros(len(steps), bool)
+    sign = _climb_parts(steps)[2] if len(steps) and "dz_m" in steps else None
+    if sign is None:
+        return int((stair & rising).sum()), int((stair & ~rising).sum())
+    stair &= sign == 0  # W527: L179's rows outside W108's climbs
+    return (int((stair & rising).sum() + ((sign > 0) & valid).sum()),
+            int((stair & ~rising).sum() + ((sign < 0) & valid).sum()))
+
+
 def sideways_rows(steps: pd.DataFrame) -> np.ndarray:
     """Decision L228: the foot rows L219's rule found in a side-stepping run (the steps table's ``sideways``
     column); all False without it (a lower-back table, a table from before L228 / L243). A streamed foot table
@@ -309,12 +328,10 @@ def _speed_fields(out: dict, steps: pd.DataFrame, length, valid, speed, straight
         moving = float(wt - sum(max(0.0, min(b, p1) - max(a, p0)) for a, b in pieces for p0, p1 in pause_spans(steps)))
         out["walking_time_no_pauses_s"] = moving
         out["walking_speed_mps"] = dist / moving if moving > 0 else None
-    stair = stair_rows(steps) & np.asarray(valid, dtype=bool)  # decision L179
-    out["n_stair_strides"] = int(stair.sum())
-    rising = np.nan_to_num(pd.to_numeric(steps["dz_m"], errors="coerce").to_numpy(float)) > 0 if "dz_m" in steps \
-        else np.zeros(len(steps), bool)
-    out["n_stair_strides_up"] = int((stair & rising).sum())  # decision L432: split by direction
-    out["n_stair_strides_down"] = int((stair & ~rising).sum())
+    stair = stair_rows(steps) & np.asarray(valid, dtype=bool)  # decision L179: never straight
+    up, down = stair_counts(steps, valid)  # decision W527: on the lower back, its climbs' steps
+    out["n_stair_strides"] = up + down
+    out["n_stair_strides_up"], out["n_stair_strides_down"] = up, down  # decision L432: split by direction
     # decision L228: no side step; L580: no backward stride
     sp = np.where(np.asarray(straight, dtype=bool) & ~stair & ~not_straight_travel_rows(steps),
                   np.asarray(speed, dtype=float), np.nan)
@@ -577,13 +594,15 @@ def trimmed_gait_summary(steps: pd.DataFrame, cadence_from: str | None = None) -
             out.update(streamed_gait_summary(steps))
         return out
     from pdrlearn.track.steady import trimmed_rows
+    from pdrlearn.track.trunk_pauses import stop_rows
 
     keep = ~trimmed_rows(steps)  # decision L415: --steady-trim leaves each bout's first / last strides out
-    st = np.where(keep, steps["stride_time_s"].to_numpy(float), np.nan)
+    rhythm = keep & ~stop_rows(steps)  # decision L687: a stride holding the lower back's stop is no rhythm
+    st = np.where(rhythm, steps["stride_time_s"].to_numpy(float), np.nan)
     out["n_stride_times"] = int(np.isfinite(st).sum())
     for key, col in (("median_stride_time_s", "stride_time_s"), ("median_cadence_spm", "cadence_spm"),
                      ("median_speed_mps", "speed_mps")):
-        out[key] = _median(steps[col].to_numpy(float)[keep])
+        out[key] = _median(steps[col].to_numpy(float)[rhythm])
     if cadence_from == "strides":  # decision L176's formula on the foot (an option; W225 adopted it on the waist)
         out["median_cadence_spm"] = median_cadence(out["median_stride_time_s"], None)
     valid = stride_rows(steps) & keep  # decisions L67, L97; L415

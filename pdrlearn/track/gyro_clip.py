@@ -11,6 +11,7 @@ held samples leaves the track alone.
 """
 from __future__ import annotations
 
+from pdrlearn.kernels.clipping import CLIPPED_MOVING_MIN_SHARE, clipping_acts  # noqa: F401 - re-exported (L529)
 from pdrlearn.warning_lines import coded
 
 #: decision L525 (adopted by its rule, L526; the rule itself, no switch: W413 / L507): the FootDisplacement settings
@@ -19,30 +20,19 @@ from pdrlearn.warning_lines import coded
 CLIPPED_FOOT_SETTINGS = {"tilt_dedrift": True, "accel_scale_error": 0.0}
 
 
-#: decision L529 (adopted, docs/decisions/localization.md): L525 acts when the clipped samples are at least this share
-#: of the foot gyroscope's moving samples (|w| >= B401's MOVING_RAD_S); fixed before the measurement (a spike: 0.14 %,
-#: a +-250 deg/s foot: 22-33 %)
-CLIPPED_MOVING_MIN_SHARE = 0.01
-
-
-def clipping_acts(n: int, moving: int | None) -> bool:
-    """Decision L529: whether ``n`` clipped samples of a foot gyroscope with ``moving`` moving samples (B401) are
-    enough for L525 to act (:data:`CLIPPED_MOVING_MIN_SHARE`; ``moving`` None: not counted, any clipping acts)."""
-    return n > 0 and (moving is None or n >= CLIPPED_MOVING_MIN_SHARE * moving)
-
-
 def foot_gyro_clipped(session) -> tuple[int, float, int]:
     """Decision L525: (samples with a clipped axis, the clipped level in rad/s, decision L529: the moving samples,
     B401's) of the session's foot gyroscope by B77/B311's :func:`~pdrlearn.io.validate.clipped_samples`; (0, 0.0, 0)
     without one."""
     import numpy as np
 
+    from pdrlearn.io.plasys import declared_full_scales
     from pdrlearn.io.validate import MOVING_RAD_S, clipped_samples
 
     if not session.has("fGyroscope"):
         return 0, 0.0, 0
     values = session.streams["fGyroscope"].values
-    n, top = clipped_samples(values, "gyroscope")
+    n, top = clipped_samples(values, "gyroscope", declared_full_scales(session).get("fGyroscope"))  # B456
     return n, top, int(np.count_nonzero(np.linalg.norm(values, axis=1) >= MOVING_RAD_S))
 
 

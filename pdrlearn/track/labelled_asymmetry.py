@@ -20,10 +20,29 @@ LABEL_TOLERANCE_STEPS = 0.25
 #: with a note that it is uncertain (L493's gate withholding it, and L490's window centred on the lower back's lag,
 #: were not adopted; L507 removed those options, commit d3ffb129 holds them)
 UNCERTAIN_SE_POINTS = 3.0
+#: decision L671: an index under this many standard errors (L490's) is within noise: its two-sided 95 % interval
+#: reaches 0 (the normal quantile)
+WITHIN_NOISE_SE = 1.96
+
+
+def asymmetry_flags(pct: float, se: float) -> list[str]:
+    """Decisions L671, L677: the words a step-time asymmetry index ``pct`` (%) with standard error ``se`` (points,
+    L490) carries - "within noise" under :data:`WITHIN_NOISE_SE` standard errors, "uncertain: over 3 points" over
+    :data:`UNCERTAIN_SE_POINTS`; the console's gait line and clinical.md (decision C190) say the same."""
+    return ((["within noise"] if pct < WITHIN_NOISE_SE * se else [])
+            + ([f"uncertain: over {UNCERTAIN_SE_POINTS:g} points"] if se > UNCERTAIN_SE_POINTS else []))
+
+
 #: decision L416: a foot stride longer than this times the median stride (a stop, a missed contact) gives no phase
 MAX_STRIDE_FACTOR = 1.5
 #: decision L416: the fewest strides with one other-foot contact for an index (L123's minimum for a figure)
 MIN_STRIDES = 10
+#: decision L686: the foot's median step (s, half its median stride) from which the index's standard error carries
+#: :data:`ASYMMETRY_BIAS_FRACTION` of the index (the slowest step of L416's validation users 8044-8055 is 0.598 s)
+BIAS_STEP_S = 0.6
+#: decision L686: the share of a slow walk's index the lower back may add to it (its contact ending the shorter step
+#: is dated earlier; development users 14200-14219 at 0.7-0.8 s steps: 90th percentile 0.44 of the estimate)
+ASYMMETRY_BIAS_FRACTION = 0.45
 #: decision L416: the lower-back stream's lowest rate (Hz) for the index (its 20 Hz contacts failed on development
 #: users 8040-8042)
 LABELLED_MIN_RATE_HZ = 50.0
@@ -107,7 +126,8 @@ def labelled_step_asymmetry(foot_ic_s, waist_ic_s, *, tolerance_steps: float = L
     (:func:`other_foot_phases`) and the foot's median stride T: the step onto the other foot phi T, onto the
     instrumented foot (1 - phi) T, and their symmetry index (Robinson et al. 1987, L121). None values with fewer
     than ``min_strides`` strides (and at least 2, which a standard error needs: ``standard_error_points``, decision
-    L490, always given; decision L677: it counts the lower back's lag, :func:`index_standard_error_pct`)."""
+    L490, always given; decision L677: it counts the lower back's lag, :func:`index_standard_error_pct`; decision
+    L686: with an index, ``bias_allowance_points`` (:func:`bias_allowance_points`) added in quadrature)."""
     from pdrlearn.track.clinical import symmetry_index_pct
 
     phases, lags = _phases_and_lags(foot_ic_s, waist_ic_s, tolerance_steps=tolerance_steps)
@@ -120,9 +140,21 @@ def labelled_step_asymmetry(foot_ic_s, waist_ic_s, *, tolerance_steps: float = L
         return out
     phi = float(np.median(phases))
     onto_other, onto_own = phi * stride, (1.0 - phi) * stride
-    out.update(step_time_asymmetry_pct=symmetry_index_pct(onto_own, onto_other), step_time_s_instrumented=onto_own,
-               step_time_s_other=onto_other)
+    index = symmetry_index_pct(onto_own, onto_other)
+    allowance = bias_allowance_points(index, stride)  # decision L686
+    out.update(step_time_asymmetry_pct=index, step_time_s_instrumented=onto_own, step_time_s_other=onto_other,
+               bias_allowance_points=allowance,
+               standard_error_points=float(np.hypot(out["standard_error_points"], allowance)))
     return out
+
+
+def bias_allowance_points(index_pct: float, stride_s: float) -> float:
+    """Decision L686: the points a slow walk's index ``index_pct`` may read high by - :data:`ASYMMETRY_BIAS_FRACTION`
+    of it when the foot's median step (half its median stride ``stride_s``) is at least :data:`BIAS_STEP_S`, else 0
+    (the lower back dates the contact ending the shorter step earlier, which one foot unit cannot measure)."""
+    if not (np.isfinite(index_pct) and np.isfinite(stride_s)) or stride_s / 2.0 < BIAS_STEP_S:
+        return 0.0
+    return float(ASYMMETRY_BIAS_FRACTION * abs(index_pct))
 
 
 def _waist_ic_key(session) -> str:
@@ -227,6 +259,12 @@ def track_asymmetry(session, steps, warnings=(), alignment: dict | None = None) 
         reason = ("the lower back's contacts labelled by the foot unit's (the other foot's step in each stride, "
                   f"median over {res['n_strides']} strides, standard error {res['standard_error_points']:.1f} points "
                   "counting the lower back's lag; decisions L416, L490, L677)")
+        if res.get("bias_allowance_points"):  # decision L686: a slow asymmetric walk's index may read high
+            reason += (f"; at steps of {BIAS_STEP_S:g} s or longer the lower back dates the contact ending the "
+                       "shorter step earlier than the other, which pushes the two step times apart and one foot unit "
+                       f"cannot measure: the index may read up to ~{100 * ASYMMETRY_BIAS_FRACTION:.0f} % of its value "
+                       f"high (simulated limping walkers at 0.6-0.8 s steps), so the standard error counts "
+                       f"{res['bias_allowance_points']:.1f} points for it (decision L686)")
         if res["standard_error_points"] > UNCERTAIN_SE_POINTS:  # decision L490: say it is loose
             reason += ("; uncertain: over 3 points, the lower back's contacts scatter too much about the foot's (a "
                        "child's short fast steps, a slow walker's short slow ones: trial T1 read 5-21 % on symmetric "

@@ -64,6 +64,7 @@ from pdrlearn.kernels.altitude_check import (
     terrain_dz_check,
     zeroed_climb_check,
 )
+from pdrlearn.kernels.backward import signed_chord
 from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, DEFAULT_MODEL_RULES, SIGMA_REL, check_rules
 from pdrlearn.kernels.contact import force_at, stride_cap_s, stride_contact
 from pdrlearn.kernels.distance import (
@@ -1040,15 +1041,18 @@ def _placement_clause(session) -> str:
 
 
 def _without_pedalling(fd: FootDisplacement, fd_kw: dict, foot, strides: pd.DataFrame, stance: np.ndarray,
-                       transfers, g_rest: float, foot_gaps=None) -> tuple[FootDisplacement, pd.DataFrame, str | None]:
+                       transfers, g_rest: float, foot_gaps=None,
+                       cycling: bool = True) -> tuple[FootDisplacement, pd.DataFrame, str | None]:
     """Decisions L611 / L612: the strides whose raw heights go up and down in a closed loop (cycling), or that lie in
     a span the lower-back unit's chair ``transfers`` call seated, are not walking: their detections are left out and the
     rest integrated again (nothing changes without them); ``g_rest``: the foot's rest reading (L621). Decision L639:
     so is a stride longer than ``RIDE_STRIDE_CAPS`` of the foot's stride cap (L605), with every detection inside it,
-    unless it overlaps one of ``foot_gaps`` (B11's 0 m row). Returns (fd, strides, warning line or None)."""
+    unless it overlaps one of ``foot_gaps`` (B11's 0 m row). ``cycling=False`` (decision E304): no L611 check.
+    Returns (fd, strides, warning line or None)."""
     from pdrlearn.track.pedalling import pedal_loops
 
-    loop = pedal_loops(fd, foot, g_rest)  # decision L611 (L625: shared with `pdrlearn steps`)
+    loop = (pedal_loops(fd, foot, g_rest) if cycling  # decision L611 (L625: shared with `pdrlearn steps`)
+            else np.zeros(len(fd.start_s_), dtype=bool))  # decision E304: an activity without bicycles
     seated, seats = seated_strides(fd.start_s_, fd.end_s_, transfers)
     ride, cap = long_ride_strides(fd, foot, foot_gaps)  # decision L639
     if not (loop | seated | ride).any():
@@ -1127,7 +1131,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                  waist_bias: bool | None = None, compass_fallback: bool | None = None,
                  fallback_drift: bool | None = None, first_walk: bool = False, transfers: bool = True,
                  gated_level_dz: bool | str = False, fused_climb: bool = False,
-                 fused_straight: bool = True, ride_vibration: bool = True, **opts) -> TrackResult:
+                 fused_straight: bool = True, ride_vibration: bool = True, cycling: bool = True,
+                 **opts) -> TrackResult:
     """Track a foot (+ waist) session with PLASYS method M1, M2 or M3 (thesis ch.7).
 
     Parameters
@@ -1194,6 +1199,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         per stride (True, decision L189) or on the summed dz of its run of such strides (``"summed"``, L206); both
         measured and not adopted (L189, L207), so False (default: raw heights); decision L550: this keyword, as the
         runtime ``Tracker``'s. Offline M3 levels such strides already (L184) and True / "summed" are refused
+    cycling : True (default): L611's pedalling check removes the foot strides that go round a closed loop (a crank);
+        False (decision E304, ``track --no-cycling``, the runtime ``Tracker(cycling=False)``'s): an activity without
+        bicycles, no stride judged pedalling (offline, L612's seated and L639's ride strides are still removed)
     transfers : offline two-unit session: time the chair transfers and TUG from the waist unit (W418); False skips
         that inner waist work for callers that read no TUG (the distance calibration; decision W439)
     calibration : M3 with a trained model: use the model's distance calibration (L26): its gain (unless
@@ -1302,6 +1310,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                               drop_neighbour=drop_neighbour,  # decision E101
                               first_walk=first_walk,  # decision E222
                               gated_level_dz=gated_level_dz,  # decision L550
+                              cycling=cycling,  # decision E304
                               **({} if waist_bridge is None else {"waist_bridge": bool(waist_bridge)}),
                               **({} if gap_yaw is None else {"gap_yaw": bool(gap_yaw)}),
                               **({} if waist_gap_yaw is None else {"waist_gap_yaw": bool(waist_gap_yaw)}))
@@ -1402,7 +1411,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     if transfers:
         add_trunk_transfers(trunk, session)
     fd, strides, pedal_warning = _without_pedalling(fd, fd_kw, foot, strides, stance, trunk.info.get("transfers"),
-                                                    foot_rest_gravity(session), foot_gaps)  # decisions L621, L639
+                                                    foot_rest_gravity(session), foot_gaps,  # decisions L621, L639
+                                                    cycling=cycling)  # decision E304
     if not len(strides):
         raise NoStridesError(f"{session.where}: no walking strides: {_placement_clause(session)}{pedal_warning}"
                              f"{_no_strides_hint(session)}")
@@ -1642,7 +1652,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     table = strides[["start_s", "end_s"]].copy()
     table["event_s"] = strides["event_s"] if "event_s" in strides else strides["end_s"]
     table["length_m"] = length
-    table["raw_length_m"] = np.hypot(raw_disp[:, 0], raw_disp[:, 1]) * np.where(raw_disp[:, 0] < 0, -1.0, 1.0)
+    table["raw_length_m"] = signed_chord(raw_disp[:, 0], raw_disp[:, 1], fd.yaw_change_)  # decision L692
     table["heading_rad"] = wrap_angle(head)
     table["dz_m"] = dz
     for c in ("terrain", "direction", "length_class"):
@@ -1810,6 +1820,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         res.info.update(trunk.info)
     elif transfers:  # decision W439: callers that read no TUG (the distance calibration) skip the inner waist work
         add_trunk_transfers(res, work)  # decision W418 (W430: the waist on the aligned clock, as --clock-offset)
+    from pdrlearn.track.trunk_pauses import add_trunk_pauses
+
+    add_trunk_pauses(res)  # decision L687: the lower back's stops are the two-unit track's pauses
     return res
 
 
@@ -1955,7 +1968,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                     min_confidence: float | None = None,
                     warn_out_of_domain: float | None = None, contacts: bool = False,
                     drop_neighbour: bool = False, first_walk: bool = False,
-                    gated_level_dz: bool | str = False) -> TrackResult:
+                    gated_level_dz: bool | str = False, cycling: bool = True) -> TrackResult:
     """PLASYS M2/M3 with the streaming runtime's stride-local kernel (issue 7 trajectory parity).
 
     Strides come from :class:`~pdrlearn.kernels.stride.StanceSegmenter` fed the whole foot gyroscope;
@@ -2155,7 +2168,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                                 unrested_strides(fa_t, fa_v, strides[:, 0], strides[:, 1],
                                                  foot_rest_gravity(session)) & ~unjudged,  # decision L621
                                 np.hypot(disp[:, 0], disp[:, 1]))
-    pedal &= ~unjudged
+    pedal &= ~unjudged & bool(cycling)  # decision E304: no pedalling check (the runtime's Tracker(cycling=False))
     pedal_warning = pedal_line(pedal, np.zeros(len(pedal), dtype=bool), strides[:, 0], strides[:, 1])
     warnings += [pedal_warning] if pedal_warning else []
     if (posture | pedal).all():  # as offline: no stride is left to track (B318's exit code 4); B134 first (FM)
@@ -2237,13 +2250,14 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     for i in range(len(table)):  # the runtime's own position update, stride by stride
         xyz[i + 1] = SK.advance(xyz[i], float(head[i]), float(length[i]), float(dz[i]))
     table["event_s"] = ic  # decisions E49-E51 (it was the stride end; NaN without contacts)
-    table["raw_length_m"] = np.hypot(raw_disp[:, 0], raw_disp[:, 1]) * np.where(raw_disp[:, 0] < 0, -1.0, 1.0)
+    table["raw_length_m"] = signed_chord(raw_disp[:, 0], raw_disp[:, 1], foot_turn, frame)  # L692: the foot's
     table["dz_m"] = dz
     for c in classes.columns:
         if not c.startswith("ood_feature_"):
             table[c] = classes[c].to_numpy()
     # decision L654 (as the runtime's Step): length_m's sign is the measured travel; the path is the same
-    rep_length, rep_head = SK.travel_sign(length, head, raw_disp[:, 0], sideways,  # decision C137
+    rep_length, rep_head = SK.travel_sign(length, head, table["raw_length_m"].to_numpy(float),  # L692
+                                          sideways,  # decision C137
                                           turn)  # decision L578: E51's own turn (L690: not wrapped)
     table.insert(3, "length_m", rep_length)
     table.insert(5, "heading_rad", wrap_angle(rep_head))

@@ -40,8 +40,9 @@ def plot_paths(paths: dict[str, TrackResult], out: Path, *, session: Session | N
     ``initial_heading`` says otherwise; :func:`heading_is_absolute`), the ground truth is also rotated to set
     off in that track's direction (:func:`initial_bearing`); the legend says so, and the axes are ``x`` (heading
     0 at the start) / ``y`` instead of east / north (L55). A track with ``pos_sigma_m`` gets a shaded circle of
-    twice its last value about its end (decision L128); the view covers the paths, and the circle only when it is
-    no wider than them (otherwise it is clipped and its legend says so, decision L175). Decision L592: a track's
+    twice its last value about its end (decision L128); the view covers the paths, never the circle (decision L694,
+    L175's rule for every circle): a circle reaching beyond the paths is clipped, drawn as its outline, and its legend
+    says so. Decision L592: a track's
     ramp and stair strides are coloured (:data:`CLIMB_COLOURS`, :func:`climb_spans`) and, when a track has any, a
     last panel draws its height against the distance walked along it.
     """
@@ -108,13 +109,15 @@ def path_figure(paths: dict[str, TrackResult], *, session: Session | None = None
         if "pos_sigma_m" in tr and len(tr) and float(tr["pos_sigma_m"].iloc[-1]) > 0:
             radius = 2.0 * float(tr["pos_sigma_m"].iloc[-1])
             end = (float(tr["x"].iloc[-1]), float(tr["y"].iloc[-1]))
-            # decision L175: a circle wider than the paths is drawn without widening the view (add_artist does
-            # not update the data limits): clipped by the axes, so a long track is not a dot inside it
-            shown = box is None or radius <= max(box[1] - box[0], box[3] - box[2])
-            circle = Circle(end, radius, alpha=0.15, label=(
+            # decisions L175 / L694: the circle never widens the view (add_artist does not update the data
+            # limits), which covers the paths: a small figure is not a squiggle inside a 4 m disc; a circle reaching
+            # beyond the paths is clipped and drawn as its outline only (no wash over the whole figure)
+            inside = box is None or (box[0] <= end[0] - radius and end[0] + radius <= box[1]
+                                     and box[2] <= end[1] - radius and end[1] + radius <= box[3])
+            look = {"alpha": 0.15} if inside else {"fill": False, "ls": "--", "lw": 1.0, "alpha": 0.6}
+            ax.add_artist(Circle(end, radius, **look, label=(
                 f"end position, 2-sigma radius {radius:.1f} m (model, not a guarantee"
-                + (")" if shown else "; wider than the paths: clipped, L175)")))
-            ax.add_patch(circle) if shown else ax.add_artist(circle)
+                + (")" if inside else "; reaches beyond the paths: outline, clipped, L694)"))))
     ax.set_aspect("equal", adjustable="datalim")
     if absolute:
         ax.set_xlabel("east [m]")

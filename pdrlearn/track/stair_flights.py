@@ -140,7 +140,10 @@ def flight_spans(st: pd.DataFrame) -> list[tuple[int, int, int]]:
     length = pd.to_numeric(st["length_m"], errors="coerce").to_numpy(float) if "length_m" in st else None
     plain, steep = flight_row_masks(st, dz, length)  # decision L466: L443's own stair rows, and with L455's
     stair = steep & stride_rows(st)
-    return [(a, b, sign) for a, b, sign in flight_runs(dz, stair, bout_rows(st), length)
+    from pdrlearn.track.trunk_pauses import COLUMN
+
+    bouts = bout_rows(st.drop(columns=COLUMN, errors="ignore"))  # decision L687: a rest on a stair ends no flight
+    return [(a, b, sign) for a, b, sign in flight_runs(dz, stair, bouts, length)
             if b - a >= MIN_STEEP_FLIGHT_STRIDES or plain[a:b].any()]  # decision L466
 
 

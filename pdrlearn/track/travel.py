@@ -7,7 +7,9 @@ foot's facing: ``backward`` = :func:`pdrlearn.track.evaluate.backward_travel` (L
 ``n_backward_strides`` counts); ``left`` / ``right`` = a stride of a side-stepping run (L219 / L228's ``sideways``),
 to the side its displacement points in the foot's frame (the offline tracker writes it; a streamed table, whose
 runs are decided stride by stride, says ``side``); ``turn`` = a stride the foot turned through
-:data:`pdrlearn.kernels.backward.BACKWARD_MAX_TURN_DEG` or more (L203's turn on the spot); empty = a foot-gap row
+:data:`pdrlearn.kernels.backward.BACKWARD_MAX_TURN_DEG` or more on a chord under
+:data:`pdrlearn.kernels.backward.SPOT_MAX_CHORD_M` (L203's turn on the spot, L692: a longer turning stride travels
+forward or backward of its mid-stride facing); empty = a foot-gap row
 (L67), an ``impossible`` stride (L97) or one shorter than :data:`pdrlearn.kernels.sideways.SIDE_MIN_STRIDE_M`
 (L219's shuffle on the spot: no direction to read); ``forward`` = every other stride. A change of travel direction is
 a labelled stride (forward / backward / left / right / side) whose label differs from the previous labelled
@@ -35,7 +37,7 @@ def side_labels(sideways, lateral_y) -> np.ndarray:
 def travel_labels(steps: pd.DataFrame) -> np.ndarray | None:
     """Decision L412: (n,) object, each foot stride's travel label (module docstring); None for a lower-back table
     (:func:`pdrlearn.track.evaluate.backward_travel` None: no facing per step)."""
-    from pdrlearn.kernels.backward import BACKWARD_MAX_TURN_DEG
+    from pdrlearn.kernels.backward import on_the_spot
     from pdrlearn.kernels.sideways import SIDE_MIN_STRIDE_M
     from pdrlearn.track.evaluate import backward_travel
     from pdrlearn.track.flags import flag_values
@@ -50,9 +52,8 @@ def travel_labels(steps: pd.DataFrame) -> np.ndarray | None:
     length = np.abs(pd.to_numeric(steps[column], errors="coerce").to_numpy(float))
     with np.errstate(invalid="ignore"):
         label[~(length >= SIDE_MIN_STRIDE_M)] = ""  # L219's shuffle on the spot (and a NaN length)
-        if "turn_angle_rad" in steps:
-            turn = np.degrees(np.abs(pd.to_numeric(steps["turn_angle_rad"], errors="coerce").to_numpy(float)))
-            label[turn >= BACKWARD_MAX_TURN_DEG] = "turn"  # L203 amended: a turn on the spot
+        if "turn_angle_rad" in steps:  # L203 amended, L692: a turn on the spot (a short chord)
+            label[on_the_spot(pd.to_numeric(steps["turn_angle_rad"], errors="coerce"), length)] = "turn"
     side = sideways_rows(steps)
     given = steps["travel"].to_numpy(dtype=object) if "travel" in steps else np.full(n, None, dtype=object)
     label[side] = [g if g in ("left", "right") else "side" for g in given[side]]
@@ -121,7 +122,7 @@ def side_class_warning(steps: pd.DataFrame, warnings: list[str], trained_side: i
     (:func:`travel_labels`: measured forward, no side step, no turn on the spot) the model classed backward."""
     if "direction" not in steps:
         return
-    from pdrlearn.kernels.stride import _turns_on_the_spot
+    from pdrlearn.kernels.backward import on_the_spot
     from pdrlearn.track.flags import flag_values
 
     side = flag_values(steps["sideways"]) if "sideways" in steps else np.zeros(len(steps), bool)
@@ -140,7 +141,9 @@ def side_class_warning(steps: pd.DataFrame, warnings: list[str], trained_side: i
     if line:
         warnings.append(line)
     if "turn_angle_rad" in steps:  # decision L578
-        spot = _turns_on_the_spot(pd.to_numeric(steps["turn_angle_rad"], errors="coerce")) & ~side
+        column = next((c for c in ("raw_length_m", "length_m") if c in steps), None)
+        chord = np.nan if column is None else pd.to_numeric(steps[column], errors="coerce")  # NaN: not known
+        spot = on_the_spot(pd.to_numeric(steps["turn_angle_rad"], errors="coerce"), chord) & ~side  # L692
         line = _classed_backward(steps, spot, "strides turning on the spot (steps.csv travel turn)",
                                  "a pivot stride's short chord points anywhere, so the class does not say the walker "
                                  "went backward; their length_m is counted positive, steps.csv direction keeps the "
