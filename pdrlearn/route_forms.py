@@ -9,9 +9,11 @@ ROUTE_FORMS = {
     "curve": "'curve:DEG:R[:GAIT]' an arc of DEG degrees (+ left) of radius R m",
     "slope": "'slope:M:PCT' (or 'slope:M:PCT:GAIT') M metres (horizontal) on a ramp of PCT % (-30 to 30, < 0 downhill; "
              "'slope:9:8.33' is a 1:12 ramp; S37)",
-    "up": "'up:N[:RISE:RUN][:step-to-step]' N stairs up (default 0.17 m rise x 0.28 m run; step-to-step: both feet "
-          "on each stair, S80; 'step-to-step:left' / ':right': that foot leads every stair, S92)",
-    "down": "'down:N[:RISE:RUN][:step-to-step]' N stairs down",
+    "up": "'up:N[:RISE:RUN][:step-to-step][:PACE]' N stairs up (default 0.17 m rise x 0.28 m run; step-to-step: "
+          "both feet on each stair, S80; 'step-to-step:left' / ':right': that foot leads every stair, S92; last, "
+          "the flight's pace: slow / normal / fast or 'pace=F', each stair step F x the level step time, "
+          "'up:12:pace=1.5'; S101)",
+    "down": "'down:N[:RISE:RUN][:step-to-step][:PACE]' N stairs down",
     "backward": "'backward:N[:direct]' N backward steps (0.5: half a step, S89; direct: reversing straight out of "
                 "forward walking, no stop, S67)",
     "turn": "'turn:DEG' turning in place by stepping (+ left; S9)",

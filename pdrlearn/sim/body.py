@@ -208,6 +208,8 @@ def schedule(
         ic_pitch = None if kd.contact_deg is None else np.radians(kd.contact_deg)
         # decision S88: a Straight's own pace (st.pace), else the session's speed
         d = user.step_time(st.pace or speed, st.gait) * dfac * max(0.7, 1.0 + rng.normal(0.0, cv))
+        if st.time_factor != 1.0:  # decision S101: a stair flight's numeric pace (skipped at 1: bit for bit)
+            d *= st.time_factor
         if step_time_asymmetry:  # decision S35 (skipped at 0: default sessions bit for bit)
             d *= step_time_factor(st.foot, step_time_asymmetry, affected)
         if st.irregular:
@@ -516,17 +518,29 @@ def pendulum_rise(step_m: np.ndarray, leg_m: float) -> np.ndarray:
     return leg_m - np.sqrt(leg_m**2 - half**2)
 
 
+def _heel_offsets(steps: list[Footstep], initial: dict) -> np.ndarray:
+    """(n, 3) offset (m, ENU) of each footstep's landing heel from the other foot's heel at that moment (decisions
+    S29, S42, S101)."""
+    last = {f: np.asarray(h, float) for f, (h, _) in initial.items()}
+    d = np.zeros((len(steps), 3))
+    for k, st in enumerate(steps):
+        other = "left" if st.foot == "right" else "right"
+        d[k] = np.asarray(st.heel, float) - last[other]
+        last[st.foot] = np.asarray(st.heel, float)
+    return d
+
+
 def step_lengths(steps: list[Footstep], initial: dict) -> np.ndarray:
     """Length (m) of each footstep: the heel-to-heel distance from the other foot's heel to the landing heel along
     the landing foot's heading (decisions S29, S42; ``abs``: a backward step is as long as its forward twin)."""
-    last = {f: np.asarray(h, float) for f, (h, _) in initial.items()}
-    s = np.zeros(len(steps))
-    for k, st in enumerate(steps):
-        other = "left" if st.foot == "right" else "right"
-        d = np.asarray(st.heel, float)[:2] - last[other][:2]
-        s[k] = abs(d[0] * np.cos(st.yaw) + d[1] * np.sin(st.yaw))
-        last[st.foot] = np.asarray(st.heel, float)
-    return s
+    d = _heel_offsets(steps, initial)
+    return np.array([abs(dk[0] * np.cos(st.yaw) + dk[1] * np.sin(st.yaw)) for dk, st in zip(d, steps, strict=True)])
+
+
+def step_heights(steps: list[Footstep], initial: dict) -> np.ndarray:
+    """Rise (m, + up, - down) of each footstep (decision S101): the landing heel's height above the other foot's
+    heel, so a step-to-step stair's lead step rises one stair and the trail step onto the same stair is 0."""
+    return _heel_offsets(steps, initial)[:, 2]
 
 
 def pendulum_bounce(steps: list[Footstep], ev: Events, initial: dict, user: UserProfile) -> np.ndarray:

@@ -51,7 +51,10 @@ class Stairs:
     a stride spans two stairs). ``step_to_step`` (decision S80): both feet on each stair, the same foot leading every
     stair, so a stride spans one stair (the non-reciprocal gait of frail older adults). ``lead`` (decision S92): the
     foot that leads every stair of a step-to-step flight ("left" / "right"; None: the foot that would step next, as
-    before S92)."""
+    before S92). ``pace`` (decision S101): the flight's own pace - a word of S88's (slow / normal / fast: the
+    flight's speed instead of the session's, as a Straight's) or a number F, each stair step taking F times the
+    session's level step time (within :data:`STAIR_PACE_RANGE`); None: the session's speed. The stair fixes the
+    step's length, so a pace changes only its time."""
 
     n: int
     up: bool = True
@@ -59,6 +62,25 @@ class Stairs:
     run_m: float = 0.28
     step_to_step: bool = False
     lead: str | None = None
+    pace: str | float | None = None
+
+
+#: decision S101: the step-time factor a stair flight's numeric pace may take (an assumption: from twice as brisk
+#: to four times the level step, a patient with crutches resting on each stair being the slow end; no seed gives a
+#: stair step time)
+STAIR_PACE_RANGE = (0.5, 4.0)
+
+
+def stair_pace_error(pace: object) -> str | None:
+    """Decision S101: why ``pace`` is not a stair flight's pace (an S88 word or a factor within
+    :data:`STAIR_PACE_RANGE`), or None."""
+    if pace is None or pace in SPEEDS:
+        return None
+    lo, hi = STAIR_PACE_RANGE
+    if isinstance(pace, int | float) and not isinstance(pace, bool) and math.isfinite(pace) and lo <= pace <= hi:
+        return None
+    return (f"a stair pace must be one of {', '.join(SPEEDS)} or a step-time factor within {lo:g}-{hi:g} x the level "
+            f"step (decision S101), not {pace!r}")
 
 
 #: decision B347: the stair rise (m) the simulator accepts: building codes give 0.10-0.22 m (IBC 2018 sec. 1011.5.2:
@@ -259,6 +281,7 @@ class Footstep:
     irregular: bool = False
     pushing: bool = False  # decision S46: a step of a Trolley walk (hands on a trolley's handle)
     pace: str | None = None  # decision S88: the step's own speed (a Straight's pace), None: the session's
+    time_factor: float = 1.0  # decision S101: a stair flight's numeric pace, the step time's factor
 
 
 def _normal(psi: float) -> np.ndarray:
@@ -327,6 +350,7 @@ class _Walker:
         foot: str | None = None,
         irregular: bool = False,
         pace: str | None = None,
+        time_factor: float = 1.0,
     ) -> None:
         foot = foot or self._next_foot()
         heel = self._heel(c, z, psi, foot)
@@ -334,7 +358,7 @@ class _Walker:
             # lateral placement variability
             heel[:2] += self.rng.normal(0.0, 0.01 * self.var / 0.03) * _normal(psi)
         self.steps.append(Footstep(foot, heel, float(psi), kind, gait, direction, self.pending_pause, irregular,
-                                   self.pushing, pace))
+                                   self.pushing, pace, time_factor))
         self.pending_pause = 0.0
         self.feet[foot] = (heel, psi)
         self.last_moved = foot
@@ -411,6 +435,10 @@ class _Walker:
         size = stair_size_error(seg.rise_m, seg.run_m)  # decision B347
         if size:
             raise DataError(f"{seg}: {size}")
+        bad_pace = stair_pace_error(seg.pace)  # decision S101
+        if bad_pace:
+            raise DataError(f"{seg}: {bad_pace}")
+        pace = {"pace": seg.pace} if isinstance(seg.pace, str) else {"time_factor": float(seg.pace or 1.0)}
         c0, z0, u = self.c.copy(), self.z, _ahead(self.psi)
         sign = 1.0 if seg.up else -1.0
         kind = "stairs_up" if seg.up else "stairs_down"
@@ -425,12 +453,12 @@ class _Walker:
             trail = "left" if lead == "right" else "right"
             for j in range(1, seg.n + 1):
                 c, z = c0 + j * seg.run_m * u, z0 + sign * j * seg.rise_m
-                self.step(c, z, self.psi, kind, foot=lead)
-                self.step(c, z, self.psi, kind, foot=trail)
+                self.step(c, z, self.psi, kind, foot=lead, **pace)
+                self.step(c, z, self.psi, kind, foot=trail, **pace)
             self.together = True  # both feet on the last stair
             return
         for j in range(1, seg.n + 1):
-            self.step(c0 + j * seg.run_m * u, z0 + sign * j * seg.rise_m, self.psi, kind)
+            self.step(c0 + j * seg.run_m * u, z0 + sign * j * seg.rise_m, self.psi, kind, **pace)
 
     def trolley(self, seg: Trolley) -> None:
         """Decision S46: a straight walk whose steps are flagged as pushing (the body model damps the pelvic

@@ -7,7 +7,8 @@
 |---|---|
 | ``straight:M[:GAIT][:PACE]`` | walk M m straight; GAIT short, normal (default), long; PACE slow/normal/fast (S88) |
 | ``curve:DEG:RADIUS[:GAIT]`` | walk an arc turning DEG degrees (> 0 left) of RADIUS metres |
-| ``up:N[:RISE:RUN][:step-to-step[:FOOT]]`` / ``down:...`` | N stairs; ``step-to-step``: S80; FOOT leads: S92 |
+| ``up:N[:RISE:RUN][:step-to-step[:FOOT]][:PACE]`` / ``down:...`` | N stairs; ``step-to-step``: S80; FOOT leads: S92; |
+| | PACE slow/normal/fast or ``pace=F`` (F x the level step time; S101) |
 | ``slope:M:PCT[:GAIT]`` | walk M metres (horizontal) on a ramp of PCT percent (< 0 downhill; decision S37) |
 | ``backward:N[:direct]`` | N backward steps (N >= 0.25, 0.5: half a step, S89); ``direct``: no stop (S67) |
 | ``turn:DEG`` | turn DEG degrees on the spot (> 0 left) |
@@ -58,6 +59,7 @@ from pdrlearn.sim.path import (
     Turn,
     Vehicle,
     check_pivot,
+    stair_pace_error,
     stair_size_error,
 )
 from pdrlearn.sim.ride import check_rise
@@ -143,25 +145,50 @@ def _arity(item: str, parts: list[str], allowed: tuple[int, ...]) -> None:
         raise DataError(f"--route item {item!r}: '{parts[0]}' takes {want} value(s); {_usage(item)}")
 
 
-def _stair_options(item: str, kind: str, parts: list[str]) -> tuple[list[str], bool, str | None]:
-    """Decisions S80, S92: ``up``/``down``'s trailing options - ``step-to-step`` (S80), then optionally the foot
-    that leads every stair (``left`` / ``right``, S92: "up with the good, down with the bad" of a prosthesis user).
-    Returns the item's number parts, step-to-step and the leading foot (None: the foot that would step next)."""
+#: decision S101: the numeric form of a stair flight's pace (``up:12:pace=1.5``: each stair step 1.5 x the level step)
+PACE_PREFIX = "pace="
+
+
+def _stair_pace(item: str, word: str) -> str | float:
+    """Decision S101: a stair flight's trailing pace - an S88 word or ``pace=F`` - checked by the planner's rule."""
+    pace: str | float = word
+    if word.startswith(PACE_PREFIX):
+        text = word[len(PACE_PREFIX):]
+        try:
+            pace = float(text)
+        except ValueError:
+            pace = text
+    bad = stair_pace_error(pace)
+    if bad:
+        raise DataError(f"--route item {item!r}: {bad}, e.g. 'up:12:slow' or 'up:12:0.17:0.28:{STEP_TO_STEP}:left:"
+                        f"{PACE_PREFIX}1.5'")
+    return pace
+
+
+def _stair_options(item: str, kind: str, parts: list[str]) -> tuple[list[str], bool, str | None, str | float | None]:
+    """Decisions S80, S92, S101: ``up``/``down``'s trailing options - ``step-to-step`` (S80), then optionally the
+    foot that leads every stair (``left`` / ``right``, S92: "up with the good, down with the bad" of a prosthesis
+    user), then optionally the flight's pace (S101: ``slow`` / ``normal`` / ``fast`` or ``pace=F``, last).
+    Returns the item's number parts, step-to-step, the leading foot (None: the foot that would step next) and the
+    pace (None: the session's speed)."""
     words = []
     while len(parts) > 2 and parts[-1].strip()[:1].isalpha():
         words.insert(0, parts[-1].strip().lower())
         parts = parts[:-1]
+    pace = None
+    if words and (words[-1] in SPEEDS or words[-1].startswith(PACE_PREFIX)):
+        pace = _stair_pace(item, words.pop())
     example = f"e.g. '{kind}:12:0.17:0.29:{STEP_TO_STEP}' or '{kind}:12:0.17:0.29:{STEP_TO_STEP}:left'"
     if not words:
-        return parts, False, None
+        return parts, False, None, pace
     if words[0] != STEP_TO_STEP or len(words) > 2 or (len(words) == 2 and words[1] not in ("left", "right")):
         if words[0] in ("left", "right"):
             raise DataError(f"--route item {item!r}: a leading foot follows '{STEP_TO_STEP}' (step over step, the "
                             f"feet alternate; decision S92), {example}")
         raise DataError(f"--route item {item!r}: the options after N or RISE:RUN are '{STEP_TO_STEP}' (both feet on "
-                        "each stair; decision S80) and then the leading foot, 'left' or 'right' (decision S92), "
-                        f"{example}")
-    return parts, True, words[1] if len(words) == 2 else None
+                        "each stair; decision S80), then the leading foot, 'left' or 'right' (decision S92), then "
+                        f"a pace, {', '.join(SPEEDS)} or '{PACE_PREFIX}F' (decision S101), {example}")
+    return parts, True, words[1] if len(words) == 2 else None, pace
 
 
 def parse_route(spec: str) -> list[Segment]:
@@ -215,7 +242,7 @@ def parse_route(spec: str) -> list[Segment]:
             grade = pct / 100.0
             segments.append(Slope(_number(item, parts[1]), grade, gait=_gait(item, parts, 3)))
         elif kind in ("up", "down"):
-            parts, s2s, lead = _stair_options(item, kind, parts)  # decisions S80, S92
+            parts, s2s, lead, pace = _stair_options(item, kind, parts)  # decisions S80, S92, S101
             if len(parts) - 1 not in (1, 3):
                 raise DataError(f"--route item {item!r}: '{kind}' takes N or N:RISE:RUN, then optionally "
                                 f"':{STEP_TO_STEP}' and the leading foot ':left' / ':right' (decisions S80, S92), "
@@ -226,7 +253,7 @@ def parse_route(spec: str) -> list[Segment]:
                 if bad:
                     raise DataError(f"--route item {item!r}: {bad} (up:N:RISE:GOING, e.g. 'up:12:0.17:0.29')")
             segments.append(Stairs(int(_number(item, parts[1], integer=True)), up=kind == "up", step_to_step=s2s,
-                                   lead=lead, **size))
+                                   lead=lead, pace=pace, **size))
         elif kind == "backward":
             _arity(item, parts, (1, 2))
             if len(parts) > 2 and parts[2].strip().lower() != "direct":  # decision S67

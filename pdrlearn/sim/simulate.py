@@ -32,6 +32,7 @@ from pdrlearn.sim.body import (
     pelvis_pose,
     realistic_pelvis,
     schedule,
+    step_heights,
     step_lengths,
     trunk_vibration_source,
 )
@@ -44,7 +45,7 @@ from pdrlearn.sim.kernels import (
     specific_force_body,
 )
 from pdrlearn.sim.lying import LyingEpisode, lying_angles, lying_rotation, lying_table, roll_table
-from pdrlearn.sim.path import Footstep, Segment, plan_footsteps
+from pdrlearn.sim.path import Footstep, Segment, Stairs, plan_footsteps
 from pdrlearn.sim.ride import Ride, ride_offset, ride_table
 from pdrlearn.sim.scenarios import SCENARIOS
 from pdrlearn.sim.transfer import (
@@ -639,6 +640,9 @@ def simulate_path(
     ics = pd.DataFrame({"ic_s": ev.ic, "foot": [s.foot for s in steps], "kind": [s.kind for s in steps]})
     if opt["step_length_asymmetry"]:  # decision S42: the per-step lengths (steps.csv's strides sum two of them)
         ics["step_length_m"] = step_lengths(steps, initial)
+    if any(isinstance(seg, Stairs) and seg.step_to_step for seg in segments):
+        # decision S101: each step's rise; a step-to flight's alternate one stair and 0 (the trail onto the same stair)
+        ics["height_m"] = np.round(step_heights(steps, initial), 6)
     ics.attrs["time_columns"] = ["ic_s"]
     strides = _stride_table(steps, ev, initial, user, r_sensor, foot)
     extras = {"ics": ics, "foot_trajectory": foot_traj}

@@ -230,6 +230,46 @@ def with_slow_edges(imu: WaistIMU, tilt: np.ndarray, rows: pd.DataFrame, contact
     return out[list(TRANSFER_COLUMNS)]
 
 
+def with_slow_seats(imu: WaistIMU, tilt: np.ndarray, rows: pd.DataFrame, contacts: np.ndarray) -> pd.DataFrame:
+    """Decision W528: ``rows`` with a slow seated period between two walks read again, as L648 reads a TUG's ends:
+    in each gap of at least :data:`UNMATCHED_SIT_S` between consecutive ``contacts`` (s) that does not already hold
+    a stand-to-sit followed by a sit-to-stand, W450's candidate C reading (:data:`W450_CANDIDATE`) gives the first
+    slow stand-to-sit starting at most :data:`SLOW_EDGE_WALK_S` after the gap's first contact and the last slow
+    sit-to-stand ending at most that before its last; the kinds the gap lacks are added only when the gap then holds
+    exactly one sit and one rise, the sit ending before the rise starts (a one-sided find adds nothing). Rows
+    renumbered in time order."""
+    c = np.sort(np.asarray(contacts, dtype=float))
+    gaps = np.flatnonzero(np.diff(c) >= UNMATCHED_SIT_S) if c.size > 1 else np.zeros(0, int)
+    slow, added = None, []
+    start, end = rows["start_s"].to_numpy(float), rows["end_s"].to_numpy(float)
+    for g in gaps:
+        c0, c1 = c[g], c[g + 1]
+        mine = rows[(end > c0) & (start < c1)].sort_values("start_s")
+        sits, rises = mine[mine["kind"] == STAND_TO_SIT], mine[mine["kind"] == SIT_TO_STAND]
+        if len(sits) and len(rises) and float(sits["end_s"].min()) <= float(rises["start_s"].max()):
+            continue  # W182's whole seated period (a sit, then a rise)
+        if len(mine) > 1 or len(mine) != len(sits) + len(rises):
+            continue  # W182 already reads more than one transfer here, or another kind: left as read
+        slow = transfers_from_tilt(imu, tilt, slow_bounds=W450_CANDIDATE) if slow is None else slow
+        new = []
+        if not len(sits):
+            sits = slow[(slow["kind"] == STAND_TO_SIT) & (slow["start_s"] <= c0 + SLOW_EDGE_WALK_S)
+                        & (slow["end_s"] > c0) & (slow["end_s"] < c1)].iloc[:1]
+            new.append(sits)
+        if not len(rises):
+            rises = slow[(slow["kind"] == SIT_TO_STAND) & (slow["end_s"] >= c1 - SLOW_EDGE_WALK_S)
+                         & (slow["start_s"] > c0) & (slow["start_s"] < c1)].iloc[-1:]
+            new.append(rises)
+        if len(sits) == 1 and len(rises) == 1 and float(sits["end_s"].iloc[0]) <= float(rises["start_s"].iloc[0]):
+            added += new  # exactly one sit, then one rise: a whole seated period walked into and out of
+    if not added:
+        return rows
+    out = pd.concat([rows, *added], ignore_index=True) if len(rows) else pd.concat(added, ignore_index=True)
+    out = out.sort_values("start_s", kind="stable").reset_index(drop=True)
+    out["transfer"] = np.arange(1, len(out) + 1)
+    return out[list(TRANSFER_COLUMNS)]
+
+
 def _final_turn_end(imu: WaistIMU, last: float) -> float:
     """Decision W506: the end (s) of the first pelvis yaw-rate turn (L210) of at least C180's
     :data:`~pdrlearn.track.turn_gaps.TURN_GAP_MIN_DEG` that starts at most :data:`SLOW_EDGE_WALK_S` after ``last``
@@ -294,11 +334,14 @@ def chair_transfers_upright(imu: WaistIMU, steps: pd.DataFrame) -> tuple[pd.Data
         up = walking_upright(contact_directions(imu.t, imu.up_body, ev), steps["has_next"].to_numpy(bool)
                              if "has_next" in steps else np.ones(len(ev), bool))
         tilt = _tilt_deg(imu, up)
-        # decision L648: a slow rise before the first contact / sit after the last one (a TUG's) by W450's bounds
-        return with_slow_edges(imu, tilt, transfers_from_tilt(imu, tilt), ev), up, "walking"
+        # decision L648: a slow rise before the first contact / sit after the last one (a TUG's) by W450's bounds;
+        # W528: a slow seated period between two walks, as a sit-and-rise pair
+        rows = with_slow_edges(imu, tilt, transfers_from_tilt(imu, tilt), ev)
+        return with_slow_seats(imu, tilt, rows, ev), up, "walking"
     rows, up = still if still is not None else still_upright_transfers(imu)
-    if up is not None:  # decision L648: W277's upright, the same slow rise / sit at the walk's ends
-        rows = with_slow_edges(imu, _tilt_deg(imu, up), rows, ev)
+    if up is not None:  # decision L648: W277's upright, the same slow rise / sit at the walk's ends (W528: between)
+        tilt = _tilt_deg(imu, up)
+        rows = with_slow_seats(imu, tilt, with_slow_edges(imu, tilt, rows, ev), ev)
     return rows, up, "still" if up is not None else "none"
 
 
