@@ -66,3 +66,31 @@ def test_b457_a_steady_walk_gets_no_line(tmp_path, caplog):
     with caplog.at_level(logging.WARNING):
         read_session(folder)
     assert not any("B457" in r.getMessage() for r in caplog.records)
+
+
+def _pair_mean_walk(tmp_path):
+    """B458's sessions: a 100 Hz walk whose foot unit runs at 50 Hz from 12 s on, each sample its pair's mean."""
+    sim = simulate("walk", 2, rate_hz=100.0, seed=0, length_m=40.0)
+    steady = write_session(sim, tmp_path / "steady")
+    for name in ("fAccelerometer", "fGyroscope"):
+        s = sim.streams[name]
+        late = s.t >= s.t[0] + 12.0
+        keep = ~late | (np.arange(len(s)) % 2 == 0)
+        v = s.values.copy()
+        nxt = np.vstack([v[1:], v[-1:]])
+        v[late & keep] = 0.5 * (v[late & keep] + nxt[late & keep])
+        sim.streams[name] = Stream(name, s.t[keep], v[keep])
+    return steady, write_session(sim, tmp_path / "changed")
+
+
+def test_b458_a_changed_stream_is_read_on_its_fastest_clock_and_keeps_the_distance(tmp_path):
+    from pdrlearn.track.plasys import track_plasys
+
+    steady, changed = _pair_mean_walk(tmp_path)
+    s = read_session(changed)
+    acc = s.streams["fAccelerometer"]
+    assert np.allclose(np.diff(acc.t), 0.01)  # one uniform 100 Hz clock, no interval left as "dropped samples"
+    assert acc.gaps() == []
+    d0 = track_plasys(read_session(steady)).distance_m
+    d1 = track_plasys(s).distance_m
+    assert abs(d1 / d0 - 1.0) < 0.01  # B458's bound; read as 100 Hz with dt 10 ms the 50 Hz stretch lost ~half
