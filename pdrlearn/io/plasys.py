@@ -750,10 +750,10 @@ def _uniform_clocks(streams: dict[str, Stream], folder: Path) -> None:
 
 
 def _rate_changes(streams: dict[str, Stream], folder: Path) -> None:
-    """Decision B457, in place: each stream whose sample rate changed mid-recording (a unit's rate setting, not
-    dropped samples) is put on a uniform clock at its fastest stretch's period (:meth:`Stream.on_uniform_clock`,
-    bridging up to two of its slowest periods; longer gaps stay gaps), with one warning per set of streams that
-    changed the same way at the same time (to 0.1 s)."""
+    """Decisions B457 (the line) and B458 (the clock, adopted), in place: each stream whose sample rate changed
+    mid-recording (a unit's rate setting, not dropped samples) is put on a uniform clock at its fastest stretch's
+    period (:meth:`Stream.on_uniform_clock`, bridging up to two of its slowest periods; longer gaps stay gaps), with
+    one warning per set of streams that changed the same way at the same time (to 0.1 s)."""
     groups: dict[tuple, list[str]] = {}
     for name, s in list(streams.items()):
         ch = rate_changes(s.t)
