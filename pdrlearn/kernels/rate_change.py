@@ -52,9 +52,11 @@ def rate_changes(t: np.ndarray) -> list[RateChange]:
         return []
     med, t0 = _block_medians(t)
     stretches = []  # (first block, last block, median interval)
+    csum = np.concatenate([[0.0], np.cumsum(med)])  # the running level's mean in O(1): long recordings stay linear
     a = 0
     for i in range(1, med.size + 1):
-        if i == med.size or abs(med[i] - med[a:i].mean()) > LEVEL_TOL * med[a:i].mean():
+        level = (csum[i] - csum[a]) / (i - a)
+        if i == med.size or abs(med[i] - level) > LEVEL_TOL * level:
             if (i - a) * BLOCK_S >= MIN_STRETCH_S:
                 stretches.append((a, i - 1, float(np.median(med[a:i]))))
             a = i
