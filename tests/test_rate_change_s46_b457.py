@@ -38,6 +38,9 @@ def test_b457_dropped_samples_and_a_steady_rate_are_no_rate_change():
     assert rate_changes(burst) == []
     short = np.delete(t, np.arange(3001, 3300, 2))  # 3 s at half the rate: shorter than a stretch
     assert rate_changes(short) == []
+    b = np.arange(0.0, 300.0, 1 / 104)  # B182's sorted receive-time stamps, +-12 and +-30 ms at 104 Hz
+    for jit in (0.012, 0.03):
+        assert rate_changes(np.unique(b + rng.uniform(-jit, jit, b.size))) == []
 
 
 def _rate_changed_walk(tmp_path):
