@@ -49,6 +49,7 @@ from pdrlearn.io.validate import (
 )
 from pdrlearn.kernels.clock import stamp_jitter_s
 from pdrlearn.kernels.gaps import DROPS_CAUSE, gap_turn, streamed_drops_line  # decision E230: shared with the runtime
+from pdrlearn.kernels.rate_change import rate_changes
 from pdrlearn.kernels.units import data_row_lines, out_of_range, out_of_range_message
 from pdrlearn.textfile import (
     compressed_hint,
@@ -748,6 +749,29 @@ def _uniform_clocks(streams: dict[str, Stream], folder: Path) -> None:
                     "as the methods integrate with a fixed sample interval", folder, ", ".join(done), s.rate_hz)
 
 
+def _rate_changes(streams: dict[str, Stream], folder: Path) -> None:
+    """Decisions B457 (the line) and B458 (the clock, adopted), in place: each stream whose sample rate changed
+    mid-recording (a unit's rate setting, not dropped samples) is put on a uniform clock at its fastest stretch's
+    period (:meth:`Stream.on_uniform_clock`, bridging up to two of its slowest periods; longer gaps stay gaps), with
+    one warning per set of streams that changed the same way at the same time (to 0.1 s)."""
+    groups: dict[tuple, list[str]] = {}
+    for name, s in list(streams.items()):
+        ch = rate_changes(s.t)
+        if ch:
+            key = tuple((round(c.t_s, 1), f"{c.before_hz:.4g}", f"{c.after_hz:.4g}") for c in ch)
+            groups.setdefault(key, []).append(name)
+            fast = min(min(1.0 / c.before_hz, 1.0 / c.after_hz) for c in ch)
+            slow = max(max(1.0 / c.before_hz, 1.0 / c.after_hz) for c in ch)
+            streams[name] = s.on_uniform_clock(fast, 2.0 * slow)
+    for key, names in groups.items():
+        said = ", ".join(f"{a} -> {b} Hz at {t:.1f} s" for t, a, b in key)
+        rate = max(max(float(a), float(b)) for _, a, b in key)
+        log.warning("%s: %s: the sample rate changed %s (a unit's rate setting, not dropped samples; decision "
+                    "B457): interpolated onto a uniform %.4g Hz clock, as the offline methods integrate with one "
+                    "fixed sample interval - or record at one rate", folder, ", ".join(names), said, rate,
+                    extra={"code": "B457"})
+
+
 #: decision B183: the offline distance lost per fraction of the foot's samples dropped in short intervals (B64's
 #: users 1-3: 1 % -> -1.1..-3.2 %, 3 % -> -4.5..-8.8 %; the BLE trial's 5 % in bursts: -8.5..-12 %)
 DROP_DISTANCE_FACTOR = 2.0
@@ -1408,6 +1432,7 @@ def _read_session(folder, *, check_units, uniform_clock, bridge_drops, streamed,
     ends_uncut = unit_ends(streams) if spans == "common" else None  # decision B267: before any cut
     cut = cut_to_common_span(streams, folder) if spans == "common" else check_stream_spans(streams, folder, mode=spans)
     _warn_jitter(streams, folder)  # decision B182
+    _rate_changes(streams, folder)  # decision B457: before B64 calls a slower stretch dropped samples
     if uniform_clock:  # decision B33 (an option)
         _uniform_clocks(streams, folder)
     if bridge_drops is not False:

@@ -134,18 +134,20 @@ class Stream:
         """Sampling jitter above :data:`MAX_JITTER` (decision B33)."""
         return self.jitter > MAX_JITTER
 
-    def on_uniform_clock(self) -> Stream:
+    def on_uniform_clock(self, period_s: float | None = None, bridge_s: float | None = None) -> Stream:
         """The stream linearly interpolated onto a uniform clock at its nominal period from its first sample
         (decision B33: the pipelines integrate with ``dt = 1 / rate``, so samples taken at irregular true times
         are put where that assumes them). No sample is made up inside an interval longer than two periods:
         such gaps stay gaps (B11); a shorter one is bridged, as jitter cannot be told from one dropped sample.
-        The period is :attr:`period_s` (for a jittered stream the sample count over the span, B182)."""
+        The period is :attr:`period_s` (for a jittered stream the sample count over the span, B182).
+        ``period_s`` / ``bridge_s``: another period, and the longest interval bridged (decision B457: a stream
+        whose rate changed goes onto its fastest stretch's period, bridging up to two of its slowest periods)."""
         d = np.diff(self.t)
-        p = self.period_s
+        p = self.period_s if period_s is None else period_s
         n = int(np.floor((self.t[-1] - self.t[0]) / p + 1e-9)) + 1
         grid = self.t[0] + p * np.arange(n)
         i = np.clip(np.searchsorted(self.t, grid, side="right") - 1, 0, len(self) - 2)
-        keep = (d[i] <= 2.0 * p) | (grid <= self.t[i] + 1e-12)
+        keep = (d[i] <= (2.0 * p if bridge_s is None else bridge_s)) | (grid <= self.t[i] + 1e-12)
         grid = grid[keep]
         values = np.column_stack([np.interp(grid, self.t, self.values[:, j]) for j in range(self.values.shape[1])])
         return Stream(self.name, grid, values)
