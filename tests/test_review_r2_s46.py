@@ -1,0 +1,56 @@
+"""Review R2 of session 46 (fixer FM): F1 / decision E306 (a packet sent again late is a repeat, not a restarted
+pod), F2 / decision B459 (a clipped foot accelerometer is "the likely cause" only of a foot above the barometer at a
+full scale under B453's cut), F3 / decision L695 (the streamed rhythm's period read cheaply, the same strides; a bad
+``--params`` value refused in one line)."""
+
+from __future__ import annotations
+
+import logging
+
+import numpy as np
+import pytest
+
+from pdrlearn.runtime import Reorderer
+from tests.ble_packets import packets
+from tests.test_ble_stream_s45_e296 import walk  # noqa: F401  (the module fixture: T2's walk, user 12820)
+from tests.test_leftovers_s46_i5_e302 import _gateway
+
+
+# F1 / E306
+def test_a_resent_backlog_is_repeats_not_a_restart_e306(caplog):
+    """R2's stale.py: 20 Hz packets of 20 samples, hold 1.2 s, packets 15-17 sent again after packet 19."""
+    ro, rel = Reorderer(1.2), []
+    pk = [np.arange(20 * i, 20 * i + 20) * 0.05 for i in range(40)]
+    with caplog.at_level(logging.WARNING, logger="pdrlearn.runtime.ble"):
+        for i in [*range(20), 15, 16, 17, *range(20, 40)]:
+            got = ro.push({"fGyroscope": (pk[i], np.zeros((20, 3)))})
+            rel.extend(got.get("fGyroscope", ([],))[0])
+        rel.extend(ro.flush()["fGyroscope"][0])
+    assert ro.restarts == {} and ro.late == {} and ro.duplicates == {"fGyroscope": 60} and not caplog.records
+    np.testing.assert_array_equal(rel, np.concatenate(pk))  # released == sent, once each, in order
+
+
+def test_late_samples_with_other_values_are_still_late_e306():
+    """Only a copy (time and values) is a repeat: other values at released times stay ``late`` (and restart
+    evidence, E302)."""
+    ro = Reorderer(1.2)
+    for i in range(10):
+        ro.push({"fGyroscope": (np.arange(20 * i, 20 * i + 20) * 0.05, np.zeros((20, 3)))})
+    ro.push({"fGyroscope": (np.arange(60, 80) * 0.05, np.ones((20, 3)))})
+    assert ro.late == {"fGyroscope": 20} and ro.duplicates == {}
+
+
+@pytest.mark.slow
+def test_the_trials_walk_with_foot_packets_resent_late_is_not_rebased_e306(walk, caplog):  # noqa: F811
+    """R2's stale_gw.py: the foot packets that arrived at 20-23 s delivered again at 26 s, through E302's rebasing
+    gateway (before E306: 50.44 m for 45.71, 4 restarts, 1 rebase)."""
+    d, bundle = walk
+    pk = packets(d, 0, faults=False)
+    clean, _, _ = _gateway(bundle, pk)
+    old = [dict(p, arrival_s=26.0 + 0.01 * k)
+           for k, p in enumerate(p for p in pk if p["unit"] == "f" and 20.0 <= p["arrival_s"] <= 23.0)]
+    with caplog.at_level(logging.WARNING, logger="pdrlearn.runtime.ble"):
+        dist, ro, rebases = _gateway(bundle, sorted(pk + old, key=lambda p: p["arrival_s"]))
+    assert len(old) == 9 and ro.restarts == {} and ro.late == {} and rebases == 0
+    assert not [r for r in caplog.records if r.name == "pdrlearn.runtime.ble"]
+    assert set(ro.duplicates.values()) == {59} and dist == pytest.approx(clean, abs=1e-9)
