@@ -72,7 +72,8 @@ class Reorderer:
     seen. A sample whose timestamp repeats one held, or one released within the last ``hold_s``, is dropped
     (``duplicates``: per sensor), as are the late samples of a push that all repeat, time and values, samples
     released within the last :data:`RELEASED_MEMORY_S` (a packet sent again, decision E306); any other sample older
-    than the last released one arrived too late to be put in place, dropped (``late``: per sensor). It adds ``hold_s`` of latency (plus up to a packet): ``max_latency_s``
+    than the last released one arrived too late to be put in place, dropped (``late``: per sensor). It adds
+    ``hold_s`` of latency (plus up to a packet): ``max_latency_s``
     the most seen (the released sample's time against its sensor's newest). ``flush()`` releases what is held (the
     end of a stream); ``reset()`` the same, and forgets the clock (a pod that reconnected with its counter restarted).
     A restart the gateway missed is told here (decision E302): a sensor's samples dropped as ``late`` in 3 pushes or
