@@ -54,3 +54,23 @@ def test_the_trials_walk_with_foot_packets_resent_late_is_not_rebased_e306(walk,
     assert len(old) == 9 and ro.restarts == {} and ro.late == {} and rebases == 0
     assert not [r for r in caplog.records if r.name == "pdrlearn.runtime.ble"]
     assert set(ro.duplicates.values()) == {59} and dist == pytest.approx(clean, abs=1e-9)
+
+
+# F2 (amends L688)
+def _line(foot, baro, clip_g):
+    from pdrlearn.kernels.barometer_check import barometer_warning
+    summary = {"altitude_change_m": foot, "barometer_altitude_change_m": baro, "barometer_climb_change_m": baro,
+               "barometer_disagree_limit_m": 0.52}
+    return barometer_warning(summary, foot_clip_g=clip_g)
+
+
+def test_clipping_is_the_likely_cause_only_of_a_foot_above_the_barometer_under_12_g_l688():
+    """R2's l688.py: a fast slope walk (user 14514) clipped at +-8 g read +0.53 m against the barometer's +2.39 m
+    (unclipped +0.10 m): the foot below the barometer, the clipping named but not as the likely cause."""
+    below = _line(0.53, 2.39, 8.0)
+    assert "also clips at +-8 g (B77; it would make the foot read higher)" in below and "likely cause here" not in below
+    above = _line(2.45, -0.38, 4.0)  # T3's r_u11_normal__a4g500: the foot climbed, clipped at +-4 g
+    assert "clips at +-4 g (B77), the likely cause here" in above and "`track --altitude fused`" in above
+    big = _line(2.45, -0.38, 16.0)  # +-16 g: B453 measured no cost
+    assert "also clips at +-16 g (B77; at +-12 g or more" in big and "likely cause here:" not in big
+    assert "clips" not in _line(2.45, -0.38, None)

@@ -9,6 +9,7 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.errors import DataError
+from pdrlearn.kernels.barometer_check import CLIP_COSTLESS_G
 from pdrlearn.kernels.clock import batch_size
 from pdrlearn.kernels.units import (  # noqa: F401 - re-exported: the checks live in the numpy-only kernel (B119)
     GRAVITY_FACTOR_MAX,
@@ -763,7 +764,7 @@ def foot_accel_cost(top: float) -> str:
     ``top`` (m/s^2) in ratio (:data:`FOOT_ACCEL_CLIP_COST`) and, decision B454, what ``clip_noise`` left of it
     (:data:`FOOT_ACCEL_CLIP_NOISE`); "" above 12 g (+-16 g: nothing measurable)."""
     g = top / STANDARD_GRAVITY
-    if not g < 12.0:
+    if not g < CLIP_COSTLESS_G:
         return ""
     scale = min(FOOT_ACCEL_CLIP_COST, key=lambda k: abs(math.log(k / g)))
 
