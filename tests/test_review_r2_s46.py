@@ -74,3 +74,58 @@ def test_clipping_is_the_likely_cause_only_of_a_foot_above_the_barometer_under_1
     big = _line(2.45, -0.38, 16.0)  # +-16 g: B453 measured no cost
     assert "also clips at +-16 g (B77; at +-12 g or more" in big and "likely cause here:" not in big
     assert "clips" not in _line(2.45, -0.38, None)
+
+
+# F3 / L695: the streamed rhythm's means in a numpy buffer, the same pairs as L684's deque
+def test_trailing_series_keeps_what_the_deque_kept_l695():
+    from collections import deque
+
+    from pdrlearn.kernels.foot_rhythm import TrailingSeries
+    from pdrlearn.kernels.stride import TIE_S
+
+    rng = np.random.default_rng(0)
+    t = np.cumsum(np.where(rng.random(6000) < 0.01, 3.0, 0.01))  # 100 Hz with gaps of 3 s
+    x = rng.random(6000)
+    ring, ref, reads = TrailingSeries(12.0, TIE_S), deque(), 0
+    for i, (ti, xi) in enumerate(zip(t.tolist(), x.tolist(), strict=True)):
+        ring.append(ti, xi)
+        ref.append((ti, xi))  # L684's deque, trimmed at each append
+        while ref[0][0] <= ti - 12.0 + TIE_S:
+            ref.popleft()
+        if i % 97 == 0 or 2500 < i < 2600:  # reads now and then (and once after more than BATCH appends)
+            rt, rx = ring.arrays()
+            np.testing.assert_array_equal(np.column_stack([rt, rx]), np.array(ref))
+            reads += 1
+    assert reads > 100 and len(ring._t) <= 4 * TrailingSeries.BATCH  # bounded
+
+
+@pytest.mark.parametrize(("params", "words"), [
+    ({"stance_rhythm_frac": "abc"}, "parameter stance_rhythm_frac = 'abc' is not a finite number"),
+    ({"stance_gap_s": "abc"}, "parameter stance_gap_s = 'abc' is not a finite number"),
+    ({"stance_rhythm_frac": None}, "parameter stance_rhythm_frac = None is not a finite number"),
+    ({"min_step_s": float("nan")}, "parameter min_step_s = nan is not a finite number"),
+    ({"stance_rhythm_frac": 1e9}, "stance_rhythm_frac 1000000000.0 must be >= 0 and under 1"),
+    ({"stance_rhythm_frac": -0.1}, "stance_rhythm_frac -0.1 must be >= 0 and under 1"),
+])
+def test_a_bad_segmenter_parameter_is_refused_in_one_line_b459(params, words):
+    from pdrlearn.errors import DataError
+    from pdrlearn.kernels.stride import StanceSegmenter
+
+    with pytest.raises(DataError, match=words.replace("(", r"\(").replace(".", r"\.")) as e:
+        StanceSegmenter.from_params(params)
+    assert "\n" not in str(e.value)
+
+
+def test_track_streaming_refuses_a_bad_params_value_in_one_line_b459(tmp_path, capsys):
+    from pdrlearn.cli import main
+
+    p = tmp_path / "p.json"
+    p.write_text('{"stance_rhythm_frac": "abc"}')
+    session = tmp_path / "s"
+    assert main(["simulate", "--route", "stand:2, straight:4, stand:2", "--rate", "20", "--user-seed", "14503",
+                 "--out", str(session)]) == 0
+    capsys.readouterr()
+    assert main(["track", str(session), "--streaming", "--params", str(p), "--out", str(tmp_path / "o")]) != 0
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("error: ") and "stance_rhythm_frac" in err[0]
+    assert not (tmp_path / "o").exists()
