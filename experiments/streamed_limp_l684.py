@@ -1,7 +1,8 @@
 """Decision L684's measurement (rule written before it, docs/decisions/localization.md): L597's rhythm rule in the
-streamed stance segmenter (``stance_rhythm_frac``, new = the default 0.06, old = 0) on simulated limping walks (slow
-0.6-0.8 s steps, stance and step-time asymmetry) at 100 and 20 Hz, the real gaitmap foot recordings and L667's forward
-walks, against offline ``track`` (no model), and the runtime's latency (``pdrlearn run`` with the bundled model).
+streamed stance segmenter (``stance_rhythm_frac``, new = the default, ``STREAMED_RHYTHM_FRAC`` 0.1; old = 0) on
+simulated limping walks (slow 0.6-0.8 s steps, stance and step-time asymmetry) at 100 and 20 Hz, the real gaitmap
+foot recordings and L667's forward walks, against offline ``track`` (no model), and the runtime's latency
+(``pdrlearn run`` with the bundled model).
 ``OMP_NUM_THREADS=1 PYTHONPATH=. python experiments/streamed_limp_l684.py [a b c]``."""
 
 from __future__ import annotations

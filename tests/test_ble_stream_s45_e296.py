@@ -75,7 +75,9 @@ def test_reorderer_releases_in_sample_order_drops_repeats_and_counts_late():
     assert ro.duplicates == {"fAccelerometer": 2} and ro.held == 10
     assert ro.push({"fAccelerometer": (t[12:14], v[12:14])}) == {}  # released within hold_s: repeats
     assert ro.duplicates == {"fAccelerometer": 4} and not ro.late
-    ro.push({"fAccelerometer": (t[5:6], v[5:6])})  # released more than hold_s before the last: counted late
+    ro.push({"fAccelerometer": (t[5:6], v[5:6])})  # released more than hold_s before the last, the same values:
+    assert ro.duplicates == {"fAccelerometer": 5} and not ro.late  # a packet sent again (decision E306), a repeat
+    ro.push({"fAccelerometer": (t[5:6], v[5:6] + 1.0)})  # released more than hold_s before, other values: late
     assert ro.late == {"fAccelerometer": 1}
     ro.push({"fAccelerometer": ([0.0125], [[9.0, 9.0, 9.0]])})  # older than the released ones: late
     assert ro.late == {"fAccelerometer": 2}

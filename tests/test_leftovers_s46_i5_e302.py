@@ -16,11 +16,11 @@ from tests.ble_packets import START_MS, U32, packets
 from tests.test_ble_stream_s45_e296 import walk  # noqa: F401  (the module fixture: T2's walk, user 12820)
 
 
-def _push_packets(ro, t0, n, dt=0.05, k=20, name="fAccelerometer"):
+def _push_packets(ro, t0, n, dt=0.05, k=20, name="fAccelerometer", v0=0.0):
     out = []
     for i in range(n):
         t = t0 + (i * k + np.arange(k)) * dt
-        got = ro.push({name: (t, np.column_stack([t, t, t]))})
+        got = ro.push({name: (t, np.column_stack([t, t, t]) + v0)})
         out.append(got.get(name, (np.empty(0), None))[0])
     return np.concatenate(out)
 
@@ -29,7 +29,9 @@ def test_a_restarted_clock_is_told_warned_once_and_kept_e302(caplog):
     ro = Reorderer(1.2)
     old = _push_packets(ro, 0.0, 10)  # 0-9.95 s, the old clock
     with caplog.at_level(logging.WARNING, logger="pdrlearn.runtime.ble"):
-        new = _push_packets(ro, 0.0, 5)  # the pod restarted: its clock from 0 again, the gateway not told
+        # the pod restarted: its clock from 0 again, the gateway not told; it reads other values at the old times
+        # (the same values would be a packet sent again, decision E306)
+        new = _push_packets(ro, 0.0, 5, v0=100.0)
     lines = [r.getMessage() for r in caplog.records]
     assert len(lines) == 1 and "fAccelerometer's clock went back from 9.950 s to 0.000 s" in lines[0]
     assert "restarted pod (decision E302)" in lines[0]

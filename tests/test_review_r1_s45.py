@@ -62,7 +62,7 @@ def test_f1_reset_releases_a_restarted_clock_that_flush_alone_drops_as_late():
 
 # F2 (E296): each chunk checked whole before any of it is held
 def _state(ro):
-    return (ro.held, dict(ro._newest), {k: v.tolist() for k, v in ro._released.items()}, dict(ro.late),
+    return (ro.held, dict(ro._newest), {k: [a.tolist() for a in v] for k, v in ro._released.items()}, dict(ro.late),
             dict(ro.duplicates))
 
 

@@ -14,6 +14,10 @@ BAROMETER_DISAGREE_M = 0.5
 #: decision L145: the weather's pressure drift, 0.3 hPa per hour (the simulator's 1-SD trend, decision S4, from
 #: thesis Table 18's 30-day range) = ~2.5 m of barometric altitude per hour
 BAROMETER_DRIFT_M_PER_H = 2.5
+#: decision B453: a foot accelerometer clipped at this full scale (g) or more cost the simulated walks nothing
+#: measurable (+-16 g; +-8 g cost 0.22 m of end height, :data:`pdrlearn.io.validate.FOOT_ACCEL_CLIP_COST`), so
+#: L688's line calls clipping the likely cause only under it (review R2 finding F2)
+CLIP_COSTLESS_G = 12.0
 
 
 #: decision L180: what the foot cannot see, named in L145's line: a ride (lift, escalator; no strides while the
@@ -44,12 +48,20 @@ def _climb_miss(summary: dict, ridden: dict | None = None) -> tuple[str, float] 
     return max(misses, key=lambda m: m[1]) if misses else None
 
 
-def clipped_cause(clip_g: float | None, fused: bool) -> str:
+def clipped_cause(clip_g: float | None, fused: bool, over_m: float) -> str:
     """Decision L688 (trial T3 finding F2): the words naming a clipped foot accelerometer (B77, at +-``clip_g`` g) as
     the likely cause of a foot altitude the barometer disagrees with, and ``--altitude fused`` as the remedy when the
-    track did not fuse it; "" when the accelerometer did not clip (None)."""
+    track did not fuse it; "" when the accelerometer did not clip (None). Amended (review R2 finding F2): the likely
+    cause only where its creep points - the foot above the barometer, ``over_m`` (foot - barometer, m) more than
+    the limit (the caller's ``inf``: above) - and its size is measured (a full scale under
+    :data:`CLIP_COSTLESS_G`); otherwise the clipping is only named, "also clips"."""
     if not clip_g:
         return ""
+    if not over_m > 0:  # a clipped heel strike makes the foot climb (L688): a foot below the barometer is not it
+        return f"the foot accelerometer also clips at +-{clip_g:.3g} g (B77; it would make the foot read higher); "
+    if not clip_g < CLIP_COSTLESS_G:
+        return (f"the foot accelerometer also clips at +-{clip_g:.3g} g (B77; at +-{CLIP_COSTLESS_G:g} g or more "
+                "simulated walks lost nothing measurable, B453); ")
     return (f"the foot accelerometer clips at +-{clip_g:.3g} g (B77), the likely cause here: a clipped heel strike "
             "leaves each stride's vertical velocity off, so the foot's height creeps stride by stride"
             + ("" if fused else "; `track --altitude fused` (L154) takes the height from the barometer instead")
@@ -88,7 +100,7 @@ def barometer_warning(summary: dict, *, foot_clip_g: float | None = None) -> str
     # decision L632: a track whose rides.csv holds a ride read the lifts; the lower back would read no more of them
     lifts = ("" if ridden is not None and (ridden["ascent"] or ridden["descent"]) else
              "; for floors by lift or escalator track the lower back, `--pipeline waist-pendulum`")
-    cause = clipped_cause(foot_clip_g, fused)  # decision L688
+    cause = clipped_cause(foot_clip_g, fused, float(foot) - float(baro))  # decision L688
     advice = (lifts + "; for altitude on slopes, hills and ramps "
               + ("" if fused else "fuse the barometer, `--altitude fused` (L154), or ") + "track the lower back")
     if not abs(float(foot) - float(baro)) > float(limit):

@@ -12,6 +12,7 @@ import re
 
 import numpy as np
 
+from pdrlearn.kernels.barometer_check import CLIP_COSTLESS_G
 from pdrlearn.kernels.units import MOVING_ACC, MOVING_RPS, STANDARD_GRAVITY, quantisation_margin
 from pdrlearn.warning_lines import coded
 
@@ -268,7 +269,7 @@ def foot_accel_cost(top: float) -> str:
     ``top`` (m/s^2) in ratio (:data:`FOOT_ACCEL_CLIP_COST`) and, decision B454, what ``clip_noise`` left of it
     (:data:`FOOT_ACCEL_CLIP_NOISE`); "" above 12 g (+-16 g: nothing measurable)."""
     g = top / STANDARD_GRAVITY
-    if not g < 12.0:
+    if not g < CLIP_COSTLESS_G:
         return ""
     scale = min(FOOT_ACCEL_CLIP_COST, key=lambda k: abs(math.log(k / g)))
 

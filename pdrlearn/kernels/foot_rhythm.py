@@ -44,6 +44,51 @@ def stride_period(w: np.ndarray, fs: float, *, lo_s: float = PERIOD_RANGE_S[0],
 TRAILING_WINDOW_S = 2 * PERIOD_RANGE_S[1]
 
 
+class TrailingSeries:
+    """Decision L695 (review R2 finding F3): the ``(t, x)`` pairs of the last ``span_s`` s of a stream whose times
+    increase - a pair leaves once ``t <= newest - span_s + tie_s``, as a deque of ``(t, x)`` tuples trimmed at each
+    append would keep them - in a numpy buffer read as two contiguous arrays (:meth:`arrays`: views, no copy). An
+    append is two Python list appends; the pairs move into the buffer in batches (at a read, or every
+    :attr:`BATCH` appends, so memory stays bounded without reads), where one ``searchsorted`` trims them."""
+
+    BATCH = 1024
+
+    def __init__(self, span_s: float, tie_s: float = 0.0):
+        self.span_s, self.tie_s = float(span_s), float(tie_s)
+        self._t, self._x = np.empty(2 * self.BATCH), np.empty(2 * self.BATCH)
+        self._a = self._b = 0  # the kept pairs: self._t[self._a:self._b]
+        self._pt: list[float] = []
+        self._px: list[float] = []
+
+    def append(self, t: float, x: float) -> None:
+        self._pt.append(t)
+        self._px.append(x)
+        if len(self._pt) >= self.BATCH:
+            self._move()
+
+    def arrays(self) -> tuple[np.ndarray, np.ndarray]:
+        """The kept ``(t, x)`` as two arrays (views into the buffer: read them before the next append)."""
+        self._move()
+        return self._t[self._a:self._b], self._x[self._a:self._b]
+
+    def _move(self) -> None:
+        k = len(self._pt)
+        if not k:
+            return
+        n = self._b - self._a
+        if self._b + k > len(self._t):  # the kept pairs to the buffer's start, in a larger one when they need it
+            size = max(len(self._t), 2 * (n + k))
+            t, x = (np.empty(size), np.empty(size)) if size > len(self._t) else (self._t, self._x)
+            t[:n], x[:n] = self._t[self._a:self._b].copy(), self._x[self._a:self._b].copy()
+            self._t, self._x, self._a, self._b = t, x, 0, n
+        self._t[self._b:self._b + k], self._x[self._b:self._b + k] = self._pt, self._px
+        self._b += k
+        self._pt.clear()
+        self._px.clear()
+        cut = float(self._t[self._b - 1]) - self.span_s + self.tie_s  # the deque's per-append trim, at the newest
+        self._a += int(np.searchsorted(self._t[self._a:self._b], cut, side="right"))
+
+
 def trailing_period(t: np.ndarray, w: np.ndarray) -> float:
     """Decision L684: :func:`stride_period` of the trailing samples ``t (n,)`` s, ``w (n,)`` (the foot's |w| window
     mean) kept by a streamed segmenter, the longest lag searched cut to half of what they hold (a walk's first

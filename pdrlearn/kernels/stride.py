@@ -125,6 +125,19 @@ def stance_floor(w: np.ndarray, fs: float, *, mean_s: float, window_s: float) ->
     return minimum_filter1d(m, max(1, int(round(window_s * fs))), mode="nearest")
 
 
+def _param_number(key: str, value) -> float:
+    """Decision B459 (review R2): a segmenter parameter (a bundle's or ``track --streaming --params``') as a float,
+    or a one-line :class:`DataError` naming the key: not a number, or not finite."""
+    try:
+        x = float(value) if not isinstance(value, bool) else math.nan
+    except (TypeError, ValueError):
+        x = math.nan
+    if not math.isfinite(x):
+        raise DataError(f"StanceSegmenter: parameter {key} = {value!r} is not a finite number; give it as a number "
+                        "(in the --params JSON file, or the bundle's displacement parameters)")
+    return x
+
+
 class StanceSegmenter:
     """Online stance-to-stance stride detection on the foot gyroscope (decisions E7, L27, L29).
 
@@ -174,10 +187,12 @@ class StanceSegmenter:
                             f"stance_floor_window_s {stance_floor_window_s!r} > 0 (decisions L27, L29; all "
                             "three 0 = the fixed rule E7)")
         self.rhythm_frac = float(stance_rhythm_frac)
-        if not self.rhythm_frac >= 0:
-            raise DataError(f"StanceSegmenter: stance_rhythm_frac {stance_rhythm_frac!r} must be >= 0 (decision L684; "
-                            "0 = no rhythm rule)")
-        self._rhythm_q: deque = deque()  # decision L684: trailing (t, |w| mean) to read the foot's period
+        if not 0 <= self.rhythm_frac < 1:  # decision B459: a stance lasting the whole stride period is no stride
+            raise DataError(f"StanceSegmenter: stance_rhythm_frac {stance_rhythm_frac!r} must be >= 0 and under 1, "
+                            "the fraction of the foot's stride period a stance must last (decision L684; 0 = no "
+                            "rhythm rule, the default 0.1; B459)")
+        # decision L684: trailing (t, |w| mean) to read the foot's period (L695: in a numpy buffer)
+        self._rhythm = FR.TrailingSeries(FR.TRAILING_WINDOW_S, TIE_S)
         self.rest_s = 0.0  # decision L684: the rhythm's shortest stance (s), read when the stance in progress started
         self.stance_start: float | None = None
         self.last_still = -np.inf
@@ -196,10 +211,11 @@ class StanceSegmenter:
 
     @classmethod
     def from_params(cls, params: Mapping) -> StanceSegmenter:
-        """From a bundle's ``displacement`` parameters (unknown keys ignored)."""
+        """From a bundle's ``displacement`` parameters (unknown keys ignored; decision B459: a value that is not a
+        finite number refused in one line naming its key)."""
         keys = ("stance_gyro_rad_s", "min_stance_s", "stance_half_s", "min_step_s", "max_step_s",
                 "stance_rhythm_frac", *STANCE_L27_DEFAULTS)  # L684; L120: stance_gap_swing_frac, stance_gap_max_s
-        return cls(**{k: float(params[k]) for k in keys if k in params})
+        return cls(**{k: _param_number(k, params[k]) for k in keys if k in params})
 
     def _gap_now(self) -> float:
         """Decision L120: the motion (s) the stance in progress survives: ``stance_gap_s``, or
@@ -226,10 +242,7 @@ class StanceSegmenter:
             self._mean_sum -= mq.popleft()[1]
         m = self._mean_sum / len(mq)
         if self.rhythm_frac > 0:  # decision L684: the means the foot's period is read from
-            rq = self._rhythm_q
-            rq.append((ti, m))
-            while rq[0][0] <= ti - FR.TRAILING_WINDOW_S + TIE_S:
-                rq.popleft()
+            self._rhythm.append(ti, m)
         if self.factor == 0:
             return m, self.thr
         nq = self._min_q
@@ -334,9 +347,11 @@ class StanceSegmenter:
         """Decision L684: the shortest stance (s) the foot's period asks, read from the trailing |w| means:
         ``stance_rhythm_frac`` x the period where L597's rule (:func:`pdrlearn.kernels.foot_rhythm.min_rest_s` against
         the stance's own minimum run) finds it slow; 0 = none."""
-        if self.rhythm_frac == 0 or len(self._rhythm_q) < 3:
+        if self.rhythm_frac == 0:
             return 0.0
-        t, m = np.array(self._rhythm_q).T
+        t, m = self._rhythm.arrays()
+        if len(t) < 3:
+            return 0.0
         period = FR.trailing_period(t, m)
         return self.rhythm_frac * period if FR.min_rest_s(period, min_run) > 0 else 0.0  # where L597 acts
 

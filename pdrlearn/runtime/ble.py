@@ -19,6 +19,9 @@ log = logging.getLogger(__name__)
 #: decision E302 (amended after measuring): a restart is told from at least this many pushes of a sensor set aside
 #: in a row (one or two overtaken packets span more than a short ``hold_s`` too)
 RESTART_PUSHES = 3
+#: decision E306: the seconds of released samples (times and values) a sensor remembers, so a packet sent again
+#: later than ``hold_s`` (a re-sent backlog, a store-and-forward gateway) is told as a repeat, not a restarted clock
+RELEASED_MEMORY_S = 30.0
 
 
 class CounterUnwrapper:
@@ -67,8 +70,10 @@ class Reorderer:
     chunk ``{sensor: (t, values)}`` in arrival order (``t`` on the pod's sample clock, s) and returns the samples
     now due, per sensor in sample-time order: those at least ``hold_s`` older than that sensor's newest sample
     seen. A sample whose timestamp repeats one held, or one released within the last ``hold_s``, is dropped
-    (``duplicates``: per sensor); any other sample older than the last released one arrived too late to be put in
-    place, dropped (``late``: per sensor). It adds ``hold_s`` of latency (plus up to a packet): ``max_latency_s``
+    (``duplicates``: per sensor), as are the late samples of a push that all repeat, time and values, samples
+    released within the last :data:`RELEASED_MEMORY_S` (a packet sent again, decision E306); any other sample older
+    than the last released one arrived too late to be put in place, dropped (``late``: per sensor). It adds
+    ``hold_s`` of latency (plus up to a packet): ``max_latency_s``
     the most seen (the released sample's time against its sensor's newest). ``flush()`` releases what is held (the
     end of a stream); ``reset()`` the same, and forgets the clock (a pod that reconnected with its counter restarted).
     A restart the gateway missed is told here (decision E302): a sensor's samples dropped as ``late`` in 3 pushes or
@@ -85,7 +90,7 @@ class Reorderer:
         self.hold_s = float(hold_s)
         self._held: dict[str, list[tuple[np.ndarray, np.ndarray]]] = {}
         self._newest: dict[str, float] = {}
-        self._released: dict[str, np.ndarray] = {}  # the recently released times, for repeats
+        self._released: dict[str, tuple[np.ndarray, np.ndarray]] = {}  # the recently released (t, values) (E306)
         self._width: dict[str, int] = {}  # values per sample of a sensor not in SENSOR_WIDTH: its first samples'
         self.duplicates: dict[str, int] = {}
         self.late: dict[str, int] = {}
@@ -111,8 +116,8 @@ class Reorderer:
             if t.size:
                 checked.append((name, t, v))
         for name, t, v in checked:
-            prev = self._released.get(name)
-            if prev is not None and prev.size and (t > prev[-1]).any():  # in place: those set aside were late
+            prev = self._released.get(name, (np.empty(0),))[0]
+            if prev.size and (t > prev[-1]).any():  # in place: those set aside were late
                 self._aside.pop(name, None)
             self._width.setdefault(name, v.shape[1])
             self._held.setdefault(name, []).append((t, v))
@@ -189,10 +194,15 @@ class Reorderer:
             t, v = t[order], v[order]
             first = np.ones(t.size, dtype=bool)
             first[1:] = t[1:] != t[:-1]
-            prev = self._released.get(name, np.empty(0))
-            repeat = ~first | np.isin(t, prev)
+            prev, prev_v = self._released.get(name, (np.empty(0), np.empty((0, v.shape[1]))))
             last = prev[-1] if prev.size else -math.inf
+            i = np.minimum(np.searchsorted(prev, t), max(prev.size - 1, 0))
+            hit = (prev[i] == t) if prev.size else np.zeros(t.size, dtype=bool)  # prev: increasing, no repeats
+            repeat = ~first | hit & (t >= last - self.hold_s)  # E296: a time repeated within hold_s
             late = ~repeat & (t <= last)
+            # E306: late samples that all repeat released ones, time and values, are a packet sent again
+            if late.any() and (hit[late] & (prev_v[i[late]] == v[late]).all(axis=1)).all():
+                repeat, late = repeat | late, np.zeros(t.size, dtype=bool)
             self._count(self.duplicates, name, int(repeat.sum()))
             self._count(self.late, name, int(late.sum()))
             if aside and late.any():  # kept aside in case they are a restarted clock's (E302)
@@ -207,8 +217,9 @@ class Reorderer:
                 out[name] = (t[due], v[due])
                 if math.isfinite(self._newest[name]):
                     self.max_latency_s = max(self.max_latency_s, self._newest[name] - float(t[due][0]))
-                rel = np.concatenate([prev, t[due]])
-                self._released[name] = rel[rel >= rel[-1] - self.hold_s]  # repeats within hold_s of the last
+                rel, rel_v = np.concatenate([prev, t[due]]), np.concatenate([prev_v, v[due]])
+                kept = rel >= rel[-1] - max(self.hold_s, RELEASED_MEMORY_S)  # E306: the last 30 s remembered
+                self._released[name] = (rel[kept], rel_v[kept])
         return out
 
     @staticmethod
