@@ -222,6 +222,11 @@ def with_slow_edges(imu: WaistIMU, tilt: np.ndarray, rows: pd.DataFrame, contact
         added.append(sit.iloc[[0]])
     elif len(sit) and final_turn and float(sit["start_s"].iloc[0]) <= _final_turn_end(imu, last) + SLOW_EDGE_WALK_S:
         added.append(sit.iloc[[0]])  # decision W506: ... once back and turned about in front of the chair
+    return _with_added(rows, added)
+
+
+def _with_added(rows: pd.DataFrame, added: list) -> pd.DataFrame:
+    """``rows`` with the transfer rows of ``added`` (a list of frames), in time order and renumbered (L648, W528)."""
     if not added:
         return rows
     out = pd.concat([rows, *added], ignore_index=True) if len(rows) else pd.concat(added, ignore_index=True)
@@ -262,12 +267,7 @@ def with_slow_seats(imu: WaistIMU, tilt: np.ndarray, rows: pd.DataFrame, contact
             new.append(rises)
         if len(sits) == 1 and len(rises) == 1 and float(sits["end_s"].iloc[0]) <= float(rises["start_s"].iloc[0]):
             added += new  # exactly one sit, then one rise: a whole seated period walked into and out of
-    if not added:
-        return rows
-    out = pd.concat([rows, *added], ignore_index=True) if len(rows) else pd.concat(added, ignore_index=True)
-    out = out.sort_values("start_s", kind="stable").reset_index(drop=True)
-    out["transfer"] = np.arange(1, len(out) + 1)
-    return out[list(TRANSFER_COLUMNS)]
+    return _with_added(rows, added)
 
 
 def _final_turn_end(imu: WaistIMU, last: float) -> float:
