@@ -116,5 +116,6 @@ def turning_length_line(n_off: int, n_turning: int, n_strides: int, *, replaced:
             f"corners and its out-of-domain check does not see them; {what} (decision C89)")
 
 
-__all__ = ["STRAIGHT_MAX_RAD", "TURN_LENGTH_RULE", "CONTRADICTION_MARGIN", "contradicts_by_margin", "TURN_DISAGREE_SHARE", "TURN_DISAGREE_MIN", "measured_class_one",
-           "turning", "turn_length_class_one", "disagrees_one", "TurnTally", "turning_length_line"]
+__all__ = ["STRAIGHT_MAX_RAD", "TURN_LENGTH_RULE", "CONTRADICTION_MARGIN", "contradicts_by_margin",
+           "TURN_DISAGREE_SHARE", "TURN_DISAGREE_MIN", "measured_class_one", "turning", "turn_length_class_one",
+           "disagrees_one", "TurnTally", "turning_length_line"]
