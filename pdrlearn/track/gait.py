@@ -913,7 +913,7 @@ def gait_speed_warning(summary: dict) -> str | None:
 SLOW_FOOT_DISTANCE = "-3.1 to +1.4 % on simulated shuffling at 0.2-0.5 m/s"
 #: decision C192: what the offline foot track's distance did on simulated fast stepping above L95's cadence range at a
 #: walking speed (users 14440-14442, 0.3 s steps of 0.4 / 0.5 / 0.6 m, no model; experiments/results/foot_fast_c192.txt)
-FAST_FOOT_DISTANCE = "-0.23 to +0.44 % on simulated fast stepping at 200 steps/min, 1.3-2.0 m/s"
+FAST_FOOT_DISTANCE = "-0.23 to +0.44 % at 200 steps/min, 1.3-2.0 m/s"
 
 
 def _unreliable(summary: dict, info: dict, slow: bool, fast_steps: bool = False) -> str:
