@@ -1171,6 +1171,10 @@ FOOT_STEPS: tuple[Column, ...] = (
                                               "can be wrong with a high confidence; L474); since L481 only level, "
                                               "straight, forward strides of a continuous walk are compared (a "
                                               "start, a stop, a turn, a stair stride is false)"),
+    ("stride_time_out_of_range", _ID, "true/false", "offline with a model trained since C191: stride_time_s more "
+                                                    "than 10 % outside the model's training strides' 1-99 % stride "
+                                                    "times (a tempo the calibration did not walk; the same strides "
+                                                    "as speed_out_of_range are compared; C191)"),
     ("window_start_s", "s", "number", "with a model: the window the classes come from (L38)"),
     ("window_end_s", "s", "number", "the same window's end"),
     ("sideways", _ID, "true/false", "a side step of L219's sideways run: no steady or straight stride (L228); a "

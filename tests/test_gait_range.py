@@ -9,14 +9,19 @@ import pytest
 
 from pdrlearn.track.gait import gait_range_warning
 
+#: decision C192: L95's fast line at a walking speed states the cadence above the validated range first
+_SHORT_FAST = ("a cadence above the walking range the pipelines were validated on (short fast steps: quick dance "
+               "steps, a festinating or shuffling gait; or running)")
+
 
 @pytest.mark.parametrize(("summary", "want"), [
     ({"median_cadence_spm": 206.9, "median_speed_mps": 4.147, "out_of_domain_fraction": 1.0},
      "running is not supported"),
     ({"median_cadence_spm": 150.0, "median_speed_mps": 2.7}, "running is not supported"),
     ({"median_cadence_spm": 64.3, "median_speed_mps": 0.42}, "slower than the walking"),
-    # W144: festination (0.1 m steps at 200 steps/min, 0.33 m/s) is short fast steps, not a run
-    ({"median_cadence_spm": 200.0, "median_speed_mps": 0.33}, "short fast steps (a festinating or shuffling gait)"),
+    # W144: festination (0.1 m steps at 200 steps/min, 0.33 m/s) is short fast steps, not a run (C192: the cadence
+    # above the validated range first)
+    ({"median_cadence_spm": 200.0, "median_speed_mps": 0.33}, _SHORT_FAST),
     ({"median_cadence_spm": None, "median_speed_mps": None, "gait_speed_mps": 3.9}, "running"),  # streamed (E48)
     ({"median_cadence_spm": 110.2, "median_speed_mps": 1.246}, None),
     ({"median_cadence_spm": 132.1, "median_speed_mps": 2.058}, None),  # the MS patient's fast walk
@@ -46,7 +51,7 @@ def test_track_prints_and_stores_the_range_warning(tmp_path, monkeypatch, capsys
     lines = [w for w in out["info"]["warnings"] if "decision L95" in w]
     # W144: 195 steps/min at a walking speed is short fast steps (or a run), not "looks like running"
     assert len(lines) == 1 and lines[0].startswith("median cadence 195 steps/min, straight-walking speed 1.27 m/s: "
-                                                   "short fast steps (a festinating or shuffling gait) or running")
+                                                   + _SHORT_FAST)
     saved = json.loads((tmp_path / "o" / "summary.json").read_text())
     assert [w for w in saved["info"]["warnings"] if "decision L95" in w] == lines
 
@@ -121,8 +126,8 @@ def test_the_range_scales_with_leg_length():
     ({"median_cadence_spm": 182.0, "median_speed_mps": 1.5, "leg_length_m": 0.61}, None),
     # the same figures for an adult leg (or none given) still warn; a child's run still warns
     # (W144: at a walking speed they are named short fast steps or running)
-    ({"median_cadence_spm": 196.0, "median_speed_mps": 1.18, "leg_length_m": 0.9}, "or running, neither of which"),
-    ({"median_cadence_spm": 196.0, "median_speed_mps": 1.18}, "or running, neither of which is supported"),
+    ({"median_cadence_spm": 196.0, "median_speed_mps": 1.18, "leg_length_m": 0.9}, "; or running): the pipelines"),
+    ({"median_cadence_spm": 196.0, "median_speed_mps": 1.18}, "; or running): the pipelines are validated"),
     ({"median_cadence_spm": 250.0, "median_speed_mps": 2.2, "leg_length_m": 0.45,
       "leg_length_source": "meta.json leg_length_m"}, "for the 0.45 m leg of meta.json leg_length_m 99-226 steps/min"),
     ({"median_cadence_spm": 206.9, "median_speed_mps": 4.147, "leg_length_m": 0.95}, "running is not supported"),

@@ -20,6 +20,10 @@ from pdrlearn.track.gait import bout_range_flags, bout_range_warning, gait_range
 
 REAL = Path(__file__).resolve().parents[1] / "datasets" / "real"
 
+#: decision C192: L95's fast line at a walking speed states the cadence above the validated range first
+_SHORT_FAST = ("a cadence above the walking range the pipelines were validated on (short fast steps: quick dance "
+               "steps, a festinating or shuffling gait; or running)")
+
 
 def _bouts(rows):
     cols = ("n_strides", "cadence_spm", "speed_mps")
@@ -96,17 +100,18 @@ def test_a_cv_over_bouts_of_different_rhythm_is_named_and_kept():
 @pytest.mark.parametrize(("summary", "first"), [
     # W178: 200 steps/min at 1.95 m/s (the trial's uncalibrated lower back) names running first
     ({"median_cadence_spm": 200.0, "median_speed_straight_mps": 1.95, "n_straight_strides": 50},
-     "median cadence 200 steps/min, straight-walking speed 1.95 m/s: running, or short fast steps"),
+     "median cadence 200 steps/min, straight-walking speed 1.95 m/s: "
+     "a cadence above the walking range the pipelines were validated on (running, or short fast steps"),
     # W144 kept: festination at 0.33 m/s
     ({"median_cadence_spm": 200.0, "median_speed_mps": 0.33},
-     "median cadence 200 steps/min, speed 0.33 m/s: short fast steps (a festinating or shuffling gait) or running"),
+     "median cadence 200 steps/min, speed 0.33 m/s: " + _SHORT_FAST),
     # L197: a downhill run, no speed judged (slope strides, L179), its gait speed above the range
     ({"median_cadence_spm": 183.1, "median_speed_straight_mps": 1.59, "n_straight_strides": 1, "n_stair_strides": 30,
       "gait_speed_mps": 2.85},
      "median cadence 183 steps/min, gait speed 2.85 m/s: this looks like running, and running is not supported"),
     # ... and a stair descent at a walking gait speed keeps W144's wording
     ({"median_cadence_spm": 183.1, "n_straight_strides": 1, "n_stair_strides": 30, "gait_speed_mps": 0.8},
-     "median cadence 183 steps/min: short fast steps (a festinating or shuffling gait) or running"),
+     "median cadence 183 steps/min: " + _SHORT_FAST),
 ])
 def test_the_fast_gait_is_named_by_its_speed(summary, first):
     assert gait_range_warning(summary).startswith(first)

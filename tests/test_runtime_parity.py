@@ -67,8 +67,11 @@ def test_every_exported_method_and_unit_matches_predict_steps(trained):
     assert checked >= 3 * 9  # 3 tasks x (heuristic 2 + fusion 1 + dtw/svm/nn 3 each)
 
 
-def test_streamed_steps_equal_training_side_on_the_same_steps(trained):
+def test_streamed_steps_equal_training_side_on_the_same_steps(trained, monkeypatch):
     """Replay in 0.5 s chunks: every emitted step's classes/probabilities equal predict_steps on it."""
+    # decision C191: a stride whose measured length contradicts its class takes the measured class after the
+    # classifier (C88's kernel); this test is the classifier's parity, so the measured-length rules are off
+    monkeypatch.setattr("pdrlearn.kernels.turn_length.TURN_LENGTH_RULE", False)
     model, s = trained["model"], trained["test"]
     tr = Tracker(trained["root"] / "bundle")
     t = s.streams["fAccelerometer"].t
@@ -325,9 +328,12 @@ def test_rest_boundary_windows_equal_training_side(trained_rest):
 
 
 @pytest.mark.parametrize("method", REST_METHODS)
-def test_rest_boundary_model_streams_like_predict_steps(trained_rest, method):
+def test_rest_boundary_model_streams_like_predict_steps(trained_rest, method, monkeypatch):
     """Streamed steps of a rest-window model, each method incl. the ensemble: classes equal the training
     side's (predict_steps on the streamed step times, which cuts at the rest too), probabilities within 1e-5."""
+    # decision C191: a stride whose measured length contradicts its class takes the measured class after the
+    # classifier (C88's kernel); this test is the classifier's parity, so the measured-length rules are off
+    monkeypatch.setattr("pdrlearn.kernels.turn_length.TURN_LENGTH_RULE", False)
     import pandas as pd
 
     model, s = trained_rest["model"], trained_rest["test"]

@@ -22,10 +22,11 @@ def test_one_stride_kernel_replaces_only_a_classified_turning_stride():
     assert measured_class_one(-1.2, BOUNDS) == "normal" and measured_class_one(11.0, BOUNDS) is None
     assert turn_length_class_one("long", p, 1.3, math.radians(45), BOUNDS) == (
         "normal", {"short": 0.0, "normal": 1.0, "long": 0.0})
-    assert turn_length_class_one("long", p, 1.3, math.radians(-14.9), BOUNDS) == ("long", p)  # straight (L79)
+    # straight (L79): kept; decision C191: 1.55 m lies within 5 % of long's 1.6 m, no contradiction by the margin
+    assert turn_length_class_one("long", p, 1.55, math.radians(-14.9), BOUNDS) == ("long", p)
     assert turn_length_class_one(None, None, 1.3, math.radians(90), BOUNDS) == (None, None)  # no class: none
     assert turn_length_class_one("long", p, 11.0, math.radians(90), BOUNDS) == ("long", p)  # outside every bound
-    assert turn_length_class_one("long", None, 0.5, math.nan, BOUNDS) == ("long", None)  # no turn: straight
+    assert turn_length_class_one("long", None, 1.55, math.nan, BOUNDS) == ("long", None)  # no turn: straight (C191)
 
 
 @pytest.fixture(scope="module")

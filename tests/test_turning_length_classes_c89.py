@@ -86,7 +86,12 @@ def test_c88_turning_strides_take_their_measured_length_class_by_default(walk_d)
     turn = np.abs(np.nan_to_num(st["turn_angle_rad"].to_numpy(float))) >= STRAIGHT_MAX_RAD
     assert turn.sum() >= 10 and (~turn).sum() >= 10
     cls = st["length_class"].to_numpy(dtype=object)
-    assert (cls[~turn] == "long").all()
+    from pdrlearn.displace.rules import parse_bounds
+    from pdrlearn.kernels.turn_length import contradicts_by_margin
+
+    # decision C191: a straight stride keeps the classifier's class unless its length contradicts it by 5 %
+    far = np.array([contradicts_by_margin("long", x, parse_bounds(bounds)) for x in st["raw_length_m"]])
+    assert (cls[~turn & ~far] == "long").all() and (cls[~turn & far] != "long").all() and (~turn & far).sum() >= 5
     assert (cls[turn] != "long").mean() > 0.8  # D's corners are walked at normal length, its stairs short
     lines = _c89(res)
     assert len(lines) == 1 and "now comes from the measured length (decision C88)" in lines[0]
@@ -98,7 +103,8 @@ def test_c88_candidate_replaces_only_turning_strides_length_class():
     bounds = {"short": (0.0, 1.0), "normal": (1.0, 1.6), "long": (1.6, 10.0)}
     classes = pd.DataFrame({"length_class": ["long", "long", None], "p_length_long": [0.9, 0.9, np.nan],
                             "p_length_normal": [0.1, 0.1, np.nan], "terrain": ["flat"] * 3})
-    out = measured_classes_on_turns(classes, [1.3, 1.3, 1.3], np.deg2rad([90.0, 2.0, 90.0]), bounds)
+    # the straight stride's 1.55 m lies within C191's 5 % of long's 1.6 m: no contradiction by the margin
+    out = measured_classes_on_turns(classes, [1.3, 1.55, 1.3], np.deg2rad([90.0, 2.0, 90.0]), bounds)
     assert list(out["length_class"].iloc[:2]) == ["normal", "long"] and not isinstance(out["length_class"].iloc[2], str)
     assert out["p_length_normal"].iloc[0] == 1.0 and out["p_length_long"].iloc[0] == 0.0
     assert out["p_length_long"].iloc[1] == 0.9 and list(classes["length_class"].iloc[:2]) == ["long", "long"]

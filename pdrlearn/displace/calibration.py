@@ -145,7 +145,7 @@ def _estimate(sessions, track, params, kernel_kw) -> dict:
     from pdrlearn.track import speed_domain
     from pdrlearn.track.evaluate import match_by_overlap
 
-    raw_all, ref_all, used, skipped, rates, speeds = [], [], [], [], [], []
+    raw_all, ref_all, used, skipped, rates, speeds, times = [], [], [], [], [], [], []
     for s in sessions:
         lab = s.steps
         if lab is None or "length_m" not in lab or not s.has("fAccelerometer", "fGyroscope"):
@@ -162,6 +162,9 @@ def _estimate(sessions, track, params, kernel_kw) -> dict:
         if "speed_mps" in res.steps:  # decision L474: the tracked strides' speeds (L480: the cruise strides')
             v = pd.to_numeric(res.steps["speed_mps"], errors="coerce").to_numpy(float)
             speeds.append(v[speed_domain.cruise_strides(res.steps)])  # L480 / L481 adopted (W413: no switch)
+        if "stride_time_s" in res.steps:  # decision C191: the same strides' stride times
+            t = pd.to_numeric(res.steps["stride_time_s"], errors="coerce").to_numpy(float)
+            times.append(t[speed_domain.cruise_strides(res.steps)])
         pairs = match_by_overlap(res.steps, lab, min_iou=0.5)
         if not pairs:
             skipped.append(f"{s.name}: no tracked stride matches a label")
@@ -187,6 +190,8 @@ def _estimate(sessions, track, params, kernel_kw) -> dict:
     speeds = np.concatenate(speeds) if speeds else np.zeros(0)
     out["speed_range_mps"] = speed_domain.training_speed_range(speeds)  # decision L474
     out["speed_range_strides"] = "cruise"  # decision L480: the strides the range was taken over
+    out["stride_time_range_s"] = speed_domain.training_stride_time_range(  # decision C191
+        np.concatenate(times) if times else np.zeros(0))
     return out
 
 

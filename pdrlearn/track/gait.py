@@ -711,12 +711,16 @@ NO_HEIGHT_HINT = ("if the walker is a child or short, give the height or the leg
                   "scales with the leg (decisions L148, L492)")
 
 
-#: decisions W144, W178, L197: the fast gaits' names, in L95's session line and in L195's bout line
+#: decisions W144, W178, L197: the fast gaits' names, in L95's session line and in L195's bout line; decision C192:
+#: a fast cadence at a walking speed is stated as the measured cadence above the validated range, the gaits it may be
+#: named after it (a dancer's quickstep is neither running nor festination)
 FAST_GAITS = {"running": ("this looks like running, and running is not supported: ", "looks like running"),
-              "running_first": ("running, or short fast steps (a festinating or shuffling gait), neither of which is "
-                                "supported: ", "running, or short fast steps"),
-              "short_fast": ("short fast steps (a festinating or shuffling gait) or running, neither of which is "
-                             "supported: ", "short fast steps or running")}
+              "running_first": ("a cadence above the walking range the pipelines were validated on (running, or short "
+                                "fast steps: quick dance steps, a festinating or shuffling gait): ",
+                                "running, or short fast steps"),
+              "short_fast": ("a cadence above the walking range the pipelines were validated on (short fast steps: "
+                             "quick dance steps, a festinating or shuffling gait; or running): ",
+                             "short fast steps or running")}
 
 
 def fast_gait(cad: float | None, speed: float | None, leg_m: float | None, other_speed: float | None = None) -> str:
@@ -855,7 +859,9 @@ def gait_range_warning(summary: dict) -> str | None:
                   "length ('pdrlearn calibrate DIR --distance M', e.g. a 10 m walk test)")
     if side == "fast" and leg is None:  # decision L492: no height or leg known, the adult range was judged
         extra += f"; {NO_HEIGHT_HINT}"
-    return f"{figs}: {what}{validated}; {_unreliable(summary, info, slow)}{extra}"
+    fast_steps = side == "fast" and fast_gait(cad, speed, leg, gait_speed) != "running" and \
+        not info.get("step_count_unusable")  # decision C192: a fast cadence at a walking speed
+    return f"{figs}: {what}{validated}; {_unreliable(summary, info, slow, fast_steps)}{extra}"
 
 
 def contact_cadence_spm(event_s, unit: str = "foot") -> float | None:
@@ -924,17 +930,27 @@ def gait_speed_warning(summary: dict) -> str | None:
 #: decision L247: what the offline foot track's distance did on simulated shuffling below L95's speed range (users
 #: 4900-4919, 0.2-0.5 m/s, no model, with and without force sensors: experiments/results/foot_slow.txt)
 SLOW_FOOT_DISTANCE = "-3.1 to +1.4 % on simulated shuffling at 0.2-0.5 m/s"
+#: decision C192: what the offline foot track's distance did on simulated fast stepping above L95's cadence range at a
+#: walking speed (users 14440-14442, 0.3 s steps of 0.4 / 0.5 / 0.6 m, no model; experiments/results/foot_fast_c192.txt)
+FAST_FOOT_DISTANCE = "-0.23 to +0.44 % at 200 steps/min, 1.3-2.0 m/s"
 
 
-def _unreliable(summary: dict, info: dict, slow: bool) -> str:
+def _unreliable(summary: dict, info: dict, slow: bool, fast_steps: bool = False) -> str:
     """What L95's line says is not reliable. Decision L247: a slow offline foot track without classes (the ZUPT
     strides of a foot unit, ``plasys`` with no model, not streamed) keeps its distance, measured at
     :data:`SLOW_FOOT_DISTANCE`; the line says so and names what stays unvalidated. Every other track: the distance
     too (the lower back reads slow steps long, W207; a streamed foot track read +11 % at 0.2 m/s, L120). Decision
     W227: a lower-back track calibrated at this gait (``info["calibration_covers_cadence"]``, W211's range covers its
-    cadence) says its distance and speed are calibrated at this gait; the classes and floors stay unvalidated."""
+    cadence) says its distance and speed are calibrated at this gait; the classes and floors stay unvalidated.
+    Decision C192: ``fast_steps`` (a cadence above the range at a walking speed): the same offline foot track keeps
+    its distance, measured at :data:`FAST_FOOT_DISTANCE`; a speed above the range (running, which the simulator
+    cannot make, S48), a streamed or a lower-back track keeps the line."""
     foot = (str(summary.get("pipeline") or info.get("pipeline") or "") == "plasys" and not info.get("streaming")
             and info.get("classes_source") is None)
+    if fast_steps and foot:
+        return (f"the offline foot distance (ZUPT strides) held on simulated fast stepping ({FAST_FOOT_DISTANCE}, no "
+                "model; decision C192), but the floors and any terrain / direction / length classes are not "
+                "validated at this cadence")
     if slow and foot:
         return (f"the offline foot distance (ZUPT strides) stays usable ({SLOW_FOOT_DISTANCE}, no model; decision "
                 "L247), but the floors and any terrain / direction / length classes are not validated at this speed")

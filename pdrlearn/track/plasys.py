@@ -1701,11 +1701,14 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     add_gait_columns(table, turn_rad=fd.yaw_change_, valid=~in_gap & ~impossible, tc_s=tc,  # L97: no stride
                      turn_valid=~in_gap, max_stride_s=stride_cap)  # L109: a zeroed stride keeps its turn
     if domain is not None and cfg["rules"]:  # decision L474: strides faster / slower than the training strides
-        from pdrlearn.track.speed_domain import flag_speeds, model_speed_range, model_speed_strides
+        from pdrlearn.track import speed_domain as sd
 
-        speed_info = flag_speeds(table, model_speed_range(model), warnings, model_speed_strides(model))
+        speed_info = sd.flag_speeds(table, sd.model_speed_range(model), warnings, sd.model_speed_strides(model))
         if speed_info is not None and isinstance(domain, dict):
             domain["speed"] = speed_info
+        time_info = sd.flag_stride_times(table, model, warnings)  # decision C191: the calibration's tempo
+        if time_info is not None and isinstance(domain, dict):
+            domain["stride_time"] = time_info
     if cfg["rules"] and use_bounds is not None and classified_length is not None and "length" not in untrained \
             and not (isinstance(model, str) and model == "oracle"):  # decision C89: the classes on turning strides
         from pdrlearn.track.turn_classes import turning_length_disagreement, turning_length_line

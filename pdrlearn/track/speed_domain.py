@@ -55,9 +55,19 @@ def contiguous_strides(steps: pd.DataFrame, gap_s: float = CRUISE_GAP_S) -> np.n
 def training_speed_range(speeds) -> list[float] | None:
     """Decision L474: the (1 %, 99 %) quantiles (C16's ``QUANTILES``) of the finite positive stride speeds (m/s) of
     the training sessions' tracked strides; None with fewer than 10."""
+    return _quantile_range(speeds)
+
+
+def training_stride_time_range(times) -> list[float] | None:
+    """Decision C191: L474's range (:func:`training_speed_range`'s quantiles) of the training sessions' cruise
+    strides' ``stride_time_s`` (s), so a walk at another tempo than the calibration's is flagged."""
+    return _quantile_range(times)
+
+
+def _quantile_range(values) -> list[float] | None:
     from pdrlearn.classify.domain import QUANTILES
 
-    v = np.asarray(speeds, float)
+    v = np.asarray(values, float)
     v = v[np.isfinite(v) & (v > 0)]
     if len(v) < 10:
         return None
@@ -68,6 +78,12 @@ def training_speed_range(speeds) -> list[float] | None:
 def model_speed_range(model) -> list[float] | None:
     """The ``speed_range_mps`` a trained model recorded (None: oracle labels, no model, or trained before L474)."""
     rng = _calibration(model).get("speed_range_mps")
+    return [float(rng[0]), float(rng[1])] if rng is not None and len(rng) == 2 else None
+
+
+def model_stride_time_range(model) -> list[float] | None:
+    """Decision C191: the ``stride_time_range_s`` a trained model recorded (None: trained before C191, or no model)."""
+    rng = _calibration(model).get("stride_time_range_s")
     return [float(rng[0]), float(rng[1])] if rng is not None and len(rng) == 2 else None
 
 
@@ -88,13 +104,50 @@ def flag_speeds(table: pd.DataFrame, speed_range, warnings: list[str], strides: 
     ``warnings``; returns ``info.out_of_domain.speed`` (None without a range or a ``speed_mps`` column).
     ``strides`` ``"cruise"`` (decision L480: the range was taken over :func:`cruise_strides`): only those strides are
     compared (a start, a turn, a stair stride is not flagged)."""
-    if speed_range is None or "speed_mps" not in table:
+    if speed_range is None:
         return None
     lo, hi = speed_range
-    v = pd.to_numeric(table["speed_mps"], errors="coerce").to_numpy(float)
+    return _flag_range(table, "speed_mps", "speed_out_of_range", speed_range, warnings, strides, (
+        f"at speeds outside the model's training strides ({lo:.2f}-{hi:.2f} m/s, +-{100 * SPEED_MARGIN:g} %; "
+        "steps.csv speed_out_of_range): their terrain, direction and length classes can be wrong with a high "
+        "confidence; record the calibration exercises at the speed of use and retrain (decision L474)"), "range_mps")
+
+
+def flag_stride_times(table: pd.DataFrame, model, warnings: list[str]) -> dict | None:
+    """Decision C191: L474's check (:func:`flag_speeds`, the same margin and cruise strides) on ``stride_time_s``
+    against the model's ``stride_time_range_s``: adds ``stride_time_out_of_range`` and, when any is, one line; a
+    model with L474's speed range but no stride-time range (trained before C191) gets one line saying the tempo is
+    not checked. Returns ``info.out_of_domain.stride_time`` (None without a range)."""
+    rng = model_stride_time_range(model)
+    if rng is None:
+        if model_speed_range(model) is not None:
+            warnings.append("the model records no stride-time range (trained before decision C191), so the walk's "
+                            "tempo is not compared with the calibration's (steps.csv has no stride_time_out_of_range); "
+                            "retrain with pdrlearn train to check it")
+        return None
+    lo, hi = rng
+    return _flag_range(table, "stride_time_s", "stride_time_out_of_range", rng, warnings,
+                       model_speed_strides(model), (
+                           f"at stride times outside the model's training strides ({lo:.2f}-{hi:.2f} s, "
+                           f"{120 / hi:.0f}-{120 / lo:.0f} steps/min, +-{100 * SPEED_MARGIN:g} %; steps.csv "
+                           "stride_time_out_of_range): a tempo the calibration exercises did not walk, where the "
+                           "terrain, direction and length classes can be wrong with a high confidence (compare "
+                           "length_class with length_m); record the calibration exercises at the tempo of use and "
+                           "retrain (decision C191)"), "range_s")
+
+
+def _flag_range(table: pd.DataFrame, column: str, flag: str, rng, warnings: list[str], strides: str, text: str,
+                key: str) -> dict | None:
+    """Decisions L474 / C191: the shared check: ``flag`` True where ``column`` lies more than :data:`SPEED_MARGIN`
+    outside ``rng`` on the judged strides (:func:`cruise_strides` for ``strides`` "cruise"); one line ``f"{n} of
+    {m} {what} {text}"`` when any does."""
+    if column not in table:
+        return None
+    lo, hi = rng
+    v = pd.to_numeric(table[column], errors="coerce").to_numpy(float)
     judged = np.isfinite(v) & (cruise_strides(table) if strides == "cruise" else True)
     out = judged & ((v < lo * (1 - SPEED_MARGIN)) | (v > hi * (1 + SPEED_MARGIN)))
-    table["speed_out_of_range"] = out
+    table[flag] = out
     n, m = int(out.sum()), int(judged.sum())
     what = "level straight strides" if strides == "cruise" else "strides"
     if n and "travel" in table:  # trial T3 finding 9: a side or backward stride is counted as such, not as a walk's
@@ -102,10 +155,6 @@ def flag_speeds(table: pd.DataFrame, speed_range, warnings: list[str], strides: 
         other = [f"{int((out & (travel == t)).sum())} {t}" for t in ("side", "backward") if (out & (travel == t)).any()]
         what += f" (of them {', '.join(other)} steps, not forward walking)" if other else ""
     if n:
-        warnings.append(
-            f"{n} of {m} {what} at speeds outside the model's training strides ({lo:.2f}-{hi:.2f} m/s, "
-            f"+-{100 * SPEED_MARGIN:g} %; steps.csv speed_out_of_range): their terrain, direction and length classes "
-            "can be wrong with a high confidence; record the calibration exercises at the speed of use and retrain "
-            "(decision L474)")
-    return {"range_mps": [lo, hi], "margin": SPEED_MARGIN, "strides": strides, "n_out": n, "n_strides": m,
+        warnings.append(f"{n} of {m} {what} {text}")
+    return {key: [lo, hi], "margin": SPEED_MARGIN, "strides": strides, "n_out": n, "n_strides": m,
             "fraction": n / m if m else None}
