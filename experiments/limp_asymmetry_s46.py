@@ -4,7 +4,7 @@ stand 3, straight 40, turn 180, straight 40, stand 3; steps of 0.5 x the step ti
 0.25 (``slow``: 120 walks) or the user's own gait, A 0.25 (``own``: 20 walks); paretic side right for even users,
 left for odd; foot unit right; 100 Hz, pendulum bounce. Truth: the function on the simulator's contacts (L416).
 
-Run: PYTHONPATH=. .venv/bin/python experiments/limp_asymmetry_s46.py [slow|own] [FIRST_USER LAST_USER]
+Run: .venv/bin/python experiments/limp_asymmetry_s46.py [slow|own] [FIRST_USER LAST_USER]
 """
 
 from __future__ import annotations
@@ -16,7 +16,7 @@ import warnings
 
 import numpy as np
 
-from experiments.labelled_asymmetry_s34 import walk_contacts
+from labelled_asymmetry_s34 import walk_contacts
 from pdrlearn.sim import Stand, Straight, Turn, UserProfile, simulate_path
 from pdrlearn.track.labelled_asymmetry import (
     UNCERTAIN_SE_POINTS,

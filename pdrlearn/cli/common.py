@@ -29,7 +29,6 @@ from pdrlearn.table_csv import (  # noqa: F401  (decision E169: the library's, u
     write_table_csv,
 )
 from pdrlearn.textfile import read_json
-from pdrlearn.track.labelled_asymmetry import WITHIN_NOISE_SE, asymmetry_flags  # noqa: F401  (L671; C190 shares it)
 
 
 def json_default(o):
@@ -687,13 +686,15 @@ def gait_line(summary: dict, streamed: bool | None = None) -> str:
 def asymmetry_clause(summary: dict) -> str:
     """Decision L671: what the gait line adds when the summary gives ``step_time_asymmetry_pct``: the index, with
     its standard error (a foot track with the lower-back unit too, L490) and "within noise" under
-    :data:`WITHIN_NOISE_SE` of them ("uncertain" over L490's 3 points, L677), or, from the lower back alone, that
+    ``WITHIN_NOISE_SE`` of them ("uncertain" over L490's 3 points, L677), or, from the lower back alone, that
     its size is misread (L121); "" without."""
     pct = summary.get("step_time_asymmetry_pct")
     if pct is None:
         return ""
     se = summary.get("step_time_asymmetry_se_points")
     if se is not None:
+        from pdrlearn.track.labelled_asymmetry import asymmetry_flags  # L671, C190: lazily (the CLI's import is light)
+
         noise = "".join(f", {flag}" for flag in asymmetry_flags(pct, se))
         if noise.endswith("points"):  # decision L677: L490's note on the console too, with where its reason is
             noise += ", see summary.json step_time_asymmetry_reason"
