@@ -147,6 +147,10 @@ def declared_clipped(values: np.ndarray, full_scale: float) -> tuple[np.ndarray,
 #: samples, while the sensor's other axes move, is a stuck axis (0.05 s stated before measuring; amended to 0.08 s, the
 #: trial's shortest stuck episode, 8 held samples at 100 Hz, after clean simulated 50 Hz walks held an axis 3 samples)
 STUCK_S = 0.08
+#: decision B455 (amended by the lead, session 46: a clean simulated 50 Hz walk of tests/test_clock_drift_b264 held its
+#: accelerometer's z axis 4 samples (0.08 s) in 4 runs in the final CI): a stuck run also holds at least this many
+#: samples (the trial's stuck episodes held 8 at 100 Hz and stay named)
+STUCK_MIN_SAMPLES = 6
 #: decision B455: each other axis of the sensor changes value at this share of the run's sample steps or more
 STUCK_OTHERS_MOVING = 0.8
 #: decision B455: the axis leaves the run by more than this many of its typical steps (B405/B406's axis_step as
@@ -186,7 +190,7 @@ def stuck_runs(values: np.ndarray, dt: float, kind: str, full_scale: float | Non
     v = np.asarray(values, dtype=float)
     if v.ndim != 2 or v.shape[1] != 3 or len(v) < CLIP_RUN + 1 or not dt > 0:
         return [[] for _ in range(v.shape[1] if v.ndim == 2 else 0)]
-    need = max(CLIP_RUN, int(np.ceil(STUCK_S / dt - 1e-9)))
+    need = max(CLIP_RUN, STUCK_MIN_SAMPLES, int(np.ceil(STUCK_S / dt - 1e-9)))
     level = CLIP_LEVEL.get(kind, np.inf)
     changes = np.diff(v, axis=0) != 0  # (n-1, 3): sample k -> k+1 changed
     moves = _sensor_moving(v, kind, max(axis_step(v[:, j]) for j in range(3)))
