@@ -4,6 +4,9 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 export MPLBACKEND := Agg
+# Bytecode caches on: some machines (this one) set PYTHONDONTWRITEBYTECODE=1, and then every test worker and every CLI
+# subprocess re-compiles pdrlearn and pytest re-rewrites ~1000 test files on every run (docs/testing.md, session 47).
+unexport PYTHONDONTWRITEBYTECODE
 
 .PHONY: venv demo test coverage bench lint clean browser external hapt peers
 
