@@ -811,8 +811,9 @@ def read_params(params: Path):
             try:
                 par = json.loads(text)
             except json.JSONDecodeError as exc:
-                raise DataError(f"--params {text}: not a file, and not a JSON object either ({exc.msg} at character "
-                                f"{exc.pos}); pass a file, or quote the JSON: --params '{{\"clip_noise\": true}}'") from None
+                raise DataError(f"--params {text}: not a file, and not a JSON object either ({exc.msg} at "
+                                f"character {exc.pos}); pass a file, or quote the JSON: "
+                                "--params '{\"clip_noise\": true}'") from None
         else:
             par = read_json(Path(params))
     except (OSError, json.JSONDecodeError) as exc:
