@@ -13,6 +13,9 @@ from pdrlearn.decision_refs import decision_ref
 from pdrlearn.errors import DataError, shell_quote
 from pdrlearn.textfile import read_json
 
+#: decision B468: --drop-duplicate-timestamps dropping more than this share of a stream's rows is said
+DROPPED_SHARE_NOTE = 0.01
+
 
 def _mapping_file(path: Path | None) -> dict:
     """The ``--mapping`` JSON: ``{"time": COL, "acc": [X, Y, Z], "gyro": [...], "units": {"time": "ms",
@@ -619,6 +622,9 @@ def _say(record: dict, session, out: Path, merge: bool, existed: bool) -> None:
         err(f"{sensor}: {cols} ({r['columns_source']}) in {r['unit']} ({r['unit_source']}{conv}), "
             f"{r['samples']} samples at {r['rate_hz']:g} Hz" + (f", {dropped} empty rows skipped" if dropped else "")
             + (f", {dups} rows repeating a timestamp dropped (--drop-duplicate-timestamps)" if dups else "")
+            + (f" - {100 * dups / (r['samples'] + dups):.2g} % of the rows: if the stamps are coarser than the "
+               "sensor's period these were real samples; import again with --retime HZ instead (decision B468)"
+               if dups and dups > DROPPED_SHARE_NOTE * (r['samples'] + dups) else "")
             + (_retimed_text(record["retimed"][sensor]) if sensor in record.get("retimed", {}) else "")
             + (f", plus the gravity of {r['gravity_added']} (--add-gravity)" if r.get("gravity_added") else ""))
         iphone = "mat" not in record  # decision B358: a MAT file is no phone app's export: no iPhone note

@@ -68,7 +68,8 @@ def warn_ood_option(when: str = "With --model: ", model: str = "model"):
 
 WARN_OOD_OPT = warn_ood_option()
 START_OPT = typer.Option(None, "--start", help=START_HELP)
-PARAMS_OPT = typer.Option(None, "--params", help="Per-user calibration JSON passed to the pipeline.")
+PARAMS_OPT = typer.Option(None, "--params", help="Per-user calibration JSON passed to the pipeline: a file, or the "
+                          "JSON object itself in quotes, e.g. '{\"clip_noise\": true}' (B466).")
 #: decision E176: track's, run's, track-all's and calibrate's option (one declaration, E93)
 REDACT_PATHS_OPT = typer.Option(False, "--redact-paths", help="Write every folder the command was given, and the "
                                 "working directory, as <redacted> in its outputs (summary.json input_dir; run.json "
@@ -802,9 +803,19 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
 
 def read_params(params: Path):
     """The parsed ``--params`` JSON (a calibration file of ``pdrlearn calibrate`` or plasys settings), read once per
-    file; one error line naming the file when it cannot be read."""
+    file; one error line naming the file when it cannot be read. Decision B466: a value that is no file and starts
+    with ``{`` is the JSON object itself (``--params '{"clip_noise": true}'``)."""
     try:
-        par = read_json(Path(params))
+        text = str(params).strip()
+        if text.startswith("{") and not Path(params).exists():  # decision B466: the JSON itself, inline
+            try:
+                par = json.loads(text)
+            except json.JSONDecodeError as exc:
+                raise DataError(f"--params {text}: not a file, and not a JSON object either ({exc.msg} at "
+                                f"character {exc.pos}); pass a file, or quote the JSON: "
+                                "--params '{\"clip_noise\": true}'") from None
+        else:
+            par = read_json(Path(params))
     except (OSError, json.JSONDecodeError) as exc:
         why = exc.msg if isinstance(exc, json.JSONDecodeError) and not exc.pos else type(exc).__name__  # B423
         raise DataError(f"{params}: cannot read the parameters JSON ({why}); "

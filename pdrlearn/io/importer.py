@@ -131,8 +131,12 @@ def _suffix_unit(column: str) -> tuple[str, str] | None:
     if len(parts) < 2:
         return None
     last = parts[-1].lower()
-    if last not in _SUFFIX_UNITS or (last in _SHORT_SUFFIXES and len(parts) < 3 and last != "s"):
+    if last not in _SUFFIX_UNITS:
         return None
+    if last in _SHORT_SUFFIXES and len(parts) < 3 and last != "s":
+        # decision B469: ``AccX_g`` / ``ax_g``: a g after an accelerometer axis's own name is its unit
+        if last != "g" or _axis_of(re.sub(r"[^a-z0-9]", "", parts[0].lower()), "acc") is None:
+            return None
     return "_".join(parts[:-1]), _SUFFIX_UNITS[last]
 
 

@@ -29,7 +29,7 @@ from pdrlearn.kernels.clipping import (  # noqa: F401 - re-exported: the clippin
     foot_accel_cost,
     saturation_warning,
 )
-from pdrlearn.kernels.clock import batch_size
+from pdrlearn.kernels.clock import batch_size, coarse_stamp_rate
 from pdrlearn.kernels.units import (  # noqa: F401 - re-exported: the checks live in the numpy-only kernel (B119)
     GRAVITY_FACTOR_MAX,
     GRAVITY_HINT,
@@ -266,6 +266,13 @@ def check_timestamps(t: np.ndarray, where: str, *, in_memory: bool = False, rese
                 f"them at the sensor's output rate with `pdrlearn import EXPORT --retime HZ` (decision B186) rather "
                 f"than dropping {k - 1} of every {k}"
             )
+        hz = coarse_stamp_rate(t)  # decision B468: whole-ms stamps of a 1125 Hz unit are samples, not repeats
+        if hz is not None:
+            raise DataError(
+                f"{where}: {dup.size} duplicate timestamp(s) (first at line {line(dup[0] + 1)}): the stamps' steps "
+                f"(>= {1e3 * float(np.diff(t)[np.diff(t) > 0].min()):.4g} ms) are coarser than the samples' own "
+                f"interval ({1e3 / hz:.4g} ms, ~{hz:.5g} Hz), so the repeats are real samples: re-time them at the "
+                "sensor's rate with `pdrlearn import EXPORT --retime HZ` rather than dropping them (decision B468)")
         raise DataError(
             f"{where}: {dup.size} duplicate timestamp(s) (first at line {line(dup[0] + 1)}); {duplicate_fix}"
         )

@@ -103,6 +103,20 @@ def batch_size(t: np.ndarray) -> int:
     return k if k > 1 and m[m == k].sum() >= 0.8 * t.size else 1
 
 
+def coarse_stamp_rate(t: np.ndarray) -> float | None:
+    """Decision B468: the samples' rate (Hz) when their timestamps are quantised coarser than their own sample period
+    (a 1125 Hz unit stamped in whole ms repeats every ninth stamp): the mean interval over the span is under 95 % of
+    the smallest step between distinct stamps; else None. Such repeats are real samples, to be re-timed, not dropped."""
+    if t.size < 8:
+        return None
+    steps = np.diff(t)
+    pos = steps[steps > 0]
+    if not pos.size or not np.isfinite(t[[0, -1]]).all():
+        return None
+    mean = (t[-1] - t[0]) / (t.size - 1)
+    return float(1.0 / mean) if 0 < mean < 0.95 * float(pos.min()) else None
+
+
 def retimed(t: np.ndarray, hz: float) -> tuple[np.ndarray, dict]:
     """Decision B186: samples re-timed at a nominal output rate ``hz`` (s in, s out), anchored to their stamps.
     Runs of equal stamps (a notification's samples on its receive time) are spread one period apart; a stamp

@@ -1,0 +1,44 @@
+"""Session 47, trial T3 (a 1000 Hz lab) findings F4: ``--params`` takes the JSON object inline (B466), and a foot
+accelerometer clipped at +-16 g or more names the altitude and ``clip_noise`` (B467)."""
+import json
+
+import pytest
+
+from pdrlearn.cli.track import read_params
+from pdrlearn.errors import DataError
+from pdrlearn.kernels.clipping import saturation_warning
+
+G = 9.80665
+
+
+def test_b466_inline_json_is_read_and_a_file_still_wins(tmp_path):
+    assert read_params('{"clip_noise": true}') == {"clip_noise": True}
+    assert read_params('  {"rest_s": 0.05} ') == {"rest_s": 0.05}
+    f = tmp_path / "p.json"
+    f.write_text(json.dumps({"leg_m": 0.9}))
+    assert read_params(f) == {"leg_m": 0.9}
+
+
+def test_b466_bad_inline_json_and_a_missing_file_say_which_and_how(tmp_path):
+    with pytest.raises(DataError, match=r"not a file, and not a JSON object either .*quote the JSON"):
+        read_params('{"clip_noise": tru}')
+    with pytest.raises(DataError, match="cannot read the parameters JSON"):
+        read_params(tmp_path / "none.json")
+    with pytest.raises(DataError, match="must be a JSON object"):
+        read_params(_write(tmp_path / "l.json", "[1, 2]"))
+
+
+def _write(p, text):
+    p.write_text(text)
+    return p
+
+
+def test_b467_a_16_g_foot_line_names_the_altitude_and_clip_noise():
+    line = saturation_warning("f.csv", "accelerometer", 50, 64380, 16 * G, "foot")
+    assert "simulated walks" not in line  # B453's 100 Hz table has no 16 g row
+    assert "at 100 Hz only" in line and "stair heights" in line and '{"clip_noise": true}' in line
+    assert "B467" in line
+    low = saturation_warning("f.csv", "accelerometer", 46, 6878, 4 * G, "foot")
+    assert "B467" not in low and "-26.85 %" in low  # B453's measured cost, not B467's clause
+    waist = saturation_warning("w.csv", "accelerometer", 6, 6878, 16 * G, "waist")
+    assert "B467" not in waist and "clip_noise" not in waist
