@@ -6,7 +6,8 @@ Sessions: ``pdrlearn simulate --rate 20`` (the firmware's rate), users 14700-147
 in turn), 14716-14719 a fast one (A 180 / -90 / 120 / -180, D 1 / 1.5 / 1 / 2 s), 14720-14729 no spin (stepping
 turns, a pivot, a curve, a 60 s stand and a sit). Each is tracked by ``pdrlearn track`` (defaults, no model) twice:
 with main's code (``--main /work/main``: its checkout on PYTHONPATH) and with this worktree's. Run
-``python experiments/gap_turn_s47_l701.py --main /work/main --work DIR``; it prints one row per user and L701's
+``python experiments/gap_turn_s47_l701.py --main /work/main --work DIR [--first 14730]`` (L702: the spin users
+14730-14749, the same design); it prints one row per user and L701's
 adoption-rule numbers (docs/decisions/localization.md).
 """
 from __future__ import annotations
@@ -31,8 +32,8 @@ PLAIN = ["stand:3, straight:8, turn:180, straight:8, turn:90, straight:6, stand:
          "stand:3, straight:8, stand:60, straight:8, sit:10, straight:5, stand:3"]
 
 
-def plan() -> list[tuple[int, str, float | None, float | None]]:
-    out = [(14700 + i, ROUTE.format(a=a, d=d), a, d) for i, (a, d) in enumerate(SLOW + FAST)]
+def plan(first: int = 14700) -> list[tuple[int, str, float | None, float | None]]:
+    out = [(first + i, ROUTE.format(a=a, d=d), a, d) for i, (a, d) in enumerate(SLOW + FAST)]
     return out + [(14720 + i, PLAIN[i % len(PLAIN)], None, None) for i in range(10)]
 
 
@@ -85,11 +86,12 @@ def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--main", required=True, help="main's checkout (its code on PYTHONPATH for the 'main' tracks)")
     ap.add_argument("--work", required=True, type=Path, help="scratch folder for the sessions and tracks")
+    ap.add_argument("--first", type=int, default=14700, help="the first spin user (L702: 14730)")
     a = ap.parse_args()
     a.work.mkdir(parents=True, exist_ok=True)
     a.work = a.work.resolve()
     rows = []
-    for user, route, angle, secs in plan():
+    for user, route, angle, secs in plan(a.first):
         sim = a.work / f"sim_u{user}"
         if not (sim / "meta.json").exists():
             run(["simulate", "--route", route, "--user-seed", str(user), "--rate", "20", "--out", str(sim),
@@ -108,7 +110,8 @@ def main() -> None:
     df = pd.DataFrame(rows)
     pd.set_option("display.width", 200)
     print(df.to_string(index=False, float_format=lambda x: f"{x:.2f}"))
-    slow, fast = df[df["user"] <= 14715], df[(df["user"] >= 14716) & (df["user"] <= 14719)]
+    spun = df[df["angle"].notna()]
+    slow, fast = spun[spun["secs"] >= 2].iloc[:16], spun.iloc[16:]
     for name, part in (("slow", slow), ("fast", fast)):
         print(f"{name}: median final error main {part['final_m_main'].median():.2f} m, L701 "
               f"{part['final_m_l701'].median():.2f} m; median |heading error| main "
@@ -116,7 +119,6 @@ def main() -> None:
               f"{part['heading_err_deg_l701'].abs().median():.1f} deg; spin in turns.csv main "
               f"{int(part['spin_found_main'].sum())}/{len(part)}, "
               f"L701 {int(part['spin_found_l701'].sum())}/{len(part)}")
-    spun = df[df["angle"].notna()]
     print(f"largest rise of a final error: {(spun['final_m_l701'] - spun['final_m_main']).max():+.2f} m")
     plain = df[df["angle"].isna()]
     print(f"no spin: steps.csv, trajectory.csv, turns.csv identical on {int(plain['identical'].sum())}/{len(plain)}")
