@@ -61,6 +61,18 @@ def test_a_slow_stepless_spin_turns_the_foot_heading_and_is_a_turn_l701():
     assert len(gap) == 1 and abs(gap[0]["added_deg"]) > 45
 
 
+def test_a_window_keeps_the_gap_turns_inside_it():
+    from pdrlearn.track.window import window_track
+
+    s, result, _ = _track("stand:3, straight:8, spin:-150:15, straight:8, stand:3", 14747)
+    spin = s.extras["spins"].iloc[0]
+    t_rec = s.t_recording_start
+    before, _ = window_track(result, s, 0.0, float(spin["start_s"]) - t_rec - 0.5)
+    assert before.info["waist_gap_turns"] == [] and len(clinical_tables(before, None)["turns.csv"]) == 0
+    whole, _ = window_track(result, s, 0.0, float(s.trajectory["t"].iloc[-1]) - t_rec)
+    assert len(whole.info["waist_gap_turns"]) == 1
+
+
 def test_a_quick_spin_the_foot_saw_is_a_turn_too_l702():
     s, result, summary = _track("stand:3, straight:8, spin:120:2, straight:8, stand:3", 14748)
     gap = result.info["waist_gap_turns"]
