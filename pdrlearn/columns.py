@@ -839,7 +839,9 @@ TURNS: tuple[Column, ...] = (
     ("n_rows", "count", "integer", "rows of steps.csv the turn spans; 0: a yaw-rate turn no step row holds: on the "
                                    "lower back a full turn on the spot whose steps were missed (L255 / L256: the "
                                    "rows' heading over it is on another branch), or any such turn with the option "
-                                   "of L233"),
+                                   "of L233; on a two-unit foot track a turn in a rest gap between strides (a turn "
+                                   "on the spot without a stride of the tracked foot), timed by the lower back "
+                                   "(L701, L702)"),
     ("bout", "index", "integer", "the bouts.csv bout holding the turn; empty outside every bout"),
     ("mean_rate_dps", "deg/s", "number", "the heading change from start_s to end_s / duration_s (L209); per unit "
                                          "(L229): a foot track's turn (5-95 % heading timing, L208) 90 % of "

@@ -19,6 +19,8 @@ ROUTE_FORMS = {
     "turn": "'turn:DEG' turning in place by stepping (+ left; S9)",
     "pivot": "'pivot:DEG[:N[:STEP]]' turning on the spot without stopping, in N short steps (0, the default: one "
              "per few degrees) each moving the body STEP m (default 0.15; S41)",
+    "spin": "'spin:DEG:S' stopping and turning DEG degrees (+ left) on the spot in S seconds (1-120) without a step: "
+            "the body spins on the tracked foot, which stays planted (spins.csv; S106)",
     "inplace": "'inplace:N' N steps on the spot, marking time (no turn, no travel; S105)",
     "stand": "'stand:S' standing S seconds",
     "sit": "'sit:S' sitting down, seated S seconds, standing up (a chair; transfers.csv)",

@@ -3,7 +3,7 @@
 Entry points: :func:`simulate` (thesis scenarios and calibration exercises), :func:`simulate_path`
 (your own path of :class:`Straight`, :class:`Curve`, :class:`Stairs`, :class:`Slope`, :class:`Backward`, :class:`Turn`,
 :class:`InPlace`, :class:`Stand`, :class:`Sit`, :class:`Lift`, :class:`Escalator`, :class:`Trolley`, :class:`Side`,
-:class:`Freeze`, :class:`Lie`, :class:`Vehicle`, :class:`Cycle` segments) and :class:`UserProfile`
+:class:`Freeze`, :class:`Lie`, :class:`Vehicle`, :class:`Cycle`, :class:`Spin` segments) and :class:`UserProfile`
 (anthropometry, gait, mounting, sensor errors).
 See docs/simulator.md.
 """
@@ -22,6 +22,7 @@ from pdrlearn.sim.path import (
     Side,
     Sit,
     Slope,
+    Spin,
     Stairs,
     Stand,
     Straight,
@@ -60,6 +61,7 @@ __all__ = [
     "Side",
     "Vehicle",
     "Cycle",
+    "Spin",
     "Footstep",
     "plan_footsteps",
 ]

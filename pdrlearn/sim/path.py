@@ -2,7 +2,7 @@
 
 A path is a list of segments (:class:`Straight`, :class:`Curve`, :class:`Stairs`, :class:`Slope`, :class:`Backward`,
 :class:`Turn`, :class:`Pivot`, :class:`Stand`, :class:`Sit`, :class:`Lift`, :class:`Escalator`, :class:`Trolley`,
-:class:`Side`, :class:`Freeze`, :class:`Lie`).
+:class:`Side`, :class:`Freeze`, :class:`Lie`, :class:`Spin`).
 :func:`plan_footsteps` walks them with a user's step
 length and returns one :class:`Footstep` per foot placement (heel position, heading, kind), alternating feet.
 Walking bouts start and end with both feet side by side (gait initiation and a closing step).
@@ -20,6 +20,7 @@ from pdrlearn.sim.cycle import check_cycle, draw_cycle
 from pdrlearn.sim.freeze import FREEZE_MARGIN_S, FreezeEpisode, check_freeze, draw_freeze
 from pdrlearn.sim.lying import BED_SIT_S, LyingEpisode, check_lie, draw_lying
 from pdrlearn.sim.ride import RIDE_MARGIN_S, Ride, check_rise, draw_ride
+from pdrlearn.sim.spin import SPIN_MARGIN_S, SpinEpisode, check_spin
 from pdrlearn.sim.transfer import SIT_MARGIN_S, TRANSFER_S, Transfer, draw_transfer
 from pdrlearn.sim.user import GAITS, SPEEDS, UserProfile, asymmetry_factor
 from pdrlearn.sim.vehicle import check_vehicle, draw_vehicle
@@ -152,6 +153,15 @@ class Pivot:
 
 
 @dataclass(frozen=True)
+class Spin:
+    """Decision S106: stop, then turn ``angle_rad`` (> 0 = left) on the spot in ``duration_s`` seconds without a
+    step: the body spins about the instrumented foot, which stays planted (:mod:`pdrlearn.sim.spin`)."""
+
+    angle_rad: float
+    duration_s: float
+
+
+@dataclass(frozen=True)
 class InPlace:
     """Decision S105: ``n_steps`` steps on the spot (marking time): each foot lifts and is set down beside the other,
     alternating, with a turning step's kinematics (S9: a short, low swing) and no turn; the body does not move."""
@@ -264,7 +274,7 @@ class Lie:
 
 
 Segment = (Straight | Curve | Stairs | Slope | Backward | Turn | Pivot | InPlace | Stand | Sit | Lift | Escalator
-           | Trolley | Side | Freeze | Lie | Vehicle | Cycle)
+           | Trolley | Side | Freeze | Lie | Vehicle | Cycle | Spin)
 
 
 @dataclass
@@ -323,7 +333,7 @@ class _Walker:
         self.last_moved: str | None = None
         self.pending_pause = 0.0
         self.direction = "forward"
-        self.transfers: list[Transfer | Ride | FreezeEpisode | LyingEpisode] = []
+        self.transfers: list[Transfer | Ride | FreezeEpisode | LyingEpisode | SpinEpisode] = []
         self.pushing = False
 
     def _heel(self, c: np.ndarray, z: float, psi: float, foot: str) -> np.ndarray:
@@ -566,6 +576,19 @@ class _Walker:
             c = c + seg.step_m * _ahead(psi)
             self.step(c, self.z, psi, "turn")
 
+    def spin(self, seg: Spin) -> None:
+        """Decision S106: feet together, then a :class:`SpinEpisode` inside the pause before the next step, with
+        :data:`SPIN_MARGIN_S` of standing before and after it. The planner's heading and feet stay as they are: the
+        spin turns everything after it (:func:`pdrlearn.sim.spin.spin_carry`)."""
+        check_spin(math.degrees(seg.angle_rad) if math.isfinite(seg.angle_rad) else seg.angle_rad,
+                   seg.duration_s, str(seg))
+        self._change_direction("forward")
+        self.close()
+        feet = tuple((f, float(h[0]), float(h[1]), float(y)) for f, (h, y) in self.feet.items())
+        self.transfers.append(SpinEpisode(len(self.steps), self.pending_pause + SPIN_MARGIN_S, float(seg.angle_rad),
+                                          float(seg.duration_s), feet))
+        self.pending_pause += SPIN_MARGIN_S + float(seg.duration_s) + SPIN_MARGIN_S
+
     def in_place(self, seg: InPlace) -> None:
         """Decision S105: the steps on the spot continue the walk's alternation (a walk that marks time, no stop);
         each sets the foot down where it stands beside the other, heading kept."""
@@ -699,7 +722,7 @@ def plan_footsteps(
     step_length_asymmetry: float = 0.0,
     paretic_side: str = "left",
     transfer_s: tuple[float, float] = TRANSFER_S,
-) -> tuple[list[Footstep], dict, float, list[Transfer | Ride | FreezeEpisode | LyingEpisode]]:
+) -> tuple[list[Footstep], dict, float, list[Transfer | Ride | FreezeEpisode | LyingEpisode | SpinEpisode]]:
     """Footprints of both feet along ``segments``.
 
     ``step_length_asymmetry``: on level, curved and sloped walking the steps onto the ``paretic_side`` foot (default
@@ -715,7 +738,8 @@ def plan_footsteps(
     transfers : the episodes inside the pauses: sit-down / stand-up of :class:`Sit` segments
         (:mod:`pdrlearn.sim.transfer`) and the rides of :class:`Lift` / :class:`Escalator` ones
         (:mod:`pdrlearn.sim.ride`) and the freezes of :class:`Freeze` ones (:mod:`pdrlearn.sim.freeze`, S51); a
-        :class:`Lie` gives a transfer followed by its :class:`~pdrlearn.sim.lying.LyingEpisode` (S58)
+        :class:`Lie` gives a transfer followed by its :class:`~pdrlearn.sim.lying.LyingEpisode` (S58); a
+        :class:`Spin` its :class:`~pdrlearn.sim.spin.SpinEpisode` (S106)
     """
     w = _Walker(user, speed, rng, heading0_rad, irregular_rate, variability, step_length_asymmetry, paretic_side,
                 transfer_s)
@@ -739,6 +763,7 @@ def plan_footsteps(
         Lie: w.lie,
         Vehicle: w.vehicle,
         Cycle: w.cycle,
+        Spin: w.spin,  # decision S106
     }
     for seg in segments:
         if isinstance(seg, Straight | Curve | Slope | Trolley) and seg.gait not in GAITS:
@@ -750,7 +775,7 @@ def plan_footsteps(
         except KeyError:
             raise DataError(
                 f"unknown path segment {seg!r}; use Straight, Curve, Stairs, Slope, Backward, Turn, Pivot, Stand, Sit, "
-                "Lift, Escalator, Trolley, Side, Freeze, Lie, Vehicle, Cycle"
+                "Lift, Escalator, Trolley, Side, Freeze, Lie, Vehicle, Cycle, Spin"
             ) from None
     w.close()
     return w.steps, initial, w.pending_pause, w.transfers

@@ -13,6 +13,7 @@
 | ``backward:N[:direct]`` | N backward steps (N >= 0.25, 0.5: half a step, S89); ``direct``: no stop (S67) |
 | ``turn:DEG`` | turn DEG degrees on the spot (> 0 left) |
 | ``pivot:DEG[:N[:STEP_M]]`` | turn DEG degrees on the spot inside the walk, N steps of STEP_M m (S41) |
+| ``spin:DEG:SECONDS`` | stop, turn DEG degrees on the spot in SECONDS, no step: spinning on the tracked foot (S106) |
 | ``inplace:N`` | N steps on the spot, marking time (a turning step's swing, no turn, no travel; S105) |
 | ``stand:S`` | stand still S seconds |
 | ``sit:S`` | sit down on a chair, stay seated S seconds, stand up (no steps; decision S36) |
@@ -52,6 +53,7 @@ from pdrlearn.sim.path import (
     Side,
     Sit,
     Slope,
+    Spin,
     Stairs,
     Stand,
     Straight,
@@ -63,6 +65,7 @@ from pdrlearn.sim.path import (
     stair_size_error,
 )
 from pdrlearn.sim.ride import check_rise
+from pdrlearn.sim.spin import check_spin
 from pdrlearn.sim.user import GAITS, SPEEDS
 from pdrlearn.sim.vehicle import check_vehicle
 
@@ -74,7 +77,8 @@ _USAGE = "e.g. 'straight:10, up:12, turn:180, down:12, backward:3, stand:2, curv
 #: decision L468: the example a bad item's error line gives for its own kind (else :data:`_USAGE`)
 ITEM_EXAMPLES = {"straight": "straight:10", "curve": "curve:90:2", "slope": "slope:100:10 (100 m at a 10 % grade; "
                  "no % sign; -10 goes down)", "up": "up:12", "down": "down:12", "turn": "turn:180",
-                 "backward": "backward:3", "stand": "stand:2",
+                 "backward": "backward:3", "stand": "stand:2", "spin": "spin:180:10 (180 deg to the left in 10 s; "
+                 "decision S106)",
                  "side": "side:3 (3 m to the left, -3 to the right, at the walker's own pace: side takes no pace; "
                          "decision S49)"}
 
@@ -275,6 +279,12 @@ def parse_route(spec: str) -> list[Segment]:
             step = _number(item, parts[3], positive=False) if len(parts) > 3 else 0.15
             check_pivot(math.radians(angle), n, step, f"--route item {item!r}", item)  # decision S103: its words
             segments.append(Pivot(math.radians(angle), n_steps=n, step_m=step))
+        elif kind == "spin":  # decision S106: the planner's limits, named after the item
+            _arity(item, parts, (2,))
+            angle = _number(item, parts[1], positive=False)
+            seconds = _number(item, parts[2])
+            check_spin(angle, seconds, f"--route item {item!r}")
+            segments.append(Spin(math.radians(angle), seconds))
         elif kind == "inplace":  # decision S105: steps on the spot
             _arity(item, parts, (1,))
             segments.append(InPlace(int(_number(item, parts[1], integer=True))))

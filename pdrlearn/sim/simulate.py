@@ -48,6 +48,7 @@ from pdrlearn.sim.lying import LyingEpisode, lying_angles, lying_rotation, lying
 from pdrlearn.sim.path import Footstep, Segment, Stairs, plan_footsteps
 from pdrlearn.sim.ride import Ride, ride_offset, ride_table
 from pdrlearn.sim.scenarios import SCENARIOS
+from pdrlearn.sim.spin import SpinEpisode, spin_carry, spin_table
 from pdrlearn.sim.transfer import (
     TRANSFER_S,
     TRANSFER_TIME_RANGE_S,
@@ -429,7 +430,9 @@ def simulate_path(
     rides = [e for e in transfers if isinstance(e, Ride | VehicleRide)]  # decisions S45 (lifts, escalators), S71
     freezes = [e for e in transfers if isinstance(e, FreezeEpisode)]  # decision S51: trembling in place
     lyings = [e for e in transfers if isinstance(e, LyingEpisode)]  # decision S58: lying inside a bed-edge sit
-    transfers = [e for e in transfers if not isinstance(e, Ride | VehicleRide | FreezeEpisode | LyingEpisode)]
+    spins = [e for e in transfers if isinstance(e, SpinEpisode)]  # decision S106: a stepless turn on the spot
+    transfers = [e for e in transfers
+                 if not isinstance(e, Ride | VehicleRide | FreezeEpisode | LyingEpisode | SpinEpisode)]
     stand = float(opt["stand_s"]) + (STAND_MARGIN_S if steps else 0.0)
     # decision S43: seated at the start (then a stand-up before the standstill) and / or at the end (own stream)
     sit0, sit1 = ((None, None) if not (opt["sit_start_s"] or opt["sit_end_s"]) else session_sits(
@@ -446,6 +449,7 @@ def simulate_path(
     ride_starts = transfer_starts(rides, ev.rest, lead + stand)  # decision S45: as a transfer's
     freeze_starts = transfer_starts(freezes, ev.rest, lead + stand)  # decision S51: as a transfer's
     lying_starts = transfer_starts(lyings, ev.rest, lead + stand)  # decision S58: as a transfer's
+    spin_starts = transfer_starts(spins, ev.rest, lead + stand)  # decision S106: as a transfer's
     if sit0 or sit1:  # decision S43
         ends = session_sit_starts(sit0, sit1, total_s)
         transfers = [*([sit0] if sit0 else []), *transfers, *([sit1] if sit1 else [])]
@@ -465,6 +469,7 @@ def simulate_path(
     # -- foot unit (the right foot, S1, or the left, S54) --
     # per-user mount: from beside the heel to the instep (decisions S19)
     r_sensor = np.array([user.foot_sensor_x_frac * user.foot_length_m, 0.0, user.foot_sensor_height_m])
+    carry = _Carry(rides, ride_starts, spins, spin_starts, foot, r_sensor)  # decisions S45, S71, S106
 
     def foot_unit(tt: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         heel, rot = foot_pose(tt, foot, steps, ev, initial, user, vibration=1.0 if noise else 0.0)
@@ -477,10 +482,8 @@ def simulate_path(
             ry[:, 0, 0], ry[:, 0, 2], ry[:, 1, 1], ry[:, 2, 0], ry[:, 2, 2] = c, s_, 1.0, -s_, c
             heel = heel + rot @ r_sensor - (rot @ ry) @ r_sensor + dp
             rot = rot @ ry
-        if rides:  # decision S45: the ride carries the standing walker (S71: a vehicle turns them too)
-            pos, rot = vehicle_carry(tt, heel + rot @ r_sensor, rot, rides, ride_starts)
-            return pos + ride_offset(tt, rides, ride_starts), rot
-        return heel + rot @ r_sensor, rot
+        # decision S45: the ride carries the standing walker (S71: a vehicle turns them too; S106: a spin)
+        return carry(tt, heel + rot @ r_sensor, rot)
 
     # decision S44: in parts of the 500 Hz grid; S62: the foot's pose kept at the output samples only
     f_body, w_body, pf_out, Rf_out = _unit_motion(t, foot_unit, dt, pose_every=k_out)
@@ -553,10 +556,8 @@ def simulate_path(
             p_pel, rot = _lie_down(tt, p_pel, rot, lyings, lying_starts)
         if cycling:  # decision S99: seated on the saddle, tilted forward, rocking with the crank (body frame)
             rot = rot @ cycle_pelvis(tt, rides, ride_starts)
-        if rides:  # decision S45: the ride, and the standing passenger's small sway (with the trunk's vibration)
-            pos, rot = vehicle_carry(tt, p_pel + rot @ r_waist, rot, rides, ride_starts)  # S71
-            return pos + ride_offset(tt, rides, ride_starts, sway=trunk > 0), rot
-        return p_pel + rot @ r_waist, rot
+        # decision S45: the ride, and the standing passenger's small sway (with the trunk's vibration; S71, S106)
+        return carry(tt, p_pel + rot @ r_waist, rot, sway=trunk > 0)
 
     fw_body, ww_body, p_w100, R_p100 = _unit_motion(t, waist_unit, dt)  # decision S44
     heading_out = _yaw_of(R_p100[k_out // 2 :: k_out][:n_out])
@@ -655,6 +656,9 @@ def simulate_path(
     if rides:  # decision S45: only sessions with a lift or an escalator have the table
         extras["rides"] = pd.DataFrame(ride_table(rides, ride_starts))
         extras["rides"].attrs["time_columns"] = ["start_s", "end_s"]
+    if spins:  # decision S106: only sessions with a spin have the table
+        extras["spins"] = pd.DataFrame(spin_table(spins, spin_starts))
+        extras["spins"].attrs["time_columns"] = ["start_s", "end_s"]
     if freezes:  # decision S51: only sessions with a freeze have the table
         extras["freezes"] = pd.DataFrame(freeze_table(freezes, freeze_starts))
         extras["freezes"].attrs["time_columns"] = ["start_s", "end_s"]
@@ -715,6 +719,41 @@ def simulate_path(
         meta=meta,
         frames=frames,
     )
+
+
+class _Carry:
+    """The episodes that carry or turn the standing walker as a whole, applied to a unit's planned pose: S45's lifts
+    and escalators, S71's / S99's vehicles and bicycles and S106's spins.
+
+    Without a spin, exactly the rides' carry as before S106 (:func:`vehicle_carry`, then :func:`ride_offset`).
+    Decision S106: with a spin, each episode is a rigid motion laid out in the planner's frame, which knows nothing of
+    the episodes before it, so the pose is carried by the episodes from the last to the first (a ride after a spin
+    is turned by it; a spin after a ride is moved by it). A spin turns about the vertical through the instrumented
+    ``foot``'s unit (``r_sensor`` from its heel) where it stands in the planner's frame."""
+
+    def __init__(self, rides: list, ride_starts: np.ndarray, spins: list[SpinEpisode], spin_starts: np.ndarray,
+                 foot: str, r_sensor: np.ndarray):
+        self.rides, self.ride_starts = rides, ride_starts
+        episodes = [(float(t0), 0, i, r) for i, (r, t0) in enumerate(zip(rides, ride_starts, strict=True))]
+        for i, (sp, t0) in enumerate(zip(spins, spin_starts, strict=True)):
+            heel, yaw = sp.foot(foot)
+            episodes.append((float(t0), 1, i, (sp, heel + (_rz(yaw) @ r_sensor)[:2])))
+        self.spun = sorted(episodes, key=lambda e: (e[0], e[1], e[2]))[::-1] if spins else None
+
+    def __call__(self, tt: np.ndarray, pos: np.ndarray, rot: np.ndarray, *, sway: bool = False
+                 ) -> tuple[np.ndarray, np.ndarray]:
+        if self.spun is None:
+            if not self.rides:
+                return pos, rot
+            pos, rot = vehicle_carry(tt, pos, rot, self.rides, self.ride_starts)  # S71
+            return pos + ride_offset(tt, self.rides, self.ride_starts, sway=sway), rot
+        for t0, is_spin, _, ep in self.spun:  # decision S106: the last episode first
+            if is_spin:
+                pos, rot = spin_carry(tt, pos, rot, ep[0], t0, ep[1])
+            else:
+                pos, rot = vehicle_carry(tt, pos, rot, [ep], np.array([t0]))
+                pos = pos + ride_offset(tt, [ep], np.array([t0]), sway=sway)
+        return pos, rot
 
 
 class _FineGrid:

@@ -57,7 +57,7 @@ class TrackResult:
         from pdrlearn.track.clinical import turn_table
 
         return turn_table(self.steps, detected_bouts(self.steps) if bouts is None else bouts,
-                          yaw_turns=self.info.get("yaw_turns"))
+                          yaw_turns=self.info.get("yaw_turns"), gap_turns=self.info.get("waist_gap_turns"))  # L701
 
     def summary(self, session, *, pipeline: str | None = None) -> dict:
         """The dict ``pdrlearn track`` writes as ``summary.json`` for this track of ``session``: distance,

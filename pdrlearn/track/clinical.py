@@ -707,7 +707,7 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
                yaw_fractions: bool = False, reversal: bool = False,
                first_own: bool = True, foot_split: bool = True,
                yaw_split: bool = True, yaw_angle: bool = True,
-               sustained: bool = False) -> pd.DataFrame:
+               sustained: bool = False, gap_turns=None) -> pd.DataFrame:
     """Decision L200: one row per turn of at least ``min_deg`` (``turn_count``'s turns, :func:`turn_rows`) of a
     tracked step table (or of a :class:`~pdrlearn.track.base.TrackResult`, decision W330: its ``steps`` with its
     ``info["yaw_turns"]``; ``result.turns()`` adds its bouts): ``start_s`` / ``end_s`` the start of the first and
@@ -746,7 +746,9 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
     ``mean_rate_dps`` the 5-95 % share of the angle over them, as under ``"heading"``; ``yaw_split`` (L370 / W328) a
     run is cut between two consecutive opposite yaw-rate turns (:func:`opposite_yaw_cuts`); ``yaw_angle`` (W328) a
     matched turn's angle is its yaw-rate turn's. ``reversal`` / ``first_own`` / ``foot_split`` (decisions L368 /
-    L369 / L370) and ``sustained`` (decision W466): :func:`_turn_spans`'s. The rows are in time order."""
+    L369 / L370) and ``sustained`` (decision W466): :func:`_turn_spans`'s. ``gap_turns`` (decision L701): a foot
+    track's ``info["waist_gap_turns"]``, the lower back's turns in the foot's rest gaps, each of at least ``min_deg``
+    a row of its own (:func:`pdrlearn.track.gap_turns.gap_turn_row`, ``n_rows`` 0). The rows are in time order."""
     if hasattr(steps, "steps") and hasattr(steps, "info"):  # decision W330: a TrackResult, with its yaw-rate turns
         yaw_turns = steps.info.get("yaw_turns") if yaw_turns is None else yaw_turns
         steps = steps.steps
@@ -851,6 +853,10 @@ def turn_table(steps: pd.DataFrame, bouts: pd.DataFrame | None = None, *,
                          "peak_rate_dps": y.peak_dps, "n_rows": 0, "bout": bout_of(y.peak_s),
                          "mean_rate_dps": yaw_share * abs(y.angle_deg) / dur if dur > 0 else np.nan,
                          "carried": bool(getattr(y, CARRIED))})  # decision L622
+    if gap_turns:  # decision L701: the lower back's turn in a foot rest gap, no stride holding it (n_rows 0)
+        from pdrlearn.track.gap_turns import gap_turn_row
+
+        rows += [gap_turn_row(r, bout_of) for r in gap_turns if abs(float(r["angle_deg"])) >= min_deg]
     rows.sort(key=lambda r: r["start_s"])  # stable: step-heading turns keep their order
     out = pd.DataFrame([{"turn": i + 1, **r} for i, r in enumerate(rows)], columns=list(TURN_TABLE_COLUMNS))
     out["bout"] = out["bout"].astype("Int64")

@@ -689,9 +689,11 @@ def _basic(result: TrackResult, out: dict) -> None:
     out.update(clinical_summary(result.steps))  # decision L104: pauses, walking bouts, turns, stride-time CV
     out.update(leg_summary(result.steps))  # decision W228: steps per leg, the lower back's step-time asymmetry
     # decision L200: each turn's duration, angle, peak rate (L210: a lower-back track's yaw-rate turns)
-    table = turn_table(result.steps, yaw_turns=result.info.get("yaw_turns"))
+    table = turn_table(result.steps, yaw_turns=result.info.get("yaw_turns"),
+                       gap_turns=result.info.get("waist_gap_turns"))  # decision L701
     out.update(turn_summary(walked_turns(table)))  # decision L622: not the turns made seated or riding (W488)
-    if result.info.get("yaw_turns") is not None:  # decisions L231 / L233: turns.csv's turns are turn_count's
+    # decisions L231 / L233: turns.csv's turns are turn_count's; L701: with a foot rest gap's lower-back turn
+    if result.info.get("yaw_turns") is not None or result.info.get("waist_gap_turns"):
         out["turn_count"] = len(walked_turns(table))  # L622: less those marked carried
     from pdrlearn.track.trunk_tug import foot_strides, trunk_note, tug_contacts, tug_source_summary, tug_yaw_turns
 
@@ -1703,6 +1705,7 @@ SUMMARY_INFO_LEFT_OUT = {
     "rides": "rides.csv (decision L377)",
     "trunk_contacts": "the lower-back contacts a two-unit TUG is timed on (decision W418)",
     "trunk_yaw_turns": "the lower-back turns of a two-unit TUG's turn-to-sit (decisions W307, W418)",
+    "waist_gap_turns": "turns.csv's rows of n_rows 0 on a foot track: the lower back's turn in a rest gap (L701)",
     "wb_scores": "wb_scores.csv (decision W493)",
     "window_cut_wbs": "the reference WBs a --window cuts, left out of wb_scores.csv (decision W499)",
 }

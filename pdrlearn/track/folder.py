@@ -93,7 +93,8 @@ def clinical_tables(result, bouts) -> dict:
     from pdrlearn.track.grade import ramp_table
     from pdrlearn.waist.transfers import TRANSFER_COLUMNS
 
-    out = {"turns.csv": add_turn_steps(turn_table(result.steps, bouts, yaw_turns=result.info.get("yaw_turns")),
+    out = {"turns.csv": add_turn_steps(turn_table(result.steps, bouts, yaw_turns=result.info.get("yaw_turns"),
+                                                  gap_turns=result.info.get("waist_gap_turns")),  # L701
                                        result.steps)}  # L210; W398: steps per turn
     from pdrlearn.track.clinical import _is_lower_back
     from pdrlearn.track.grade import info_stair_grade, track_ramps

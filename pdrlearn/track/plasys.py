@@ -105,6 +105,7 @@ from pdrlearn.track.gait import (
     stride_rows,
     turn_rows,
 )
+from pdrlearn.track.gap_turns import add_waist_gap_turns
 from pdrlearn.track.gaps import (
     FOOT_IMU,
     drop_steps_across_gaps,
@@ -1558,6 +1559,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             warnings += [msg] if msg else []
 
     bridge_foot_yaw(fd, foot_gaps, (lambda n: (work.streams[n].t, work.streams[n].values)) if bridged else None)
+    # decision L701: a rest gap takes the lower back's turn the foot's heading missed (a stepless turn on the spot)
+    gap_turns = add_waist_gap_turns(fd, lambda n: (work.streams[n].t, work.streams[n].values)) if has_waist else None
     hsrc = heading or cfg["heading"]
     hard_iron_info, compass_info, mount_info = None, None, None
     if hsrc in ("waist", "fused") and not has_waist:
@@ -1774,6 +1777,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     oracle = isinstance(model, str) and model == "oracle"
     info = {"pipeline": "plasys", "method": "M3 engine, no classes" if no_classes else method,
             "heading_source": hsrc, "stance_source": stance_source,
+            **({"waist_gap_turns": gap_turns} if gap_turns else {}),  # decision L701 (turns.csv's rows)
             "force_offset_s": force_offset,  # decision L389 (None: no force stance)
             "toe_off_source": toe_off_source if toe_off else None,  # decision L388
             "hard_iron": hard_iron_info,  # decision L84 (None: the fit was not asked)

@@ -207,6 +207,8 @@ def window_track(result: TrackResult, session: Session, t0: float, t1: float) ->
         info["yaw_turns"] = [r for r in info["yaw_turns"] if t0 <= 0.5 * (r["start_s"] + r["end_s"]) <= t1]
     if info.get("trunk_yaw_turns") is not None:  # decision W418: the waist unit's turns, as W329's
         info["trunk_yaw_turns"] = [r for r in info["trunk_yaw_turns"] if t0 <= 0.5 * (r["start_s"] + r["end_s"]) <= t1]
+    if info.get("waist_gap_turns"):  # decisions L701 / L702: a rest gap's turn, as W329's (turns.csv's rows)
+        info["waist_gap_turns"] = [r for r in info["waist_gap_turns"] if t0 <= 0.5 * (r["start_s"] + r["end_s"]) <= t1]
     if info.get("trunk_contacts") is not None:  # decision W418: the waist unit's contacts inside the window
         info["trunk_contacts"] = [r for r in info["trunk_contacts"] if t0 <= r["start_s"] <= t1]
     cut_wbs = window_cut_wbs(session, t0, t1)
