@@ -114,7 +114,16 @@ def fir_taps(cutoff_hz: float, fs: float, order: int) -> np.ndarray:
     if not 0 < cutoff_hz < nyq:
         raise DataError(f"FIR low-pass: cutoff {cutoff_hz} Hz must lie in (0, {nyq:g}) Hz at {fs:g} Hz")
     order = max(2, int(order) + (int(order) % 2))
-    return dsp.firwin_lowpass(order + 1, cutoff_hz, fs)
+    return _firwin_of(order + 1, float(cutoff_hz), float(fs))
+
+
+@functools.lru_cache(maxsize=64)
+def _firwin_of(numtaps: int, cutoff_hz: float, fs: float) -> np.ndarray:
+    """:func:`dsp.firwin_lowpass`, designed once per setting (read-only; E308: the realtime detector, W31, asks the
+    same design for every 0.25 s window)."""
+    taps = dsp.firwin_lowpass(numtaps, cutoff_hz, fs)
+    taps.flags.writeable = False
+    return taps
 
 
 def fir_zero_lag(x: np.ndarray, taps: np.ndarray) -> np.ndarray:
