@@ -40,3 +40,21 @@ def test_nanmedian_few_is_numpys_nanmedian_to_the_bit():
         assert (got == want) or (got != got and want != want), (y, got, want)
     assert np.isnan(W._nanmedian_few([float("nan"), float("nan")]))
     assert W._nanmedian_few([float("nan"), 3.0]) == 3.0
+
+
+def test_fir_taps_are_designed_once_read_only_and_equal_the_design():
+    from pdrlearn.kernels import dsp
+
+    a, b = W.fir_taps(2.5, 100.0, 30), W.fir_taps(2.5, 100.0, 30)
+    assert a is b and not a.flags.writeable
+    assert np.array_equal(a, dsp.firwin_lowpass(31, 2.5, 100.0))
+    assert np.array_equal(W.fir_taps(2.5, 100.0, 29), dsp.firwin_lowpass(31, 2.5, 100.0))  # order made even
+
+
+def test_local_period_takes_a_list_or_an_array_alike():
+    t = np.cumsum(np.random.default_rng(49).uniform(40, 70, size=30))
+    t[12:] += 200.0  # a gap over max_gap: sequences end there
+    for k in range(t.size):
+        for side in (-1, 1):
+            a, b = W._local_period(t, k, side, 150.0), W._local_period(t.tolist(), k, side, 150.0)
+            assert (a == b) or (a != a and b != b)
