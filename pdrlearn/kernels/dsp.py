@@ -6,7 +6,8 @@ design, a peak picker, a moving average and zero-phase Butterworth filters. They
 algorithms in numpy, so :mod:`pdrlearn.runtime` can run the waist tracker without scipy. Each is pinned to its
 scipy counterpart by ``tests/test_kernels_dsp.py`` (equal to the bit where the order of operations is scipy's:
 ``firwin``, ``find_peaks``, ``uniform_filter1d``; to rounding, 1e-12 relative, for the IIR filters, whose
-sections are grouped differently).
+sections are grouped differently). :func:`sosfilt` hands its loop to scipy's compiled one when the process has loaded
+``scipy.signal`` already (decision E307: the same floats; it never imports scipy itself).
 """
 
 from __future__ import annotations
