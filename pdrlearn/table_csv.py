@@ -21,13 +21,13 @@ def write_table_csv(df, path) -> None:
     import numpy as np
 
     wide = {}
-    for c in df.columns:
-        if df[c].dtype.kind == "f":
-            v = np.asarray(df[c], dtype=float)
-            ok = np.isfinite(v)
-            if ok.any() and np.abs(v[ok]).max() >= WIDE_FLOAT_MIN:
-                wide[c] = [None if x != x else wide_float_text(x) for x in v.tolist()]  # None: to_csv's NaN
-    wide.update(positional_columns(df.drop(columns=list(wide)), digits=10))  # decision C103: no 1e-05
+    for c in _float_columns(df):
+        v = np.asarray(df[c], dtype=float)
+        ok = np.isfinite(v)
+        if ok.any() and np.abs(v[ok]).max() >= WIDE_FLOAT_MIN:
+            wide[c] = [None if x != x else wide_float_text(x) for x in v.tolist()]  # None: to_csv's NaN
+    rest = df.drop(columns=list(wide)) if wide else df  # E308: no copy of the table when no column is wide
+    wide.update(positional_columns(rest, digits=10))  # decision C103: no 1e-05
     (df.assign(**wide) if wide else df).to_csv(path, index=False, float_format=CSV_FLOAT_FORMAT)
 
 
@@ -56,13 +56,19 @@ def positional_columns(df, digits: int | None = 10) -> dict:
     import numpy as np
 
     out = {}
-    for c in df.columns:
-        if df[c].dtype.kind == "f":
-            v = np.abs(np.asarray(df[c], dtype=float))
-            ok = np.isfinite(v) & (v > 0)
-            if ok.any() and ((v[ok] < EXPONENT_BELOW).any() or (v[ok] >= 1e15).any()):
-                out[c] = [None if x != x else float_text(x, digits) for x in df[c].tolist()]
+    for c in _float_columns(df):
+        col = df[c]
+        v = np.abs(np.asarray(col, dtype=float))
+        ok = np.isfinite(v) & (v > 0)
+        if ok.any() and ((v[ok] < EXPONENT_BELOW).any() or (v[ok] >= 1e15).any()):
+            out[c] = [None if x != x else float_text(x, digits) for x in col.tolist()]
     return out
+
+
+def _float_columns(df) -> list:
+    """The names of ``df``'s float columns, in order, read from ``df.dtypes`` (E308: a pandas column taken out only
+    when it is a float one; each take copies the table's ``attrs``)."""
+    return [c for c, t in zip(df.columns, df.dtypes, strict=True) if t.kind == "f"]
 
 
 def wide_float_text(x: float) -> str:

@@ -274,7 +274,9 @@ def _refuse_us_thousands(df: pd.DataFrame, path: Path, *, comma: bool) -> None:
     """Decision B225: in a file whose numbers have decimal points (a column read as numbers with fractions), a
     text column whose values with a comma all group thousands (``"1,000"``, US Excel's ``#,##0``) is refused in
     one line naming it: B24 would read ``1,000`` as a decimal comma (1.0), and the advice was to sort the file."""
-    if comma or not any(df[c].dtype.kind == "f" and (df[c].dropna() % 1 != 0).any() for c in df.columns):
+    if comma or all(t.kind in "biufc" for t in df.dtypes):  # E308: no text column, nothing to refuse
+        return
+    if not any(df[c].dtype.kind == "f" and (df[c].dropna() % 1 != 0).any() for c in df.columns):
         return
     for c in df.columns:
         if df[c].dtype.kind in "biufc":

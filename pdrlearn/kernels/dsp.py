@@ -6,13 +6,15 @@ design, a peak picker, a moving average and zero-phase Butterworth filters. They
 algorithms in numpy, so :mod:`pdrlearn.runtime` can run the waist tracker without scipy. Each is pinned to its
 scipy counterpart by ``tests/test_kernels_dsp.py`` (equal to the bit where the order of operations is scipy's:
 ``firwin``, ``find_peaks``, ``uniform_filter1d``; to rounding, 1e-12 relative, for the IIR filters, whose
-sections are grouped differently).
+sections are grouped differently). :func:`sosfilt` hands its loop to scipy's compiled one when the process has loaded
+``scipy.signal`` already (decision E307: the same floats; it never imports scipy itself).
 """
 
 from __future__ import annotations
 
 import functools
 import math
+import sys
 
 import numpy as np
 
@@ -157,11 +159,35 @@ def _zpk_sections(z: np.ndarray, p: np.ndarray, k: float) -> np.ndarray:
     return sos
 
 
+def _loaded_sosfilt_kernel():
+    """The compiled loop behind ``scipy.signal.sosfilt`` (``scipy.signal._sosfilt._sosfilt(sos, x, zi)``, in place
+    on ``x`` (signals, samples) and ``zi`` (signals, sections, 2)) when this process has imported ``scipy.signal``
+    already, else None: never imports scipy itself, so the lean runtime stays numpy only (E307). The kernel is
+    called directly because the public function's argument checks cost ~0.2 ms a call, more than the loop on a
+    short chunk."""
+    return getattr(sys.modules.get("scipy.signal._sosfilt"), "_sosfilt", None)
+
+
 def sosfilt(sos: np.ndarray, x: np.ndarray, zi: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """The cascade ``sos`` over ``x`` (n,) in transposed direct form II, from the state ``zi`` (n_sections, 2;
-    None: zeros), as ``scipy.signal.sosfilt``; returns ``(y, zf)``. Two sections run in one pass over the samples
-    (the same operations in the same order per section as one pass per section, so the same floats: only fewer
-    Python loop turns; the live waist tracker filters a 12 s window every 0.25 s, W31)."""
+    None: zeros), as ``scipy.signal.sosfilt``; returns ``(y, zf)``. When the process has loaded ``scipy.signal``
+    and every section is normalised (``a0 == 1``, as scipy requires), scipy's compiled loop runs: the same
+    operations in the same order, so the same floats (decision E307, pinned by
+    ``tests/test_dsp_speed_s47_e307.py``); otherwise :func:`sosfilt_loop`."""
+    kernel = _loaded_sosfilt_kernel()
+    sos = np.asarray(sos, dtype=np.float64)
+    if kernel is None or sos.ndim != 2 or sos.shape[0] == 0 or not bool(np.all(sos[:, 3] == 1.0)):
+        return sosfilt_loop(sos, x, zi)
+    y = np.array(x, dtype=np.float64, order="C").reshape(1, -1)  # a copy: the kernel works in place
+    zs = np.zeros((1, sos.shape[0], 2)) if zi is None else np.array(zi, dtype=np.float64).reshape(1, -1, 2)
+    kernel(np.array(sos, order="C"), y, zs)  # a writable copy: the kernel takes writable buffers only
+    return y.reshape(-1), zs.reshape(sos.shape[0], 2)
+
+
+def sosfilt_loop(sos: np.ndarray, x: np.ndarray, zi: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`sosfilt` in numpy and Python alone (the lean runtime's path). Two sections run in one pass over the
+    samples (the same operations in the same order per section as one pass per section, so the same floats: only
+    fewer Python loop turns; the live waist tracker filters a 12 s window every 0.25 s, W31)."""
     y = np.asarray(x, dtype=np.float64).tolist()
     zs = np.zeros((sos.shape[0], 2)) if zi is None else np.array(zi, dtype=np.float64).reshape(sos.shape[0], 2)
     zf = np.empty_like(zs)

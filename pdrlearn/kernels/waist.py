@@ -114,7 +114,16 @@ def fir_taps(cutoff_hz: float, fs: float, order: int) -> np.ndarray:
     if not 0 < cutoff_hz < nyq:
         raise DataError(f"FIR low-pass: cutoff {cutoff_hz} Hz must lie in (0, {nyq:g}) Hz at {fs:g} Hz")
     order = max(2, int(order) + (int(order) % 2))
-    return dsp.firwin_lowpass(order + 1, cutoff_hz, fs)
+    return _firwin_of(order + 1, float(cutoff_hz), float(fs))
+
+
+@functools.lru_cache(maxsize=64)
+def _firwin_of(numtaps: int, cutoff_hz: float, fs: float) -> np.ndarray:
+    """:func:`dsp.firwin_lowpass`, designed once per setting (read-only; E308: the realtime detector, W31, asks the
+    same design for every 0.25 s window)."""
+    taps = dsp.firwin_lowpass(numtaps, cutoff_hz, fs)
+    taps.flags.writeable = False
+    return taps
 
 
 def fir_zero_lag(x: np.ndarray, taps: np.ndarray) -> np.ndarray:
@@ -637,12 +646,13 @@ def _max_gap(max_step_s: float, fs: float) -> int:
 
 def _local_period(t: np.ndarray, k: int, side: int, max_gap: float, n: int = 3) -> float:
     """Median of up to ``n`` step intervals of the sequence on ``side`` (-1 before, +1 after) of
-    accepted maximum ``k`` (times ``t`` in samples); NaN when fewer than ``RHYTHM_MIN_STEPS - 1``."""
+    accepted maximum ``k`` (times ``t`` in samples, an array or a list of floats: E308, the same values);
+    NaN when fewer than ``RHYTHM_MIN_STEPS - 1``."""
     iv = []
     j = k
     while len(iv) < n:
         j2 = j + side
-        if j2 < 0 or j2 >= t.size or abs(t[j2] - t[j]) > max_gap:
+        if j2 < 0 or j2 >= len(t) or abs(t[j2] - t[j]) > max_gap:
             break
         iv.append(abs(t[j2] - t[j]))
         j = j2
@@ -658,6 +668,13 @@ def _median_few(x: list) -> float:
     s = sorted(x)
     m = len(s) // 2
     return float(s[m]) if len(s) % 2 else float((s[m - 1] + s[m]) / 2)
+
+
+def _nanmedian_few(x: list) -> float:
+    """``float(np.nanmedian(x))`` of a few numbers: :func:`_median_few` of the ones that are not NaN (NaN when
+    none is; E308: the rhythm rules ask it once per contact pair in every 0.25 s window of the realtime detector)."""
+    v = [a for a in x if a == a]
+    return _median_few(v) if v else float("nan")
 
 
 def _period_around(t: np.ndarray, k: int, max_gap: float) -> float:
@@ -737,7 +754,7 @@ def drop_unshifted(cand: np.ndarray, height: np.ndarray, keep: np.ndarray, accep
                     break
                 nb.append(nxt)
                 i = nxt
-        if nb and h[c] < PRUNE_HEIGHT_FRAC * float(np.median(h[sel[nb]])):
+        if nb and h[c] < PRUNE_HEIGHT_FRAC * _median_few(h[sel[nb]].tolist()):  # E308: np.median's value
             out[c] = False
     return out
 
@@ -801,10 +818,9 @@ def _one_step_gaps(pos: np.ndarray, sd: np.ndarray, max_gap: int, tol: float, *,
             continue
         if (s_k == 0 or s_n != s_k) if same_side else s_k * s_n < 0:
             continue
-        p = [_local_period(t, k, -1, max_gap), _local_period(t, k + 1, +1, max_gap)]
-        if not np.isfinite(p).any():
+        per = _nanmedian_few([_local_period(t, k, -1, max_gap), _local_period(t, k + 1, +1, max_gap)])  # E308
+        if per != per:
             continue
-        per = float(np.nanmedian(p))
         a1, a2 = t[k] + per, t[k + 1] - per  # the predicted times; W18's +-tol around both
         lo, hi = max(a1, a2) - tol * per, min(a1, a2) + tol * per
         if lo <= hi:
@@ -1009,6 +1025,7 @@ def rhythm_complete(cand: np.ndarray, height: np.ndarray, accepted: np.ndarray, 
     max_gap, min_gap = _max_gap(max_step_s, fs), max(1, int(round(min_step_s * fs)))  # as find_peaks' distance
     acc = np.flatnonzero(keep)
     t = cand[acc].astype(np.float64)
+    tl = t.tolist()  # E308: _local_period on Python floats (the same values, no numpy scalar per interval)
     add: list[int] = []
 
     def best_near(centre: float, half: float, floor: float, want: int = 0) -> int | None:
@@ -1018,10 +1035,10 @@ def rhythm_complete(cand: np.ndarray, height: np.ndarray, accepted: np.ndarray, 
 
     for k in range(t.size):
         s_k = int(sd[acc[k]])
-        period_b = _local_period(t, k, -1, max_gap)
+        period_b = _local_period(tl, k, -1, max_gap)
         if k + 1 < t.size and t[k + 1] - t[k] <= max_gap:  # (1) gap inside a sequence
-            period_a = _local_period(t, k + 1, +1, max_gap)
-            per = np.nanmedian([period_b, period_a]) if np.isfinite([period_b, period_a]).any() else np.nan
+            period_a = _local_period(tl, k + 1, +1, max_gap)
+            per = _nanmedian_few([period_b, period_a])  # E308: np.nanmedian's value
             gap = t[k + 1] - t[k]
             if np.isfinite(per) and gap > RHYTHM_GAP * per:
                 s_n = int(sd[acc[k + 1]])
@@ -1036,7 +1053,7 @@ def rhythm_complete(cand: np.ndarray, height: np.ndarray, accepted: np.ndarray, 
             if i is not None:
                 add.append(i)
         if (k == 0 or t[k] - t[k - 1] > max_gap):  # (2) sequence start
-            period_a = _local_period(t, k, +1, max_gap)
+            period_a = _local_period(tl, k, +1, max_gap)
             if np.isfinite(period_a):
                 i = best_near(t[k] - period_a, tol * period_a, min_peak, -s_k)
                 if i is not None:
@@ -1420,12 +1437,12 @@ def local_medians(values: np.ndarray, use: np.ndarray, closes: np.ndarray) -> np
     seq = np.concatenate([[0], np.cumsum(closes)[:-1]]) if v.size else np.zeros(0, int)
     for sid in np.unique(seq[use]):
         rows = np.flatnonzero(use & (seq == sid))
-        c = np.concatenate([[0.0], np.cumsum(v[rows])])  # consecutive differences are the values, in order
+        c = np.concatenate([[0.0], np.cumsum(v[rows])]).tolist()  # consecutive differences are the values
         for j, r in enumerate(rows):
             side = [x for x in (_local_period(c, j, -1, np.inf), _local_period(c, j + 1, +1, np.inf))
                     if np.isfinite(x)]
             if side:
-                out[r] = float(np.median(side))
+                out[r] = _median_few(side)  # E308: np.median's value
     return out
 
 
