@@ -354,6 +354,26 @@ def rate_mismatch(p: WaistParams, session: Session, where: str = "the waist para
     return rate_mismatch_line(p.rate_hz, float(session["wAccelerometer"].rate_hz), where)
 
 
+#: decision W542: a calibration's leg length more than this fraction off the tracked session's own (meta.json) warns
+LEG_MISMATCH = 0.05
+
+
+def leg_mismatch(p: WaistParams, session: Session, where: str = "the waist parameters") -> str | None:
+    """Decision W542 (trial T2 finding F5: another subject's calibration file was applied without a word, +5.48 %
+    distance): the warning line when a calibration's leg length ``p.leg_m`` is more than :data:`LEG_MISMATCH` off the
+    leg the session's own meta.json gives (``leg_length_m``, else ``sensor_height_m``, as B155 reads it), else None;
+    nothing when meta.json gives neither (the calibration's leg then stands alone)."""
+    leg = _meta_number(session.meta or {}, "leg_length_m", "sensor_height_m")
+    if p.source != "calibrated" or leg is None or not np.isfinite(p.leg_m) or not leg > 0:
+        return None
+    off = p.leg_m / leg - 1.0
+    if abs(off) <= LEG_MISMATCH:
+        return None
+    return (f"{where} was calibrated for a leg of {p.leg_m:.3f} m, but this session's meta.json gives {leg:.3f} m "
+            f"({100 * -off / (1 + off):+.1f} %): another subject's calibration? calibrate this subject on a walk of "
+            f"known length, or correct meta.json (decision W542)")
+
+
 def resolve_params(session: Session, params) -> tuple[WaistParams, list[str]]:
     """User parameters completed with the session's defaults for any value left undefined."""
     user = load_params(params)
@@ -368,8 +388,8 @@ def resolve_params(session: Session, params) -> tuple[WaistParams, list[str]]:
             setattr(merged, f.name, getattr(base, f.name))
             filled.add(f.name)
     where = str(params) if isinstance(params, str | os.PathLike) else "the waist parameters"
-    line = rate_mismatch(merged, session, where)  # decision W87
-    return merged, _default_lines(warnings, user, filled) + ([line] if line else [])
+    lines = [x for x in (rate_mismatch(merged, session, where), leg_mismatch(merged, session, where)) if x]  # W87, W542
+    return merged, _default_lines(warnings, user, filled) + lines
 
 
 def _default_lines(warnings: list[str], user: WaistParams, filled: set[str]) -> list[str]:
