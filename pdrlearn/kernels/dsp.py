@@ -180,7 +180,10 @@ def sosfilt(sos: np.ndarray, x: np.ndarray, zi: np.ndarray | None = None) -> tup
         return sosfilt_loop(sos, x, zi)
     y = np.array(x, dtype=np.float64, order="C").reshape(1, -1)  # a copy: the kernel works in place
     zs = np.zeros((1, sos.shape[0], 2)) if zi is None else np.array(zi, dtype=np.float64).reshape(1, -1, 2)
-    kernel(np.array(sos, order="C"), y, zs)  # a writable copy: the kernel takes writable buffers only
+    try:
+        kernel(np.array(sos, order="C"), y, zs)  # a writable copy: the kernel takes writable buffers only
+    except (TypeError, ValueError):  # a scipy whose private kernel changed its arguments: the loop, same floats
+        return sosfilt_loop(sos, x, zi)
     return y.reshape(-1), zs.reshape(sos.shape[0], 2)
 
 
