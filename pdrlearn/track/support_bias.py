@@ -13,16 +13,30 @@ import math
 
 from pdrlearn.track.toeoff import TOE_OFF_STANCE_BIAS_MS
 
-#: decision L703: the stance-time error (ms, ours - reference, each set-up's range over its measured walks) by the
-#: source of the contacts. "imu": L73's real gaitmap level walks against motion capture (lateral shoe mount, adults,
+#: decision L703: the stance-time error (ours - reference, each set-up's range over its measured walks) by the source
+#: of the contacts, in ms or in % of the gait cycle - whichever held constant where measured. "imu": L73's real
+#: gaitmap level walks against motion capture (lateral shoe mount, adults, one 1.09 s cycle: ms,
 #: ``pdrlearn.track.toeoff.TOE_OFF_STANCE_BIAS_MS``); "force": the simulator's insoles (IC at the force onset, late;
-#: toe-off at the drop-off, early), measured in session 47 on simulated children and adults (no real insole reference)
-STANCE_BIAS_MS = {"imu": (min(TOE_OFF_STANCE_BIAS_MS), max(TOE_OFF_STANCE_BIAS_MS)), "force": (-36.0, -33.0)}
+#: toe-off at the drop-off, early), session 47, users 14931-14933 (children, 0.76-0.84 s cycles, -35.5 to -37.8 ms)
+#: and 14935-14937 (adults, 1.04-1.19 s, -43.8 to -49.0 ms): a share of the cycle, -4.12 to -4.67 %
+STANCE_BIAS = {"imu": ((min(TOE_OFF_STANCE_BIAS_MS), max(TOE_OFF_STANCE_BIAS_MS)), "ms"),
+               "force": ((-4.67, -4.12), "% of the gait cycle")}
 #: decision L703: where each range was measured (the line names it)
-BIAS_SOURCE = {"imu": "IMU-only contacts against motion capture on gaitmap's real level walks (lateral shoe mount, "
+BIAS_SOURCE = {"imu": "IMU-only contacts (against motion capture on gaitmap's real level walks, lateral shoe mount, "
                       "adults; L73)",
-               "force": "force-insole contacts on the simulator's insoles (IC at the force onset, late; toe-off at "
-                        "the drop-off, early; no real insole reference)"}
+               "force": "force-insole contacts (the simulator's insoles: IC at the force onset, late, toe-off at the "
+                        "drop-off, early; no real insole reference)"}
+
+
+def stance_bias_ms(setup: str, cycle_s: float | None) -> tuple[float, float] | None:
+    """Decision L703: the (most, least) negative stance-time error (ms) of ``setup`` at a gait cycle of ``cycle_s``
+    (s); None when the set-up's bias is a share of the cycle and the cycle is unknown."""
+    (lo, hi), unit = STANCE_BIAS[setup]
+    if unit == "ms":
+        return lo, hi
+    if cycle_s is None or not math.isfinite(cycle_s) or cycle_s <= 0:
+        return None
+    return 10.0 * lo * cycle_s, 10.0 * hi * cycle_s
 
 
 def setup_of(source) -> str | None:
@@ -36,13 +50,17 @@ def setup_of(source) -> str | None:
 def bias_terms(setup: str | None, cycle_s: float | None) -> str:
     """Decision L703: the clause giving the stance bias of ``setup`` (both set-ups' when None) in ms and, with a
     finite gait cycle ``cycle_s`` (s), in percentage points of that cycle: stance, double support, single support."""
-    setups = [setup] if setup in STANCE_BIAS_MS else list(STANCE_BIAS_MS)
+    setups = [setup] if setup in STANCE_BIAS else list(STANCE_BIAS)
     parts = []
     for s in setups:
-        lo, hi = STANCE_BIAS_MS[s]
-        text = f"with {BIAS_SOURCE[s]} each stance reads {-hi:.0f}-{-lo:.0f} ms short"
+        (lo, hi), unit = STANCE_BIAS[s]
+        ms = stance_bias_ms(s, cycle_s)
+        if ms is None:
+            parts.append(f"with {BIAS_SOURCE[s]} each stance reads {-hi:.1f}-{-lo:.1f} {unit} short")
+            continue
+        text = f"with {BIAS_SOURCE[s]} each stance reads {-ms[1]:.0f}-{-ms[0]:.0f} ms short"
         if cycle_s is not None and math.isfinite(cycle_s) and cycle_s > 0:
-            pp = [100.0 * b / 1000.0 / cycle_s for b in (lo, hi)]
+            pp = [100.0 * b / 1000.0 / cycle_s for b in ms]
             text += (f", at this walk's {cycle_s:.2f} s gait cycle {pp[0]:+.1f} to {pp[1]:+.1f} percentage points of "
                      f"stance, {2 * pp[0]:+.1f} to {2 * pp[1]:+.1f} of double support and {-pp[1]:+.1f} to "
                      f"{-pp[0]:+.1f} of single support")
