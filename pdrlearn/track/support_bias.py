@@ -28,6 +28,15 @@ BIAS_SOURCE = {"imu": "IMU-only contacts (against motion capture on gaitmap's re
                         "drop-off, early; no real insole reference)"}
 
 
+#: decision L703 (steps 87, not adopted): below this gait cycle (s) some IMU-only contacts fire 50-80 ms early at the
+#: terminal-swing deceleration (simulated children at 0.34-0.44 s steps, 0.68-0.88 s cycles; none on adults' 1.0-1.2
+#: s cycles), so the stance reads long on some strides and the sign of the support bias is not known there
+IMU_EARLY_CYCLE_S = 0.95
+#: decision L703: the median stance-time error (ms) of the simulated children's IMU-only walks (users 14900-14919,
+#: 0.68-0.88 s cycles, session 47), lowest and highest
+IMU_CHILD_STANCE_MS = (-23.5, 23.5)
+
+
 def stance_bias_ms(setup: str, cycle_s: float | None) -> tuple[float, float] | None:
     """Decision L703: the (most, least) negative stance-time error (ms) of ``setup`` at a gait cycle of ``cycle_s``
     (s); None when the set-up's bias is a share of the cycle and the cycle is unknown."""
@@ -64,12 +73,19 @@ def bias_terms(setup: str | None, cycle_s: float | None) -> str:
             text += (f", at this walk's {cycle_s:.2f} s gait cycle {pp[0]:+.1f} to {pp[1]:+.1f} percentage points of "
                      f"stance, {2 * pp[0]:+.1f} to {2 * pp[1]:+.1f} of double support and {-pp[1]:+.1f} to "
                      f"{-pp[0]:+.1f} of single support")
+        if s == "imu" and cycle_s is not None and cycle_s < IMU_EARLY_CYCLE_S:
+            text += (f"; but at a gait cycle under {IMU_EARLY_CYCLE_S:g} s some IMU-only contacts fire 50-80 ms early "
+                     "(the terminal-swing deceleration, steps 87): simulated children's stance read "
+                     f"{IMU_CHILD_STANCE_MS[0]:+.0f} to {IMU_CHILD_STANCE_MS[1]:+.0f} ms, so their double support can "
+                     "read high")
         parts.append(text)
     return "; ".join(parts)
 
 
 def support_note(setup: str | None, cycle_s: float | None) -> str:
     """Decisions L262, L285, L703: ``pdrlearn gait``'s caveat on its double and single support from foot tracks."""
-    return ("double support reads low and single support high from foot units (decisions L73, L262, L285, L703): "
-            + bias_terms(setup, cycle_s) + "; the size depends on the mount and the walker, a measured bias and no "
-            "bound")
+    unsure = setup != "force" and cycle_s is not None and cycle_s < IMU_EARLY_CYCLE_S  # IMU contacts may fire early
+    head = ("double and single support from foot units carry a contact bias whose sign is not known at this walk's "
+            "short cycle" if unsure else "double support reads low and single support high from foot units")
+    return (head + " (decisions L73, L262, L285, L703): " + bias_terms(setup, cycle_s)
+            + "; the size depends on the mount and the walker, a measured bias and no bound")
