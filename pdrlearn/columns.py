@@ -1328,7 +1328,9 @@ GAIT_CYCLES: tuple[Column, ...] = (
     ("stance_time_s", "s", "number", "the foot's toe-off inside the cycle - start_s, one unit's clock (L327); empty "
                                      "without a toe-off"),
     ("double_support_pct", "%", "number", "both double-support periods of the cycle, % of it (L262; reads low from "
-                                          "foot units, L285); empty when the events are out of order"),
+                                          "foot units, L285, by gait_summary.json reason's points of this walk's "
+                                          "cycle; no known sign for IMU-only contacts under a 0.95 s cycle, L703); "
+                                          "empty when the events are out of order"),
     ("single_support_pct", "%", "number", "the other foot's swing, % of the cycle (L262)"),
     ("kind", _ID, "text", "as gait_steps.csv's kind, of the cycle's two contacts after start_s (L538)"),
 )
@@ -1361,7 +1363,8 @@ GAIT_BOUTS: tuple[Column, ...] = (
     ("impact_sharpness_right", "m/s^3", "number", "gait_summary.json walk only: the same of the right foot; over 3 x "
                                                   "apart, the feet's contacts are not comparable (L318)"),
     ("n_support_cycles", "count", "integer", "cycles with a double support"),
-    ("double_support_pct", "%", "number", "mean double support, % of the gait cycle (L262; reads low, L285)"),
+    ("double_support_pct", "%", "number", "mean double support, % of the gait cycle (L262; reads low, L285; by how "
+                                          "much in this walk: reason, L703)"),
     *_pair("single_support_pct", "%", "single support (the other foot's swing), % of the gait cycle (L262)"),
     ("distance_m", "m", "number", "the mean of the two feet's summed stride lengths, every step of the bout (L539)"),
     ("walking_time_s", "s", "number", "the mean of the two feet's summed stride times, rest to rest (L539)"),

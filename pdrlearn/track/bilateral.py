@@ -42,6 +42,7 @@ from pdrlearn.track.clinical import CV_MIN_STRIDES, bout_rows, symmetry_index_pc
 from pdrlearn.track.contact_quality import comparability_warning, impact_sharpness
 from pdrlearn.track.flags import flag_values
 from pdrlearn.track.foot_heights import height_warning
+from pdrlearn.track.support_bias import setup_of, support_note
 
 #: the columns :func:`foot_events` gives: one row per initial contact of one foot; ``x_m`` / ``y_m`` (the foot's
 #: rest position after the stride, its own track's frame) and ``dir_rad`` (the stride's direction) need a tracked
@@ -58,15 +59,6 @@ SIDES = ("left", "right")
 ALTERNATION_MIN = 0.8
 #: decision B245: meta.json keys naming what was recorded; two sessions giving different values are not one walk
 WALK_META_KEYS = ("activity", "terrain_recording")
-#: decisions L262, L285: what the tracked double support is known to read (measured, experiments/bilateral_gait.py):
-#: L73's toe-off is early and the IC late against motion capture, so each double-support period is short; how short
-#: depends on the mount and the walker (a lateral mount: -7 pp; an instep mount: 6.0 % where ~20 % is expected),
-#: not on the rate
-SUPPORT_NOTE = ("double support reads low and single support high from foot units (decisions L73, L262, L285): "
-                "against motion capture -7.2 / +3.6 percentage points per cycle on gaitmap's level walk (lateral "
-                "shoe mount; the walk 27.6 % at 204.8 Hz, 26.8 % at 102.4 Hz, mocap 34.7 %; L603); its 4 x 10 m walk "
-                "(instep mount, no toe-off reference) reads 6.0 % where ~20 % is expected, the toe-off ~0.1 s early: "
-                "the bias depends on the mount and the walker, -7 pp is no bound")
 #: decision L283: meta.json's key naming the clock a session's timestamps are on; sessions whose values differ do
 #: not share t = 0 (gaitmap's converter writes it; simulated sessions are compared by :func:`sim_walk`, S54; any
 #: other folder without it is trusted as before)
@@ -632,7 +624,7 @@ def kind_measures(both: pd.DataFrame, steps: pd.DataFrame, cycles: pd.DataFrame)
 
 
 def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
-                   step_lengths: pd.DataFrame | None = None) -> dict:
+                   step_lengths: pd.DataFrame | None = None, contact_source=None) -> dict:
     """Decisions L259-L262 (Python API): bilateral gait of one walk from the left and the right foot's step
     tables (a foot track's ``steps.csv`` or a label table, :func:`foot_events`) on one clock.
 
@@ -643,8 +635,10 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
     enough (decision L538, :func:`headline_masks`; ``walk["headline_steps"]`` says which) and :func:`walk_pace`'s
     of all its steps (L539); ``warnings`` holds B245's, L284's and L285's lines (each logged). ``step_lengths``
     (decision L540): a label table of both feet's contacts with each step's length (ics.csv), whose lengths the steps
-    take (:func:`known_step_lengths`). Refuses (:class:`DataError`, one line) two tables whose contacts do not
-    overlap in time (L260: not one walk on one clock)."""
+    take (:func:`known_step_lengths`). ``contact_source`` (decision L703: "force" / "imu", or a per-foot dict; None:
+    unknown) picks the set-up whose known support bias ``reason`` states, in this walk's gait cycle. Refuses
+    (:class:`DataError`, one line) two tables whose contacts do not overlap in time (L260: not one walk on one
+    clock)."""
     left, right = foot_events(left_steps), foot_events(right_steps)
     for s, ev in zip(SIDES, (left, right), strict=True):
         if len(ev) < 2:
@@ -678,9 +672,9 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
     if not toe_off:
         reason = ("no toe-off in the foot tables: double and single support need each foot's terminal contact "
                   "(pdrlearn track --toe-off, decision L73); the step times are given")
-    else:  # decision L262: a foot track's (event_s) support times carry L73's biases; a label table's do not
-        reason = SUPPORT_NOTE if "event_s" in left_steps else None
     walk = measures_of(both, steps, cycles, masks)
+    if toe_off:  # decision L262: a foot track's (event_s) support times carry L73's biases; a label table's do not
+        reason = support_note(setup_of(contact_source), _cycle_s(walk)) if "event_s" in left_steps else None
     walk["headline_steps"] = basis  # decision L538
     walk.update({f"n_steps_all_{s}": int((steps["side"] == s).sum()) for s in SIDES})
     walk["step_length_scale_pct"] = None if scale is None else 100.0 * scale  # decision L310
@@ -695,6 +689,13 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
     return {"walk": walk, "bouts": bouts, "by_kind": kind_measures(both, steps, cycles), "steps": steps,
             "cycles": cycles, "toe_off": toe_off, "reason": reason, "warnings": [w for w in warnings if w is not None],
             "stairs": stair_flights(both, contact_kinds(both))}  # decision L561
+
+
+def _cycle_s(walk: dict) -> float | None:
+    """Decision L703: the walk's gait cycle (s), the mean of the two feet's mean stride times (None without)."""
+    t = [walk.get(f"stride_time_s_{s}") for s in SIDES]
+    t = [v for v in t if v is not None and np.isfinite(v)]
+    return float(np.mean(t)) if t else None
 
 
 def alternating_share(both: pd.DataFrame) -> tuple[int, int]:
@@ -1020,7 +1021,8 @@ def pair_sessions(left_dir: Path, right_dir: Path, *, ignore_force: bool = False
         logging.getLogger(__name__).warning(line)
     from pdrlearn.track.clock import on_export_clock
 
-    out = bilateral_gait(*(on_export_clock(t.steps, sh) for t, sh in zip(tracks, shifts, strict=True)))  # L537
+    out = bilateral_gait(*(on_export_clock(t.steps, sh) for t, sh in zip(tracks, shifts, strict=True)),  # L537
+                         contact_source=sources)  # decision L703: the set-up's support bias
     out["clock_alignment"] = alignment
     if alignment["note"] is not None:
         logging.getLogger(__name__).warning(alignment["note"])

@@ -40,17 +40,25 @@ TOE_OFF_STANCE_BIAS_MS = (-36.9, -40.1)
 def stance_range_warning(summary: dict) -> str | None:
     """Decision L414: one line when a ``--toe-off`` track's ``median_stance_time_s`` is below
     :data:`TOE_OFF_MIN_CHECKED_STANCE_S`, the shortest contacts L73 checked (None otherwise, or without stance
-    times)."""
+    times). Decision L703: it states the known stance bias of the track's set-up (``info["stance_source"]``: force
+    insoles or the IMU) in ms, in % of this walk's stance and in points of its gait cycle
+    (``median_stride_time_s``)."""
+    from pdrlearn.track.support_bias import STANCE_BIAS, bias_terms, setup_of, stance_bias_ms
+
     stance = summary.get("median_stance_time_s")
     if stance is None or not np.isfinite(stance) or stance >= TOE_OFF_MIN_CHECKED_STANCE_S:
         return None
-    lo, hi = TOE_OFF_STANCE_BIAS_MS
+    setup = setup_of((summary.get("info") or {}).get("stance_source"))
+    cycle = summary.get("median_stride_time_s")
+    terms = bias_terms(setup, cycle)
+    ms = [r for r in (stance_bias_ms(k, cycle) for k in ([setup] if setup else STANCE_BIAS)) if r is not None]
+    share = (f" ({100 * -max(r[1] for r in ms) / 1000 / stance:.0f}-{100 * -min(r[0] for r in ms) / 1000 / stance:.0f}"
+             f" % of this walk's {stance:.3f} s stance)") if ms else ""
     return coded(f"median stance (contact) time {stance:.3f} s is below {TOE_OFF_MIN_CHECKED_STANCE_S:.2f} s, the "
             "range at which --toe-off's stance times were checked against a reference: one walk, gaitmap's level "
-            f"walks with mocap at 0.69-0.70 s median contact (decision L73: {-lo:.0f}-{-hi:.0f} ms short there, a "
-            "bias of the gyroscope's push-off peak); most ordinary walks have shorter contacts and get this line, "
-            "which says only that their stance times were not checked, and that the same bias is a larger share "
-            "of a shorter contact (decision L414)", "L414")  # decision E170
+            "walks with mocap at 0.69-0.70 s median contact (decision L73); most ordinary walks have shorter contacts "
+            f"and get this line. The known bias, in this walk's terms (L703): {terms}{share} (decision L414)",
+                 "L414")  # decision E170
 
 
 def _check(t, gyr) -> tuple[np.ndarray, np.ndarray]:

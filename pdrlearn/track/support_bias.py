@@ -1,0 +1,91 @@
+"""Decision L703: the known bias of a foot track's stance, double and single support, stated in the walker's own
+terms (ms per contact, and percentage points of this walk's gait cycle) for the set-up that timed the contacts.
+
+Each stance runs from an IC to the same foot's toe-off; each double-support period from one foot's IC to the other
+foot's toe-off. A stance that reads ``b`` ms long (``b < 0``: short) therefore moves the stance share of a cycle of
+``c`` s by ``100 b / c`` points, each of the cycle's two double-support periods by ``b`` (together ``200 b / c``
+points) and the single support (the other foot's swing) by ``-100 b / c`` points.
+"""
+
+from __future__ import annotations
+
+import math
+
+from pdrlearn.track.toeoff import TOE_OFF_STANCE_BIAS_MS
+
+#: decision L703: the stance-time error (ours - reference, each set-up's range over its measured walks) by the source
+#: of the contacts, in ms or in % of the gait cycle - whichever held constant where measured. "imu": L73's real
+#: gaitmap level walks against motion capture (lateral shoe mount, adults, one 1.09 s cycle: ms,
+#: ``pdrlearn.track.toeoff.TOE_OFF_STANCE_BIAS_MS``); "force": the simulator's insoles (IC at the force onset, late;
+#: toe-off at the drop-off, early), session 47, users 14931-14933 (children, 0.76-0.84 s cycles, -35.5 to -37.8 ms)
+#: and 14935-14937 (adults, 1.04-1.19 s, -43.8 to -49.0 ms): a share of the cycle, -4.12 to -4.67 %
+STANCE_BIAS = {"imu": ((min(TOE_OFF_STANCE_BIAS_MS), max(TOE_OFF_STANCE_BIAS_MS)), "ms"),
+               "force": ((-4.67, -4.12), "% of the gait cycle")}
+#: decision L703: where each range was measured (the line names it)
+BIAS_SOURCE = {"imu": "IMU-only contacts (against motion capture on gaitmap's real level walks, lateral shoe mount, "
+                      "adults; L73)",
+               "force": "force-insole contacts (the simulator's insoles: IC at the force onset, late, toe-off at the "
+                        "drop-off, early; no real insole reference)"}
+
+
+#: decision L703 (steps 87, not adopted): below this gait cycle (s) some IMU-only contacts fire 50-80 ms early at the
+#: terminal-swing deceleration (simulated children at 0.34-0.44 s steps, 0.68-0.88 s cycles; none on adults' 1.0-1.2
+#: s cycles), so the stance reads long on some strides and the sign of the support bias is not known there
+IMU_EARLY_CYCLE_S = 0.95
+#: decision L703: the median stance-time error (ms) of the simulated children's IMU-only walks (users 14900-14919,
+#: 0.68-0.88 s cycles, session 47), lowest and highest
+IMU_CHILD_STANCE_MS = (-23.5, 23.5)
+
+
+def stance_bias_ms(setup: str, cycle_s: float | None) -> tuple[float, float] | None:
+    """Decision L703: the (most, least) negative stance-time error (ms) of ``setup`` at a gait cycle of ``cycle_s``
+    (s); None when the set-up's bias is a share of the cycle and the cycle is unknown."""
+    (lo, hi), unit = STANCE_BIAS[setup]
+    if unit == "ms":
+        return lo, hi
+    if cycle_s is None or not math.isfinite(cycle_s) or cycle_s <= 0:
+        return None
+    return 10.0 * lo * cycle_s, 10.0 * hi * cycle_s
+
+
+def setup_of(source) -> str | None:
+    """``"imu"`` or ``"force"`` of a track's ``info["stance_source"]`` / gait's ``contact_source`` value(s) (one
+    string or a per-foot dict); None when they differ or are unknown (both ranges are then given)."""
+    values = set(source.values()) if isinstance(source, dict) else {source}
+    kinds = {"force" if v == "force" else "imu" if v in ("imu", "inertial") else None for v in values}
+    return kinds.pop() if len(kinds) == 1 else None
+
+
+def bias_terms(setup: str | None, cycle_s: float | None) -> str:
+    """Decision L703: the clause giving the stance bias of ``setup`` (both set-ups' when None) in ms and, with a
+    finite gait cycle ``cycle_s`` (s), in percentage points of that cycle: stance, double support, single support."""
+    setups = [setup] if setup in STANCE_BIAS else list(STANCE_BIAS)
+    parts = []
+    for s in setups:
+        (lo, hi), unit = STANCE_BIAS[s]
+        ms = stance_bias_ms(s, cycle_s)
+        if ms is None:
+            parts.append(f"with {BIAS_SOURCE[s]} each stance reads {-hi:.1f}-{-lo:.1f} {unit} short")
+            continue
+        text = f"with {BIAS_SOURCE[s]} each stance reads {-ms[1]:.0f}-{-ms[0]:.0f} ms short"
+        if cycle_s is not None and math.isfinite(cycle_s) and cycle_s > 0:
+            pp = [100.0 * b / 1000.0 / cycle_s for b in ms]
+            text += (f", at this walk's {cycle_s:.2f} s gait cycle {pp[0]:+.1f} to {pp[1]:+.1f} percentage points of "
+                     f"stance, {2 * pp[0]:+.1f} to {2 * pp[1]:+.1f} of double support and {-pp[1]:+.1f} to "
+                     f"{-pp[0]:+.1f} of single support")
+        if s == "imu" and cycle_s is not None and cycle_s < IMU_EARLY_CYCLE_S:
+            text += (f"; but at a gait cycle under {IMU_EARLY_CYCLE_S:g} s some IMU-only contacts fire 50-80 ms early "
+                     "(the terminal-swing deceleration, steps 87): simulated children's stance read "
+                     f"{IMU_CHILD_STANCE_MS[0]:+.0f} to {IMU_CHILD_STANCE_MS[1]:+.0f} ms, so their double support can "
+                     "read high")
+        parts.append(text)
+    return "; ".join(parts)
+
+
+def support_note(setup: str | None, cycle_s: float | None) -> str:
+    """Decisions L262, L285, L703: ``pdrlearn gait``'s caveat on its double and single support from foot tracks."""
+    unsure = setup != "force" and cycle_s is not None and cycle_s < IMU_EARLY_CYCLE_S  # IMU contacts may fire early
+    head = ("double and single support from foot units carry a contact bias whose sign is not known at this walk's "
+            "short cycle" if unsure else "double support reads low and single support high from foot units")
+    return (head + " (decisions L73, L262, L285, L703): " + bias_terms(setup, cycle_s)
+            + "; the size depends on the mount and the walker, a measured bias and no bound")
