@@ -16,10 +16,6 @@ import numpy as np
 #: decision L416: a lower-back contact within this fraction of a step (half the foot's median stride) of a foot
 #: contact is that foot's: its own contacts scatter ~0.04 s (SD) about the foot's, the other foot's lie a step away
 LABEL_TOLERANCE_STEPS = 0.25
-#: decision W531: the lower back's lag is first taken as the median offset of its contacts within this fraction of a
-#: step of a foot contact (the midpoint between the two feet's contacts; L490's first pass), and the quarter-step
-#: window of :data:`LABEL_TOLERANCE_STEPS` is centred on it
-LAG_WINDOW_STEPS = 0.5
 #: decision L490: an index whose standard error (:func:`index_standard_error_pct`) is over this many points is given
 #: with a note that it is uncertain (L493's gate withholding it, and L490's window centred on the lower back's lag,
 #: were not adopted; L507 removed those options, commit d3ffb129 holds them)
@@ -55,20 +51,14 @@ LABELLED_MIN_RATE_HZ = 50.0
 def label_contacts(foot_ic_s, waist_ic_s, *,
                    tolerance_steps: float = LABEL_TOLERANCE_STEPS) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """``(foot, waist, own)``: the foot contacts and the lower-back contacts (finite, sorted, s) and (W,) bool, True
-    for a lower-back contact within ``tolerance_steps`` x half the foot's median stride (a step) of a foot contact
-    plus the lower back's lag (decision L416; W531: the lag is the median offset of the contacts within
-    :data:`LAG_WINDOW_STEPS` of a step of a foot contact - a window about the foot contact itself cut the early tail
-    of the lower back's ~-0.045 s lag at a child's 0.4 s steps, which read the lag late and a symmetric child's index
-    at 2.8-5.5 %). Fewer than 2 foot contacts: no contact is the foot's."""
+    for a lower-back contact within ``tolerance_steps`` x half the foot's median stride of a foot contact (decision
+    L416). Fewer than 2 foot contacts: no contact is the foot's."""
     f = np.sort(np.asarray(foot_ic_s, dtype=float)[np.isfinite(np.asarray(foot_ic_s, dtype=float))])
     w = np.sort(np.asarray(waist_ic_s, dtype=float)[np.isfinite(np.asarray(waist_ic_s, dtype=float))])
     if len(f) < 2 or not len(w):
         return f, w, np.zeros(len(w), bool)
     step = float(np.median(np.diff(f))) / 2.0
-    off = _offsets(f, w)
-    near = np.abs(off) <= LAG_WINDOW_STEPS * step
-    lag = float(np.median(off[near])) if near.any() else 0.0  # decision W531: the window centred on the lag
-    return f, w, np.abs(off - lag) <= tolerance_steps * step
+    return f, w, np.abs(_offsets(f, w)) <= tolerance_steps * step
 
 
 def _offsets(f: np.ndarray, w: np.ndarray) -> np.ndarray:
