@@ -687,10 +687,13 @@ def asymmetry_clause(summary: dict) -> str:
     """Decision L671: what the gait line adds when the summary gives ``step_time_asymmetry_pct``: the index, with
     its standard error (a foot track with the lower-back unit too, L490) and "within noise" under
     ``WITHIN_NOISE_SE`` of them ("uncertain" over L490's 3 points, L677), or, from the lower back alone, that
-    its size is misread (L121); "" without."""
+    its size is misread (L121); decision W532: an index withheld at a child's short steps, why; "" without."""
     pct = summary.get("step_time_asymmetry_pct")
     if pct is None:
-        return ""
+        from pdrlearn.track.labelled_asymmetry import short_step_withheld
+
+        short = short_step_withheld(summary)  # decision W532: say why a foot + lower-back index is not given
+        return f"; step-time asymmetry not given: {short}" if short else ""
     se = summary.get("step_time_asymmetry_se_points")
     if se is not None:
         from pdrlearn.track.labelled_asymmetry import asymmetry_flags  # L671, C190: lazily (the CLI's import is light)
