@@ -335,7 +335,8 @@ SESSIONS: tuple[Column, ...] = (
                                                "is misread, mostly over); empty under it and on a foot track (W228) "
                                                "- but for a foot track of a session with the lower-back unit too "
                                                "(>= 50 Hz): the foot's contacts label the lower back's, the index "
-                                               "of the two step times (L416)"),
+                                               "of the two step times (L416); empty when the foot's median step is "
+                                               "under 0.45 s, a child's (W532: pdrlearn gait with two feet)"),
     ("step_time_asymmetry_raw_pct", "%", "number", "lower back: that index however small; under 20 % no finding "
                                                    "either way (symmetric simulated walkers read up to 18.8 %, L121)"),
     ("step_time_asymmetry_reason", _ID, "text", "why step_time_asymmetry_pct is given or empty (L121, L216, W228)"),

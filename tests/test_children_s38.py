@@ -41,18 +41,19 @@ def test_l490_and_l493_options_are_gone_and_the_default_labelling_is_l416s_l507(
 
 
 def test_scattered_contacts_give_the_index_with_their_standard_error_l490():
-    """Other-foot contacts scattering 0.06 s (SD) in 0.72 s strides over 20 strides: the median phase is uncertain
-    by several points: its standard error is returned (L490) and the index still given (L493's gate not adopted)."""
+    """Other-foot contacts scattering 0.06 s (SD) in 0.92 s strides over 20 strides: the median phase is uncertain
+    by several points: its standard error is returned (L490) and the index still given (L493's gate not adopted).
+    Session 47: 0.46 s steps, was 0.36 s - W532 gives no index under 0.45 s steps."""
     from pdrlearn.track.labelled_asymmetry import UNCERTAIN_SE_POINTS, labelled_step_asymmetry
 
     rng = np.random.default_rng(9581)
-    foot = np.arange(21) * 0.72
-    other = foot[:-1] + 0.36 + rng.normal(0.0, 0.06, 20)
+    foot = np.arange(21) * 0.92
+    other = foot[:-1] + 0.46 + rng.normal(0.0, 0.06, 20)
     waist = np.sort(np.concatenate([foot - 0.03, other - 0.03]))
     res = labelled_step_asymmetry(foot, waist)
     assert res["standard_error_points"] > UNCERTAIN_SE_POINTS
     assert res["step_time_asymmetry_pct"] is not None and res["n_strides"] >= 10
-    tight = labelled_step_asymmetry(foot, np.sort(np.concatenate([foot - 0.03, foot[:-1] + 0.33])))
+    tight = labelled_step_asymmetry(foot, np.sort(np.concatenate([foot - 0.03, foot[:-1] + 0.43])))
     assert tight["step_time_asymmetry_pct"] == pytest.approx(0.0, abs=1e-6)
     assert tight["standard_error_points"] <= UNCERTAIN_SE_POINTS
 
@@ -72,10 +73,10 @@ def test_track_reason_gives_the_standard_error_and_calls_a_loose_index_uncertain
             return True
 
     rng = np.random.default_rng(9583)
-    foot = np.arange(21) * 0.72
-    loose = np.sort(np.concatenate([foot - 0.03, foot[:-1] + 0.33 + rng.normal(0.0, 0.06, 20)]))
+    foot = np.arange(21) * 0.92  # session 47: 0.46 s steps (W532 gives no index under 0.45 s)
+    loose = np.sort(np.concatenate([foot - 0.03, foot[:-1] + 0.43 + rng.normal(0.0, 0.06, 20)]))
     steps = pd.DataFrame({"event_s": foot, "unit": "foot"})
-    for waist, uncertain in ((loose, True), (np.sort(np.concatenate([foot - 0.03, foot[:-1] + 0.33])), False)):
+    for waist, uncertain in ((loose, True), (np.sort(np.concatenate([foot - 0.03, foot[:-1] + 0.43])), False)):
         monkeypatch.setattr(la, "waist_ic_contacts", lambda session, w=waist: w)
         out = la.track_asymmetry(_Session(), steps)
         assert out["step_time_asymmetry_pct"] is not None

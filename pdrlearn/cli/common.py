@@ -573,8 +573,8 @@ def _cv_phrase(summary: dict, cv: float | None, needed: int) -> str:
 
 def transfer_line(summary: dict) -> str | None:
     """Decisions L200, W183: ``track``'s line of the turns' median duration and, on the lower back, the chair
-    transfers and the TUG time, the 10 m walk test's time (L312) and the freeze episodes (W213); None when the
-    summary has none of them."""
+    transfers and the TUG time, the 10 m walk test's time (L312; C194: a declared one not timed, why) and the freeze
+    episodes (W213); None when the summary has none of them."""
     parts = []
     if summary.get("median_turn_duration_s") is not None:
         parts.append(f"median turn {summary['median_turn_duration_s']:.2f} s (turns.csv)")
@@ -601,6 +601,12 @@ def transfer_line(summary: dict) -> str | None:
         parts.append(f"10 m walk test {summary['ten_m_walk_time_s']:.2f} s, {summary['ten_m_walk_speed_mps']:.2f} m/s "
                      f"({timed_stretch(*walkway_zones(summary), 'a {total} m walk')}, L312, L536{more}{free})"
                      + (f" - {summary['ten_m_walk_note']}" if summary.get("ten_m_walk_note") else ""))  # L524
+    else:
+        from pdrlearn.track.walk_test import declared_refusal
+
+        refused = declared_refusal(summary)  # decision C194: a declared test says it was not timed
+        if refused:
+            parts.append(f"10 m walk test not timed ({refused[0]}): {refused[1]}")
     if summary.get("t25fw_time_s") is not None:  # decision L387: the first 7.62 m from standing
         parts.append(f"timed 25-foot walk {summary['t25fw_time_s']:.2f} s, {summary['t25fw_speed_mps']:.2f} m/s "
                      f"(the first 7.62 m from standing, L387{free})")
@@ -687,10 +693,13 @@ def asymmetry_clause(summary: dict) -> str:
     """Decision L671: what the gait line adds when the summary gives ``step_time_asymmetry_pct``: the index, with
     its standard error (a foot track with the lower-back unit too, L490) and "within noise" under
     ``WITHIN_NOISE_SE`` of them ("uncertain" over L490's 3 points, L677), or, from the lower back alone, that
-    its size is misread (L121); "" without."""
+    its size is misread (L121); decision W532: an index withheld at a child's short steps, why; "" without."""
     pct = summary.get("step_time_asymmetry_pct")
     if pct is None:
-        return ""
+        from pdrlearn.track.labelled_asymmetry import short_step_withheld
+
+        short = short_step_withheld(summary)  # decision W532: say why a foot + lower-back index is not given
+        return f"; step-time asymmetry not given: {short}" if short else ""
     se = summary.get("step_time_asymmetry_se_points")
     if se is not None:
         from pdrlearn.track.labelled_asymmetry import asymmetry_flags  # L671, C190: lazily (the CLI's import is light)

@@ -312,8 +312,10 @@ SPLITS_OPT = typer.Option(None, "--splits", metavar="METRES", help="Split times 
 TEN_M_WALK_OPT = typer.Option(None, "--ten-m-walk", metavar="ACCEL,TIMED,DECEL", help="The 10 m walk test's "
                               "walkway in metres: an acceleration zone, the timed distance and a deceleration zone "
                               "(default 2,10,2 on 14 m, L312; e.g. 2,6,2: a 10 m walkway's middle 6 m). Every "
-                              "straight walking bout that long is timed: the summary's ten_m_walk_* keys (the first "
-                              "trial), n_ten_m_walk_trials and OUT/ten_m_walk_trials.csv (decisions L522, L524).")
+                              "straight walking bout that long is timed (one tracked at most 2 % short that passed "
+                              "the timed stretch too, C193): the summary's ten_m_walk_* keys (the first "
+                              "trial), n_ten_m_walk_trials and OUT/ten_m_walk_trials.csv (decisions L522, L524); a "
+                              "test not timed says why on the console and in clinical.md (C194).")
 
 STAIR_RISE_OPT = typer.Option(None, "--stair-rise", metavar="METRES", help="The stairs' rise (e.g. 0.17): "
                               "OUT/stairs.csv (one row per stair flight of a foot track) gets n_stairs = "

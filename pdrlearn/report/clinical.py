@@ -269,6 +269,12 @@ def clinical_lines(summary: dict, folder: Path) -> list[str]:
         lines.append(f"- 10 m walk: {summary['ten_m_walk_speed_mps']:.2f} m/s ({_s(summary['ten_m_walk_time_s'])} "
                      f"over {timed_stretch(*walkway_zones(summary))}"  # decision L536
                      f"{f'; {trials}' if trials else ''}; {unit}{f'; {free}' if free else ''})")
+    else:
+        from pdrlearn.track.walk_test import declared_refusal
+
+        refused = declared_refusal(summary)  # decision C194: a declared test not timed says so, before the speed
+        if refused:
+            lines.append(f"- 10 m walk: not timed ({refused[0]}; {unit}): {refused[1]}")
     speed = gait_speed_line(summary, unit)
     if speed:
         lines.append(speed)

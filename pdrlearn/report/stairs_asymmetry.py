@@ -11,7 +11,7 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.report.daily_living import _csv
-from pdrlearn.track.labelled_asymmetry import asymmetry_flags
+from pdrlearn.track.labelled_asymmetry import asymmetry_flags, short_step_withheld
 
 
 def _number(v) -> float | None:
@@ -64,8 +64,12 @@ def asymmetry_line(summary: dict, unit: str) -> str | None:
     """Decision C190: ``- Step-time asymmetry 31.4 % (standard error 5.6 points, uncertain: over 3 points; right
     longer, 0.556 / 0.764 s L/R) (foot + lower-back units)`` from summary.json's index (L121, L416), its standard error
     (L490) and the console's words for it (L671, L677); a lower-back index alone says its size is misread (L121).
-    None without an index."""
+    Decision W532: an index withheld at a child's short steps gives ``- Step-time asymmetry: not given (...)``
+    with the reason's words. None without an index otherwise."""
     pct = _number(summary.get("step_time_asymmetry_pct"))
+    short = short_step_withheld(summary)
+    if pct is None and short:
+        return f"- Step-time asymmetry: not given ({short}) (foot + lower-back units)"
     if pct is None:
         return None
     se = _number(summary.get("step_time_asymmetry_se_points"))

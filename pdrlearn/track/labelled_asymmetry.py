@@ -43,6 +43,10 @@ BIAS_STEP_S = 0.6
 #: decision L686: the share of a slow walk's index the lower back may add to it (its contact ending the shorter step
 #: is dated earlier; development users 14200-14219 at 0.7-0.8 s steps: 90th percentile 0.44 of the estimate)
 ASYMMETRY_BIAS_FRACTION = 0.45
+#: decision W532: the foot's shortest median step (s, half its median stride) with an index: under it (a child's
+#: 0.34-0.41 s steps) the lower back's contacts read symmetric children 2.8-13 % (W531's users 14940-14959; the
+#: upper end of docs/simulator.md's children, 0.36-0.45 s); a unit on each foot (``pdrlearn gait``) times them
+MIN_STEP_S = 0.45
 #: decision L416: the lower-back stream's lowest rate (Hz) for the index (its 20 Hz contacts failed on development
 #: users 8040-8042)
 LABELLED_MIN_RATE_HZ = 50.0
@@ -127,7 +131,8 @@ def labelled_step_asymmetry(foot_ic_s, waist_ic_s, *, tolerance_steps: float = L
     instrumented foot (1 - phi) T, and their symmetry index (Robinson et al. 1987, L121). None values with fewer
     than ``min_strides`` strides (and at least 2, which a standard error needs: ``standard_error_points``, decision
     L490, always given; decision L677: it counts the lower back's lag, :func:`index_standard_error_pct`; decision
-    L686: with an index, ``bias_allowance_points`` (:func:`bias_allowance_points`) added in quadrature)."""
+    L686: with an index, ``bias_allowance_points`` (:func:`bias_allowance_points`) added in quadrature). Decision
+    W532: None values too, and ``short_step_s`` the foot's median step, when that step is under :data:`MIN_STEP_S`."""
     from pdrlearn.track.clinical import symmetry_index_pct
 
     phases, lags = _phases_and_lags(foot_ic_s, waist_ic_s, tolerance_steps=tolerance_steps)
@@ -137,6 +142,9 @@ def labelled_step_asymmetry(foot_ic_s, waist_ic_s, *, tolerance_steps: float = L
            "step_time_s_other": None,
            "standard_error_points": index_standard_error_pct(phases, lags, stride)}  # decisions L490, L677
     if len(phases) < max(min_strides, 2):
+        return out
+    if stride / 2.0 < MIN_STEP_S:  # decision W532: too short a step for the lower back's contacts
+        out["short_step_s"] = stride / 2.0
         return out
     phi = float(np.median(phases))
     onto_other, onto_own = phi * stride, (1.0 - phi) * stride
@@ -252,7 +260,9 @@ def track_asymmetry(session, steps, warnings=(), alignment: dict | None = None) 
         waist = to_foot_clock(waist, float(alignment["offset_s"]), float(alignment["drift"]),
                               float(alignment.get("ref_s", 0.0)))
     res = labelled_step_asymmetry(steps["event_s"].to_numpy(float), waist)
-    if res["step_time_asymmetry_pct"] is None:
+    if res.get("short_step_s") is not None:  # decision W532
+        reason = short_step_reason(res["short_step_s"])
+    elif res["step_time_asymmetry_pct"] is None:
         reason = (f"not given: {res['n_strides']} of the foot's strides hold one lower-back contact of the other "
                   f"foot, {MIN_STRIDES} needed (decision L416)")
     else:
@@ -275,6 +285,28 @@ def track_asymmetry(session, steps, warnings=(), alignment: dict | None = None) 
     if res["step_time_asymmetry_pct"] is not None:
         out.update(side_keys(res, session))
     return out
+
+
+#: decision W532: how :func:`short_step_reason` begins (:func:`short_step_withheld` reads it)
+SHORT_STEP_PREFIX = "not given: the foot's median step "
+
+
+def short_step_reason(step_s: float) -> str:
+    """Decision W532: ``step_time_asymmetry_reason`` of an index withheld at a foot's median step ``step_s`` (s) under
+    :data:`MIN_STEP_S`; clinical.md's line (C190) and the console's gait line quote it."""
+    return (f"{SHORT_STEP_PREFIX}{step_s:.3f} s is under {MIN_STEP_S:g} s, where the lower back dates "
+            "the contacts too loosely to time the other foot's step (symmetric children read 2.8-13 %, decisions "
+            "W531, W532); a unit on each foot times it: pdrlearn gait LEFT_DIR RIGHT_DIR")
+
+
+def short_step_withheld(summary: dict) -> str | None:
+    """Decision W532: the reason of a summary whose foot + lower-back index was withheld at a short step, the words
+    after "not given: " (None otherwise)."""
+    reason = summary.get("step_time_asymmetry_reason")
+    if summary.get("step_time_asymmetry_pct") is None and isinstance(reason, str) and reason.startswith(
+            SHORT_STEP_PREFIX):
+        return reason[len("not given: "):]
+    return None
 
 
 def side_keys(res: dict, session) -> dict:

@@ -32,6 +32,10 @@ STRAIGHT_MIN = 0.9
 #: ends (a run-out; a foot track of a 14 m walkway read 13.84 m in the session 32 trial: 1.1 % short, inside the foot's
 #: distance error); the walk is still not timed (L313: no zone shortened, nothing extrapolated)
 RUN_OUT_M = 1.0
+#: decision C193: a declared walkway's pass (``track --ten-m-walk``) that passed the timed stretch's end mark and
+#: tracked short of the walkway's end by at most this share of its length is timed (the foot track's scale error with
+#: a margin: L349's 14 m walkway read 1.1 % short, trial T1's 10 m one 0.4 %)
+DECLARED_SHORT_SHARE = 0.02
 #: decision L649: the calibrated lower back's walk from standing, measured and not adopted
 #: (experiments/walk_test_calibrated_l649.py, users 12462-12470: the T25FW's speed error median +9.11 %, max 14.13 %)
 CALIBRATED_FROM_STANDING = "speed +9.1 % median, up to +14.1 %"
@@ -113,6 +117,15 @@ def free_walking_text(summary: dict) -> str:
     return "found in free walking, no walkway declared (track --ten-m-walk), L679"
 
 
+def declared_refusal(summary: dict) -> tuple[str, str] | None:
+    """Decision C194: (the declared walkway's timed stretch, :func:`timed_stretch`; the note) of a summary whose
+    declared 10 m walk test (``ten_m_walk_declared``, ``track --ten-m-walk``) was not timed; None when it was timed
+    or not declared (a walk found in free walking may be no test, L679)."""
+    if summary.get("ten_m_walk_declared") is not True or summary.get("ten_m_walk_time_s") is not None:
+        return None
+    return timed_stretch(*walkway_zones(summary)), summary.get("ten_m_walk_note") or "no reason recorded"
+
+
 #: decision L387: the timed 25-foot walk's distance (m; 25 ft, the MSFC's T25FW as recalled), from standing
 T25FW_M = 7.62
 #: the summary keys :func:`t25fw` gives (decision L387)
@@ -183,25 +196,25 @@ def pass_rows(steps: pd.DataFrame, a: int, b: int) -> list[tuple[int, int]]:
 
 
 def _timed_pieces(steps: pd.DataFrame, zone_m: float, timed_m: float, decel_m: float, max_bout_m: float | None = None,
-                  passes: bool = True, ramps=None) -> list[tuple[str, object]]:
+                  passes: bool = True, ramps=None, short_share: float = 0.0) -> list[tuple[str, object]]:
     """Decision L673: ``(name, _time_bout's result)`` of each piece a walk test times: with ``passes`` each straight
     pass of a walking bout (:func:`pass_rows`, "walking bout N pass P"), else each bout ("walking bout N"). A bout
     whose passes are all too short is judged whole for its note only (L313's: a walk that turns inside its first
     metres; review R2 finding 2: not when a pass is a near miss, :data:`RUN_OUT_M` short, whose L349 note stays, and
     never timed whole, so a pass is timed or refused by itself, whatever follows it), and a bout longer than
     ``max_bout_m`` stays whole for L552 to refuse (a march's legs are no walkway's passes). Decision L679: ``ramps``
-    as :func:`_time_bout`'s."""
+    as :func:`_time_bout`'s; decision C193: ``short_share`` too."""
     out = []
     length = np.abs(np.nan_to_num(steps["length_m"].to_numpy(float)))
     for n, (a, b) in enumerate(bout_rows(steps), start=1):
         split = passes and (max_bout_m is None or length[a:b].sum() <= max_bout_m)
         parts = pass_rows(steps, a, b) if split else [(a, b)]
         got = [(f"walking bout {n}" + (f" pass {p}" if len(parts) > 1 else ""),
-                _time_bout(steps, c, d, zone_m, timed_m, decel_m, max_bout_m, ramps))
+                _time_bout(steps, c, d, zone_m, timed_m, decel_m, max_bout_m, ramps, short_share))
                for p, (c, d) in enumerate(parts, 1)]
         need = zone_m + timed_m + decel_m
         if len(parts) > 1 and all(isinstance(g, float) and g < need - RUN_OUT_M for _, g in got):  # L673; R2 #2
-            whole = _time_bout(steps, a, b, zone_m, timed_m, decel_m, max_bout_m, ramps)
+            whole = _time_bout(steps, a, b, zone_m, timed_m, decel_m, max_bout_m, ramps, short_share)
             got = [(f"walking bout {n}", whole)] if isinstance(whole, str) else got  # its refusal only
         out += got
     return out
@@ -256,13 +269,15 @@ def ten_metre_walk(steps: pd.DataFrame, zones: tuple[float, float, float] | None
     acceleration zone (:func:`lower_back_note`). Decision L679: ``ramps`` (:func:`ramp_numbers`) a bout whose
     walkway holds a ramp's row is not timed; ``ten_m_walk_declared`` says whether ``zones`` declared the walkway."""
     accel, timed, decel = zones or (ZONE_M, TIMED_M, ZONE_M)
+    short = DECLARED_SHORT_SHARE if zones else 0.0  # decision C193: a declared walkway only
     out = timed_walk(steps, accel, timed, KEYS, lower_back_note(accel, timed, calibrated),
                      lambda longest, need: short_walk_note(longest, need, (accel, timed, decel)), decel_m=decel,
-                     max_bout_m=_bout_limit(zones), passes=True, ramps=ramps)  # decision L673
+                     max_bout_m=_bout_limit(zones), passes=True, ramps=ramps, short_share=short)  # decision L673
     trials = ten_metre_walk_trials(steps, zones, calibrated, ramps=ramps)
     out["n_ten_m_walk_trials"] = len(trials)  # decision L524
     missed = _near_misses(steps, accel + timed + decel, lower_back_note(accel, timed, calibrated) is None,
                           _bout_limit(zones), ramps)  # review R2 finding 1: L552's march stays whole here too
+    missed = [(n, m) for n, m in missed if not _short_ok(m, accel, timed, accel + timed + decel, short)]  # C193
     if out["ten_m_walk_time_s"] is not None and missed:  # decision L524: a trial lost to L349's few cm is said
         out["ten_m_walk_note"] = "; ".join(filter(None, [out["ten_m_walk_note"], (  # L535's note kept before it
             "; ".join(f"{n} tracked {math.floor(m * 100.0 + 1e-6) / 100.0:.2f} m, short of "
@@ -293,7 +308,8 @@ def ten_metre_walk_trials(steps: pd.DataFrame, zones: tuple[float, float, float]
     lower_back_ok = lower_back_note(accel, timed, calibrated) is None  # decision L649
     if len(steps) and {"start_s", "end_s", "length_m"} <= set(steps.columns) and (
             lower_back_ok or not _is_lower_back(steps)):
-        for _, got in _timed_pieces(steps, accel, timed, decel, _bout_limit(zones), ramps=ramps):  # L552; L673; L679
+        for _, got in _timed_pieces(steps, accel, timed, decel, _bout_limit(zones), ramps=ramps,  # L552; L673; L679
+                                    short_share=DECLARED_SHORT_SHARE if zones else 0.0):  # decision C193
             if isinstance(got, tuple):
                 rows.append((len(rows) + 1, got[0], got[1], got[1] - got[0], timed / (got[1] - got[0])))
     return pd.DataFrame(rows, columns=list(TRIAL_COLUMNS))
@@ -342,20 +358,31 @@ def _climb_tables(steps: pd.DataFrame, a: int, b: int) -> str:
     return "stairs.csv has the flights" + (", ramps.csv the ramps (with --altitude fused)" if ramp.any() else "")
 
 
+def _short_ok(known: float, zone_m: float, timed_m: float, need: float, short_share: float) -> bool:
+    """Decision C193: whether a pass of ``known`` tracked metres, short of the walkway's ``need``, is timed: it passed
+    the timed stretch's end mark (``zone_m`` + ``timed_m``) and falls short by at most ``short_share`` x ``need``."""
+    return bool(short_share) and zone_m + timed_m <= known < need and need - known <= short_share * need + 1e-9
+
+
 def _time_bout(steps: pd.DataFrame, a: int, b: int, zone_m: float, timed_m: float, decel_m: float,
-               max_bout_m: float | None = None, ramps=None):
+               max_bout_m: float | None = None, ramps=None, short_share: float = 0.0):
     """Decisions L312, L313, L434: the bout ``steps.iloc[a:b]`` timed over the ``timed_m`` after its first
     ``zone_m`` when its path reaches ``zone_m + timed_m + decel_m``: the times ``(t0, t1)``; a float (the bout's
     known length) when it is shorter; a str (the note) when it reaches that length but is refused - decision L552:
     also when the bout is longer than ``max_bout_m`` (a march, not a walkway); decision L679: when its stretch holds
-    a row of a ramp of ``ramps`` (:func:`ramp_numbers`)."""
+    a row of a ramp of ``ramps`` (:func:`ramp_numbers`). Decision C193: a pass short of the walkway by at most
+    ``short_share`` of it that passed the timed stretch's end mark (:func:`_short_ok`) is timed to its end, the
+    times then ``(t0, t1, metres short)``."""
     need = zone_m + timed_m + decel_m
     t, d, x, y = _path(steps.iloc[a:b])
     length = np.abs(steps["length_m"].to_numpy(float)[a:b])
     known = np.concatenate([[0.0], np.cumsum(np.nan_to_num(length))])  # a stride without a length as 0 m
     reach = np.flatnonzero(known >= need)
+    short = 0.0
     if not len(reach):
-        return float(known[-1])
+        if not _short_ok(float(known[-1]), zone_m, timed_m, need, short_share):
+            return float(known[-1])
+        short, reach = need - float(known[-1]), [len(known) - 1]  # decision C193: read to the path's end
     if max_bout_m is not None and known[-1] > max_bout_m:  # decision L552
         return (f"the walking bout is {known[-1]:.0f} m long, far longer than a walkway (over {max_bout_m:g} m, "
                 f"decision L552): a long walk or a march, not a {timed_m:g} m walk test; not timed - give track "
@@ -372,20 +399,23 @@ def _time_bout(steps: pd.DataFrame, a: int, b: int, zone_m: float, timed_m: floa
     on_ramp = _ramp_note(steps, a, k, need, timed_m, ramps)  # decision L679: a ramp is no level walkway
     if on_ramp:
         return on_ramp
-    end = (np.interp(need, d[k - 1: k + 1], x[k - 1: k + 1]), np.interp(need, d[k - 1: k + 1], y[k - 1: k + 1]))
-    if math.hypot(*end) < STRAIGHT_MIN * need:
+    end_m = need - short  # decision C193: the path's end when it tracked short
+    end = (np.interp(end_m, d[k - 1: k + 1], x[k - 1: k + 1]), np.interp(end_m, d[k - 1: k + 1], y[k - 1: k + 1]))
+    if math.hypot(*end) < STRAIGHT_MIN * end_m:
         return (f"the first {need:g} m of the walk are not straight: a turn or a reversal "
                 f"(straight-line {math.hypot(*end):.1f} m; decision L313): a {timed_m:g} m walk "
                 "test needs a straight walkway; not timed")
     t0, t1 = np.interp([zone_m, zone_m + timed_m], d[: k + 1], t[: k + 1])
     if not t1 > t0:
         return "the rows' times do not increase (decision L313); not timed"
+    if short:  # decision C193
+        return float(t0), float(t1), float(short)
     return float(t0), float(t1)
 
 
 def timed_walk(steps: pd.DataFrame, zone_m: float, timed_m: float, keys: tuple[str, str, str], lower_back_note: str,
                short_note, decel_m: float | None = None, max_bout_m: float | None = None,
-               passes: bool = False, ramps=None) -> dict:
+               passes: bool = False, ramps=None, short_share: float = 0.0) -> dict:
     """Decisions L312, L387: ``keys`` (time, speed, note) of the first walking bout whose path reaches ``zone_m`` +
     ``timed_m`` + ``decel_m`` (default ``zone_m``; L522), timed over the ``timed_m`` after its first ``zone_m``
     (L313's refusals, :func:`_time_bout`; ``short_note(longest, need)`` the note of a walk too short). Decision L535:
@@ -393,7 +423,8 @@ def timed_walk(steps: pd.DataFrame, zone_m: float, timed_m: float, keys: tuple[s
     the refused bout before it; with none timed, the first refusal is the note (review R0 finding 3: the summary,
     console and clinical.md said "not timed" beside ten_m_walk_trials.csv's timed trials). Decision L552: a bout
     over ``max_bout_m`` is refused; decision L679: a bout on a ramp of ``ramps`` too. Decision L673: ``passes``
-    (the 10 m walk) times each straight pass of a bout (:func:`pass_rows`) as a bout of its own."""
+    (the 10 m walk) times each straight pass of a bout (:func:`pass_rows`) as a bout of its own. Decision C193:
+    ``short_share`` (a declared walkway's) times a pass a little short (:func:`_short_ok`), its note says so."""
     time_key, speed_key, note_key = keys
     out = dict.fromkeys(keys)
     decel_m = zone_m if decel_m is None else decel_m
@@ -404,7 +435,7 @@ def timed_walk(steps: pd.DataFrame, zone_m: float, timed_m: float, keys: tuple[s
         out[note_key] = lower_back_note
         return out
     longest, refused = 0.0, None
-    for n, got in _timed_pieces(steps, zone_m, timed_m, decel_m, max_bout_m, passes, ramps):  # L673, L679
+    for n, got in _timed_pieces(steps, zone_m, timed_m, decel_m, max_bout_m, passes, ramps, short_share):  # L673
         if isinstance(got, float):
             longest = max(longest, got)
             continue
@@ -414,6 +445,12 @@ def timed_walk(steps: pd.DataFrame, zone_m: float, timed_m: float, keys: tuple[s
         out[time_key], out[speed_key] = got[1] - got[0], timed_m / (got[1] - got[0])
         if refused:
             out[note_key] = f"timed {n}; {refused[0]} before it: {refused[1]} (L535)"
+        if len(got) > 2:  # decision C193: timed though a little short
+            need = zone_m + timed_m + decel_m
+            out[note_key] = "; ".join(filter(None, [out[note_key], (
+                f"the walk tracked {got[2]:.2f} m short of the {need:g} m walkway, within "
+                f"{100 * DECLARED_SHORT_SHARE:g} % (the track's scale error): timed, the timed stretch's end mark "
+                f"passed by {decel_m - got[2]:.2f} m (decision C193)")]))
         return out
     out[note_key] = refused[1] if refused else short_note(longest, zone_m + timed_m + decel_m)
     return out
