@@ -254,11 +254,11 @@ def test_level_gain_kernel_touches_level_strides_only():
     assert none is None and "20 Hz" in warning and "20.5 Hz" in warning
     # decision B135: resampled from a lower rate lost something; from a higher one nothing (the gain is still
     # judged at the recording's rate, B113)
-    _, low = applicable_calibration({**rec, "rate_hz": 100.0}, 50.0, resampled_hz=100.0)
+    _, low = applicable_calibration({**rec, "rate_hz": 100.0}, 40.0, resampled_hz=100.0)  # B465: 40 Hz, under 50
     assert "(resampled to 100 Hz, which does not restore what the recording rate lost)" in low
-    _, high = applicable_calibration({**rec, "rate_hz": 100.0}, 200.0, resampled_hz=100.0)
-    assert "was recorded at 200 Hz (resampled to 100 Hz; the gain is judged at the recording's rate, decision " \
-           "B113): not applied (recalibrate on a walk recorded at 200 Hz)" in high and "restore" not in high
+    _, high = applicable_calibration(rec, 40.0, resampled_hz=20.0)  # B465: under 50 Hz the rate matters
+    assert "was recorded at 40 Hz (resampled to 20 Hz; the gain is judged at the recording's rate, decision " \
+           "B113): not applied" in high and "recalibrate on a walk recorded at 40 Hz" in high and "restore" not in high
     assert calibrated_stride_sd(rec) == 0.006 and calibrated_stride_sd({**rec, "reason": "few"}) is None
 
 

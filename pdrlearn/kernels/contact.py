@@ -24,6 +24,10 @@ GRAVITY = 9.80665
 EVENT_CUTOFF_HZ = 8.0
 #: the impact must rise at least this fraction of the swing's largest rise (AccelStepDetector ``peak_frac``)
 PEAK_FRAC = 0.3
+#: steps decision 89 (not adopted: 0, every local maximum in samples): a local maximum whose dip from the bump before
+#: it (the lowest filtered value between them) stays less than this (m/s^2) below the lower of the two is a ripple of
+#: that bump; AccelStepDetector's ``peak_prominence`` option (1.7 keeps an up-sampled gaitmap walk's ICs, 89)
+PEAK_PROMINENCE = 0.0
 #: a cutoff is kept below this fraction of the sampling rate (``steps.detectors._cutoff``)
 MAX_CUTOFF_FRAC = 0.45
 #: two strides touch when the first ends within this of the second's start (s; both are samples of one clock)
@@ -96,6 +100,27 @@ def last_impact(peak_values, emx: float, rest: float, peak_frac: float) -> int:
     return -1
 
 
+def bump_peaks(peak_values, dips, prominence: float) -> list[int]:
+    """Steps decision 89: indices into the swing's local maxima ``peak_values`` of its bumps' highest maxima, in
+    time order. ``dips[k]`` is the lowest filtered value between maximum ``k - 1`` and maximum ``k`` (``dips[0]`` is
+    not read). A maximum whose lowest value since the current bump's highest one stays less than ``prominence``
+    below the lower of the two joins that bump, which keeps the higher; else it opens a bump. With ``prominence``
+    0 every maximum is a bump (a dip is never above the maxima beside it), as before decision 89."""
+    out: list[int] = []
+    low = math.inf
+    for k, v in enumerate(peak_values):
+        if out:
+            low = min(low, float(dips[k]))
+            top = peak_values[out[-1]]
+            if min(top, v) - low < prominence:
+                if v > top:
+                    out[-1], low = k, math.inf
+                continue
+        out.append(k)
+        low = math.inf
+    return out
+
+
 def peak_time(t0: float, t1: float, t2: float, e0: float, e1: float, e2: float) -> float:
     """Steps decision 32: the time (s) of the vertex of the parabola through the samples ``(t0, e0)``, ``(t1, e1)``,
     ``(t2, e2)`` around a local maximum at ``t1`` (Press et al., Numerical Recipes, 3rd ed., eq. 10.3.1), kept within
@@ -127,11 +152,12 @@ def local_maxima(e: np.ndarray) -> np.ndarray:
 
 
 def impact_time(t: np.ndarray, acc: np.ndarray, *, rest: float = GRAVITY, peak_frac: float = PEAK_FRAC,
-                cutoff_hz: float = EVENT_CUTOFF_HZ) -> float:
+                cutoff_hz: float = EVENT_CUTOFF_HZ, prominence: float = PEAK_PROMINENCE) -> float:
     """Decision E49: the IC (s) of one stride from its foot accelerometer samples ``t`` (n,) s, ``acc`` (n, 3)
-    m/s^2 (stance to stance): |acc| low-passed by :func:`butter2` (cutoff below 0.45 x the rate), the last local
-    maximum reaching ``peak_frac`` of the largest rise above ``rest`` (:func:`last_impact`), less the filter's
-    group delay at 1 Hz. NaN with fewer than 3 samples, no such peak, or an IC before ``t[0]``."""
+    m/s^2 (stance to stance): |acc| low-passed by :func:`butter2` (cutoff below 0.45 x the rate), the last bump
+    (steps decision 89: local maxima grouped by ``prominence``, :func:`bump_peaks`) reaching ``peak_frac`` of the
+    largest rise above ``rest`` (:func:`last_impact`), less the filter's group delay at 1 Hz. NaN with fewer than 3
+    samples, no such peak, or an IC before ``t[0]``."""
     t = np.asarray(t, dtype=float)
     if len(t) < 3:
         return math.nan
@@ -140,6 +166,8 @@ def impact_time(t: np.ndarray, acc: np.ndarray, *, rest: float = GRAVITY, peak_f
     acc = np.asarray(acc, dtype=float)
     e = lowpass2(np.sqrt(np.einsum("ij,ij->i", acc, acc)), b, a)
     pk = local_maxima(e)
+    dips = [math.inf] + [float(e[i + 1:j + 1].min()) for i, j in zip(pk[:-1], pk[1:], strict=True)]
+    pk = pk[bump_peaks(e[pk], dips, prominence)]  # steps decision 89
     k = last_impact(e[pk], float(e.max()), rest, peak_frac)
     if k < 0:
         return math.nan

@@ -22,6 +22,16 @@ LEVEL_DZ_M = 0.10
 #: Relative foot-rate difference beyond which a calibration does not apply: the 20 Hz averaging bias the
 #: gain corrects is rate specific (L26).
 RATE_TOLERANCE = 0.01
+#: decision B465: a rate difference matters for a calibration (the foot gain here, W87's waist K) only when the lower
+#: of the two rates is under this (Hz): simulated users 15100-15102 resampled to 25-1000 Hz moved the waist K at most
+#: 0.72 % and the foot distance at most 0.09 % among 50-1000 Hz, K 3.21-5.05 % from 25 Hz to 50-1000 Hz
+RATE_MATTERS_HZ = 50.0
+
+
+def rate_matters(a_hz: float, b_hz: float) -> bool:
+    """Decision B465: whether a calibration made at ``a_hz`` can differ at ``b_hz`` (Hz): the lower rate is under
+    :data:`RATE_MATTERS_HZ` (whether the two differ at all is the caller's tolerance)."""
+    return min(float(a_hz), float(b_hz)) < RATE_MATTERS_HZ
 #: Decision L144 (candidate, measured; see docs/decisions/localization.md): a "sustained slope" is a run of at
 #: least SLOPE_RUN_STRIDES consecutive strides whose height changes share a sign and are each >= SLOPE_DZ_M (m):
 #: 0.04 m is 3 % of a 1.3 m stride, 6 strides ~8 m of walking. None = off (L39 alone).
@@ -92,7 +102,7 @@ def applicable_calibration(rec: Mapping | None, fs_hz: float, *, tolerance: floa
     if rec is None:
         return None, None
     rate = rec.get("rate_hz")
-    if rate and rate_differs(float(rate), fs_hz, tolerance=tolerance):
+    if rate and rate_differs(float(rate), fs_hz, tolerance=tolerance) and rate_matters(float(rate), fs_hz):  # B465
         if resampled_hz is None:
             at = f"runs at {float(fs_hz):g} Hz"
         elif float(fs_hz) < float(resampled_hz):
@@ -102,7 +112,9 @@ def applicable_calibration(rec: Mapping | None, fs_hz: float, *, tolerance: floa
             at = (f"was recorded at {float(fs_hz):g} Hz (resampled to {float(resampled_hz):g} Hz; the gain is "
                   "judged at the recording's rate, decision B113)")
         return None, (f"the model's distance calibration was made at {float(rate):g} Hz, the foot unit {at}: "
-                      f"not applied (recalibrate on a walk recorded at {float(fs_hz):g} Hz)")
+                      f"not applied: the bias it corrects depends on the rate under {RATE_MATTERS_HZ:g} Hz (above it "
+                      "the foot distance moved at most 0.09 % between rates, decision B465); recalibrate on a walk "
+                      f"recorded at {float(fs_hz):g} Hz")
     return rec, None
 
 

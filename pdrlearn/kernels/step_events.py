@@ -23,6 +23,7 @@ from pdrlearn.kernels.contact import (  # noqa: F401
     ForceParams,
     ForceState,
     TareState,
+    bump_peaks,
     force_kernel,
     last_impact,
     peak_time,
@@ -73,6 +74,7 @@ class BurstParams:
     quiet_rank: int = 1
     rests_only: bool = False
     subsample: bool = False  # steps decision 32: each peak's time at the vertex of its parabola
+    prominence: float = 0.0  # steps decision 89: maxima grouped into bumps by this dip (m/s^2; 0: every maximum)
 
 
 @dataclass
@@ -90,7 +92,8 @@ class BurstState:
     prev2_t: float = math.nan
     rising: bool = False
     emx: float = -math.inf
-    peaks: list = field(default_factory=list)  # local maxima (t, a) of the current swing
+    peaks: list = field(default_factory=list)  # local maxima (t, a, dip before it) of the current swing
+    low: float = math.inf  # steps decision 89: the lowest event value since the swing's last local maximum
     pending: Event | None = None  # last accepted stride, held back until min_stride_s has passed
     pending_amp: float = 0.0
     pending_emx: float = -math.inf
@@ -143,10 +146,14 @@ def burst_kernel(t: np.ndarray, a: np.ndarray, still: np.ndarray, state: BurstSt
         if not s.active:
             if not si:
                 s.active, s.i0_t, s.mx, s.mx_t, s.mn = True, ti, ai, ti, ai
-                s.peaks, s.emx = [], ei
+                s.peaks, s.emx, s.low = [], ei, ei
             continue
         if was_rising and ei <= prev_a:  # a rise into prev: prev2 is a sample too
-            s.peaks.append((peak_time(prev2_t, prev_t, ti, prev2_a, prev_a, ei) if p.subsample else prev_t, prev_a))
+            s.peaks.append((peak_time(prev2_t, prev_t, ti, prev2_a, prev_a, ei) if p.subsample else prev_t, prev_a,
+                            s.low))
+            s.low = ei
+        elif ei < s.low:
+            s.low = ei
         if ei > s.emx:
             s.emx = ei
         if ai > s.mx:
@@ -157,8 +164,10 @@ def burst_kernel(t: np.ndarray, a: np.ndarray, still: np.ndarray, state: BurstSt
             s.active = False
             dur = ti - s.i0_t
             span = s.mx - s.mn
-            k = last_impact([pa for _, pa in s.peaks], s.emx, p.rest, p.peak_frac)  # E49: the streamed IC's rule
-            t_ev, e_ev = s.peaks[k] if k >= 0 else (s.mx_t, s.emx)
+            bumps = [s.peaks[j] for j in bump_peaks([pa for _, pa, _ in s.peaks], [d for _, _, d in s.peaks],
+                                                     p.prominence)]  # steps decision 89
+            k = last_impact([pa for _, pa, _ in bumps], s.emx, p.rest, p.peak_frac)  # E49: the streamed IC's rule
+            t_ev, e_ev = bumps[k][:2] if k >= 0 else (s.mx_t, s.emx)
             if s.pending is not None and t_ev - s.pending[0] < p.min_stride_s and span > p.amp:
                 # the same swing split by a brief false rest: merge; the event stays the last impact
                 # (a wobble below the threshold while standing is ignored, it never moves the event)
@@ -658,7 +667,8 @@ class AccelProcessor:
             min_dur_s=det.min_swing_s, max_dur_s=det.max_swing_s, min_stride_s=det.min_stride_s,
             rest=det.gravity, peak_frac=det.peak_frac, max_still_n=need(det.max_quiet_s),
             quiet_frac=det.quiet_frac, history=4, window_n=self.w, cap_n=int(round(0.6 * fs)),
-            quiet_rank=det.quiet_rank, rests_only=det.rests_only, subsample=subsample_of(det))
+            quiet_rank=det.quiet_rank, rests_only=det.rests_only, subsample=subsample_of(det),
+            prominence=float(det.peak_prominence))
         self.state.need_n = self.params.max_still_n if det.quiet_frac > 0 else self.params.min_still_n
 
     def process(self, t: np.ndarray, v: np.ndarray) -> list:

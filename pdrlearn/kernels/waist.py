@@ -2246,9 +2246,14 @@ RATE_MISMATCH = 0.1
 
 def rate_mismatch_line(calibrated_hz: float, rate_hz: float, where: str) -> str | None:
     """Decision W87's warning when a step length calibrated at ``calibrated_hz`` is applied at ``rate_hz`` more
-    than :data:`RATE_MISMATCH` away, else None (also for an unknown calibration rate, NaN)."""
-    if not np.isfinite(calibrated_hz) or abs(rate_hz - calibrated_hz) <= RATE_MISMATCH * calibrated_hz:
+    than :data:`RATE_MISMATCH` away and the lower of the two is under B465's ``RATE_MATTERS_HZ``, else None (also
+    for an unknown calibration rate, NaN)."""
+    from pdrlearn.kernels.distance import RATE_MATTERS_HZ, rate_matters
+
+    if (not np.isfinite(calibrated_hz) or abs(rate_hz - calibrated_hz) <= RATE_MISMATCH * calibrated_hz
+            or not rate_matters(calibrated_hz, rate_hz)):  # B465
         return None
     return (f"{where}: step length calibrated at {calibrated_hz:.4g} Hz, applied to a {rate_hz:.4g} Hz recording: "
-            "the calibrated factor depends on the rate (a few % of distance, decision W87); re-calibrate on a walk "
+            f"under {RATE_MATTERS_HZ:g} Hz the calibrated factor depends on the rate (K moved 3.2-5.1 % from 25 Hz to "
+            "50-1000 Hz, at most 0.72 % among 50-1000 Hz; decisions W87, B465); re-calibrate on a walk "
             f"recorded at {rate_hz:.4g} Hz: pdrlearn calibrate WALK --distance METERS --out PARAMS.json")

@@ -24,6 +24,7 @@ from pdrlearn.kernels.contact import (
     FORCE_REF_STANCES,
     MAX_STRIDE_S,
     PEAK_FRAC,
+    PEAK_PROMINENCE,
 )
 from pdrlearn.kernels.step_events import (  # decision L177: the online processors, numpy only given a low-pass
     MIN_STILL_SAMPLES,  # noqa: F401 (re-exported)
@@ -90,6 +91,9 @@ class AccelStepDetector(StepDetector):
         20 Hz (1.0 s, "in average", ch.5.1) becomes this refractory time; steps decision 37: 0.4 s, below a
         fast 3-year-old's 0.52 s stride (decision 3's 0.6 s, an adult's shortest stride, merged children's)
     peak_frac : fraction of the largest rise that the initial-contact peak must reach (decision: 0.3)
+    peak_prominence : local maxima of the event signal whose dip from the bump before them stays less than this
+        (m/s^2) below the lower of the two are ripples of that bump (steps decision 89, an option, not adopted: 1.7
+        keeps gaitmap level left's ICs when it is up-sampled to 409.6 / 1024 Hz; 0 = every local maximum in samples)
     gravity : rest magnitude (m/s^2)
     subsample : the contact's time at the vertex of the parabola through the peak and its two neighbouring
         samples instead of the peak sample (decision 32); None = ``pdrlearn.kernels.contact.SUBSAMPLE``
@@ -106,6 +110,7 @@ class AccelStepDetector(StepDetector):
                  quiet_rank: int = 2, rests_only: bool = True,
                  min_swing_s: float = 0.2, max_swing_s: float = 2.5,
                  min_stride_s: float = MIN_STRIDE_S, peak_frac: float = PEAK_FRAC,
+                 peak_prominence: float = PEAK_PROMINENCE,
                  event_cutoff_hz: float = EVENT_CUTOFF_HZ,
                  gravity: float = G, subsample: bool | None = None):
         if int(quiet_rank) != quiet_rank or quiet_rank < 1:
