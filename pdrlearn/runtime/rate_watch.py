@@ -1,0 +1,134 @@
+"""Decision E309: the live Tracker's word on a sustained sample-rate change of a pushed IMU stream (B457's detection,
+numpy only): the same kernel, :class:`~pdrlearn.kernels.rate_change.RateLevels`, as ``read_session`` (decision B460),
+fed the same 1 s blocks of each stream's own time.
+
+A block is judged when the stream has a sample at or after its end (that sample closes its last interval, as the
+offline blocks' intervals run from each sample to the next) and at :meth:`RateWatch.flush` on what it holds. Each
+change is said once, in one line per unit for the streams that changed the same way in one push, and kept in
+:attr:`RateWatch.changes` (``Tracker.rate_changes``). Per push: a list append and a comparison per stream; per
+block: one median. Memory: the open block and the last :data:`KEPT_BLOCKS` blocks' times per stream (for the time
+of the change, B457's step back).
+"""
+
+from __future__ import annotations
+
+from collections import deque
+
+import numpy as np
+
+from pdrlearn.kernels.rate_change import BLOCK_S, STRETCH_BLOCKS, RateLevels, change_text, change_time
+from pdrlearn.runtime.clip_watch import CLIP_WATCHED
+
+#: the blocks kept for B457's step back to the change's first sample: the new stretch's and as many before it
+KEPT_BLOCKS = 2 * STRETCH_BLOCKS + 2
+
+#: decision E309: what the live path does with the change (measured, docs/decisions/export.md)
+LIVE_TAIL = ("integrated on the samples' own timestamps, as the live path integrates every stride (decision E36; "
+             "E309: not resampled, measured) - or record at one rate")
+
+
+class RateWatch:
+    """Decision E309: B457's rate changes on each pushed accelerometer / gyroscope stream, block by block."""
+
+    def __init__(self, used):
+        self.items: dict[str, list] = {n: [] for n in CLIP_WATCHED if n in set(used)}
+        self.start: dict[str, float] = {}
+        self.k: dict[str, int] = dict.fromkeys(self.items, 0)
+        self.levels: dict[str, RateLevels] = {n: RateLevels() for n in self.items}
+        self.kept: dict[str, deque] = {n: deque(maxlen=KEPT_BLOCKS) for n in self.items}
+        #: the changes found: ``{"streams": [...], "t_s", "before_hz", "after_hz"}`` each, in the order said
+        self.changes: list[dict] = []
+        #: decision B461: (stream, time of the change s, new period s) found by the last push / flush
+        self.new: list[tuple[str, float, float]] = []
+
+    def push(self, arrays: dict, fast: dict | None = None) -> list[str]:
+        """One push (``arrays`` name -> ``(t, values)``, ``fast`` name -> one ``(t, values)`` sample, as
+        :class:`~pdrlearn.runtime.clip_watch.ClipWatch`); the lines of the changes the blocks it closes show."""
+        found: list[tuple[str, float, float, float]] = []
+        for name, items in self.items.items():
+            f = fast.get(name) if fast else None
+            if f is not None:
+                newest = f[0]
+                items.append(newest)
+            elif name in arrays and len(arrays[name][0]):
+                t = arrays[name][0]
+                newest = float(t[-1])
+                items.append(t)
+            else:
+                continue
+            start = self.start.get(name)
+            if start is None:
+                start = self.start[name] = float(items[0] if isinstance(items[0], float) else items[0][0])
+            if (newest - start) // BLOCK_S > self.k[name]:  # B457's block index floor((t - t0) / BLOCK_S)
+                found += self._close(name)
+        return self._lines(found)
+
+    def flush(self) -> list[str]:
+        """The end of the streams: each open block judged on what it holds."""
+        found: list[tuple[str, float, float, float]] = []
+        for name in self.items:
+            if name in self.start:
+                found += self._close(name, final=True)
+        return self._lines(found)
+
+    def _close(self, name: str, final: bool = False) -> list[tuple[str, float, float, float]]:
+        """The blocks the stream's samples so far close (all at ``final``), each judged by the levels."""
+        t = _times(self.items[name])
+        blk = np.floor((t - self.start[name]) / BLOCK_S)  # B457's block of each sample (as _block_medians)
+        edges = np.flatnonzero(np.diff(blk)) + 1
+        bounds = [0, *edges.tolist()] + ([len(t)] if final else [])
+        found = []
+        for a, b in zip(bounds, bounds[1:], strict=False):
+            d = np.diff(t[a:b + 1])  # each sample to the next: the block's last interval ends in the next block
+            self.kept[name].append(t[a:b])
+            if not len(d):
+                continue
+            hit = self.levels[name].add(float(np.median(d)), float(t[a]))
+            if hit is not None:
+                kept = np.concatenate(self.kept[name])
+                found.append((name, change_time(kept, hit[0], hit[2]), 1.0 / hit[1], 1.0 / hit[2]))
+        rest = t[bounds[-1]:]
+        self.items[name] = [rest] if len(rest) else []
+        self.k[name] = int(blk[-1]) if len(t) else self.k[name]
+        return found
+
+    def times_since(self, name: str, t_s: float) -> np.ndarray:
+        """Decision B461: the stream's sample times held (the kept blocks and the open one) from ``t_s`` on."""
+        t = np.concatenate([*self.kept[name], _times(self.items[name])])
+        return t[t >= t_s]
+
+    def _lines(self, found: list[tuple[str, float, float, float]]) -> list[str]:
+        """One line per unit and change (to 0.1 s and the rates' 4 digits) for the streams of ``found``; a stream
+        whose unit said the same change in an earlier push joins that change quietly."""
+        groups: dict[tuple, list[str]] = {}
+        self.new = [(name, t_s, 1.0 / b) for name, t_s, _, b in found]
+        for name, t_s, a, b in found:
+            key = (name[0], (round(t_s, 1), f"{a:.4g}", f"{b:.4g}"))
+            said = next((c for c in self.changes if c["key"] == key), None)
+            if said is not None:
+                said["streams"].append(name)
+                continue
+            groups.setdefault(key, []).append(name)
+        lines = []
+        for key, names in groups.items():
+            t_s, a, b = key[1]
+            self.changes.append({"key": key, "streams": names, "t_s": t_s, "before_hz": float(a),
+                                 "after_hz": float(b)})
+            lines.append(f"{change_text(names, [key[1]])}: {LIVE_TAIL}")
+        return lines
+
+
+def _times(items: list) -> np.ndarray:
+    """The pushed times of a stream's items (one-sample floats and arrays, in push order) as one array."""
+    parts, ones = [], []
+    for it in items:
+        if isinstance(it, float):
+            ones.append(it)
+            continue
+        if ones:
+            parts.append(np.array(ones))
+            ones = []
+        parts.append(np.asarray(it, dtype=float))
+    if ones:
+        parts.append(np.array(ones))
+    return np.concatenate(parts) if parts else np.zeros(0)
