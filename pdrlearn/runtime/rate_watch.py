@@ -1,10 +1,10 @@
-"""Decision E309: the live Tracker's word on a sustained sample-rate change of a pushed IMU stream (B457's detection,
+"""Decision E309: the live Tracker's word on a sustained sample-rate change of a pushed stream (B457's detection,
 numpy only): the same kernel, :class:`~pdrlearn.kernels.rate_change.RateLevels`, as ``read_session`` (decision B460),
 fed the same 1 s blocks of each stream's own time.
 
 A block is judged when the stream has a sample at or after its end (that sample closes its last interval, as the
 offline blocks' intervals run from each sample to the next) and at :meth:`RateWatch.flush` on what it holds. Each
-change is said once, in one line per unit for the streams that changed the same way in one push, and kept in
+change is said once, in one line for the streams that changed the same way in one push, and kept in
 :attr:`RateWatch.changes` (``Tracker.rate_changes``). Per push: a list append and a comparison per stream; per
 block: one median. Memory: the open block and the last :data:`KEPT_BLOCKS` blocks' times per stream (for the time
 of the change, B457's step back).
@@ -17,7 +17,6 @@ from collections import deque
 import numpy as np
 
 from pdrlearn.kernels.rate_change import BLOCK_S, STRETCH_BLOCKS, RateLevels, change_text, change_time
-from pdrlearn.runtime.clip_watch import CLIP_WATCHED
 
 #: the blocks kept for B457's step back to the change's first sample: the new stretch's and as many before it
 KEPT_BLOCKS = 2 * STRETCH_BLOCKS + 2
@@ -28,10 +27,10 @@ LIVE_TAIL = ("integrated on the samples' own timestamps, as the live path integr
 
 
 class RateWatch:
-    """Decision E309: B457's rate changes on each pushed accelerometer / gyroscope stream, block by block."""
+    """Decision E309: B457's rate changes on each pushed stream the tracker uses, block by block."""
 
     def __init__(self, used):
-        self.items: dict[str, list] = {n: [] for n in CLIP_WATCHED if n in set(used)}
+        self.items: dict[str, list] = {n: [] for n in dict.fromkeys(used)}  # every stream, as read_session
         self.start: dict[str, float] = {}
         self.k: dict[str, int] = dict.fromkeys(self.items, 0)
         self.levels: dict[str, RateLevels] = {n: RateLevels() for n in self.items}
@@ -98,12 +97,12 @@ class RateWatch:
         return t[t >= t_s]
 
     def _lines(self, found: list[tuple[str, float, float, float]]) -> list[str]:
-        """One line per unit and change (to 0.1 s and the rates' 4 digits) for the streams of ``found``; a stream
-        whose unit said the same change in an earlier push joins that change quietly."""
+        """One line per change (to 0.1 s and the rates' 4 digits, as read_session groups them) for the streams of
+        ``found``; a stream whose change was said in an earlier push joins that change quietly."""
         groups: dict[tuple, list[str]] = {}
         self.new = [(name, t_s, 1.0 / b) for name, t_s, _, b in found]
         for name, t_s, a, b in found:
-            key = (name[0], (round(t_s, 1), f"{a:.4g}", f"{b:.4g}"))
+            key = (round(t_s, 1), f"{a:.4g}", f"{b:.4g}")
             said = next((c for c in self.changes if c["key"] == key), None)
             if said is not None:
                 said["streams"].append(name)
@@ -111,10 +110,10 @@ class RateWatch:
             groups.setdefault(key, []).append(name)
         lines = []
         for key, names in groups.items():
-            t_s, a, b = key[1]
+            t_s, a, b = key
             self.changes.append({"key": key, "streams": names, "t_s": t_s, "before_hz": float(a),
                                  "after_hz": float(b)})
-            lines.append(f"{change_text(names, [key[1]])}: {LIVE_TAIL}")
+            lines.append(f"{change_text(names, [key])}: {LIVE_TAIL}")
         return lines
 
 

@@ -2350,7 +2350,7 @@ class Tracker(OwnGuard, FixInput):
 
     @property
     def rate_changes(self) -> list[dict]:
-        """Decision E309: the sustained sample-rate changes of the pushed accelerometer / gyroscope streams said so
+        """Decision E309: the sustained sample-rate changes of the pushed streams said so
         far (B457's detection, B460's kernel), each ``{"streams": [...], "t_s", "before_hz", "after_hz"}``; empty
         for steady streams or without ``check_input`` / ``stream_checks``."""
         return [{k: v for k, v in c.items() if k != "key"} for c in self._rate_log]
