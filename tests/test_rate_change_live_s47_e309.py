@@ -55,12 +55,25 @@ def test_e309_the_lean_replay_says_the_change_once_and_keeps_it_as_a_field(walks
     assert _b457(tracker) == [] and tracker.rate_changes == []
 
 
-def test_b461_the_changed_stretch_is_no_dropped_samples_live(walks):
-    """A Tracker that learns the foot's rate from its first samples (100 Hz, no declared rates) in 0.5 s pushes:
-    before B461, E230 counted each 20 ms interval of the 50 Hz stretch as dropped samples (about 1400)."""
+@pytest.mark.parametrize("slow_first", [False, True])
+def test_b461_the_changed_stretch_is_no_dropped_samples_live(walks, slow_first):
+    """0.5 s pushes: 100 -> 50 Hz into a Tracker that learns the foot's rate from its first samples (100 Hz), and 50 ->
+    100 Hz into one declared 100 Hz (the lean replay declares the files' median rate): before B461, E230 counted each
+    20 ms interval of the 50 Hz stretch as dropped samples (about 1400 / 600)."""
     _, _, sim = walks
-    tracker = Tracker(load_bundle(BUNDLE), units=("foot",), sensors=["fAccelerometer", "fGyroscope"])
     streams = {n: sim.streams[n] for n in ("fAccelerometer", "fGyroscope")}
+    if slow_first:  # the 100 Hz walk with every other sample of its first 12 s left out (each kept one its pair's mean)
+        base = simulate("walk", 14650, rate_hz=100.0, seed=0, length_m=40.0)
+        for n in ("fAccelerometer", "fGyroscope"):
+            s0 = base.streams[n]
+            early = s0.t < s0.t[0] + 12.0
+            keep = ~early | (np.arange(len(s0)) % 2 == 0)
+            v = s0.values.copy()
+            nxt = np.vstack([v[1:], v[-1:]])
+            v[early & keep] = 0.5 * (v[early & keep] + nxt[early & keep])
+            streams[n] = Stream(n, s0.t[keep], v[keep])
+    rates = {n: 100.0 for n in streams} if slow_first else None
+    tracker = Tracker(load_bundle(BUNDLE), units=("foot",), sensors=list(streams), input_rates_hz=rates)
     t = streams["fAccelerometer"].t
     for a in np.arange(t[0], t[-1] + 0.5, 0.5):
         tracker.push({n: (s.t[(s.t >= a) & (s.t < a + 0.5)], s.values[(s.t >= a) & (s.t < a + 0.5)])
@@ -113,4 +126,5 @@ def test_b460_the_live_watch_finds_what_the_offline_kernel_finds(chunk):
         got += w.new
         want = [(round(c.t_s, 1), f"{c.before_hz:.4g}", f"{c.after_hz:.4g}") for c in rate_changes(t)]
         assert [c["key"] for c in w.changes] == want
-        assert [(n, t_s, 1.0 / p) for n, t_s, p in got] == [("fGyroscope", c.t_s, c.after_hz) for c in rate_changes(t)]
+        exact = [("fGyroscope", c.t_s, c.after_hz) for c in rate_changes(t)]
+        assert [(n, t_s, 1.0 / p) for n, t_s, p, _ in got] == exact

@@ -16,10 +16,14 @@ from collections import deque
 
 import numpy as np
 
+from pdrlearn.kernels.gaps import MIN_GAP_S
 from pdrlearn.kernels.rate_change import BLOCK_S, STRETCH_BLOCKS, RateLevels, change_text, change_time
 
 #: the blocks kept for B457's step back to the change's first sample: the new stretch's and as many before it
 KEPT_BLOCKS = 2 * STRETCH_BLOCKS + 2
+
+#: decision E230 / B64: an interval over this many periods encloses dropped samples
+DROP_FACTOR = 1.5
 
 #: decision E309: what the live path does with the change (measured, docs/decisions/export.md)
 LIVE_TAIL = ("integrated on the samples' own timestamps, as the live path integrates every stride (decision E36; "
@@ -29,7 +33,7 @@ LIVE_TAIL = ("integrated on the samples' own timestamps, as the live path integr
 class RateWatch:
     """Decision E309: B457's rate changes on each pushed stream the tracker uses, block by block."""
 
-    def __init__(self, used):
+    def __init__(self, used, limit=None):
         self.items: dict[str, list] = {n: [] for n in dict.fromkeys(used)}  # every stream, as read_session
         self.start: dict[str, float] = {}
         self.k: dict[str, int] = dict.fromkeys(self.items, 0)
@@ -37,13 +41,18 @@ class RateWatch:
         self.kept: dict[str, deque] = {n: deque(maxlen=KEPT_BLOCKS) for n in self.items}
         #: the changes found: ``{"streams": [...], "t_s", "before_hz", "after_hz"}`` each, in the order said
         self.changes: list[dict] = []
-        #: decision B461: (stream, time of the change s, new period s) found by the last push / flush
-        self.new: list[tuple[str, float, float]] = []
+        #: decision B461: ``limit(name)``, the interval (s) over which the caller counts dropped samples (E230)
+        self.limit = limit
+        #: decision B461: per stream, the intervals the caller counted as dropped samples that are within 1.5 of their
+        #: block's own median interval, since the last change (taken back out of the count at the next one)
+        self.excess: dict[str, int] = dict.fromkeys(self.items, 0)
+        #: decision B461: (stream, time of the change s, new period s, intervals to take back out) of the last push
+        self.new: list[tuple[str, float, float, int]] = []
 
     def push(self, arrays: dict, fast: dict | None = None) -> list[str]:
         """One push (``arrays`` name -> ``(t, values)``, ``fast`` name -> one ``(t, values)`` sample, as
         :class:`~pdrlearn.runtime.clip_watch.ClipWatch`); the lines of the changes the blocks it closes show."""
-        found: list[tuple[str, float, float, float]] = []
+        found: list[tuple[str, float, float, float, int]] = []
         for name, items in self.items.items():
             f = fast.get(name) if fast else None
             if f is not None:
@@ -64,13 +73,13 @@ class RateWatch:
 
     def flush(self) -> list[str]:
         """The end of the streams: each open block judged on what it holds."""
-        found: list[tuple[str, float, float, float]] = []
+        found: list[tuple[str, float, float, float, int]] = []
         for name in self.items:
             if name in self.start:
                 found += self._close(name, final=True)
         return self._lines(found)
 
-    def _close(self, name: str, final: bool = False) -> list[tuple[str, float, float, float]]:
+    def _close(self, name: str, final: bool = False) -> list[tuple[str, float, float, float, int]]:
         """The blocks the stream's samples so far close (all at ``final``), each judged by the levels."""
         t = _times(self.items[name])
         blk = np.floor((t - self.start[name]) / BLOCK_S)  # B457's block of each sample (as _block_medians)
@@ -82,26 +91,34 @@ class RateWatch:
             self.kept[name].append(t[a:b])
             if not len(d):
                 continue
-            hit = self.levels[name].add(float(np.median(d)), float(t[a]))
+            med = float(np.median(d))
+            self.excess[name] += self._excess(name, d, med)
+            hit = self.levels[name].add(med, float(t[a]))
             if hit is not None:
                 kept = np.concatenate(self.kept[name])
-                found.append((name, change_time(kept, hit[0], hit[2]), 1.0 / hit[1], 1.0 / hit[2]))
+                found.append((name, change_time(kept, hit[0], hit[2]), 1.0 / hit[1], 1.0 / hit[2], 0))
         rest = t[bounds[-1]:]
+        if found:  # B461: taken back at the (last) change; the open block's intervals are the new stretch's
+            self.excess[name] += self._excess(name, np.diff(rest), 1.0 / found[-1][3])
+            found[-1] = (*found[-1][:4], self.excess[name])
+            self.excess[name] = 0
         self.items[name] = [rest] if len(rest) else []
         self.k[name] = int(blk[-1]) if len(t) else self.k[name]
         return found
 
-    def times_since(self, name: str, t_s: float) -> np.ndarray:
-        """Decision B461: the stream's sample times held (the kept blocks and the open one) from ``t_s`` on."""
-        t = np.concatenate([*self.kept[name], _times(self.items[name])])
-        return t[t >= t_s]
+    def _excess(self, name: str, d: np.ndarray, period: float) -> int:
+        """Decision B461: of the intervals ``d`` (s), those the caller counts as dropped samples (over ``limit``, up to
+        B11's 1 s) that are within 1.5 of ``period``, the stretch's own (none without ``limit``)."""
+        if self.limit is None or not len(d):
+            return 0
+        return int(np.count_nonzero((d > self.limit(name)) & (d <= min(DROP_FACTOR * period, MIN_GAP_S))))
 
-    def _lines(self, found: list[tuple[str, float, float, float]]) -> list[str]:
+    def _lines(self, found: list[tuple[str, float, float, float, int]]) -> list[str]:
         """One line per change (to 0.1 s and the rates' 4 digits, as read_session groups them) for the streams of
         ``found``; a stream whose change was said in an earlier push joins that change quietly."""
         groups: dict[tuple, list[str]] = {}
-        self.new = [(name, t_s, 1.0 / b) for name, t_s, _, b in found]
-        for name, t_s, a, b in found:
+        self.new = [(name, t_s, 1.0 / b, n) for name, t_s, _, b, n in found]
+        for name, t_s, a, b, _ in found:
             key = (round(t_s, 1), f"{a:.4g}", f"{b:.4g}")
             said = next((c for c in self.changes if c["key"] == key), None)
             if said is not None:

@@ -104,7 +104,7 @@ from pdrlearn.runtime.domain import DomainLog
 from pdrlearn.runtime.fixes import FixInput
 from pdrlearn.runtime.guard import LIVE_STRIDES, FrozenFootWatch, FrozenWatch, MirrorWatch, UnitGuard
 from pdrlearn.runtime.links import RepeatedLines, StartClocks, order_error, unit_of
-from pdrlearn.runtime.rate_watch import RateWatch
+from pdrlearn.runtime.rate_watch import DROP_FACTOR, RateWatch
 from pdrlearn.runtime.replay import refuse_pushed_out_of_range
 from pdrlearn.runtime.resample import InputStage, stopped_message
 from pdrlearn.runtime.restart import drop_measured, restart_state
@@ -832,7 +832,8 @@ class Tracker(OwnGuard, FixInput):
                       if check_input and self.stream_checks else None)
         #: decision E309: B457's sustained sample-rate change of each IMU stream, said once per change (the kernel of
         #: read_session, B460); None as ``_clip``
-        self._rates = RateWatch(self.used_sensors) if check_input and self.stream_checks else None
+        self._rates = (RateWatch(self.used_sensors, limit=self._drop_limit) if check_input and self.stream_checks
+                       else None)
         self._rate_log = [] if self._rates is None else self._rates.changes
         #: decision B213: B203's frozen foot IMU beside stepping force sensors, judged live (None: decided, no foot IMU
         #: or force sensor, or ``check_input=False``)
@@ -1355,7 +1356,7 @@ class Tracker(OwnGuard, FixInput):
             rate = self.inputs.input_rates_hz.get(name)
             if not rate:
                 return math.inf
-            lim = self._drop_lim[name] = 1.5 / rate
+            lim = self._drop_lim[name] = DROP_FACTOR / rate
         return lim
 
     def _count_drops(self) -> None:
@@ -1370,20 +1371,17 @@ class Tracker(OwnGuard, FixInput):
 
     def _rate_changed(self, rates: RateWatch) -> None:
         """Decision B461: a stream whose rate changed (B457, found by ``rates`` in this push) drops samples when an
-        interval is over 1.5 of its NEW period from the change on: E230's limit follows it, and the intervals since
-        the change that count under the old limit but not under the new one are taken back out of the count (the
-        longest stays as counted)."""
-        for name, t_s, period in rates.new:
-            old, new = self._drop_limit(name), 1.5 * period
-            self._drop_lim[name] = new
-            if name not in self._drops:
+        interval is over 1.5 of its NEW period from the change on (E230's limit follows it), and the intervals E230
+        counted that lie within 1.5 of their own stretch's period (the watch's count since the last change: a slower
+        stretch read at the faster rate, before or after the change) are taken back out of the count (the longest
+        stays as counted)."""
+        for name, _, period, excess in rates.new:
+            self._drop_lim[name] = DROP_FACTOR * period
+            if name not in self._drops or not excess:
                 continue
-            d = np.diff(rates.times_since(name, t_s))
-            d = d[d <= MIN_GAP_S]
             n, longest = self._drops[name]
-            n += int(np.count_nonzero(d > new)) - int(np.count_nonzero(d > old))
-            if n > 0:
-                self._drops[name] = (n, longest)
+            if n > excess:
+                self._drops[name] = (n - excess, longest)
             else:
                 del self._drops[name]
 
@@ -2185,6 +2183,7 @@ class Tracker(OwnGuard, FixInput):
             lo = prev if pause_gap and self._bridged() else waist_gap_from(prev, t0, self.waist_gap_yaw)
             turn -= self._stop_bias.turn(t0, t1)
             dyaw -= self._stop_bias.turn(lo, t1)
+        turn = _sideways.own_turn(lev, self.heading_source, turn)  # decision L699: the foot's own turn, as offline's
         self._prev_end = t1
         if bridged:  # decision E280: a stride across bridged samples (L167's) is in its chain, not judged
             row = _pedal.unjudged_row(t0, t1)
