@@ -69,6 +69,10 @@ class RateWatch:
                 start = self.start[name] = float(items[0] if isinstance(items[0], float) else items[0][0])
             if (newest - start) // BLOCK_S > self.k[name]:  # B457's block index floor((t - t0) / BLOCK_S)
                 found += self._close(name)
+        if not found:  # the common push: no block closed with a change
+            if self.new:
+                self.new = []
+            return found
         return self._lines(found)
 
     def flush(self) -> list[str]:

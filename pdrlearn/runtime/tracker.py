@@ -1248,7 +1248,8 @@ class Tracker(OwnGuard, FixInput):
         if self._rates is not None:  # decision E309: a rate change, once (after E230's count: B461 corrects it)
             for msg in self._rates.push(checked, fast):
                 self._warn(msg)
-            self._rate_changed(self._rates)
+            if self._rates.new:
+                self._rate_changed(self._rates)
         self._detect()
         if self._pending or self._latest >= self._lag_next:  # E23: before a waiting step could go stale
             self._check_lag()
