@@ -1192,7 +1192,9 @@ FOOT_STEPS: tuple[Column, ...] = (
                                      "too); absent otherwise"),
     ("contact_source", _ID, "text", "a stitched track only (L365's partial fallback): force or imu, the detector "
                                     "that timed the stride's IC (L405)"),
-    ("pivot_rad", "rad", "number", "streamed tracks (--streaming, run): the turn between strides (E51, L106)"),
+    ("pivot_rad", "rad", "number", "streamed tracks (--streaming, run): the heading change not in the stride's own "
+                                   "turn: the turn between strides, and on a foot + lower-back stride the lower "
+                                   "back's lag behind the foot's turn (E51, L106, L699)"),
     ("stride_time_s", "s", "number", "IC to IC: this event_s minus the previous stride's (empty at the first "
                                      "stride, after a stop over 3 s, a gap row, or a missing IC; L66, L80)"),
     ("cadence_spm", "steps/min", "number", "120 / stride_time_s (two steps per stride of one foot)"),

@@ -49,7 +49,7 @@ from pdrlearn.io.validate import (
 )
 from pdrlearn.kernels.clock import stamp_jitter_s
 from pdrlearn.kernels.gaps import DROPS_CAUSE, gap_turn, streamed_drops_line  # decision E230: shared with the runtime
-from pdrlearn.kernels.rate_change import rate_changes
+from pdrlearn.kernels.rate_change import change_text, rate_changes
 from pdrlearn.kernels.units import data_row_lines, out_of_range, out_of_range_message
 from pdrlearn.textfile import (
     compressed_hint,
@@ -766,11 +766,9 @@ def _rate_changes(streams: dict[str, Stream], folder: Path) -> None:
             slow = max(max(1.0 / c.before_hz, 1.0 / c.after_hz) for c in ch)
             streams[name] = s.on_uniform_clock(fast, 2.0 * slow)
     for key, names in groups.items():
-        said = ", ".join(f"{a} -> {b} Hz at {t:.1f} s" for t, a, b in key)
         rate = max(max(float(a), float(b)) for _, a, b in key)
-        log.warning("%s: %s: the sample rate changed %s (a unit's rate setting, not dropped samples; decision "
-                    "B457): interpolated onto a uniform %.4g Hz clock, as the offline methods integrate with one "
-                    "fixed sample interval - or record at one rate", folder, ", ".join(names), said, rate,
+        log.warning("%s: %s: interpolated onto a uniform %.4g Hz clock, as the offline methods integrate with one "
+                    "fixed sample interval - or record at one rate", folder, change_text(names, key), rate,
                     extra={"code": "B457"})
 
 

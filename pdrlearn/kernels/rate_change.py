@@ -8,6 +8,8 @@ block's intervals hold a drop, so random drops leave it level and a rate change 
 
 from __future__ import annotations
 
+import math
+from collections import deque
 from dataclasses import dataclass
 
 import numpy as np
@@ -42,33 +44,88 @@ def _block_medians(t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return med, t[starts]
 
 
+#: decision B460: the blocks a stretch needs (:data:`MIN_STRETCH_S` of them); a stretch's period is the median of
+#: this many of its blocks next to the change (the new stretch's first, the old one's last): bounded state, live too
+STRETCH_BLOCKS = int(np.ceil(MIN_STRETCH_S / BLOCK_S - 1e-9))
+
+
+class RateLevels:
+    """Decisions B457 / B460: the level runs of consecutive blocks' median intervals, one block at a time (bounded
+    state: a running sum and :data:`STRETCH_BLOCKS` medians at each end of the current run). A run whose blocks lie
+    within :data:`LEVEL_TOL` of its running mean and that lasts :data:`STRETCH_BLOCKS` blocks is a stretch; the
+    change is said when a stretch is reached whose period differs from the previous stretch's by
+    :data:`MIN_FACTOR` or more (runs shorter than a stretch between them are left out). :func:`rate_changes` (a
+    whole recording) and the live Tracker's watch (pushed samples, E309) feed it the same blocks."""
+
+    def __init__(self):
+        self.prev: float | None = None  # the period of the last stretch (median of its last STRETCH_BLOCKS blocks)
+        self._n, self._sum, self._t0 = 0, 0.0, math.nan
+        self._first: list[float] = []
+        self._last: deque[float] = deque(maxlen=STRETCH_BLOCKS)
+
+    def add(self, med: float, t_first: float) -> tuple[float, float, float] | None:
+        """The next block: its median interval ``med`` (s) and its first sample's time ``t_first`` (s). Returns
+        ``(t_first of the new stretch's first block, old period, new period)`` when this block makes the current
+        run a stretch at another rate, else None."""
+        if self._n:
+            level = self._sum / self._n
+            if abs(med - level) > LEVEL_TOL * level:
+                self._end()
+        if not self._n:
+            self._t0 = float(t_first)
+        self._n += 1
+        self._sum += med
+        if len(self._first) < STRETCH_BLOCKS:
+            self._first.append(med)
+        self._last.append(med)
+        if self._n != STRETCH_BLOCKS or self.prev is None:
+            return None
+        p1 = float(np.median(self._first))
+        if max(self.prev, p1) / min(self.prev, p1) >= MIN_FACTOR:
+            return self._t0, self.prev, p1
+        return None
+
+    def _end(self) -> None:
+        if self._n >= STRETCH_BLOCKS:
+            self.prev = float(np.median(self._last))
+        self._n, self._sum = 0, 0.0
+        self._first = []
+        self._last.clear()
+
+
+def change_time(t: np.ndarray, t_first: float, period: float) -> float:
+    """Decision B457: the first sample after which the intervals of ``t`` (s) are the new ``period``: from the new
+    stretch's first block (``t_first``) back while they already are (at most :data:`MIN_STRETCH_S` back)."""
+    i = int(np.searchsorted(t, t_first))
+    while i > 0 and abs((t[i] - t[i - 1]) - period) < LEVEL_TOL * period and t[i] > t_first - MIN_STRETCH_S:
+        i -= 1
+    return float(t[i])
+
+
 def rate_changes(t: np.ndarray) -> list[RateChange]:
     """Decision B457: the sustained rate changes of timestamps ``t`` (s): consecutive stretches of blocks at one
-    level (within :data:`LEVEL_TOL`) lasting at least :data:`MIN_STRETCH_S`, whose median intervals differ by at
-    least :data:`MIN_FACTOR`. Blocks between two stretches (the change itself, a gap) are left out. Empty for a
-    steady rate, dropped samples, or fewer than two stretches."""
+    level (within :data:`LEVEL_TOL`) lasting at least :data:`MIN_STRETCH_S`, whose periods differ by at least
+    :data:`MIN_FACTOR` (:class:`RateLevels`, the live Tracker's kernel too, B460). Blocks between two stretches (the
+    change itself, a gap) are left out. Empty for a steady rate, dropped samples, or fewer than two stretches."""
     t = np.asarray(t, dtype=float)
     if t.size < 3 or t[-1] - t[0] < 2 * MIN_STRETCH_S:
         return []
     med, t0 = _block_medians(t)
-    stretches = []  # (first block, last block, median interval)
-    csum = np.concatenate([[0.0], np.cumsum(med)])  # the running level's mean in O(1): long recordings stay linear
-    a = 0
-    for i in range(1, med.size + 1):
-        level = (csum[i] - csum[a]) / (i - a)
-        if i == med.size or abs(med[i] - level) > LEVEL_TOL * level:
-            if (i - a) * BLOCK_S >= MIN_STRETCH_S:
-                stretches.append((a, i - 1, float(np.median(med[a:i]))))
-            a = i
-    out = []
-    for (_, _, p0), (b, _, p1) in zip(stretches, stretches[1:], strict=False):
-        if max(p0, p1) / min(p0, p1) >= MIN_FACTOR:
-            i = int(np.searchsorted(t, t0[b]))
-            # the first sample after which the intervals are the new period: step back while they already are
-            while i > 0 and abs((t[i] - t[i - 1]) - p1) < LEVEL_TOL * p1 and t[i] > t0[b] - MIN_STRETCH_S:
-                i -= 1
-            out.append(RateChange(float(t[i]), 1.0 / p0, 1.0 / p1))
+    levels, out = RateLevels(), []
+    for m, tb in zip(med.tolist(), t0.tolist(), strict=True):
+        hit = levels.add(m, tb)
+        if hit is not None:
+            out.append(RateChange(change_time(t, hit[0], hit[2]), 1.0 / hit[1], 1.0 / hit[2]))
     return out
+
+
+def change_text(names, key) -> str:
+    """Decision B457's line without its path's tail (shared by ``read_session`` and the live Tracker, E309):
+    ``fAccelerometer, fGyroscope: the sample rate changed 100 -> 50 Hz at 30.0 s (a unit's rate setting, not dropped
+    samples; decision B457)``; ``key``: ``(time s rounded to 0.1, before Hz text, after Hz text)`` per change."""
+    said = ", ".join(f"{a} -> {b} Hz at {t:.1f} s" for t, a, b in key)
+    return (f"{', '.join(names)}: the sample rate changed {said} (a unit's rate setting, not dropped samples; "
+            "decision B457)")
 
 
 def fastest_period_s(t: np.ndarray) -> float:

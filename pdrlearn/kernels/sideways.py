@@ -16,7 +16,7 @@ from collections import deque
 
 import numpy as np
 
-from pdrlearn.kernels.stride import reversed_by_rules
+from pdrlearn.kernels.stride import headed_by_foot, reversed_by_rules
 
 #: decision L219: a stride whose displacement points 60-120 deg from the foot's facing travels sideways (a forward
 #: or backward stride points within a few degrees of it, toe-out included; a side step at 90 deg)
@@ -159,6 +159,13 @@ def foot_turn(levelled) -> float:
     """Decision L400: the foot's heading change (rad) over the stride, its attitude change from rest to rest (the
     fifth value of the foot's levelled tuple, :func:`pdrlearn.kernels.stride.stride_motion`'s foot heading)."""
     return float(levelled["foot"][4])
+
+
+def own_turn(levelled, heading_source: str, turn: float) -> float:
+    """Decision L699: a streamed stride's own turn (steps.csv ``turn_angle_rad``, E51): the heading unit's ``turn``
+    for a stride headed by the foot, else the foot's (:func:`foot_turn`, L400 / L690's unwrapped rest-to-rest turn),
+    as offline's L66 row reports it; the stride's heading change is not touched."""
+    return float(turn) if headed_by_foot(levelled, heading_source) else foot_turn(levelled)
 
 
 def step_frame(levelled) -> float:

@@ -104,6 +104,7 @@ from pdrlearn.runtime.domain import DomainLog
 from pdrlearn.runtime.fixes import FixInput
 from pdrlearn.runtime.guard import LIVE_STRIDES, FrozenFootWatch, FrozenWatch, MirrorWatch, UnitGuard
 from pdrlearn.runtime.links import RepeatedLines, StartClocks, order_error, unit_of
+from pdrlearn.runtime.rate_watch import DROP_FACTOR, RateWatch
 from pdrlearn.runtime.replay import refuse_pushed_out_of_range
 from pdrlearn.runtime.resample import InputStage, stopped_message
 from pdrlearn.runtime.restart import drop_measured, restart_state
@@ -541,6 +542,8 @@ class Tracker(OwnGuard, FixInput):
     _domain: DomainLog | None = None  # decision E105 (a bare Tracker.__new__ scores nothing)
     _frozen_foot: FrozenFootWatch | None = None  # decision B213 (a bare Tracker.__new__ watches nothing)
     _clip: ClipWatch | None = None  # decision E303 (likewise)
+    _rates: RateWatch | None = None  # decision E309 (likewise)
+    _rate_log: list | tuple = ()  # decision E309: the rate changes found (a bare Tracker.__new__ has none)
     _warn_ood: float | None = None
     _domain_said = False
     #: decision L134: a resumed tracker's last measured stride end (s; strides found again up to it are dropped)
@@ -827,6 +830,11 @@ class Tracker(OwnGuard, FixInput):
         #: ``pdrlearn run`` said them when it read the session)
         self._clip = (ClipWatch(self.used_sensors, full_scale, waist="waist" in self.units)
                       if check_input and self.stream_checks else None)
+        #: decision E309: B457's sustained sample-rate change of each IMU stream, said once per change (the kernel of
+        #: read_session, B460); None as ``_clip``
+        self._rates = (RateWatch(self.used_sensors, limit=self._drop_limit) if check_input and self.stream_checks
+                       else None)
+        self._rate_log = [] if self._rates is None else self._rates.changes
         #: decision B213: B203's frozen foot IMU beside stepping force sensors, judged live (None: decided, no foot IMU
         #: or force sensor, or ``check_input=False``)
         self._frozen_foot = (FrozenFootWatch() if check_input and {"fAccelerometer", "fGyroscope"} <= set(
@@ -1237,6 +1245,11 @@ class Tracker(OwnGuard, FixInput):
             self._note_gaps()
         if self._pushed_drops:  # decision E230
             self._count_drops()
+        if self._rates is not None:  # decision E309: a rate change, once (after E230's count: B461 corrects it)
+            for msg in self._rates.push(checked, fast):
+                self._warn(msg)
+            if self._rates.new:
+                self._rate_changed(self._rates)
         self._detect()
         if self._pending or self._latest >= self._lag_next:  # E23: before a waiting step could go stale
             self._check_lag()
@@ -1344,7 +1357,7 @@ class Tracker(OwnGuard, FixInput):
             rate = self.inputs.input_rates_hz.get(name)
             if not rate:
                 return math.inf
-            lim = self._drop_lim[name] = 1.5 / rate
+            lim = self._drop_lim[name] = DROP_FACTOR / rate
         return lim
 
     def _count_drops(self) -> None:
@@ -1356,6 +1369,22 @@ class Tracker(OwnGuard, FixInput):
             if d.size:
                 n, longest = self._drops.get(name, (0, 0.0))
                 self._drops[name] = (n + int(d.size), max(longest, float(d.max())))
+
+    def _rate_changed(self, rates: RateWatch) -> None:
+        """Decision B461: a stream whose rate changed (B457, found by ``rates`` in this push) drops samples when an
+        interval is over 1.5 of its NEW period from the change on (E230's limit follows it), and the intervals E230
+        counted that lie within 1.5 of their own stretch's period (the watch's count since the last change: a slower
+        stretch read at the faster rate, before or after the change) are taken back out of the count (the longest
+        stays as counted)."""
+        for name, _, period, excess in rates.new:
+            self._drop_lim[name] = DROP_FACTOR * period
+            if name not in self._drops or not excess:
+                continue
+            n, longest = self._drops[name]
+            if n > excess:
+                self._drops[name] = (n - excess, longest)
+            else:
+                del self._drops[name]
 
     def drop_stats(self) -> dict[str, dict]:
         """Decision E230: per pushed stream with dropped samples, ``{"intervals": n, "longest_s": s}``: the intervals
@@ -1616,6 +1645,11 @@ class Tracker(OwnGuard, FixInput):
         clip, self._clip = self._clip, None  # decision E303: the last blocks, once
         for msg in clip.flush() if clip is not None else ():
             self._warn(msg)
+        rates, self._rates = self._rates, None  # decision E309: the last blocks, once
+        for msg in rates.flush() if rates is not None else ():
+            self._warn(msg)
+        if rates is not None:
+            self._rate_changed(rates)
         self._detect()
         steps = self._process_ready(force=True)
         steps += self._release(self._loops.flush())  # decision E280: the last strides, judged on what is known
@@ -2150,6 +2184,7 @@ class Tracker(OwnGuard, FixInput):
             lo = prev if pause_gap and self._bridged() else waist_gap_from(prev, t0, self.waist_gap_yaw)
             turn -= self._stop_bias.turn(t0, t1)
             dyaw -= self._stop_bias.turn(lo, t1)
+        turn = _sideways.own_turn(lev, self.heading_source, turn)  # decision L699: the foot's own turn, as offline's
         self._prev_end = t1
         if bridged:  # decision E280: a stride across bridged samples (L167's) is in its chain, not judged
             row = _pedal.unjudged_row(t0, t1)
@@ -2309,8 +2344,16 @@ class Tracker(OwnGuard, FixInput):
 
     def quiet_clipping(self) -> None:
         """Decision E303: no live clipping / stuck-axis lines (a caller that read the session with ``read_session``
-        said B77 / B455 already: ``pdrlearn evaluate BUNDLE``)."""
+        said B77 / B455 already: ``pdrlearn evaluate BUNDLE``); decision E309: nor B457's rate-change line."""
         self._clip = None
+        self._rates = None
+
+    @property
+    def rate_changes(self) -> list[dict]:
+        """Decision E309: the sustained sample-rate changes of the pushed streams said so
+        far (B457's detection, B460's kernel), each ``{"streams": [...], "t_s", "before_hz", "after_hz"}``; empty
+        for steady streams or without ``check_input`` / ``stream_checks``."""
+        return [{k: v for k, v in c.items() if k != "key"} for c in self._rate_log]
 
     def quiet_domain(self) -> None:
         """Decision E198: keep checking the strides against the training ranges (:meth:`domain_report`) but never

@@ -2161,6 +2161,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                   else SK.waist_gap_from(prev, float(t0), waist_gap_yaw))
             turn[i] -= stop.turn(t0, t1)
             dyaw[i] -= stop.turn(lo, t1)
+        turn[i] = KSW.own_turn(lev, heading, turn[i])  # decision L699: the foot's own turn, as offline's row
     if neighbour and (across & ~posture).any():
         warnings.append(drop_stride_warning(int((across & ~posture).sum()), streamed=True))
     if (hole > 0).any():  # decision L674: the runtime's line (for the first such stride) and its missing classes
