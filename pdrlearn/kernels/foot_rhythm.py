@@ -104,9 +104,13 @@ def trailing_period(t: np.ndarray, w: np.ndarray) -> float:
     """Decision L684: :func:`stride_period` of the trailing samples ``t (n,)`` s, ``w (n,)`` (the foot's |w| window
     mean) kept by a streamed segmenter, the longest lag searched cut to half of what they hold (a walk's first
     seconds); the rate is their median rate, so a gap in them (dropped samples, a restart) neither stretches the lags
-    nor that cut; the first peak near the highest (decision L697). NaN when they hold under two of the shortest
-    periods."""
-    t = np.asarray(t, dtype=float)
+    nor that cut; the first peak near the highest (decision L697). Decision L698: only the samples after the last
+    interval longer than the shortest period searched (a foot gap loses the phase of every period; joined, its two
+    sides read a multiple of the period). NaN when they hold under two of the shortest periods."""
+    t, w = np.asarray(t, dtype=float), np.asarray(w, dtype=float)
+    hole = np.flatnonzero(np.diff(t) > PERIOD_RANGE_S[0])
+    if len(hole):
+        t, w = t[hole[-1] + 1:], w[hole[-1] + 1:]
     if len(t) < 3:
         return float("nan")
     dt = float(np.median(np.diff(t)))
