@@ -12,12 +12,9 @@ import numpy as np
 RHYTHM_FRAC = 0.06
 #: decision L684: the shortest streamed stance, as a fraction of the foot's stride period, where L597's rule finds the
 #: rhythm slow (:class:`pdrlearn.kernels.stride.StanceSegmenter`: gyroscope alone, E7's 0.8 rad/s, so a lull passes it
-#: for longer than the offline rest test). An option (``{"stance_rhythm_frac": 0.1}`` in --params, the value L684
-#: measured): the default 0 leaves the segmenter as before, by the lead's ruling in L684 (the final CI of session 46
-#: showed the rule acting on the terrain exercise's stands and moving a streamed altitude 0.41 m from offline's)
-STREAMED_RHYTHM_FRAC = 0.0
-#: decision L684: the fraction measured and recommended for slow limping walkers (the option's value)
-STREAMED_RHYTHM_FRAC_OPTION = 0.1
+#: for longer than the offline rest test); the default since decision L696 (the period read over walking, L696-L698;
+#: ``{"stance_rhythm_frac": 0}`` in --params gives the old segmenter; an old bundle without the key gets this)
+STREAMED_RHYTHM_FRAC = 0.1
 #: decision L596: the stride periods searched (s): a running stride (0.6 s) to a 5 s exoskeleton stride, with margin
 PERIOD_RANGE_S = (0.5, 6.0)
 

@@ -155,10 +155,11 @@ class StanceSegmenter:
     :func:`pdrlearn.kernels.foot_rhythm.min_rest_s`): where L597's rule finds the foot's own stride period slow (0.06 x
     the period asks more than the minimum run), a stance must also last ``stance_rhythm_frac`` x the period (a slow
     swing's lull before the heel strike is not a stance); the period is read when a stance starts, from the last
-    :data:`~pdrlearn.kernels.foot_rhythm.TRAILING_WINDOW_S` of the |w| means (0: no such rule). Decision L696: the
-    means are the walk's - a standing stance's samples (after it closed its stride early) join them only while no
-    stride was returned in that window (a stand between walking bouts would make the bouts' repetition read as the
-    period; a stand before the walk gives its first seconds their span).
+    :data:`~pdrlearn.kernels.foot_rhythm.TRAILING_WINDOW_S` of the |w| means (0: no such rule; the default 0.1
+    since L696). Decision L696: the means are the walk's - a standing stance's samples (after it closed its stride
+    early) join them only while no stride was returned in that window (a stand between walking bouts would make the
+    bouts' repetition read as the period; a stand before the walk gives its first seconds their span); L697 / L698:
+    the period is the first autocorrelation peak near the highest, read after the last foot gap.
     """
 
     def __init__(self, *, stance_gyro_rad_s: float = 0.8, min_stance_s: float = 0.1, stance_half_s: float = 0.3,
