@@ -26,7 +26,7 @@ LIMP_ROUTE = "stand:3, straight:30, stand:3"
 FIRST = int(sys.argv[sys.argv.index("--first") + 1]) if "--first" in sys.argv else 14200  # candidate 2: 14220
 LIMP_USERS = range(FIRST, FIRST + 20)
 OLD = '{"stance_rhythm_frac": 0}'
-NEW = "{}"  # the default (candidate 2: kernels.foot_rhythm.STREAMED_RHYTHM_FRAC where L597 finds the rhythm slow)
+NEW = '{"stance_rhythm_frac": 0.1}'  # L684 candidate 2's value (L696: measured explicitly, the default then 0)
 
 
 def limp_gait(i: int) -> list[str]:
@@ -72,8 +72,7 @@ def _push_times(folder: Path, old: bool) -> tuple[float, float, int]:
 
     session = read_session(folder)
     tracker = Tracker(load_bundle(ROOT / "models" / "plasys-sim-default"), sensors=list(session.streams))
-    if old:
-        tracker.segmenter.rhythm_frac = 0.0
+    tracker.segmenter.rhythm_frac = 0.0 if old else json.loads(NEW)["stance_rhythm_frac"]
     t = session.streams["fAccelerometer"].t
     edges = t[0] + 0.01 * np.arange(int((t[-1] - t[0]) / 0.01) + 2)
     pushes = [{n: (st.t[(st.t >= a) & (st.t < b)], st.values[(st.t >= a) & (st.t < b)])
@@ -99,7 +98,7 @@ def main(parts: str) -> int:
     old, new = tmp / "old.json", tmp / "new.json"
     old.write_text(OLD)
     new.write_text(NEW)
-    lines = [f"# L684 measurement (`experiments/streamed_limp_l684.py {parts}`; old {OLD}, new default)", ""]
+    lines = [f"# L684 measurement (`experiments/streamed_limp_l684.py {parts}`; old {OLD}, new {NEW})", ""]
 
     def say(s: str) -> None:
         print(s, flush=True)

@@ -41,12 +41,12 @@ def test_streamed_slow_strides_are_not_split(slow_walk, tmp_path):
     assert off["n_strides_one_foot"] == st["n_strides_one_foot"] == n_true, (off["n_strides_one_foot"],
                                                                              st["n_strides_one_foot"], n_true)
     assert abs(st["distance_error_pct"]) < 5.0
-    # without L120's option and without L684's rhythm option (the default segmenter) the split is there
-    old = _track(slow_walk, tmp_path / "old", "--streaming")
+    # without L120's option and without L684's rhythm rule (`{"stance_rhythm_frac": 0}`) the split is there
+    (tmp_path / "old.json").write_text(json.dumps({"stance_rhythm_frac": 0}))
+    old = _track(slow_walk, tmp_path / "old", "--streaming", "--params", str(tmp_path / "old.json"))
     assert old["n_strides_one_foot"] >= 1.5 * n_true
-    # decision L684 (session 46, an option): its rhythm rule keeps this slow walk whole too (printed: 7 strides for 7)
-    (tmp_path / "l684.json").write_text(json.dumps({"stance_rhythm_frac": 0.1}))
-    new = _track(slow_walk, tmp_path / "new", "--streaming", "--params", str(tmp_path / "l684.json"))
+    # decision L684 (the default since L696): its rhythm rule keeps this slow walk whole too (printed: 7 strides for 7)
+    new = _track(slow_walk, tmp_path / "new", "--streaming")
     assert new["n_strides_one_foot"] == n_true
 
 

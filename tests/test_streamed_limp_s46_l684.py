@@ -3,7 +3,8 @@
 L684: the streamed stance segmenter (``track --streaming``, ``run``, ``runtime.Tracker``) took the terminal swing's lull
 before the heel strike (|w| under E7's 0.8 rad/s for 0.07-0.10 s) for a stance and split the operated foot's strides
 (T1: 46 strides for 36); where L597's rule finds the foot's own rhythm slow, a streamed stance must last
-``STREAMED_RHYTHM_FRAC`` x the foot's stride period. L685: ``--toe-off``'s short-stance line names an antalgic gait."""
+``STREAMED_RHYTHM_FRAC`` x the foot's stride period (an option in session 46, the default since L696). L685:
+``--toe-off``'s short-stance line names an antalgic gait."""
 
 from __future__ import annotations
 
@@ -16,7 +17,7 @@ from pdrlearn.io.plasys import read_session
 from pdrlearn.kernels import foot_rhythm as FR
 from pdrlearn.kernels import stride as SK
 
-OPTION = {"stance_rhythm_frac": FR.STREAMED_RHYTHM_FRAC_OPTION}  # decision L684: an option (the lead's ruling)
+OLD = {"stance_rhythm_frac": 0}  # the segmenter before L684 (L684 the default since L696)
 
 #: trial T1's operated-foot walk (session 46, F1), shortened: 0.42 m x 0.7 s steps, the right foot's stance short
 LIMP = ["--route", "stand:3, straight:15, stand:3", "--step-length", "0.42", "--step-time", "0.7",
@@ -60,8 +61,8 @@ def test_streamed_limp_strides_are_whole_l684(limp):
     stride's 0.40 s fragment stays (no period read yet), every other stride 1.11 s or longer."""
     truth = _true_strides(limp[100])
     g = read_session(limp[100]).streams["fGyroscope"]
-    new = SK.stance_strides(g.t, g.values, OPTION)
-    old = SK.stance_strides(g.t, g.values)  # the default (the lead's ruling in L684: an option)
+    new = SK.stance_strides(g.t, g.values)  # the default (L696)
+    old = SK.stance_strides(g.t, g.values, OLD)
     assert len(old) >= truth + 5  # the split L684 fixes (fails here if the lull were no stance anyway)
     assert truth <= len(new) <= truth + 1
     assert np.sort(np.diff(new, axis=1).ravel())[1] > 1.0  # at most one fragment
@@ -69,12 +70,12 @@ def test_streamed_limp_strides_are_whole_l684(limp):
 
 def test_the_20_hz_limp_and_a_normal_walk_keep_their_strides_l684(limp, tmp_path):
     g = read_session(limp[20]).streams["fGyroscope"]
-    assert len(SK.stance_strides(g.t, g.values, OPTION)) == _true_strides(limp[20])  # printed: 19 (old 19)
+    assert len(SK.stance_strides(g.t, g.values)) == _true_strides(limp[20])  # printed: 19 (old 19)
     d = tmp_path / "normal"
     assert cli(["simulate", "--route", "stand:3, straight:12, stand:3", "--user-seed", "4601", "--rate", "100",
                 "--out", str(d)]) == 0
     g = read_session(d).streams["fGyroscope"]
-    np.testing.assert_array_equal(SK.stance_strides(g.t, g.values, OPTION), SK.stance_strides(g.t, g.values))
+    np.testing.assert_array_equal(SK.stance_strides(g.t, g.values), SK.stance_strides(g.t, g.values, OLD))
 
 
 def test_live_equals_track_streaming_on_the_limp_l684(limp):
@@ -92,7 +93,7 @@ def test_live_equals_track_streaming_on_the_limp_l684(limp):
         res = track_plasys(session, streaming=True, method="M2")
     finally:
         logging.disable(logging.NOTSET)
-    st = res.steps  # the default segmenter (L684 is an option): live and streamed still one mechanism
+    st = res.steps  # the default segmenter (L684's rule, L696): live and streamed one mechanism
     assert [(x.start_s, x.end_s) for x in steps] == list(zip(st["start_s"], st["end_s"], strict=True))
     traj = res.trajectory.iloc[1:]
     d = np.hypot([x.x for x in steps] - traj["x"].to_numpy(), [x.y for x in steps] - traj["y"].to_numpy())

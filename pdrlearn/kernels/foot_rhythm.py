@@ -12,21 +12,24 @@ import numpy as np
 RHYTHM_FRAC = 0.06
 #: decision L684: the shortest streamed stance, as a fraction of the foot's stride period, where L597's rule finds the
 #: rhythm slow (:class:`pdrlearn.kernels.stride.StanceSegmenter`: gyroscope alone, E7's 0.8 rad/s, so a lull passes it
-#: for longer than the offline rest test). An option (``{"stance_rhythm_frac": 0.1}`` in --params, the value L684
-#: measured): the default 0 leaves the segmenter as before, by the lead's ruling in L684 (the final CI of session 46
-#: showed the rule acting on the terrain exercise's stands and moving a streamed altitude 0.41 m from offline's)
-STREAMED_RHYTHM_FRAC = 0.0
-#: decision L684: the fraction measured and recommended for slow limping walkers (the option's value)
-STREAMED_RHYTHM_FRAC_OPTION = 0.1
+#: for longer than the offline rest test); the default since decision L696 (the period read over walking, L696-L698;
+#: ``{"stance_rhythm_frac": 0}`` in --params gives the old segmenter; an old bundle without the key gets this)
+STREAMED_RHYTHM_FRAC = 0.1
 #: decision L596: the stride periods searched (s): a running stride (0.6 s) to a 5 s exoskeleton stride, with margin
 PERIOD_RANGE_S = (0.5, 6.0)
 
 
+#: decision L697: the streamed period is the shortest lag whose autocorrelation peak reaches this fraction of the
+#: highest (a repeating group of strides or a foot gap makes a multiple of the period the highest peak)
+STREAMED_PEAK_FRAC = 0.8
+
+
 def stride_period(w: np.ndarray, fs: float, *, lo_s: float = PERIOD_RANGE_S[0],
-                  hi_s: float = PERIOD_RANGE_S[1]) -> float:
+                  hi_s: float = PERIOD_RANGE_S[1], near_top: float = 1.0) -> float:
     """The stride period (s) of a foot's |w| ``(n,)`` at ``fs`` Hz: the lag in ``lo_s``..``hi_s`` of the highest
-    local maximum of its (biased, mean-removed) autocorrelation; NaN when the recording is shorter than two
-    periods of ``hi_s`` or has no such maximum."""
+    local maximum of its (biased, mean-removed) autocorrelation - with ``near_top`` < 1 (decision L697), the shortest
+    lag whose local maximum reaches ``near_top`` x the highest; NaN when the recording is shorter than two periods of
+    ``hi_s`` or has no such maximum."""
     x = np.asarray(w, dtype=float)
     x = x[np.isfinite(x)]
     lo, hi = int(np.ceil(lo_s * fs)), int(np.floor(hi_s * fs))
@@ -40,7 +43,8 @@ def stride_period(w: np.ndarray, fs: float, *, lo_s: float = PERIOD_RANGE_S[0],
     peak = np.flatnonzero((seg[1:-1] > seg[:-2]) & (seg[1:-1] >= seg[2:]) & (seg[1:-1] > 0)) + 1
     if not len(peak):
         return float("nan")
-    return float((lo - 1 + peak[np.argmax(seg[peak])]) / fs)
+    height = seg[peak]
+    return float((lo - 1 + peak[np.flatnonzero(height >= near_top * height.max())[0]]) / fs)
 
 
 #: decision L684: the |w| the streamed stance segmenter keeps to read the foot's period online (s): two of the longest
@@ -97,14 +101,19 @@ def trailing_period(t: np.ndarray, w: np.ndarray) -> float:
     """Decision L684: :func:`stride_period` of the trailing samples ``t (n,)`` s, ``w (n,)`` (the foot's |w| window
     mean) kept by a streamed segmenter, the longest lag searched cut to half of what they hold (a walk's first
     seconds); the rate is their median rate, so a gap in them (dropped samples, a restart) neither stretches the lags
-    nor that cut. NaN when they hold under two of the shortest periods."""
-    t = np.asarray(t, dtype=float)
+    nor that cut; the first peak near the highest (decision L697). Decision L698: only the samples after the last
+    interval longer than the shortest period searched (a foot gap loses the phase of every period; joined, its two
+    sides read a multiple of the period). NaN when they hold under two of the shortest periods."""
+    t, w = np.asarray(t, dtype=float), np.asarray(w, dtype=float)
+    hole = np.flatnonzero(np.diff(t) > PERIOD_RANGE_S[0])
+    if len(hole):
+        t, w = t[hole[-1] + 1:], w[hole[-1] + 1:]
     if len(t) < 3:
         return float("nan")
     dt = float(np.median(np.diff(t)))
     if not dt > 0:
         return float("nan")
-    return stride_period(w, 1.0 / dt, hi_s=min(PERIOD_RANGE_S[1], len(t) * dt / 2))
+    return stride_period(w, 1.0 / dt, hi_s=min(PERIOD_RANGE_S[1], len(t) * dt / 2), near_top=STREAMED_PEAK_FRAC)
 
 
 def min_rest_s(period_s: float, window_s: float, frac: float = RHYTHM_FRAC) -> float:

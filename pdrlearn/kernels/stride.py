@@ -155,7 +155,11 @@ class StanceSegmenter:
     :func:`pdrlearn.kernels.foot_rhythm.min_rest_s`): where L597's rule finds the foot's own stride period slow (0.06 x
     the period asks more than the minimum run), a stance must also last ``stance_rhythm_frac`` x the period (a slow
     swing's lull before the heel strike is not a stance); the period is read when a stance starts, from the last
-    :data:`~pdrlearn.kernels.foot_rhythm.TRAILING_WINDOW_S` of the |w| means (0: no such rule).
+    :data:`~pdrlearn.kernels.foot_rhythm.TRAILING_WINDOW_S` of the |w| means (0: no such rule; the default 0.1
+    since L696). Decision L696: the means are the walk's - a standing stance's samples (after it closed its stride
+    early) join them only while no stride was returned in that window (a stand between walking bouts would make the
+    bouts' repetition read as the period; a stand before the walk gives its first seconds their span); L697 / L698:
+    the period is the first autocorrelation peak near the highest, read after the last foot gap.
     """
 
     def __init__(self, *, stance_gyro_rad_s: float = 0.8, min_stance_s: float = 0.1, stance_half_s: float = 0.3,
@@ -199,6 +203,7 @@ class StanceSegmenter:
         self.closed = False
         self.open_s: float | None = None  # start (s) of the stride in progress
         self.last_boundary: float | None = None
+        self.walked_s = -np.inf  # decision L696: the end (s) of the last stride returned
         self.prev_stance_end: float | None = None  # decision L120: the last stance's last still sample (s)
         self.moved = False  # decision L120: a sample since the last still one was not still
         self.run_start = -np.inf  # decision L120: the start (s) of the stance's current still run
@@ -241,7 +246,7 @@ class StanceSegmenter:
         while mq[0][0] <= ti - self.min_stance_s + TIE_S:
             self._mean_sum -= mq.popleft()[1]
         m = self._mean_sum / len(mq)
-        if self.rhythm_frac > 0:  # decision L684: the means the foot's period is read from
+        if self.rhythm_frac > 0 and not self._standing_in_walk(ti):  # L684: the means the period is read from
             self._rhythm.append(ti, m)
         if self.factor == 0:
             return m, self.thr
@@ -254,6 +259,11 @@ class StanceSegmenter:
         th = min(max(self.factor * nq[0][1], self.thr), self.cap)
         mq[-1][2] = th
         return m, th
+
+    def _standing_in_walk(self, ti: float) -> bool:
+        """Decision L696: the stance in progress has closed its stride early (standing) and a stride was returned in
+        the last ``TRAILING_WINDOW_S``: its samples stay out of the rhythm's means."""
+        return self.stance_start is not None and self.closed and ti - self.walked_s <= FR.TRAILING_WINDOW_S
 
     def _thresholds(self, t: list[float], w: list[float]) -> list[float]:
         """Decision L27: the stance threshold at each new sample (advances the state)."""
@@ -378,6 +388,7 @@ class StanceSegmenter:
         self.last_boundary = end
         if start is not None and self._step_ok(end - start):
             out.append((start, end))
+            self.walked_s = end
 
 
 def stance_strides(t: np.ndarray, gyr: np.ndarray, params: Mapping | None = None) -> np.ndarray:
