@@ -3,8 +3,8 @@ paediatric cadences, by the band of their tracked median step time (trial T1, se
 
 Users 14970-14989: height uniform 1.15-1.45 m, leg 0.52 x height, step time uniform 0.34-0.45 s, step length uniform
 0.30-0.50 m (numpy's default_rng(user)), `--bounce` constant for even users and pendulum for odd ones;
-`stand:2, straight:30, stand:2` at 100 Hz through the CLI (`pdrlearn simulate`, then `pdrlearn track --pipeline P`
-with no calibration); the error is summary.json's `distance_error_pct`, the step time its `median_step_time_s`.
+`stand:2, straight:30, stand:2` at 100 Hz through the CLI (`pdrlearn simulate`, then `pdrlearn track` on each
+pipeline, no calibration); the error is summary.json's `distance_error_pct`, the step time its `median_step_time_s`.
 Bands: under 0.38 s, 0.38-0.41 s, 0.41 s and over (W533's rule). Sessions are kept under --work and reused.
 
     python experiments/children_waist_s47_w533.py --users 14970-14989 --work /tmp/children_w533
