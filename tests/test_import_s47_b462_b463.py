@@ -58,3 +58,10 @@ def test_b463_a_waist_session_without_an_accelerometer_is_refused(tmp_path, caps
     assert (out / "wAccelerometer.csv").exists()
     # an accelerometer without a gyroscope stays a note (W130: 'steps --detector pll' finds its contacts)
     assert main(["import", str(acc_only), "--unit", "waist", "--out", str(tmp_path / "a")]) == 0
+
+
+def test_b463_no_acc_is_the_lower_backs_only(tmp_path, capsys):
+    gyro_only = _export(tmp_path / "gyro.csv", acc=False)
+    assert main(["import", str(gyro_only), "--no-acc", "--out", str(tmp_path / "s")]) != 0  # the default foot unit
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--no-acc" in err[0] and "--unit waist" in err[0] and not (tmp_path / "s").exists()

@@ -249,6 +249,9 @@ def import_command(
                             "them, then put each part's labels in its folder (ms from that part's first sample)")
     unit_given = bool(unit or m.get("unit"))  # decision B287: an assumed unit is said
     unit = unit or m.get("unit") or "foot"
+    if no_acc and unit != "waist":  # decision B463: the option is the lower back's only
+        raise DataError(f"{csv}: --no-acc writes a waist session without its accelerometer, and this is a {unit} "
+                        "unit's import: add --unit waist, or drop --no-acc (decision B463)")
     columns: dict[str, list[str]] = {}
     for kind in KINDS:
         v = m.get(kind)
