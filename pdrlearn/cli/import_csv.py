@@ -104,8 +104,9 @@ def import_command(
     frames: str = typer.Option(None, "--frames", help="The unit's axes, e.g. x=forward,y=up,z=right (default: "
                                "none; commands infer it from the data, decision D8)."),
     sensor_height: float = typer.Option(None, "--sensor-height", help="The waist unit's height above "
-                                        "the ground (m; the waist pendulum's leg length, W10; refused with --unit "
-                                        "foot, B175)."),
+                                        "the ground (m), written to meta.json sensor_height_m: the waist pendulum's "
+                                        "leg length (W10) only without --leg-length, which is taken first (B155; "
+                                        "the import says so, B462); refused with --unit foot (B175)."),
     subject_height: float = typer.Option(None, "--subject-height", help="The subject's height (m), written to "
                                          "meta.json height_m (default: none; commands assume 1.7 m and say so)."),
     leg_length: float = typer.Option(None, "--leg-length", help="The subject's leg length (m, greater-trochanter "
@@ -164,6 +165,10 @@ def import_command(
     no_header: bool = typer.Option(False, "--no-header", help="The CSV has no header line (MATLAB writematrix / "
                                    "csvwrite): its columns are named 0, 1, 2 ... (--time 0 --acc 1,2,3 --gyro 4,5,6); "
                                    "unmapped, 7 columns are time, acc, gyro and 6 acc, gyro with --rate (B336)."),
+    no_acc: bool = typer.Option(False, "--no-acc", help="Write a waist session without an accelerometer (a phone's "
+                                "gyroscope file imported first; add the accelerometer's file next with --acc X,Y,Z "
+                                "--merge): every lower-back pipeline needs one, so without this it is refused "
+                                "(B463)."),
     force: bool = typer.Option(False, "--force", help="Replace a session folder that 'pdrlearn import' wrote."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object with every mapping choice."),
 ) -> None:
@@ -244,6 +249,9 @@ def import_command(
                             "them, then put each part's labels in its folder (ms from that part's first sample)")
     unit_given = bool(unit or m.get("unit"))  # decision B287: an assumed unit is said
     unit = unit or m.get("unit") or "foot"
+    if no_acc and unit != "waist":  # decision B463: the option is the lower back's only
+        raise DataError(f"{csv}: --no-acc writes a waist session without its accelerometer, and this is a {unit} "
+                        "unit's import: add --unit waist, or drop --no-acc (decision B463)")
     columns: dict[str, list[str]] = {}
     for kind in KINDS:
         v = m.get(kind)
@@ -320,6 +328,8 @@ def import_command(
     if split_at_clock_reset:  # decision B438: every problem an option fixes, said in one message
         parts = import_with_fixes(lambda **k: import_csv_parts(csv, **k), kw, str(csv), command_line())
         _check_force_unit_used(csv, parts[0][1], heel_unit, toe_unit)  # decision B408, before any write
+        for part, part_record in parts:
+            _require_waist_acc(part, part_record, csv, no_acc)  # decision B463, before any write
         if len(parts) > 1:
             _write_parts(parts, csv, unit, out, force_frame, as_json)
             return
@@ -362,6 +372,7 @@ def import_command(
         if mixup:
             raise DataError(f"{csv}: {mixup} (nothing written)")
     session = _declare_ranges(session, unit, acc_range, gyro_range)  # decision B456: before anything is written
+    _require_waist_acc(session, record, csv, no_acc)  # decision B463: before anything is written
     existed = out.is_dir() and any(out.iterdir())
     write_session(session, out, overwrite=True)
     if not unit_given:  # decision B287: the assumed foot unit said, and a lower back's data named
@@ -374,6 +385,10 @@ def import_command(
     else:
         print_json({"out": str(out), "merged": merge, "imported": record,
                     "frames": {p: f.to_dict() for p, f in session.frames.items()}})
+    leg_line = _pendulum_leg_line(session.meta, sensor_height is not None or "sensor_height_m" in m,
+                                  leg_length is not None or "leg_length_m" in m)
+    if leg_line:  # decision B462: the dropped value said where it is dropped, not only in summary.json
+        typer.echo(f"warning: {out}: {leg_line}", err=True)
     if span_warning:
         typer.echo(f"warning: {out}: {span_warning}", err=True)
     if offset_note:
@@ -456,6 +471,42 @@ def _split_written(folder: Path) -> bool:
         if any(q.name not in _import_written(meta) for q in p.iterdir()):
             return False
     return bool(entries)
+
+
+def _pendulum_leg_line(meta: dict, sensor_given: bool, leg_given: bool) -> str | None:
+    """Decision B462: the one line when the written meta.json holds both ``leg_length_m`` and ``sensor_height_m``
+    and this import gave one of them: the waist pendulum takes the leg (B155's order, read as
+    :func:`pdrlearn.waist.params.leg_length_note` reads it), and the unit's height is kept but not used; what to
+    enter for a crouched walker. None otherwise (or when both are the same)."""
+    from pdrlearn.waist.params import _meta_numbers
+
+    found = dict(_meta_numbers(meta, "leg_length_m", "sensor_height_m"))
+    leg, unit_h = found.get("leg_length_m"), found.get("sensor_height_m")
+    if leg is None or unit_h is None or leg == unit_h or not (sensor_given or leg_given):
+        return None
+    return (f"the waist pendulum's leg is leg_length_m {leg:g} m (--leg-length), not the unit's height "
+            f"sensor_height_m {unit_h:g} m (--sensor-height), which is kept in meta.json but not used: the leg is "
+            "taken first (decision B155). For a crouched walker give the measured leg (it also scales the walking "
+            "range, L148) and calibrate waist-pendulum on this walker's 10 m walk ('pdrlearn calibrate DIR "
+            "--pipeline waist-pendulum --distance 10'): its gain K takes up a shorter working pendulum (decision "
+            "B462)")
+
+
+def _require_waist_acc(session, record: dict, csv: Path, no_acc: bool) -> None:
+    """Decision B463: a waist session (after any --merge) without an accelerometer is refused before anything is
+    written, unless ``--no-acc`` asks for it: both lower-back pipelines need one (the gyroscope alone finds no contact,
+    W130), and a note under a written session was missed (trial T1 F9). An accelerometer without a gyroscope stays a
+    note: 'pdrlearn steps --detector pll' finds its contacts (W130)."""
+    if record["unit"] != "waist" or session.has("wAccelerometer") or no_acc:
+        return
+    sets = (record.get("ambiguous_columns") or {}).get("acc")
+    found = (f"several accelerometer column sets ({', '.join(sets)}) and none guessed" if sets
+             else "no accelerometer columns recognised")
+    unused = record.get("unused_columns") or []
+    among = f" (unused columns: {', '.join(unused[:6])})" if unused else ""
+    raise DataError(f"{csv}: {found}, and every lower-back pipeline needs the waist accelerometer; nothing written: "
+                    f"map them with --acc X,Y,Z{among} (with --acc-unit g | m/s2 | mg), or pass --no-acc to write "
+                    "the gyroscope now and add the accelerometer's own file with --acc X,Y,Z --merge (decision B463)")
 
 
 def _write_parts(parts: list, csv: Path, unit: str, out: Path, force_frame: bool, as_json: bool) -> None:

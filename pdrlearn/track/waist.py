@@ -129,6 +129,7 @@ from pdrlearn.waist.plausibility import (
     pll_slow_excess_message,
     running_cadence,
     short_step_message,
+    short_walker_message,
     step_count_withheld_reason,
     step_counts,
     steps_uncountable,
@@ -1138,12 +1139,6 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
     if not model.uses_profile:  # decision W461: calibrate's K / lines do not change this model; its own gain may
         warnings = [w for w in warnings if not w.startswith(NO_CALIBRATION)]
         warnings[:0] = [default_gain_line(model)] if gain_source == "default" else []
-    if pipeline == "waist-pll" and not own_calibration:  # decision W405: a child's uncalibrated pll reads long
-        from pdrlearn.waist.plausibility import pll_short_walker_message
-
-        short = pll_short_walker_message(session.meta)
-        if short:
-            warnings.append(short)
     if own_calibration and (model.uses_profile or gain_source == "params"):  # decision W471
         line = calibrated_detector_line(p.detector, det, pipeline)
         if line:
@@ -1415,6 +1410,12 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
                 excess, float(np.nansum(np.abs(steps["length_m"].to_numpy(float)))),
                 float(np.nansum(np.abs(pendulum()["length_m"].to_numpy(float)))))] if line]
         warnings += pll_lines
+    if length_model is None and not own_calibration:  # decisions W405, W533, W534: a child's uncalibrated distance
+        step_s = waist_step_times(steps)[0]
+        short = short_walker_message(session.meta, pipeline,
+                                     float(np.nanmedian(step_s)) if np.isfinite(step_s).any() else None)
+        if short:
+            warnings.append(short)
     micro_line = micro_bout_message(*micro_bouts(steps["length_m"].to_numpy(float),  # decision W157
                                                  steps["has_next"].to_numpy(bool)))
     if micro_line:

@@ -893,15 +893,50 @@ def micro_bout_message(n_micro: int, n_sequences: int, micro_m: float, total_m: 
 
 
 #: decision W405: a walker shorter than this (m, meta.json's height or the height its leg implies, W115) is warned that
-#: uncalibrated waist-pll reads them long: trial T1 (session 38) measured simulated children of 1.15-1.45 m at
-#: +43.6 to +50.3 % distance (an adult of 1.70 m +29.9 %), the pendulum -0.8 to -14.4 % on the same children
+#: an uncalibrated lower-back track reads them long (waist-pll) or off (waist-pendulum, W534): trial T1 (session 38)
+#: measured simulated children of 1.15-1.45 m (the tallest 1.45 m) at the height-scaled default cadence
 PLL_SHORT_HEIGHT_M = 1.5
+#: decision W405: trial T1 (session 38), children of 1.15-1.45 m at the height-scaled default cadence: distance error
+#: (%) of uncalibrated waist-pll (+43.6 to +50.3; an adult of 1.70 m +29.9) and waist-pendulum (-0.8 to -14.4); kept
+#: for a walker stepping more slowly than :data:`CHILD_STEP_BANDS` measured, or with no step time
+DEFAULT_CADENCE_RANGES = {"waist-pll": (43.6, 50.3), "waist-pendulum": (-14.4, -0.8)}
+#: decision W533: uncalibrated distance error (%) of fresh simulated children (users 14970-14989: 1.15-1.45 m, step
+#: times 0.34-0.45 s, step lengths 0.30-0.50 m, bounce constant / pendulum, 30 m walks;
+#: experiments/children_waist_s47_w533.py, its results/children_waist_s47_w533.txt) by the band of their tracked
+#: median step time: (band's lower bound s, upper bound s, {pipeline: (smallest, largest)}, children in the band)
+CHILD_STEP_BANDS = (
+    (0.0, 0.38, {"waist-pll": (51.9, 100.7), "waist-pendulum": (-16.1, 29.9)}, 8),
+    (0.38, 0.41, {"waist-pll": (40.6, 100.1), "waist-pendulum": (-7.0, 23.4)}, 6),
+    (0.41, 0.45, {"waist-pll": (37.1, 124.6), "waist-pendulum": (-17.7, 49.2)}, 6),
+)
+_OTHER = {"waist-pll": "waist-pendulum", "waist-pendulum": "waist-pll"}
 
 
-def pll_short_walker_message(meta: dict | None) -> str | None:
-    """Decision W405: the line of an uncalibrated waist-pll track of a walker whose height (meta.json ``height_m``,
-    else the height its ``leg_length_m`` / ``sensor_height_m`` implies, W115) is under :data:`PLL_SHORT_HEIGHT_M`;
-    None for a taller walker or none known."""
+def _span(lo: float, hi: float) -> str:
+    return f"{lo:+.1f} to {hi:+.1f} %"
+
+
+def short_walker_ranges(step_time_s: float | None) -> tuple[str, dict[str, tuple[float, float]]]:
+    """Decision W533: ``(what the figures are, {pipeline: (smallest, largest) distance error %})`` for a walker whose
+    median step time is ``step_time_s`` (s): the :data:`CHILD_STEP_BANDS` band it falls in, else (slower than the
+    children measured, or None) W405's :data:`DEFAULT_CADENCE_RANGES`."""
+    if step_time_s is not None and np.isfinite(step_time_s):
+        for lo, hi, ranges, n in CHILD_STEP_BANDS:
+            if lo <= step_time_s < hi or (hi == CHILD_STEP_BANDS[-1][1] and step_time_s == hi):
+                band = f"under {hi:.2f} s" if lo == 0.0 else f"{lo:.2f}-{hi:.2f} s"
+                return (f"{n} simulated children of 1.15-1.45 m stepping every {band} (steps 0.30-0.50 m; decision "
+                        "W533)", ranges)
+    return ("simulated children of 1.15-1.45 m at the height-scaled default cadence (trial T1, decision W405)",
+            DEFAULT_CADENCE_RANGES)
+
+
+def short_walker_message(meta: dict | None, pipeline: str, step_time_s: float | None = None) -> str | None:
+    """Decisions W405, W533, W534: the line of an uncalibrated ``pipeline`` (waist-pll, waist-pendulum) track of a
+    walker whose height (meta.json ``height_m``, else the height its ``leg_length_m`` / ``sensor_height_m`` implies,
+    W115) is under :data:`PLL_SHORT_HEIGHT_M`: the distance error both pipelines read on simulated children at the
+    walker's median step time ``step_time_s`` (:func:`short_walker_ranges`) and the fix, calibrating waist-pendulum
+    on a walk of known length (a waist-pll calibration on a short walk folds its edge contacts in, W393); None for a
+    taller walker or none known."""
     from pdrlearn.waist.params import _meta_numbers, subject_height
 
     if not _meta_numbers(meta or {}, "height_m", "leg_length_m", "sensor_height_m"):
@@ -909,8 +944,19 @@ def pll_short_walker_message(meta: dict | None) -> str | None:
     height = subject_height(meta, infer=True)[0]
     if not height < PLL_SHORT_HEIGHT_M:
         return None
-    return (f"uncalibrated waist-pll on a walker of about {height:.2f} m: its adult step-length line read simulated "
-            "children of 1.15-1.45 m +43.6 to +50.3 % long (an adult +29.9 %; trial T1, decision W405), so expect "
-            "the distance ~45 % long; use --pipeline waist-pendulum (-0.8 to -14.4 % on the same children) or "
-            "calibrate on this walker's walk of known length ('pdrlearn calibrate DIR --pipeline waist-pll "
-            "--distance M --out PARAMS.json', then --params PARAMS.json)")
+    what, ranges = short_walker_ranges(step_time_s)
+    other = _OTHER[pipeline]
+    pace = ("" if step_time_s is None or not np.isfinite(step_time_s) else
+            f" stepping every {step_time_s:.2f} s ({60 / step_time_s:.0f} steps/min)")
+    return (f"uncalibrated {pipeline} on a walker of about {height:.2f} m{pace}: {what} read "
+            f"{_span(*ranges[pipeline])} in distance on it ({other} {_span(*ranges[other])}; decision W405), "
+            "so this distance may be that far off; calibrate waist-pendulum on this walker's walk of known "
+            "length, a 10 m walkway will do ('pdrlearn calibrate DIR --pipeline waist-pendulum --distance 10 "
+            "--out PARAMS.json', then --params PARAMS.json --pipeline waist-pendulum; decision W534); a "
+            "waist-pll calibration on so short a walk counts its edge contacts into the step length (decision "
+            "W393)")
+
+
+def pll_short_walker_message(meta: dict | None, step_time_s: float | None = None) -> str | None:
+    """Decision W405: :func:`short_walker_message` of waist-pll."""
+    return short_walker_message(meta, "waist-pll", step_time_s)
