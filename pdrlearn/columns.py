@@ -300,7 +300,8 @@ SESSIONS: tuple[Column, ...] = (
     ("n_flight_phases", "count", "integer", "runs of the tracked unit's accelerometer (foot; lower back: the "
                                             "waist's, W416) under 0.3 g for more than 0.1 s (first to last low "
                                             "sample 0.1 s or more, W409; both feet off the ground: jumps, running; "
-                                            "W363)"),
+                                            "W363); the lower back's only of 0.2 s or more or at a step period under "
+                                            "0.4 s (W538: a brisk walker's bounce is no flight)"),
     ("flight_time_s", "s", "number", "the flight phases' time in all (W363, W416)"),
     ("direction_changes", "count", "integer", "foot: changes of travel direction (steps.csv travel: forward / "
                                               "backward / left / right, turn and empty rows skipped; "

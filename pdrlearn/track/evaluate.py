@@ -1411,13 +1411,21 @@ def climb_total_warning(summary: dict) -> str | None:
     """Decision L566: one line when a barometric track's ``ascent_m`` (``descent_m``) is more than
     :data:`DRIFT_BEYOND_WEATHER_FLOOR_M` (the BMP280's 0.13 m) below what its ramps and stair flights rise (drop)
     (``ramps_stairs_ascent_m`` / ``_descent_m``): L172's band-within-a-minute count lost part of climbs the track
-    identified whole, so the route's height gained / lost is to be read from ramps.csv / stairs.csv."""
+    identified whole, so the route's height gained / lost is to be read from ramps.csv / stairs.csv. Decision W539:
+    only when that whole reaches L172's band (``ASCENT_BAND_BARO_M``, 0.5 m; under it the band counts nothing by
+    definition), and "counts none of" when ``ascent_m`` (``descent_m``) is 0."""
+    from pdrlearn.kernels.altitude_check import ASCENT_BAND_BARO_M
+
     parts = []
     for key, word in (("ascent", "rise"), ("descent", "drop")):
         counted, whole = summary.get(f"{key}_m"), summary.get(f"ramps_stairs_{key}_m")
-        if counted is not None and whole is not None and float(whole) - float(counted) > DRIFT_BEYOND_WEATHER_FLOOR_M:
-            parts.append(f"{key}_m {float(counted):.2f} m is {float(whole) - float(counted):.2f} m below the "
-                         f"{float(whole):.2f} m its ramps and stair flights {word} (ramps_stairs_{key}_m)")
+        if (counted is None or whole is None or not float(whole) - float(counted) > DRIFT_BEYOND_WEATHER_FLOOR_M
+                or float(whole) < ASCENT_BAND_BARO_M):  # decision W539: a whole under the band is never counted
+            continue
+        short = ("counts none of" if round(float(counted), 2) == 0.0
+                 else f"is {float(whole) - float(counted):.2f} m below")
+        parts.append(f"{key}_m {float(counted):.2f} m {short} the {float(whole):.2f} m its ramps and stair flights "
+                     f"{word} (ramps_stairs_{key}_m)")
     if not parts:
         return None
     return ("; ".join(parts) + ": the barometric count (L172: 0.5 m crossed within 60 s) drops the part of a climb "

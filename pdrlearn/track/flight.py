@@ -41,6 +41,40 @@ def flight_phases(t, acc) -> list[tuple[float, float]]:
     return out
 
 
+#: decision W538: a lower-back flight phase this long (s) or longer is a jump (a walking bounce's sub-0.3 g trough is
+#: under a third of a step period: 0.2 s at 0.5 s steps would need a +-2.3 g bounce)
+WAIST_JUMP_S = 0.2
+#: decision W538: a lower-back step period (s) under this is a running cadence (over 150 steps/min; running 150-190)
+RUN_STEP_S = 0.4
+#: decision W538: the span (s) centred on a phase whose step period W113's autocorrelation reads
+CADENCE_SPAN_S = 4.0
+
+
+def step_period_at(t, acc, phase: tuple[float, float]) -> float:
+    """Decision W538: the step period (s) of the acceleration magnitude in the :data:`CADENCE_SPAN_S` centred on
+    ``phase`` (W113's autocorrelation, :func:`pdrlearn.kernels.waist.step_period_s`); NaN without a rhythm."""
+    from pdrlearn.kernels.waist import step_period_s
+
+    t = np.asarray(t, float)
+    mid = 0.5 * (phase[0] + phase[1])
+    keep = np.abs(t - mid) <= 0.5 * CADENCE_SPAN_S
+    if keep.sum() < 3:
+        return float("nan")
+    fs = 1.0 / float(np.median(np.diff(t[keep])))
+    return step_period_s(np.linalg.norm(np.asarray(acc, float)[keep], axis=1), fs)
+
+
+def unit_flights(unit: str, t, acc) -> list[tuple[float, float]]:
+    """The flight phases a unit's accelerometer names: the foot's all of :func:`flight_phases` (W363); decision W538:
+    the lower back's only those of :data:`WAIST_JUMP_S` or more (a jump) or at a step period under
+    :data:`RUN_STEP_S` (:func:`step_period_at`: running), not the trough of a brisk walker's bounce."""
+    phases = flight_phases(t, acc)
+    if unit != "waist":
+        return phases
+    return [p for p in phases
+            if p[1] - p[0] >= WAIST_JUMP_S - 1e-9 or step_period_at(t, acc, p) < RUN_STEP_S]
+
+
 #: decision W416: each unit's accelerometer; a lower-back track reads the waist's (a pelvis in free fall reads ~0 g too)
 UNIT_ACC = {"foot": "fAccelerometer", "waist": "wAccelerometer"}
 
@@ -77,7 +111,7 @@ def flight_rows(session, span: tuple[float, float] | None = None) -> list[dict]:
         acc = session.streams.get(name)
         if acc is None:
             continue
-        for a, b in in_span(flight_phases(acc.t, acc.values), span):
+        for a, b in in_span(unit_flights(unit, acc.t, acc.values), span):
             rows.append({"unit": unit, "start_s": round(a, 3), "end_s": round(b, 3), "flight_time_s": round(b - a, 3),
                          "jump_height_m": round(float(jump_height(b - a)), 3)})
     return sorted(rows, key=lambda r: (r["start_s"], r["unit"]))
@@ -92,7 +126,7 @@ def flight_summary(session, pipeline: str | None,
     acc = session.streams.get(UNIT_ACC[unit])
     if acc is None:
         return dict.fromkeys(KEYS), None
-    phases = in_span(flight_phases(acc.t, acc.values), span)
+    phases = in_span(unit_flights(unit, acc.t, acc.values), span)
     total = float(sum(b - a for a, b in phases))
     keys = {"n_flight_phases": len(phases), "flight_time_s": round(total, 3)}
     if not phases:
@@ -103,8 +137,10 @@ def flight_summary(session, pipeline: str | None,
            f"{FLIGHT_MAX_G:g} g for more than {FLIGHT_MIN_S:g} s, its first and last low samples {FLIGHT_MIN_S:g} s "
            f"or more apart, {total:.2f} s in all, the longest {longest:.2f} s)")
     if unit == "waist":  # decision W416: the lower-back pipelines' own consequence
-        return keys, (f"{low}: the body left the ground - jumps or running; the lower-back pipelines count the "
-                      "take-offs and landings as walking steps and place every step forward, so the step count and "
-                      "the distance include them and are not validated (decision W416)")
+        return keys, (f"{low}: the body left the ground - jumps (0.2 s or more) or running (dips at over "
+                      f"{60.0 / RUN_STEP_S:.0f} steps/min; a brisk walker's bounce is not counted, decision W538); "
+                      "the lower-back pipelines count the take-offs and landings as walking steps and place every "
+                      "step forward, so the step count and the distance include them and are not validated "
+                      "(decision W416)")
     return keys, (f"{low}: the foot left the ground with both feet - jumps or running; strides across them may be "
                   "jumps, not walking strides, and their lengths and the distance are not validated (decision W363)")

@@ -69,6 +69,10 @@ TURNING_WINDOW_RPS = 0.45
 #: forward/vertical phase (W2) must be this many degrees away from the +-90 deg of 45 deg boundary.
 MIN_AP_POWER_RATIO = 1.5
 MIN_PHASE_MARGIN_DEG = 15.0
+#: decision W540 (measured, not adopted: ``infer_waist_frame(..., push_lead_deg=)``'s value): a waist forward lead
+#: (deg) up to 60 deg past W2's forward half (-45 to 135 deg): pole jolts turned a forward walk's lead from 54 to 171
+#: deg (trial T2 F3); real forward lower-back walks read 80-112 deg, reversed units their lead + 180 (234-292 deg)
+PUSH_LEAD_DEG = (135.0, 195.0)
 #: Waist: walking is rhythmic. The autocorrelation of the vertical acceleration over the walking windows
 #: must peak at a lag of RHYTHM_LAG_S (a step or a stride period: 0.3-1.0 s) at least MIN_RHYTHM_SIGMA white-
 #: noise standard deviations (1/sqrt(N (n - L) / n) at lag L, Bartlett; decision W226) above zero: a significance
@@ -573,14 +577,17 @@ def asymmetric_forward_words(ratio: float | None) -> str:
 
 
 def infer_waist_frame(acc: np.ndarray, gyr: np.ndarray, fs: float, *,
-                      max_snap_deg: float = MAX_SNAP_DEG) -> InferredFrame:
+                      max_snap_deg: float = MAX_SNAP_DEG,
+                      push_lead_deg: tuple[float, float] | None = None) -> InferredFrame:
     """Frame of a waist (lower-back, belt) unit from its specific force (m/s^2) on one clock (fs Hz).
 
     ``gyr`` (rad/s, same samples; or None) leaves out the windows that turn (decision W333: the yaw rate about up,
     :data:`TURNING_WINDOW_RPS`). Raises :class:`FrameInferenceError` when there is too little (straight) walking or
     the axes are ambiguous. Gravity or forward more than ``max_snap_deg`` from every axis is refused; the refusal
     carries ``nearest``, the frame inferred with the snap checks opened (:data:`NEAREST_SNAP_DEG`), or None (decision
-    W394: the fix suggested is that frame, not the thesis mounting).
+    W394: the fix suggested is that frame, not the thesis mounting). ``push_lead_deg`` (decision W540, measured and
+    not adopted, an option; None: none, :data:`PUSH_LEAD_DEG` its measured range): a W2 forward lead in that range
+    (deg) is refused as not telling forward from backward (pole plants' forward push; but also a side shuffle's).
     """
     from pdrlearn.waist._kernels import forward_sign
 
@@ -640,6 +647,11 @@ def infer_waist_frame(acc: np.ndarray, gyr: np.ndarray, fs: float, *,
     if abs(margin) < MIN_PHASE_MARGIN_DEG:
         raise FrameInferenceError(f"the forward/vertical phase at step frequency ({lead:.0f} deg) does not tell "
                                   "forward from backward")
+    if push_lead_deg is not None and push_lead_deg[0] <= lead % 360.0 <= push_lead_deg[1]:  # decision W540
+        raise FrameInferenceError(f"the forward/vertical phase at step frequency ({lead:.0f} deg) does not tell "
+                                  f"forward from backward: up to {push_lead_deg[1] - push_lead_deg[0]:.0f} deg past "
+                                  "the forward half, where an impulsive forward push at each step (Nordic-walking "
+                                  "pole plants) puts a forward walker's lead (decision W540)")
     # decision W2: forward when the lead lies within +-90 deg of 45 deg (the one rule, shared with the heading)
     fwd = ap * forward_sign(np.array([1.0]), np.array([zc.real]), np.array([-zc.imag]), 1.0, 0.0)
     i_f, s_f, ang_f = _nearest_axis(fwd, exclude=(i_u,))

@@ -259,7 +259,7 @@ def ramp_runs(length, dz, window: int = 1, min_grade_pct: float = RAMP_MIN_GRADE
               stair_grade_pct: float = STAIR_MIN_GRADE_PCT, min_run_m: float = RAMP_MIN_RUN_M,
               landing_max_m: float = LANDING_MAX_M, on_stairs=None, lone_stair_joins: bool = False,
               window_m: float | None = None, ends=None, min_rise_m: float | None = None,
-              stair_ends: bool = False) -> list[dict]:
+              stair_ends: bool = False, min_ramp_m: float | None = None) -> list[dict]:
     """Decision L301: the ramps of rows (horizontal ``length`` m, height change ``dz`` m, walking order) - a pure
     kernel. A row is a ramp row of sign s when the grade of the centred ``window`` rows around it (their summed dz
     over their summed |length|) is at least ``min_grade_pct`` in size, under ``stair_grade_pct`` (steeper: a stair),
@@ -277,7 +277,10 @@ def ramp_runs(length, dz, window: int = 1, min_grade_pct: float = RAMP_MIN_GRADE
     (``ends``) instead of ``window`` rows, and a row is a stair row when that grade (not its own) is a stair's.
     ``min_rise_m`` (decision W519, the lower back's; None: none): a ramp whose |rise| is under it is left out.
     ``stair_ends`` (decision W530, the lower back's, with ``window_m``): a ramp next to a stair row climbing its own
-    way whose horizontal run is at most ``window_m`` is that flight's end (:func:`_stair_end`), left out."""
+    way whose horizontal run is at most ``window_m`` is that flight's end (:func:`_stair_end`), left out.
+    ``min_ramp_m`` (decision W539, measured and not adopted, an option; None: none): a ramp whose horizontal run
+    (its runs summed) is under it is left out - ``WAIST_SLOPE_WINDOW_M`` drops a lower-back track's lone 2 m ramps
+    (one fitted window's noise) but also a slow walker's ramp read in short pieces."""
     length = np.nan_to_num(np.abs(np.asarray(length, dtype=float)))
     dz = np.nan_to_num(np.asarray(dz, dtype=float))
     n = len(length)
@@ -317,6 +320,8 @@ def ramp_runs(length, dz, window: int = 1, min_grade_pct: float = RAMP_MIN_GRADE
                 stair, dz, rs[0][0] - 1, rs[-1][1] + 1, rs[0][2]):  # decision W530
             continue
         if min_rise_m is not None and abs(rise) < min_rise_m:  # decision W519: within the barometer's rest swing
+            continue
+        if min_ramp_m is not None and run_l < min_ramp_m:  # decision W539: under one fitted window
             continue
         grades = [100.0 * dz[a:b + 1].sum() / length[a:b + 1].sum() for a, b, _ in rs]
         rises = [float(dz[a:b + 1].sum()) for a, b, _ in rs]  # decision L569: each run's own rise
