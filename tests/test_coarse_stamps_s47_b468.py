@@ -35,8 +35,30 @@ def test_b468_import_names_retime_and_a_large_drop_is_said(tmp_path, capsys):
     assert main(args) != 0
     err = capsys.readouterr().err
     assert "coarser than the samples' own interval" in err and "--retime HZ" in err and "B468" in err
+    assert "--drop-duplicate-timestamps" in err  # review R1 F3: the other reading is named too
     assert main([*args, "--drop-duplicate-timestamps"]) == 0
     err = capsys.readouterr().err
     dropped = int(len(df) - df.time_ms.nunique())
     assert f"{dropped} rows repeating a timestamp dropped" in err and "import again with --retime HZ" in err
     assert main([*args[:-1], str(tmp_path / "r"), "--retime", "1125"]) == 0
+
+
+def test_r1_f2_inline_params_longer_than_a_file_name(tmp_path):
+    import json
+
+    from pdrlearn.cli.track import read_params
+
+    obj = {f"key_{i:02d}": 0.123456789 for i in range(20)}
+    text = json.dumps(obj)
+    assert len(text) > 255
+    assert read_params(text) == obj
+
+
+def test_r1_f6_sosfilt_refuses_a_2d_signal_on_both_paths():
+    import pytest
+
+    from pdrlearn.kernels import dsp
+
+    sos = np.array([[0.2, 0.4, 0.2, 1.0, -0.3, 0.1]])
+    with pytest.raises(ValueError, match="one signal"):
+        dsp.sosfilt(sos, np.zeros((10, 3)))

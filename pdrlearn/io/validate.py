@@ -271,8 +271,9 @@ def check_timestamps(t: np.ndarray, where: str, *, in_memory: bool = False, rese
             raise DataError(
                 f"{where}: {dup.size} duplicate timestamp(s) (first at line {line(dup[0] + 1)}): the stamps' steps "
                 f"(>= {1e3 * float(np.diff(t)[np.diff(t) > 0].min()):.4g} ms) are coarser than the samples' own "
-                f"interval ({1e3 / hz:.4g} ms, ~{hz:.5g} Hz), so the repeats are real samples: re-time them at the "
-                "sensor's rate with `pdrlearn import EXPORT --retime HZ` rather than dropping them (decision B468)")
+                f"interval ({1e3 / hz:.4g} ms, ~{hz:.5g} Hz): if the sensor's rate is about that (a high-rate unit "
+                "stamped in whole ms), the repeats are real samples - re-time them with `pdrlearn import EXPORT "
+                f"--retime HZ` rather than dropping them (decision B468); if the rows repeat a sample, {duplicate_fix}")
         raise DataError(
             f"{where}: {dup.size} duplicate timestamp(s) (first at line {line(dup[0] + 1)}); {duplicate_fix}"
         )

@@ -174,6 +174,8 @@ def sosfilt(sos: np.ndarray, x: np.ndarray, zi: np.ndarray | None = None) -> tup
     and every section is normalised (``a0 == 1``, as scipy requires), scipy's compiled loop runs: the same
     operations in the same order, so the same floats (decision E307, pinned by
     ``tests/test_dsp_speed_s47_e307.py``); otherwise :func:`sosfilt_loop`."""
+    if np.ndim(x) != 1:  # one signal (samples,): both paths refuse the same (review R1 finding 6, session 47)
+        raise ValueError(f"sosfilt: x must be one signal (samples,), not an array of shape {np.shape(x)}")
     kernel = _loaded_sosfilt_kernel()
     sos = np.asarray(sos, dtype=np.float64)
     if kernel is None or sos.ndim != 2 or sos.shape[0] == 0 or not bool(np.all(sos[:, 3] == 1.0)):
