@@ -85,7 +85,8 @@ SESSIONS: tuple[Column, ...] = (
                                                   "holds a step of each foot, so alternating short / long steps "
                                                   "do not bias it; lower back since W225)"),
     ("median_stride_length_m", "m", "number", "foot: median stride length (gap rows and impossible strides left "
-                                              "out); empty on the lower back"),
+                                              "out); lower back: median of two consecutive steps' lengths summed, "
+                                              "bouts.csv's strides (W537)"),
     ("median_stride_time_s", "s", "number", "median initial contact to the same foot's next"),
     ("median_speed_mps", "m/s", "number", "median per-stride speed (lower back: two consecutive steps over their "
                                          "stride time, W225)"),
@@ -307,12 +308,17 @@ SESSIONS: tuple[Column, ...] = (
                                               "backward / left / right, turn and empty rows skipped; "
                                               "direction_changes.csv's rows, L412); a turn is not one; empty on "
                                               "the lower back"),
-    ("n_stair_strides", "count", "integer", "strides climbing or descending 0.10 m or more (L179)"),
-    ("n_stair_strides_up", "count", "integer", "n_stair_strides that climb (L432); lower back: steps inside a "
-                                               "barometric climb up (W108, W526) and steps outside one rising 0.10 m "
-                                               "(W527)"),
-    ("n_stair_strides_down", "count", "integer", "n_stair_strides that descend (L432); lower back: as _up, down "
-                                                 "(W527)"),
+    ("n_stair_strides", "count", "integer", "strides climbing or descending 0.10 m or more (L179), a ramp's or "
+                                            "hill's included (the gait-range guards' count, L179 / L435): since "
+                                            "L705 no longer n_stair_strides_up + _down, which leave the ramps out"),
+    ("n_stair_strides_up", "count", "integer", "stair strides that climb, outside ramps.csv's ramps (L432, L705: "
+                                               "before L705 a ramp's strides counted too); lower back: steps inside "
+                                               "a barometric climb up (W108, W526) and steps outside one rising "
+                                               "0.10 m (W527), outside ramps.csv's ramps"),
+    ("n_stair_strides_down", "count", "integer", "as n_stair_strides_up, descending (L432, W527, L705)"),
+    ("n_ramp_strides_up", "count", "integer", "strides (lower back: steps) inside ramps.csv's up ramps (L705); 0 "
+                                              "without a grade_source"),
+    ("n_ramp_strides_down", "count", "integer", "strides (lower back: steps) inside ramps.csv's down ramps (L705)"),
     ("n_flights_up", "count", "integer", "foot: stair flights up, stairs.csv's rows (L432); empty on the lower back"),
     ("n_flights_down", "count", "integer", "foot: stair flights down (L432); empty on the lower back"),
     ("flights_rise_m", "m", "number", "foot: what the stair flights up climb, stairs.csv's height_m summed (L602); "
@@ -889,9 +895,9 @@ PERIODS: tuple[Column, ...] = (
                                             "(L320); empty without a stride time (a streamed track, E51)"),
     ("median_cadence_spm", "steps/min", "number", "median cadence of the period's steps, by the summary's default "
                                                   "rule (L176, W225; L320)"),
-    ("median_stride_length_m", "m", "number", "foot: the period's median stride length, the summary's rule (gap "
-                                              "rows and impossible strides left out, C19; L340); empty on the lower "
-                                              "back"),
+    ("median_stride_length_m", "m", "number", "the period's median stride length, the summary's rule (foot: gap "
+                                              "rows and impossible strides left out, C19; L340; lower back: two "
+                                              "consecutive steps summed, W537)"),
     ("median_speed_mps", "m/s", "number", "the period's median per-stride speed, the summary's rule (L340)"),
     ("stride_time_cv_pct", "%", "number", "foot: the summary's stride-time CV on the period's steady straight level "
                                           "forward strides (L104, L340); empty under 10 of them or when withheld "

@@ -147,7 +147,7 @@ def test_median_stride_length_leaves_out_gap_rows():
     steps = pd.DataFrame({"length_m": [1.3, 1.4, 0.0, 1.5, -1.2], "gap_s": [0.0, 0.0, 2.6, 0.0, 0.0],
                           "unit": "foot"})
     assert median_stride_length(steps) == pytest.approx(1.35)  # of 1.3, 1.4, 1.5, 1.2 (1.3 with the gap row)
-    assert median_stride_length(steps.assign(unit="waist")) is None  # rows are steps: no stride length
+    assert median_stride_length(steps.assign(unit="waist")) is None  # W537 needs the contacts (has_next): none here
 
 
 def test_find_sessions_walks_a_symlinked_folder_once(tree, tmp_path, caplog):

@@ -332,7 +332,8 @@ STAIR_GRADE_OPT = typer.Option(None, "--stair-grade", metavar="PCT", help="The r
 
 
 def flights_line(summary: dict) -> str | None:
-    """Decision L432: the printed line of a foot track's stair flights (``track`` and ``run``), None without one."""
+    """Decision L432: the printed line of a foot track's stair flights (``track`` and ``run``), None without one;
+    decision L705: its stair strides are the flights' own (a hill's are the ramps line's)."""
     if not (summary.get("n_flights_up") or summary.get("n_flights_down")):
         return None
     return (f"stair flights {summary['n_flights_up']} up / {summary['n_flights_down']} down "
@@ -350,7 +351,8 @@ def written_ramps_line(summary: dict, out: Path | None) -> str | None:
 
     from pdrlearn.track.ramp_audit import ramps_line
 
-    return ramps_line(pd.read_csv(Path(out) / "ramps.csv"))
+    strides = (summary.get("n_ramp_strides_up"), summary.get("n_ramp_strides_down"))  # decision L705
+    return ramps_line(pd.read_csv(Path(out) / "ramps.csv"), strides if None not in strides else None)
 
 
 def track(

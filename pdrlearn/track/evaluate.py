@@ -515,9 +515,32 @@ def step_counts(steps: pd.DataFrame) -> dict:
 def median_stride_length(steps: pd.DataFrame) -> float | None:
     """``median_stride_length_m`` (decisions C12, C19): the median |length_m| of a foot track's strides, without
     the 0 m rows that stand for a foot gap (``gap_s`` > 0, L67: no stride) or a stride the last-line guard moved
-    0 m (``impossible``, L97); None for a lower-back track (its rows are steps of either foot) or no strides."""
+    0 m (``impossible``, L97); decision W537: on a lower-back track (its rows are steps of either foot) the median
+    of :func:`waist_stride_lengths`; None without strides."""
     length = stride_lengths(steps)
+    if length is None:
+        length = waist_stride_lengths(steps)  # decision W537
     return float(pd.Series(length).median()) if length is not None and len(length) else None
+
+
+def waist_stride_lengths(steps: pd.DataFrame) -> np.ndarray | None:
+    """Decision W537: a lower-back track's stride lengths (m), each two consecutive steps' |length_m| summed - the
+    stride from contact k to contact k + 2 as bouts.csv counts its ``n_strides`` (mobgap's, ``n_steps`` - 2) and
+    forms its ``stride_length_m`` (L166: 2 x its steps' mean length), one step of each foot so a left / right
+    asymmetry does not bias it. Both steps must continue their walking sequence (``has_next``: a row without a next
+    contact is the 0 m closing one, W70) and neither may be a row ``--steady-trim`` cuts (L415). None for a table
+    that is not a lower-back one (or lacks ``has_next`` / ``length_m``)."""
+    from pdrlearn.track.clinical import _is_lower_back
+
+    if not _is_lower_back(steps) or not {"has_next", "length_m", "start_s"} <= set(steps):
+        return None
+    from pdrlearn.track.steady import trimmed_rows
+
+    order = steps["start_s"].reset_index(drop=True).sort_values(kind="stable").index.to_numpy()
+    length = np.abs(pd.to_numeric(steps["length_m"], errors="coerce").to_numpy(float))[order]
+    ok = (flag_values(steps["has_next"]) & ~trimmed_rows(steps))[order] & np.isfinite(length)
+    pair = ok[:-1] & ok[1:]
+    return (length[:-1] + length[1:])[pair]
 
 
 def stride_lengths(steps: pd.DataFrame) -> np.ndarray | None:
@@ -721,6 +744,9 @@ def _basic(result: TrackResult, out: dict) -> None:
     with info_stair_grade(result.info):  # session 42: the ramps found once for both (L469's grade, as ramps.csv's)
         found = track_ramps(result.steps, result.info)
     ramps = ramp_numbers(result.steps, found)  # decision L679: no walk test on a ramp
+    from pdrlearn.track.gait import stair_ramp_split
+
+    out.update(stair_ramp_split(result.steps, found[0]))  # decision L705: a ramp's strides are no stair strides
     # decisions L312, L313: the 10 m walk test's middle 10 m; L522: --ten-m-walk's walkway; L524: every trial
     calibrated = result.info.get("params_source") == "calibrated"  # decision L649
     out.update(ten_metre_walk(result.steps, result.info.get("ten_m_walk_m"), calibrated, ramps=ramps))

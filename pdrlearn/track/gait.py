@@ -283,6 +283,34 @@ def stair_counts(steps: pd.DataFrame, valid) -> tuple[int, int]:
             int((stair & ~rising).sum() + ((sign < 0) & valid).sum()))
 
 
+#: decision L705: the summary keys of :func:`stair_ramp_split`
+RAMP_STRIDE_KEYS = ("n_ramp_strides_up", "n_ramp_strides_down")
+
+
+def stair_ramp_split(steps: pd.DataFrame, ramps: list[dict]) -> dict:
+    """Decision L705: a hill's strides are no stair strides (a 1.8 m stride on a 10 % hill rises 0.18 m, over
+    L179's 0.10 m). ``n_stair_strides_up`` / ``_down``: a foot track's strides inside stairs.csv's flights
+    (:func:`pdrlearn.track.stair_flights.flight_stride_counts`: L432's flights, which leave out the climbs L302 calls
+    ramps, L443, with or without ramps.csv); a lower-back track (no flights, L440) W527's steps outside ramps.csv's
+    ramps. ``n_ramp_strides_up`` / ``_down``: the rows inside ramps.csv's ramps (``ramps``:
+    :func:`pdrlearn.track.grade.track_ramps`' dicts, rows ``first`` to ``last`` of ``steps``) by their ramp's
+    direction (none without a grade source). The rows are the summary's own (:func:`walking_rows` less
+    ``--steady-trim``'s, L415; a lower-back track's are steps). ``n_stair_strides`` (L179's count, which the
+    gait-range guards L179 / L435 read) is not changed here."""
+    from pdrlearn.track.clinical import _is_lower_back
+    from pdrlearn.track.stair_flights import flight_stride_counts
+    from pdrlearn.track.steady import trimmed_rows
+
+    valid = walking_rows(steps) & ~trimmed_rows(steps) if len(steps) else np.zeros(0, bool)
+    sign = np.zeros(len(steps), int)
+    for r in ramps:
+        sign[int(r["first"]):int(r["last"]) + 1] = 1 if r["direction"] == "up" else -1
+    up, down = stair_counts(steps, valid & (sign == 0)) if _is_lower_back(steps) else flight_stride_counts(steps, valid)
+    return {"n_stair_strides_up": up, "n_stair_strides_down": down,
+            "n_ramp_strides_up": int((valid & (sign > 0)).sum()),
+            "n_ramp_strides_down": int((valid & (sign < 0)).sum())}
+
+
 def sideways_rows(steps: pd.DataFrame) -> np.ndarray:
     """Decision L228: the foot rows L219's rule found in a side-stepping run (the steps table's ``sideways``
     column); all False without it (a lower-back table, a table from before L228 / L243). A streamed foot table

@@ -296,7 +296,7 @@ def _period_gait(steps: pd.DataFrame, rows: np.ndarray) -> dict:
     """Decision L320: the median stride time and cadence of the period's steps (``rows``), by the summary's own
     rule (:func:`pdrlearn.track.gait.gait_summary`, its default medians) on those rows; None without a stride time.
     Decision L340: and :data:`PERIOD_GAIT_KEYS`, each by the summary's own rule on those rows - the median stride
-    length (``evaluate.median_stride_length``: foot only), the median per-stride speed (``gait_summary``), the
+    length (``evaluate.median_stride_length``; lower back: W537), the median per-stride speed (``gait_summary``), the
     stride-time and stride-length CVs and their ``n_cv_strides`` (``clinical.clinical_summary``: steady straight level
     forward strides, 10 needed, L104 / L212; foot only, L214)."""
     from pdrlearn.track.clinical import clinical_summary

@@ -188,10 +188,11 @@ def route_features(tables: dict) -> list[dict]:
     return sorted(out, key=lambda f: f["start_s"])
 
 
-def ramps_line(ramps: pd.DataFrame | None) -> str | None:
+def ramps_line(ramps: pd.DataFrame | None, strides: tuple[int, int] | None = None) -> str | None:
     """Decision L571: the console line of a track's ramps.csv - ``ramps N (steepest X %, rise Y m; ramps.csv)``,
     the steepest run's grade (in size) and that ramp's rise, with how many runs are over 1:12 when any and, when a
-    ramp is ``near_limit`` (L588), "N near the limit: measure them"; None without a ramp."""
+    ramp is ``near_limit`` (L588), "N near the limit: measure them"; decision L705: with ``strides`` (the summary's
+    ``n_ramp_strides_up`` / ``_down``) "U / D ramp strides"; None without a ramp."""
     if ramps is None or not len(ramps):
         return None
     g = pd.to_numeric(ramps["max_run_grade_pct"], errors="coerce").abs()
@@ -202,4 +203,5 @@ def ramps_line(ramps: pd.DataFrame | None) -> str | None:
     near = int(ramps["near_limit"].eq(True).sum()) if "near_limit" in ramps else 0  # decision L588
     return (f"ramps {len(ramps)} (steepest {g.iloc[i]:.1f} %, rise {float(ramps['rise_m'].iloc[i]):+.2f} m"
             + (f"; {over} over 1:12" if over else "")
-            + (f"; {near} near the limit: measure {'it' if near == 1 else 'them'}" if near else "") + "; ramps.csv)")
+            + (f"; {near} near the limit: measure {'it' if near == 1 else 'them'}" if near else "")
+            + (f"; {strides[0]} / {strides[1]} ramp strides" if strides else "") + "; ramps.csv)")  # decision L705

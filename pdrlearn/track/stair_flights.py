@@ -147,6 +147,22 @@ def flight_spans(st: pd.DataFrame) -> list[tuple[int, int, int]]:
             if b - a >= MIN_STEEP_FLIGHT_STRIDES or plain[a:b].any()]  # decision L466
 
 
+def flight_stride_counts(steps: pd.DataFrame, valid) -> tuple[int, int]:
+    """Decision L705: the ``valid`` rows of a foot track's ``steps`` inside stairs.csv's flights up and down
+    (:func:`flight_spans`, the rows in ``start_s`` order as :func:`flight_table` reads them), ``(up, down)``; (0, 0)
+    on a declared inclined belt (L442: no flight) or without ``dz_m``."""
+    from pdrlearn.track.belt import declared_incline
+
+    if not len(steps) or "dz_m" not in steps or declared_incline() is not None:
+        return 0, 0
+    order = steps["start_s"].reset_index(drop=True).sort_values(kind="stable").index.to_numpy()
+    ok = np.asarray(valid, dtype=bool)[order]
+    counts = {1: 0, -1: 0}
+    for a, b, sign in flight_spans(steps.iloc[order].reset_index(drop=True)):
+        counts[sign] += int(ok[a:b].sum())
+    return counts[1], counts[-1]
+
+
 def flight_table(steps: pd.DataFrame, stair_rise_m: float | None = None) -> pd.DataFrame:
     """``stairs.csv`` (decision L432): one row per :func:`flight_runs` flight of a foot track's rows (decision L443:
     not of the climbs L302 calls ramps, :func:`pdrlearn.track.evaluate.ramp_climb_rows`) (in
