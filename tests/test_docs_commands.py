@@ -282,7 +282,7 @@ def _validators() -> dict[tuple[str, str], object]:
     from pdrlearn.plugins import parse_spec
     from pdrlearn.runtime.bundle import UNITS as BODY_UNITS
     from pdrlearn.sim import SCENARIOS, SPEEDS
-    from pdrlearn.sim.body import BOUNCE_MODES, PELVIS_MODES, ROCKER_MODES
+    from pdrlearn.sim.body import BOUNCE_MODES, CONTACT_MODES, PELVIS_MODES, ROCKER_MODES
     from pdrlearn.sim.route import parse_route
     from pdrlearn.sim.simulate import FEET
     from pdrlearn.steps.detectors import DETECTORS, get_detector
@@ -374,6 +374,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("simulate", "pelvis"): _one_of(PELVIS_MODES),
         ("simulate", "bounce"): _one_of(BOUNCE_MODES),  # decision S29
         ("simulate", "rocker"): _one_of(ROCKER_MODES),  # decisions S31, S63
+        ("simulate", "contact"): _one_of(CONTACT_MODES),  # decision S108
         **{("simulate", k): _one_of(FEET) for k in ("foot", "paretic_side")},  # decisions S54, S55
         ("fetch", "source"): _one_of(SOURCES),
         ("import", "unit"): _one_of(PLACEMENTS),

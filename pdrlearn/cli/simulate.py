@@ -136,6 +136,19 @@ def simulate_cmd(
         "have (steps decision 30); smooth comes to rest gradually (decision S31). Simulated feet WITHOUT force "
         "sensors time their contacts on that peak: use smooth for foot-only step times (decision S63).",
     ),
+    contact: str = typer.Option(
+        "heel", "--contact", help="heel (default): level steps land on the heel (the heel rocker); forefoot: they "
+        "land on the forefoot, toes down 12 deg, the heel lowered about the ball after the contact - a toe walker "
+        "(mild / moderate: the heel does touch down; decision S108). Stairs keep their own contacts."),
+    foot_sensor_pos: float | None = typer.Option(
+        None, "--foot-sensor-pos", help="The foot unit's distance from the heel as a share of the foot length, "
+        "0.05-0.85 (default: the user's own, 0.25-0.50; 0.70 = on the forefoot dorsum; decision S109)."),
+    pelvis_height: float | None = typer.Option(
+        None, "--pelvis-height", help="The waist unit's standing height (m), 0.5-1.2 x the leg length (default: the "
+        "user's own, 0.55-0.6 x height): lower it for a crouch-like pelvis (decision S109)."),
+    bounce_scale: float = typer.Option(
+        1.0, "--bounce-scale", help="A factor on the user's pelvis bounce, 0-3 (default 1; 0.5 = a damped bounce, "
+        "e.g. crouch-like; decision S109)."),
     heading0: float = typer.Option(
         0.0, "--heading0", help="Initial walking direction (deg, ENU: 0 = east, 90 = north, counter-clockwise), "
         "-360 to 360; the magnetometer sees it, a waist-only track does not (decision S32)."),
@@ -255,9 +268,9 @@ def simulate_cmd(
 
     labels = {k: label_option(v, "simulate", f"--{k}", what, example, "B364") for k, v, what, example in (
         ("subject", subject, "subject's id", "P07"), ("visit", visit, "visit's name", "visit1"))}
-    from pdrlearn.sim.body import BOUNCE_MODES, PELVIS_MODES, ROCKER_MODES, STEP_TIME_ASYMMETRY_MAX
+    from pdrlearn.sim.body import BOUNCE_MODES, CONTACT_MODES, PELVIS_MODES, ROCKER_MODES, STEP_TIME_ASYMMETRY_MAX
     from pdrlearn.sim.route import parse_route
-    from pdrlearn.sim.simulate import STEP_LENGTH_ASYMMETRY_MAX
+    from pdrlearn.sim.simulate import BOUNCE_SCALE_MAX, FOOT_SENSOR_POS_RANGE, STEP_LENGTH_ASYMMETRY_MAX
 
     if (scenario is None) == (route is None):
         raise DataError("simulate: give either --scenario NAME or --route 'straight:10, up:12, ...' (one of them)")
@@ -272,6 +285,18 @@ def simulate_cmd(
         raise DataError(f"--bounce {bounce!r}: must be {', '.join(BOUNCE_MODES[:-1])} or {BOUNCE_MODES[-1]}")
     if rocker not in ROCKER_MODES:  # decisions S31, S63
         raise DataError(f"--rocker {rocker!r}: must be {' or '.join(ROCKER_MODES)}")
+    if contact not in CONTACT_MODES:  # decision S108
+        raise DataError(f"--contact {contact!r}: must be {' or '.join(CONTACT_MODES)}")
+    lo, hi = FOOT_SENSOR_POS_RANGE
+    if foot_sensor_pos is not None and not (math.isfinite(foot_sensor_pos) and lo <= foot_sensor_pos <= hi):
+        raise DataError(f"--foot-sensor-pos {foot_sensor_pos:g}: give the unit's distance from the heel as a share "
+                        f"of the foot length, {lo:g} to {hi:g} (0.70 = forefoot dorsum; decision S109)")
+    if not (math.isfinite(bounce_scale) and 0.0 <= bounce_scale <= BOUNCE_SCALE_MAX):  # decision S109
+        raise DataError(f"--bounce-scale {bounce_scale:g}: give a factor on the user's pelvis bounce, 0 to "
+                        f"{BOUNCE_SCALE_MAX:g} (1 = the user's own)")
+    if pelvis_height is not None and not (math.isfinite(pelvis_height) and pelvis_height > 0):
+        raise DataError(f"--pelvis-height {pelvis_height:g}: give the waist unit's standing height in metres "
+                        "(0.5-1.2 x the leg length; decision S109)")
     if user_seed < 0 or seed < 0:
         raise DataError("--user-seed and --seed must be non-negative integers")
     if not -90.0 <= foot_mount_pitch <= 90.0:  # beyond +-90 deg the unit would be mounted upside down
@@ -328,6 +353,10 @@ def simulate_cmd(
         pelvis=pelvis,
         bounce=bounce,
         rocker=rocker,
+        contact=contact,  # decision S108
+        foot_sensor_pos=foot_sensor_pos,  # decision S109
+        pelvis_height_m=pelvis_height,  # decision S109
+        bounce_scale=bounce_scale,  # decision S109
         heading0_deg=heading0,
         mag_disturbance_ut=mag_disturbance,
         baro_drift_hpa_per_h=baro_drift,  # decision S85

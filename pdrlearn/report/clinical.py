@@ -22,6 +22,7 @@ import pandas as pd
 
 from pdrlearn.errors import DataError
 from pdrlearn.report.daily_living import daily_living_lines
+from pdrlearn.report.spatiotemporal import gait_spatiotemporal_line, measured_leg, normalised_line, spatiotemporal_line
 from pdrlearn.report.stairs_asymmetry import asymmetry_line, stairs_line
 from pdrlearn.report.travel import travel_lines
 from pdrlearn.report.walking import walking_line
@@ -282,6 +283,8 @@ def clinical_lines(summary: dict, folder: Path) -> list[str]:
                            or (summary.get("gait_speed_mps") or 0.0) >= VALIDATED_MIN_MPS)  # W515, W446
     if walking:
         lines.append(walking)
+    lines += [x for x in (spatiotemporal_line(summary, unit),  # decision C195
+                          _normalised(summary, unit, speed is not None)) if x]  # decision C196
     lines += [x for x in (stairs_line(summary, folder, unit), asymmetry_line(summary, unit)) if x]  # decision C190
     lines += travel_lines(summary, folder, unit)  # decision L582: backward / side strides, turns
     lines += daily_living_lines(summary, folder)
@@ -289,6 +292,15 @@ def clinical_lines(summary: dict, folder: Path) -> list[str]:
     if warnings:
         lines.append(warnings)
     return lines
+
+
+def _normalised(summary: dict, unit: str, speed_given: bool) -> str | None:
+    """Decision C196: a track's leg-length-normalised line: the gait speed only when its line gives it (W446) and
+    it is a foot unit's or a calibrated lower back's (an uncalibrated one is the height model's, not the walker's);
+    the median stride length (foot only)."""
+    trusted = speed_given and (unit != "lower-back unit" or _calibrated(summary))
+    return normalised_line(summary.get("gait_speed_mps") if trusted else None, summary.get("median_stride_length_m"),
+                           measured_leg(summary.get("leg_length_m"), summary.get("leg_length_source")), unit)
 
 
 #: decision W438: the asymmetry line's measures (gait_summary.json ``walk`` ``X_left`` / ``X_right`` / ``X_si_pct``)
@@ -300,10 +312,12 @@ def _number(v) -> float | None:
     return float(v) if isinstance(v, int | float) and not isinstance(v, bool) else None
 
 
-def asymmetry_lines(walk: dict, stairs=None) -> list[str]:
+def asymmetry_lines(walk: dict, stairs=None, leg_m: float | None = None) -> list[str]:
     """Decision W438: a gait_summary.json ``walk``'s clinical lines: left / right, the symmetry index and the longer
     side of step time, stance and step length (each read defensively: a measure gait left out is left out), then the
-    gait speed and cadence (L539) when given, then (L561) its ``stairs`` flights: pattern and leading foot."""
+    gait speed and cadence (L539) when given, (C195) stride length, stance % and double support, (C196) with a
+    measured ``leg_m`` the leg-length-normalised speed and stride length, then (L561) its ``stairs`` flights: pattern
+    and leading foot."""
     parts = []
     for key, name, unit in ASYMMETRY_MEASURES:
         left, right = _number(walk.get(f"{key}_left")), _number(walk.get(f"{key}_right"))
@@ -326,6 +340,14 @@ def asymmetry_lines(walk: dict, stairs=None) -> list[str]:
     if speed is not None:
         lines.append(f"- Gait speed {speed:.2f} m/s{f', cadence {cad:.0f} steps/min' if cad is not None else ''} "
                      "(both foot units)")
+    spatio = gait_spatiotemporal_line(walk)  # decision C195
+    if spatio:
+        lines.append(spatio)
+    left, right = _number(walk.get("stride_length_m_left")), _number(walk.get("stride_length_m_right"))
+    stride = (left + right) / 2.0 if left is not None and right is not None else None
+    normal = normalised_line(speed, stride, leg_m, "both foot units")  # decision C196
+    if normal:
+        lines.append(normal)
     flights = [f for f in stairs if isinstance(f, dict) and f.get("kind") in FLIGHT_WORDS] \
         if isinstance(stairs, list) else []
     if flights:  # decision L561
@@ -373,6 +395,8 @@ def _gait_walks(root: Path) -> list[dict]:
     """Decision W438: every gait_summary.json under ``root`` (gait --out, gait-all's W437 per-pair files) as ``{folder,
     rel, subject, left, right (session paths), names, walk}``; one not written by gait is the line plain report
     gives."""
+    from pdrlearn.track.gait import leg_length
+
     walks = []
     for path in sorted(root.rglob("gait_summary.json")) if root.is_dir() else []:
         summary = _read(path)
@@ -387,8 +411,10 @@ def _gait_walks(root: Path) -> list[dict]:
         subject = row.get("subject") or _meta(side["left"]).get("subject") or _meta(side["right"]).get("subject")
         rel = path.parent.relative_to(root).as_posix() if path.parent != root else path.parent.name
         names = {s: row.get(f"session_{s}") or (Path(side[s]).name if side[s] else "?") for s in ("left", "right")}
+        found = leg_length(_meta(side["left"]) or _meta(side["right"]))  # decision C196: a measured leg only
         walks.append({"folder": path.parent, "rel": rel, "subject": subject or None, "walk": walk, **side,
-                      "names": names, "stairs": summary.get("stairs")})  # L561: stairs
+                      "names": names, "stairs": summary.get("stairs"),  # L561: stairs
+                      "leg_m": measured_leg(found.get("leg_length_m"), found.get("leg_length_source"))})
     return walks
 
 
@@ -471,7 +497,7 @@ def walk_blocks(rows: list) -> list[list[str]]:
                          "`pdrlearn gait LEFT RIGHT --out G`) and report a folder holding G too (W437, W438)")
         else:
             used.add(id(g))
-            block += asymmetry_lines(g["walk"], g["stairs"])
+            block += asymmetry_lines(g["walk"], g["stairs"], g["leg_m"])
         blocks.append(block)
     for g in gaits:
         if id(g) in used:
@@ -479,5 +505,5 @@ def walk_blocks(rows: list) -> list[list[str]]:
         date = session_date(Path(g["left"])) if g["left"] else None
         when = f"recorded {date}" if date else "recording date unknown (no meta.json recording_start)"
         blocks.append([f"Walk {g['rel']} (left {g['names']['left']} + right {g['names']['right']}; pdrlearn gait), "
-                       f"{when}:", *asymmetry_lines(g["walk"], g["stairs"])])
+                       f"{when}:", *asymmetry_lines(g["walk"], g["stairs"], g["leg_m"])])
     return blocks

@@ -88,6 +88,17 @@ LOAD_FRACTION = 0.10  # initial contact -> foot flat, fraction of the gait cycle
 # of the cycle after the contact; its pitch rate rises within ROCKER_RISE and decays with ROCKER_DECAY (both x the
 # rocker's duration). The foot-flat event of the labels and loads stays at LOAD_FRACTION.
 ROCKER_MODES = ("hermite", "smooth")
+#: decision S108: the level walk's first contact: "heel" (the heel rocker, S23) or "forefoot" - a toe walker's
+#: forefoot-first contact with the ankle plantarflexed and no heel rocker (Brasiliano et al. 2023, Healthcare 11:873:
+#: "forefoot contact with the ground"; Alvarez et al. 2007, Gait Posture 26:428, grade toe walking by its rockers);
+#: the foot lands pitched toes-down by FOREFOOT_CONTACT_DEG and the heel comes down about the ball (the stair
+#: ascent's pivot, S15), so stance keeps a foot flat (a mild / moderate toe walker; no persistent tip-toe stance)
+CONTACT_MODES = ("heel", "forefoot")
+#: decision S108 (ours, not from a document): the toes-down foot pitch at a forefoot contact - T1's stand-in value
+#: (-12 deg), between the stair ascent's near-flat forefoot placement (-2 deg, S15) and the stair descent's -22 deg
+FOREFOOT_CONTACT_DEG = -12.0
+#: decision S108: the step kinds whose contact --contact forefoot moves to the forefoot (level walking)
+FOREFOOT_KINDS = ("walk", "close")
 ROCKER_FRACTION = 0.20
 ROCKER_RISE = 0.05
 ROCKER_DECAY = 0.5
@@ -165,6 +176,7 @@ def schedule(
     step_time_asymmetry: float = 0.0,
     affected: str = AFFECTED_FOOT,
     stance_time_asymmetry: float = 0.0,
+    contact: str = "heel",
 ) -> Events:
     """Assign gait-event times to the footsteps (both feet) and draw per-step swing parameters.
 
@@ -177,6 +189,9 @@ def schedule(
 
     ``rocker``: "hermite" (the foot is flat and still ``LOAD_FRACTION`` of the cycle after the contact) or "smooth"
     (still only ``ROCKER_FRACTION`` after it, decisions S31; the foot-flat event stays at ``LOAD_FRACTION``).
+
+    ``contact`` (decision S108): "heel" or "forefoot" - level steps (:data:`FOREFOOT_KINDS`) land on the forefoot
+    pitched :data:`FOREFOOT_CONTACT_DEG` (a toe walker); the contact, toe-off and foot-flat times are unchanged.
     """
     n = len(steps)
     names = (
@@ -233,6 +248,8 @@ def schedule(
         jit = 1.0 + 0.05 * variability * rng.normal()
         gait_pitch = 0.6 if st.gait == "short" else (1.1 if st.gait == "long" else 1.0)
         ev["theta_to"][k] = np.radians(user.toe_off_pitch_deg) * pfac * SPEED_PITCH[speed] * gait_pitch * jit
+        if ic_pitch is None and contact == "forefoot" and st.kind in FOREFOOT_KINDS:  # decision S108
+            ic_pitch = np.radians(FOREFOOT_CONTACT_DEG) * (0.6 if st.kind == "close" else 1.0)
         if ic_pitch is None:
             ic_pitch = (
                 np.radians(user.heel_strike_pitch_deg)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 import math
 import zlib
@@ -18,6 +19,7 @@ from pdrlearn.kernels.barometer import STANDARD_P0_HPA, pressure_hpa  # one form
 from pdrlearn.sim import sensors as sn
 from pdrlearn.sim.body import (
     BOUNCE_MODES,
+    CONTACT_MODES,
     HEEL_OFF_FRACTION,
     LOAD_FRACTION,
     PELVIS_MODES,
@@ -97,6 +99,14 @@ KNOBS: dict[str, object] = {
     "pelvis": "model",  # "realistic": roll toward the stance side and a smaller sway, drawn per user (S27)
     "bounce": "constant",  # "pendulum": the pelvis bounce scales with the step length (S29); "population": S74
     "rocker": "hermite",  # "smooth": a heel rocker that comes to rest gradually, no second |acc| peak (S31)
+    "contact": "heel",  # "forefoot": level steps land on the forefoot, no heel rocker (a toe walker, S108)
+    # decision S109: the foot unit's distance from the heel as a share of the foot length (None: the user's own draw,
+    # 25-50 %; up to 0.85 for a unit on the forefoot dorsum)
+    "foot_sensor_pos": None,
+    # decision S109: crouch-like pelvis - the waist unit's standing height (m; None: the user's, 0.55-0.6 x height)
+    # and a factor on the user's pelvis bounce (1 = the user's; under 1 damped)
+    "pelvis_height_m": None,
+    "bounce_scale": 1.0,
     # hemiparetic gait: the steps onto the left foot are 1 + this times the right foot's, same cadence (S35)
     "step_time_asymmetry": 0.0,
     # step-length asymmetry: the steps onto the left foot are 1 + this times the right's, same stride length (S42)
@@ -118,7 +128,8 @@ KNOBS: dict[str, object] = {
 #: decision S83: the units a gap may name
 GAP_UNITS = ("foot", "waist", "both")
 #: knobs meta.json records only when set (default sessions' meta.json as before they existed: S27, S29, S31, S34, S35)
-META_ONLY_WHEN_SET = ("pelvis", "bounce", "waist_mount_deg", "rocker", "step_time_asymmetry", "step_length_asymmetry",
+META_ONLY_WHEN_SET = ("pelvis", "bounce", "waist_mount_deg", "rocker", "contact", "foot_sensor_pos",
+                      "pelvis_height_m", "bounce_scale", "step_time_asymmetry", "step_length_asymmetry",
                       "stance_time_asymmetry", "sit_start_s", "sit_end_s", "instrumented_foot", "paretic_side", "gaps",
                       "transfer_s")
 #: decisions S54, S55: the values of the two foot-side knobs
@@ -223,6 +234,18 @@ def _check_knobs(knobs: dict) -> dict:
             raise DataError(f"simulate: {k}={out[k]!r} must be 'left' or 'right'")
     if out["rocker"] not in ROCKER_MODES:
         raise DataError(f"simulate: rocker={out['rocker']!r} must be one of {', '.join(ROCKER_MODES)}")
+    if out["contact"] not in CONTACT_MODES:  # decision S108
+        raise DataError(f"simulate: contact={out['contact']!r} must be one of {', '.join(CONTACT_MODES)}")
+    out["foot_sensor_pos"] = check_foot_sensor_pos(out["foot_sensor_pos"])  # decision S109
+    ph = out["pelvis_height_m"]  # decision S109: checked against the user's leg in simulate_path
+    if ph is not None and (isinstance(ph, bool) or not isinstance(ph, int | float | np.number)
+                           or not math.isfinite(ph) or ph <= 0):
+        raise DataError(f"simulate: pelvis_height_m={ph!r} must be a positive number of metres (the waist unit's "
+                        "standing height), or None for the user's own")
+    if isinstance(out["bounce_scale"], int | float) and not isinstance(out["bounce_scale"], bool) and not (
+            0.0 <= out["bounce_scale"] <= BOUNCE_SCALE_MAX):
+        raise DataError(f"simulate: bounce_scale={out['bounce_scale']!r} must be 0 to {BOUNCE_SCALE_MAX:g} (1 = the "
+                        "user's own pelvis bounce, 0.5 = half of it)")
     mount = out["waist_mount_deg"]
     try:
         ok = len(mount) == 3 and all(math.isfinite(float(v)) and not isinstance(v, bool) for v in mount)
@@ -235,7 +258,7 @@ def _check_knobs(knobs: dict) -> dict:
     out["transfer_s"] = check_transfer_s(out["transfer_s"])  # decision S95
     for k, default in KNOBS.items():
         v = out[k]
-        if isinstance(default, bool | str | tuple):
+        if isinstance(default, bool | str | tuple) or default is None:  # None: foot_sensor_pos, checked above
             continue
         if isinstance(v, bool) or not isinstance(v, int | float | np.number) or not math.isfinite(v):
             raise DataError(f"simulate: {k}={v!r} must be a finite number")
@@ -259,6 +282,52 @@ def _check_knobs(knobs: dict) -> dict:
         raise DataError(f"simulate: step_length_asymmetry={out['step_length_asymmetry']!r} must be >= 0 and < "
                         f"{STEP_LENGTH_ASYMMETRY_MAX:g} (0.1 = the left foot's steps 10 % longer)")
     return out
+
+
+#: decision S109: the foot unit's position range, a share of the foot length from the heel: the user draws 0.25-0.50
+#: (the instep / mid-dorsum, S1); a forefoot-dorsum unit sits over the metatarsals, short of the ball's 0.72 and the
+#: toes (ours: past 0.85 the strap would be on the toes, which bend at push-off and the rigid foot does not model)
+FOOT_SENSOR_POS_RANGE = (0.05, 0.85)
+
+
+#: decision S109: the waist unit's standing height a session may give, as a share of the user's leg length (ours):
+#: a drawn user stands it at 1.04-1.13 legs (0.55-0.6 x height over a 0.53 x height leg); crouch lowers it, and
+#: under half a leg is a squat, not a walk
+PELVIS_HEIGHT_LEGS = (0.5, 1.2)
+#: decision S109: the largest bounce_scale (ours: 3 x a 3-4.5 cm bounce is 9-13.5 cm, past any walking bounce)
+BOUNCE_SCALE_MAX = 3.0
+
+
+def body_placement(user: UserProfile, opt: dict) -> UserProfile:
+    """Decision S109: the user with the session's ``foot_sensor_pos``, ``pelvis_height_m`` and ``bounce_scale``
+    (each when set), so meta.json's ``user`` records the body simulated; one ``DataError`` line for a pelvis height
+    outside :data:`PELVIS_HEIGHT_LEGS` of the leg."""
+    changes = {}
+    if opt["foot_sensor_pos"] is not None:
+        changes["foot_sensor_x_frac"] = round(float(opt["foot_sensor_pos"]), 4)
+    if opt["pelvis_height_m"] is not None:
+        lo, hi = (k * user.leg_length_m for k in PELVIS_HEIGHT_LEGS)
+        if not lo <= float(opt["pelvis_height_m"]) <= hi:
+            raise DataError(f"simulate: pelvis_height_m={opt['pelvis_height_m']!r} must be {lo:.2f}-{hi:.2f} m: "
+                            f"{PELVIS_HEIGHT_LEGS[0]:g}-{PELVIS_HEIGHT_LEGS[1]:g} x this user's "
+                            f"{user.leg_length_m:.2f} m leg (the user's own: {user.sensor_height_m:.2f} m)")
+        changes["sensor_height_m"] = round(float(opt["pelvis_height_m"]), 4)
+    if float(opt["bounce_scale"]) != 1.0:
+        changes["pelvis_bounce_m"] = round(user.pelvis_bounce_m * float(opt["bounce_scale"]), 5)
+    return dataclasses.replace(user, **changes) if changes else user
+
+
+def check_foot_sensor_pos(value) -> float | None:
+    """Decision S109: ``foot_sensor_pos`` as a share of the foot length in :data:`FOOT_SENSOR_POS_RANGE`, or None
+    (the user's own); one ``DataError`` line otherwise."""
+    if value is None:
+        return None
+    lo, hi = FOOT_SENSOR_POS_RANGE
+    ok = isinstance(value, int | float | np.number) and not isinstance(value, bool) and math.isfinite(value)
+    if not ok or not lo <= float(value) <= hi:
+        raise DataError(f"simulate: foot_sensor_pos={value!r} must be a share of the foot length from the heel in "
+                        f"[{lo:g}, {hi:g}] (0.45 mid-dorsum, 0.70 forefoot dorsum); leave it out for the user's own")
+    return float(value)
 
 
 def check_transfer_s(value) -> tuple[float, float]:
@@ -413,6 +482,7 @@ def simulate_path(
         name = ("sim" if scenario == "custom" else f"sim_{scenario}") + f"_u{user.seed}_{speed}_s{seed}" + (
             "" if _drawn_user(user) else "_custom_user")
         name += "" if foot == "right" else "_left"  # decision S54: the left foot's folder of the same walk
+    user = body_placement(user, opt)  # decision S109: meta.json's user records the unit and pelvis simulated
     noise = bool(opt["noise"])
     rng = _rng(user.seed, int(seed), scenario, speed, "walk")
     steps, initial, end_pause, transfers = plan_footsteps(
@@ -442,7 +512,8 @@ def simulate_path(
     if not steps and 2 * stand + end_pause + lead + float(opt["sit_end_s"]) < 1.0:
         raise DataError("simulate: nothing to simulate (no steps and stand_s < 1 s); add segments or stand longer")
     ev = schedule(steps, user, speed=speed, rng=rng, stand_s=lead + stand, variability=float(opt["variability"]),
-                  rocker=str(opt["rocker"]), step_time_asymmetry=float(opt["step_time_asymmetry"]),
+                  rocker=str(opt["rocker"]), contact=str(opt["contact"]),
+                  step_time_asymmetry=float(opt["step_time_asymmetry"]),
                   affected=str(opt["paretic_side"]), stance_time_asymmetry=float(opt["stance_time_asymmetry"]))
     total_s = (max(ev.end_s, lead + stand) if steps else lead + stand) + end_pause + stand
     sit_starts = transfer_starts(transfers, ev.rest, lead + stand)  # decision S36
