@@ -22,6 +22,12 @@ from pdrlearn.kernels.samples import values
 GRAVITY = 9.80665
 #: the impact's low-pass cutoff (Hz) and order: AccelStepDetector's ``event_cutoff_hz`` (steps decision 14)
 EVENT_CUTOFF_HZ = 8.0
+#: steps decision 87: a stride whose impact at 8 Hz comes less than this (s) after the previous stride's IC (a child's
+#: 150 steps/min) takes its impact on |acc| low-passed at :data:`SHORT_EVENT_CUTOFF_HZ`: at 8 Hz its terminal-swing
+#: deceleration and impact merge into one peak, the deceleration's, 60-80 ms before the contact
+SHORT_PERIOD_S = 0.95
+#: steps decision 87: the short stride's impact cutoff (Hz, 2nd order, its own group delay)
+SHORT_EVENT_CUTOFF_HZ = 12.0
 #: the impact must rise at least this fraction of the swing's largest rise (AccelStepDetector ``peak_frac``)
 PEAK_FRAC = 0.3
 #: a cutoff is kept below this fraction of the sampling rate (``steps.detectors._cutoff``)
@@ -126,19 +132,37 @@ def local_maxima(e: np.ndarray) -> np.ndarray:
     return np.flatnonzero((e[1:-1] > e[:-2]) & (e[2:] <= e[1:-1])) + 1
 
 
+def short_stride(period_s: float, short_period_s: float = SHORT_PERIOD_S) -> bool:
+    """Steps decision 87: True when a stride whose 8 Hz impact comes ``period_s`` (s) after the previous stride's IC
+    takes its impact on the short cutoff (under ``short_period_s``; NaN, no previous contact: False)."""
+    return bool(period_s < short_period_s)
+
+
 def impact_time(t: np.ndarray, acc: np.ndarray, *, rest: float = GRAVITY, peak_frac: float = PEAK_FRAC,
-                cutoff_hz: float = EVENT_CUTOFF_HZ) -> float:
+                cutoff_hz: float = EVENT_CUTOFF_HZ, prev_ic_s: float = math.nan,
+                short_period_s: float = SHORT_PERIOD_S, short_cutoff_hz: float = SHORT_EVENT_CUTOFF_HZ) -> float:
     """Decision E49: the IC (s) of one stride from its foot accelerometer samples ``t`` (n,) s, ``acc`` (n, 3)
     m/s^2 (stance to stance): |acc| low-passed by :func:`butter2` (cutoff below 0.45 x the rate), the last local
     maximum reaching ``peak_frac`` of the largest rise above ``rest`` (:func:`last_impact`), less the filter's
-    group delay at 1 Hz. NaN with fewer than 3 samples, no such peak, or an IC before ``t[0]``."""
+    group delay at 1 Hz. NaN with fewer than 3 samples, no such peak, or an IC before ``t[0]``. Steps decision 87:
+    re-taken at ``short_cutoff_hz`` when it comes less than ``short_period_s`` after ``prev_ic_s``, the previous
+    stride's contact (:func:`short_stride`)."""
     t = np.asarray(t, dtype=float)
     if len(t) < 3:
         return math.nan
+    acc = np.asarray(acc, dtype=float)
+    m = np.sqrt(np.einsum("ij,ij->i", acc, acc))
+    ic = _impact(t, m, rest, peak_frac, cutoff_hz)
+    if short_stride(ic - prev_ic_s, short_period_s):  # steps decision 87
+        ic = _impact(t, m, rest, peak_frac, short_cutoff_hz)
+    return ic
+
+
+def _impact(t: np.ndarray, m: np.ndarray, rest: float, peak_frac: float, cutoff_hz: float) -> float:
+    """:func:`impact_time`'s rule on the magnitude ``m`` at one cutoff (Hz)."""
     fs = 1.0 / float(np.median(np.diff(t)))
     b, a = butter2(min(cutoff_hz, MAX_CUTOFF_FRAC * fs), fs)
-    acc = np.asarray(acc, dtype=float)
-    e = lowpass2(np.sqrt(np.einsum("ij,ij->i", acc, acc)), b, a)
+    e = lowpass2(m, b, a)
     pk = local_maxima(e)
     k = last_impact(e[pk], float(e.max()), rest, peak_frac)
     if k < 0:
@@ -325,15 +349,17 @@ def force_onset(t: np.ndarray, acc: np.ndarray, force: np.ndarray) -> float:
     return float(ev[-1][0]) if ev else math.nan
 
 
-def stride_contact(t: np.ndarray, acc: np.ndarray, force: np.ndarray | None = None) -> float:
+def stride_contact(t: np.ndarray, acc: np.ndarray, force: np.ndarray | None = None,
+                   prev_ic_s: float = math.nan) -> float:
     """Decisions E49 / E50: the initial contact (s) of one streamed stride (stance to stance; ``t`` (n,) s, foot
     ``acc`` (n, 3) m/s^2, ``force`` (n, 2) heel and toe at ``t`` or None): offline's source - the force sensors'
-    stance onset (:func:`force_onset`) when given and found, else the accelerometer impact (:func:`impact_time`)."""
+    stance onset (:func:`force_onset`) when given and found, else the accelerometer impact (:func:`impact_time`;
+    ``prev_ic_s`` the previous stride's contact, steps decision 87)."""
     if force is not None:
         ic = force_onset(t, acc, force)
         if math.isfinite(ic):
             return ic
-    return impact_time(t, acc)
+    return impact_time(t, acc, prev_ic_s=prev_ic_s)
 
 
 def force_at(t: np.ndarray, streams) -> np.ndarray | None:

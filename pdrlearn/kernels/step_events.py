@@ -27,6 +27,7 @@ from pdrlearn.kernels.contact import (  # noqa: F401
     last_impact,
     peak_time,
     running_tare,
+    short_stride,
 )
 from pdrlearn.kernels.dsp import magnitude
 from pdrlearn.kernels.samples import values
@@ -73,6 +74,41 @@ class BurstParams:
     quiet_rank: int = 1
     rests_only: bool = False
     subsample: bool = False  # steps decision 32: each peak's time at the vertex of its parabola
+    # steps decision 87: a swing whose event comes less than short_period_s after the last accepted stride's event
+    # takes it from the short event signal ``e2``, whose peaks are moved back by short_shift_s (its group delay
+    # less the event signal's, which the processor subtracts from every event); 0: ``e`` only
+    short_period_s: float = 0.0
+    short_shift_s: float = 0.0
+
+
+@dataclass
+class PeakTrack:
+    """The local maxima of one event signal inside the current swing (:func:`burst_kernel`)."""
+
+    rising: bool = False
+    prev: float = math.nan
+    prev2: float = math.nan  # the sample before prev (decision 32's parabola)
+    emx: float = -math.inf
+    peaks: list = field(default_factory=list)  # local maxima (t, e) of the current swing
+
+    def push(self, prev_t: float, prev2_t: float, ti: float, ei: float, subsample: bool, shift: float,
+             inside: bool = True) -> None:
+        """Take sample ``(ti, ei)``; ``prev_t`` / ``prev2_t`` are the times of the two samples before it. Outside a
+        swing (``inside=False``) only the rise is followed."""
+        was_rising, prev, prev2 = self.rising, self.prev, self.prev2
+        self.rising = ei > prev if prev == prev else False
+        self.prev2, self.prev = prev, ei
+        if not inside:
+            return
+        if was_rising and ei <= prev:  # a rise into prev: prev2 is a sample too
+            self.peaks.append(((peak_time(prev2_t, prev_t, ti, prev2, prev, ei) if subsample else prev_t) - shift,
+                               prev))
+        if ei > self.emx:
+            self.emx = ei
+
+    def open(self, ei: float) -> None:
+        """A swing starts at this sample: no peaks yet, its value the largest so far."""
+        self.peaks, self.emx = [], ei
 
 
 @dataclass
@@ -84,13 +120,11 @@ class BurstState:
     mn: float = math.inf
     still_count: int = 0
     last_t: float = math.nan
-    prev_a: float = math.nan
     prev_t: float = math.nan
-    prev2_a: float = math.nan  # the sample before prev (decision 32's parabola)
     prev2_t: float = math.nan
-    rising: bool = False
-    emx: float = -math.inf
-    peaks: list = field(default_factory=list)  # local maxima (t, a) of the current swing
+    track: PeakTrack = field(default_factory=PeakTrack)  # the event signal's peaks
+    track2: PeakTrack = field(default_factory=PeakTrack)  # steps decision 87: the short event signal's
+    last_ic: float = math.nan  # steps decision 87: the last accepted stride's event
     pending: Event | None = None  # last accepted stride, held back until min_stride_s has passed
     pending_amp: float = 0.0
     pending_emx: float = -math.inf
@@ -107,7 +141,8 @@ def _still_need(s: BurstState, p: BurstParams) -> int:
 
 
 def burst_kernel(t: np.ndarray, a: np.ndarray, still: np.ndarray, state: BurstState,
-                 p: BurstParams, e: np.ndarray | None = None) -> tuple[list[Event], BurstState]:
+                 p: BurstParams, e: np.ndarray | None = None,
+                 e2: np.ndarray | None = None) -> tuple[list[Event], BurstState]:
     """Swing detection: a swing starts at the first non-still sample and ends after ``min_still_n``
     still samples; it is a stride when the filtered magnitude ``a`` spans more than ``p.amp`` (thesis
     ch.5.1 max - current > 1.7 m/s^2) and it lasts ``min_dur_s``..``max_dur_s``. The event is the
@@ -117,13 +152,17 @@ def burst_kernel(t: np.ndarray, a: np.ndarray, still: np.ndarray, state: BurstSt
     ``min_stride_s`` are merged, keeping the larger one. ``e`` (default ``a``) is the signal whose peaks
     locate the event (a less smoothed magnitude keeps the impact apart from the push-off). With
     ``p.subsample`` a peak's time is the vertex of the parabola through it and its neighbours (steps decision 32;
-    its value, and so the choice of the peak, stays the sample's).
+    its value, and so the choice of the peak, stays the sample's). Steps decision 87: with ``e2`` and
+    ``p.short_period_s``, a swing whose event comes within ``short_period_s`` of the last accepted stride's event
+    takes it from ``e2``'s peaks instead (decision 3's stride time, as the streamed contact reads it).
     """
     out: list[Event] = []
     s = state
     tl, al, sl = values(t), values(a), values(still)  # decision E195: no whole-session lists
     el = al if e is None else values(e)  # a memoryview / list iterates afresh in zip
-    for ti, ai, si, ei in zip(tl, al, sl, el, strict=True):
+    short = e2 is not None and p.short_period_s > 0  # steps decision 87
+    e2l = values(e2) if short else el
+    for ti, ai, si, ei, e2i in zip(tl, al, sl, el, e2l, strict=True):
         s.last_t = ti
         if s.pending is not None and ti - s.pending[0] >= p.min_stride_s and not (
                 s.active and s.i0_t - s.pending[0] < p.min_stride_s):
@@ -137,18 +176,20 @@ def burst_kernel(t: np.ndarray, a: np.ndarray, still: np.ndarray, state: BurstSt
                 s.quiet = (s.quiet + [min(q, p.cap_n) if p.cap_n else q])[-p.history:]
                 s.need_n = _still_need(s, p)
             s.still_count = 0
-        was_rising, prev_a, prev_t, prev2_a, prev2_t = s.rising, s.prev_a, s.prev_t, s.prev2_a, s.prev2_t
-        s.rising = ei > prev_a if prev_a == prev_a else False
-        s.prev2_a, s.prev2_t, s.prev_a, s.prev_t = prev_a, prev_t, ei, ti
+        prev_t, prev2_t = s.prev_t, s.prev2_t
+        s.prev2_t, s.prev_t = prev_t, ti
         if not s.active:
+            s.track.push(prev_t, prev2_t, ti, ei, False, 0.0, inside=False)
+            if short:
+                s.track2.push(prev_t, prev2_t, ti, e2i, False, 0.0, inside=False)
             if not si:
                 s.active, s.i0_t, s.mx, s.mx_t, s.mn = True, ti, ai, ti, ai
-                s.peaks, s.emx = [], ei
+                s.track.open(ei)
+                s.track2.open(e2i)
             continue
-        if was_rising and ei <= prev_a:  # a rise into prev: prev2 is a sample too
-            s.peaks.append((peak_time(prev2_t, prev_t, ti, prev2_a, prev_a, ei) if p.subsample else prev_t, prev_a))
-        if ei > s.emx:
-            s.emx = ei
+        s.track.push(prev_t, prev2_t, ti, ei, p.subsample, 0.0)
+        if short:
+            s.track2.push(prev_t, prev2_t, ti, e2i, p.subsample, p.short_shift_s)
         if ai > s.mx:
             s.mx, s.mx_t = ai, ti
         if ai < s.mn:
@@ -157,23 +198,30 @@ def burst_kernel(t: np.ndarray, a: np.ndarray, still: np.ndarray, state: BurstSt
             s.active = False
             dur = ti - s.i0_t
             span = s.mx - s.mn
-            k = last_impact([pa for _, pa in s.peaks], s.emx, p.rest, p.peak_frac)  # E49: the streamed IC's rule
-            t_ev, e_ev = s.peaks[k] if k >= 0 else (s.mx_t, s.emx)
+            tr = s.track
+            k = last_impact([pa for _, pa in tr.peaks], tr.emx, p.rest, p.peak_frac)  # E49: the streamed IC's rule
+            t_ev, e_ev = tr.peaks[k] if k >= 0 else (s.mx_t, tr.emx)
+            if short and short_stride(t_ev - s.last_ic, p.short_period_s):  # steps decision 87
+                tr = s.track2
+                k = last_impact([pa for _, pa in tr.peaks], tr.emx, p.rest, p.peak_frac)
+                t_ev, e_ev = tr.peaks[k] if k >= 0 else (s.mx_t, tr.emx)
             if s.pending is not None and t_ev - s.pending[0] < p.min_stride_s and span > p.amp:
                 # the same swing split by a brief false rest: merge; the event stays the last impact
                 # (a wobble below the threshold while standing is ignored, it never moves the event)
                 pe = s.pending
-                s.pending_emx = max(s.pending_emx, s.emx)
+                s.pending_emx = max(s.pending_emx, tr.emx)
                 amp = max(s.pending_amp, span)
                 conf = min(1.0, amp / (2.0 * p.amp))
                 merged_level = p.rest + p.peak_frac * (s.pending_emx - p.rest)
                 t_m = t_ev if e_ev >= merged_level else pe[0]
                 s.pending, s.pending_amp = (t_m, pe[1], ti, conf, {"amplitude": amp}), amp
+                s.last_ic = t_m  # steps decision 87
             elif span > p.amp and p.min_dur_s <= dur <= p.max_dur_s:
                 if s.pending is not None:
                     out.append(s.pending)
+                s.last_ic = t_ev  # steps decision 87
                 conf = min(1.0, span / (2.0 * p.amp))
-                s.pending, s.pending_amp, s.pending_emx = (t_ev, s.i0_t, ti, conf, {"amplitude": span}), span, s.emx
+                s.pending, s.pending_amp, s.pending_emx = (t_ev, s.i0_t, ti, conf, {"amplitude": span}), span, tr.emx
     return out, s
 
 
@@ -647,6 +695,10 @@ class AccelProcessor:
         self.lp = lowpass(cutoff_below(det.cutoff_hz, fs), fs, order=det.order)
         self.lp_event = lowpass(cutoff_below(det.event_cutoff_hz, fs), fs, order=2)
         self.delay = delay(cutoff_below(det.event_cutoff_hz, fs), fs, order=2)
+        # steps decision 87: a short stride's impact on its own event signal (its delay less the common one)
+        short_hz = cutoff_below(det.short_event_cutoff_hz, fs)
+        self.lp_short = lowpass(short_hz, fs, order=2) if det.short_period_s > 0 else None
+        short_shift = delay(short_hz, fs, order=2) - self.delay if self.lp_short is not None else 0.0
         self.w = max(MIN_STILL_WINDOW_SAMPLES, int(round(det.still_window_s * fs)))
         self.tail: np.ndarray | None = None
         self.state = BurstState()
@@ -658,7 +710,8 @@ class AccelProcessor:
             min_dur_s=det.min_swing_s, max_dur_s=det.max_swing_s, min_stride_s=det.min_stride_s,
             rest=det.gravity, peak_frac=det.peak_frac, max_still_n=need(det.max_quiet_s),
             quiet_frac=det.quiet_frac, history=4, window_n=self.w, cap_n=int(round(0.6 * fs)),
-            quiet_rank=det.quiet_rank, rests_only=det.rests_only, subsample=subsample_of(det))
+            quiet_rank=det.quiet_rank, rests_only=det.rests_only, subsample=subsample_of(det),
+            short_period_s=det.short_period_s, short_shift_s=short_shift)
         self.state.need_n = self.params.max_still_n if det.quiet_frac > 0 else self.params.min_still_n
 
     def process(self, t: np.ndarray, v: np.ndarray) -> list:
@@ -668,7 +721,8 @@ class AccelProcessor:
             self.tail = np.full(self.w - 1, m[0])
         mean, std, self.tail = trailing_window_std(m, self.tail, self.w)
         still = (std < self.det.still_std) & (np.abs(mean - self.det.gravity) < self.det.still_level_tol)
-        ev, self.state = burst_kernel(t, a, still, self.state, self.params, e=self.lp_event.push(m))
+        e2 = self.lp_short.push(m) if self.lp_short is not None else None
+        ev, self.state = burst_kernel(t, a, still, self.state, self.params, e=self.lp_event.push(m), e2=e2)
         return shift_events(ev, self.delay)
 
     def flush(self) -> list:
