@@ -124,7 +124,8 @@ class BurstState:
     prev2_t: float = math.nan
     track: PeakTrack = field(default_factory=PeakTrack)  # the event signal's peaks
     track2: PeakTrack = field(default_factory=PeakTrack)  # steps decision 87: the short event signal's
-    last_ic: float = math.nan  # steps decision 87: the last accepted stride's event
+    last_ic: float = math.nan  # steps decision 87: the held (pending) stride's event, and the one before it
+    before_ic: float = math.nan
     pending: Event | None = None  # last accepted stride, held back until min_stride_s has passed
     pending_amp: float = 0.0
     pending_emx: float = -math.inf
@@ -201,7 +202,10 @@ def burst_kernel(t: np.ndarray, a: np.ndarray, still: np.ndarray, state: BurstSt
             tr = s.track
             k = last_impact([pa for _, pa in tr.peaks], tr.emx, p.rest, p.peak_frac)  # E49: the streamed IC's rule
             t_ev, e_ev = tr.peaks[k] if k >= 0 else (s.mx_t, tr.emx)
-            if short and short_stride(t_ev - s.last_ic, p.short_period_s):  # steps decision 87
+            # steps decision 87: the rhythm from the stride before; a piece of the held stride (merged below) reads
+            # it from the stride before that one
+            merging = s.pending is not None and t_ev - s.pending[0] < p.min_stride_s
+            if short and short_stride(t_ev - (s.before_ic if merging else s.last_ic), p.short_period_s):
                 tr = s.track2
                 k = last_impact([pa for _, pa in tr.peaks], tr.emx, p.rest, p.peak_frac)
                 t_ev, e_ev = tr.peaks[k] if k >= 0 else (s.mx_t, tr.emx)
@@ -219,7 +223,7 @@ def burst_kernel(t: np.ndarray, a: np.ndarray, still: np.ndarray, state: BurstSt
             elif span > p.amp and p.min_dur_s <= dur <= p.max_dur_s:
                 if s.pending is not None:
                     out.append(s.pending)
-                s.last_ic = t_ev  # steps decision 87
+                s.before_ic, s.last_ic = s.last_ic, t_ev  # steps decision 87
                 conf = min(1.0, span / (2.0 * p.amp))
                 s.pending, s.pending_amp, s.pending_emx = (t_ev, s.i0_t, ti, conf, {"amplitude": span}), span, tr.emx
     return out, s
