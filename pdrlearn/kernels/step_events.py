@@ -24,12 +24,9 @@ from pdrlearn.kernels.contact import (  # noqa: F401
     ForceState,
     TareState,
     force_kernel,
-    impact_peak,
     last_impact,
     peak_time,
-    rhythm_cutoff_hz,
     running_tare,
-    short_stride,
 )
 from pdrlearn.kernels.dsp import magnitude
 from pdrlearn.kernels.samples import values
@@ -76,47 +73,6 @@ class BurstParams:
     quiet_rank: int = 1
     rests_only: bool = False
     subsample: bool = False  # steps decision 32: each peak's time at the vertex of its parabola
-    # steps decisions 87, 88: a swing whose event comes less than short_period_s after the last accepted stride's
-    # event takes it again from the raw magnitude ``m`` low-passed at the rhythm's cutoff (contact.rhythm_cutoff_hz
-    # of event_cutoff_hz, fast_period_s, fast_cutoff_hz), as the streamed contact does, over the swing and the pre_n
-    # samples before it; event_delay_s (the event signal's group delay, which the processor subtracts from every
-    # event) is added back. 0: ``e`` only
-    short_period_s: float = 0.0
-    fast_period_s: float = 0.0
-    fast_cutoff_hz: float = 0.0
-    event_cutoff_hz: float = 0.0
-    event_delay_s: float = 0.0
-    pre_n: int = 0
-
-
-@dataclass
-class PeakTrack:
-    """The local maxima of one event signal inside the current swing (:func:`burst_kernel`)."""
-
-    rising: bool = False
-    prev: float = math.nan
-    prev2: float = math.nan  # the sample before prev (decision 32's parabola)
-    emx: float = -math.inf
-    peaks: list = field(default_factory=list)  # local maxima (t, e) of the current swing
-
-    def push(self, prev_t: float, prev2_t: float, ti: float, ei: float, subsample: bool, shift: float,
-             inside: bool = True) -> None:
-        """Take sample ``(ti, ei)``; ``prev_t`` / ``prev2_t`` are the times of the two samples before it. Outside a
-        swing (``inside=False``) only the rise is followed."""
-        was_rising, prev, prev2 = self.rising, self.prev, self.prev2
-        self.rising = ei > prev if prev == prev else False
-        self.prev2, self.prev = prev, ei
-        if not inside:
-            return
-        if was_rising and ei <= prev:  # a rise into prev: prev2 is a sample too
-            self.peaks.append(((peak_time(prev2_t, prev_t, ti, prev2, prev, ei) if subsample else prev_t) - shift,
-                               prev))
-        if ei > self.emx:
-            self.emx = ei
-
-    def open(self, ei: float) -> None:
-        """A swing starts at this sample: no peaks yet, its value the largest so far."""
-        self.peaks, self.emx = [], ei
 
 
 @dataclass
@@ -128,12 +84,13 @@ class BurstState:
     mn: float = math.inf
     still_count: int = 0
     last_t: float = math.nan
+    prev_a: float = math.nan
     prev_t: float = math.nan
+    prev2_a: float = math.nan  # the sample before prev (decision 32's parabola)
     prev2_t: float = math.nan
-    track: PeakTrack = field(default_factory=PeakTrack)  # the event signal's peaks
-    raw: list = field(default_factory=list)  # steps decision 88: (t, |acc|) of the swing and the pre_n before it
-    last_ic: float = math.nan  # steps decision 87: the held (pending) stride's event, and the one before it
-    before_ic: float = math.nan
+    rising: bool = False
+    emx: float = -math.inf
+    peaks: list = field(default_factory=list)  # local maxima (t, a) of the current swing
     pending: Event | None = None  # last accepted stride, held back until min_stride_s has passed
     pending_amp: float = 0.0
     pending_emx: float = -math.inf
@@ -150,8 +107,7 @@ def _still_need(s: BurstState, p: BurstParams) -> int:
 
 
 def burst_kernel(t: np.ndarray, a: np.ndarray, still: np.ndarray, state: BurstState,
-                 p: BurstParams, e: np.ndarray | None = None,
-                 m: np.ndarray | None = None) -> tuple[list[Event], BurstState]:
+                 p: BurstParams, e: np.ndarray | None = None) -> tuple[list[Event], BurstState]:
     """Swing detection: a swing starts at the first non-still sample and ends after ``min_still_n``
     still samples; it is a stride when the filtered magnitude ``a`` spans more than ``p.amp`` (thesis
     ch.5.1 max - current > 1.7 m/s^2) and it lasts ``min_dur_s``..``max_dur_s``. The event is the
@@ -161,18 +117,13 @@ def burst_kernel(t: np.ndarray, a: np.ndarray, still: np.ndarray, state: BurstSt
     ``min_stride_s`` are merged, keeping the larger one. ``e`` (default ``a``) is the signal whose peaks
     locate the event (a less smoothed magnitude keeps the impact apart from the push-off). With
     ``p.subsample`` a peak's time is the vertex of the parabola through it and its neighbours (steps decision 32;
-    its value, and so the choice of the peak, stays the sample's). Steps decisions 87, 88: with the raw
-    magnitude ``m`` and ``p.short_period_s``, a swing whose event comes within ``short_period_s`` of the last accepted
-    stride's event takes it again from ``m`` low-passed at the rhythm's cutoff (decision 3's stride time, as the
-    streamed contact reads it; :func:`pdrlearn.kernels.contact.impact_peak`, the streamed rule).
+    its value, and so the choice of the peak, stays the sample's).
     """
     out: list[Event] = []
     s = state
     tl, al, sl = values(t), values(a), values(still)  # decision E195: no whole-session lists
     el = al if e is None else values(e)  # a memoryview / list iterates afresh in zip
-    short = m is not None and p.short_period_s > 0  # steps decisions 87, 88
-    ml = values(m) if short else el
-    for ti, ai, si, ei, mi in zip(tl, al, sl, el, ml, strict=True):
+    for ti, ai, si, ei in zip(tl, al, sl, el, strict=True):
         s.last_t = ti
         if s.pending is not None and ti - s.pending[0] >= p.min_stride_s and not (
                 s.active and s.i0_t - s.pending[0] < p.min_stride_s):
@@ -186,19 +137,18 @@ def burst_kernel(t: np.ndarray, a: np.ndarray, still: np.ndarray, state: BurstSt
                 s.quiet = (s.quiet + [min(q, p.cap_n) if p.cap_n else q])[-p.history:]
                 s.need_n = _still_need(s, p)
             s.still_count = 0
-        prev_t, prev2_t = s.prev_t, s.prev2_t
-        s.prev2_t, s.prev_t = prev_t, ti
-        if short:  # steps decision 88: the swing's raw magnitude, and the pre_n samples before it
-            s.raw.append((ti, mi))
-            if not s.active and len(s.raw) > p.pre_n:
-                del s.raw[:len(s.raw) - p.pre_n]
+        was_rising, prev_a, prev_t, prev2_a, prev2_t = s.rising, s.prev_a, s.prev_t, s.prev2_a, s.prev2_t
+        s.rising = ei > prev_a if prev_a == prev_a else False
+        s.prev2_a, s.prev2_t, s.prev_a, s.prev_t = prev_a, prev_t, ei, ti
         if not s.active:
-            s.track.push(prev_t, prev2_t, ti, ei, False, 0.0, inside=False)
             if not si:
                 s.active, s.i0_t, s.mx, s.mx_t, s.mn = True, ti, ai, ti, ai
-                s.track.open(ei)
+                s.peaks, s.emx = [], ei
             continue
-        s.track.push(prev_t, prev2_t, ti, ei, p.subsample, 0.0)
+        if was_rising and ei <= prev_a:  # a rise into prev: prev2 is a sample too
+            s.peaks.append((peak_time(prev2_t, prev_t, ti, prev2_a, prev_a, ei) if p.subsample else prev_t, prev_a))
+        if ei > s.emx:
+            s.emx = ei
         if ai > s.mx:
             s.mx, s.mx_t = ai, ti
         if ai < s.mn:
@@ -207,39 +157,23 @@ def burst_kernel(t: np.ndarray, a: np.ndarray, still: np.ndarray, state: BurstSt
             s.active = False
             dur = ti - s.i0_t
             span = s.mx - s.mn
-            tr = s.track
-            emx = tr.emx
-            k = last_impact([pa for _, pa in tr.peaks], emx, p.rest, p.peak_frac)  # E49: the streamed IC's rule
-            t_ev, e_ev = tr.peaks[k] if k >= 0 else (s.mx_t, emx)
-            # steps decision 87: the rhythm from the stride before; a piece of the held stride (merged below) reads
-            # it from the stride before that one
-            merging = s.pending is not None and t_ev - s.pending[0] < p.min_stride_s
-            period = t_ev - (s.before_ic if merging else s.last_ic)
-            if short and short_stride(period, p.short_period_s):  # steps decision 88: the rhythm's cutoff
-                f = rhythm_cutoff_hz(period, p.event_cutoff_hz, p.short_period_s, p.fast_period_s, p.fast_cutoff_hz)
-                rt, rm = zip(*s.raw, strict=True)
-                ic, e_f, emx_f = impact_peak(np.array(rt), np.array(rm), p.rest, p.peak_frac, f, p.subsample)
-                if ic == ic:
-                    t_ev, e_ev, emx = ic + p.event_delay_s, e_f, emx_f
-            if short:
-                del s.raw[:len(s.raw) - p.pre_n]
+            k = last_impact([pa for _, pa in s.peaks], s.emx, p.rest, p.peak_frac)  # E49: the streamed IC's rule
+            t_ev, e_ev = s.peaks[k] if k >= 0 else (s.mx_t, s.emx)
             if s.pending is not None and t_ev - s.pending[0] < p.min_stride_s and span > p.amp:
                 # the same swing split by a brief false rest: merge; the event stays the last impact
                 # (a wobble below the threshold while standing is ignored, it never moves the event)
                 pe = s.pending
-                s.pending_emx = max(s.pending_emx, emx)
+                s.pending_emx = max(s.pending_emx, s.emx)
                 amp = max(s.pending_amp, span)
                 conf = min(1.0, amp / (2.0 * p.amp))
                 merged_level = p.rest + p.peak_frac * (s.pending_emx - p.rest)
                 t_m = t_ev if e_ev >= merged_level else pe[0]
                 s.pending, s.pending_amp = (t_m, pe[1], ti, conf, {"amplitude": amp}), amp
-                s.last_ic = t_m  # steps decision 87
             elif span > p.amp and p.min_dur_s <= dur <= p.max_dur_s:
                 if s.pending is not None:
                     out.append(s.pending)
-                s.before_ic, s.last_ic = s.last_ic, t_ev  # steps decision 87
                 conf = min(1.0, span / (2.0 * p.amp))
-                s.pending, s.pending_amp, s.pending_emx = (t_ev, s.i0_t, ti, conf, {"amplitude": span}), span, emx
+                s.pending, s.pending_amp, s.pending_emx = (t_ev, s.i0_t, ti, conf, {"amplitude": span}), span, s.emx
     return out, s
 
 
@@ -703,9 +637,6 @@ MIN_STILL_WINDOW_SAMPLES = 3
 #: steps decision 37: detections closer than this (s) are one stride of the foot; 0.6 s (decision 3) merged the
 #: strides of children at 200+ steps/min (experiments/results/child_strides.md)
 MIN_STRIDE_S = 0.4
-#: steps decision 88: the offline rhythm cutoff filters the swing's raw |acc| from this long (s) before its first moving
-#: sample (a rest; the filter started at its steady state has settled there, as the streamed stride's from its start)
-PRE_SWING_S = 0.2
 
 
 class AccelProcessor:
@@ -727,10 +658,7 @@ class AccelProcessor:
             min_dur_s=det.min_swing_s, max_dur_s=det.max_swing_s, min_stride_s=det.min_stride_s,
             rest=det.gravity, peak_frac=det.peak_frac, max_still_n=need(det.max_quiet_s),
             quiet_frac=det.quiet_frac, history=4, window_n=self.w, cap_n=int(round(0.6 * fs)),
-            quiet_rank=det.quiet_rank, rests_only=det.rests_only, subsample=subsample_of(det),
-            short_period_s=det.short_period_s, fast_period_s=det.fast_period_s,  # steps decisions 87, 88
-            fast_cutoff_hz=det.fast_event_cutoff_hz, event_cutoff_hz=det.event_cutoff_hz, event_delay_s=self.delay,
-            pre_n=int(round(PRE_SWING_S * fs)))
+            quiet_rank=det.quiet_rank, rests_only=det.rests_only, subsample=subsample_of(det))
         self.state.need_n = self.params.max_still_n if det.quiet_frac > 0 else self.params.min_still_n
 
     def process(self, t: np.ndarray, v: np.ndarray) -> list:
@@ -740,7 +668,7 @@ class AccelProcessor:
             self.tail = np.full(self.w - 1, m[0])
         mean, std, self.tail = trailing_window_std(m, self.tail, self.w)
         still = (std < self.det.still_std) & (np.abs(mean - self.det.gravity) < self.det.still_level_tol)
-        ev, self.state = burst_kernel(t, a, still, self.state, self.params, e=self.lp_event.push(m), m=m)
+        ev, self.state = burst_kernel(t, a, still, self.state, self.params, e=self.lp_event.push(m))
         return shift_events(ev, self.delay)
 
     def flush(self) -> list:
