@@ -1610,14 +1610,10 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             from pdrlearn.track.stride_kinds import disp_kind_labels
 
             # decision L182: straight strides (L79), no foot gap; L656: none W415 classes side or backward
-            check_keep = straight & ~np.isin(disp_kind_labels(disp, fd.yaw_change_), ("side", "backward"))
-            compass_line, compass_info = compass_check(work, strides, relative, check_keep)
+            kinds = disp_kind_labels(disp, fd.yaw_change_)
+            compass_line, compass_info = compass_check(work, strides, relative,
+                                                       straight & ~np.isin(kinds, ("side", "backward")))
         warnings += [compass_line] if compass_line else []
-        if compass_info is not None and hsrc == "fused" and hard_iron is None:  # decision L708
-            from pdrlearn.track.hard_iron_check import hard_iron_line
-
-            iron_line, compass_info["hard_iron_deg"] = hard_iron_line(work, strides, relative, check_keep)
-            warnings += [iron_line] if iron_line and compass_line is None else []  # L182's line says more
         fallback = (hsrc == "fused" and compass_line is not None
                     and (COMPASS_GYRO_FALLBACK if compass_fallback is None else compass_fallback))
         if compass_info is not None and hsrc == "fused":
