@@ -33,12 +33,13 @@ def _span(stream: Callable[[str], tuple[np.ndarray, np.ndarray]], t0: float, t1:
 
 
 def add_waist_gap_turns(fd, stream: Callable[[str], tuple[np.ndarray, np.ndarray]],
-                        min_deg: float = TURN_COUNT_MIN_DEG) -> list[dict]:
+                        min_deg: float = TURN_COUNT_MIN_DEG, yaw_bias: np.ndarray | None = None) -> list[dict]:
     """Decisions L701 / L702 (module docstring): ``fd`` (a fitted ``FootDisplacement`` with ``start_s_`` / ``end_s_``,
     ``yaw_change_``, ``gap_yaw_``) gains the lower back's missed turn in its gaps; ``stream(name)`` -> ``(t, values)``
     of the session's ``wGyroscope`` / ``wAccelerometer`` on the foot's clock; ``min_deg``: L104's
-    ``turn_count_min_deg``. Returns the gaps' records
-    (:data:`GAP_TURN_KEYS`)."""
+    ``turn_count_min_deg``; ``yaw_bias``: (k, 2) (time s, vertical-rate bias rad/s) read at rest (W125 / W126's
+    profile, interpolated and held beyond its ends as ``WaistHeading``'s), taken off before the gate (decision
+    L709); None: none. Returns the gaps' records (:data:`GAP_TURN_KEYS`)."""
     yc = np.asarray(getattr(fd, "yaw_change_", []), float)
     if len(yc) < 2:
         return []
@@ -53,12 +54,15 @@ def add_waist_gap_turns(fd, stream: Callable[[str], tuple[np.ndarray, np.ndarray
         if whole is None:
             continue
         t, g, a = whole
-        rate, turn = KG.gated_turn(t, g, a)
+        bias = None if yaw_bias is None or not len(yaw_bias) else np.interp(t, yaw_bias[:, 0], yaw_bias[:, 1])
+        rate, turn = KG.gated_turn(t, g, a, bias_rad_s=bias)
         added = KG.missed_turn(float(turn[-1]), float(gy[k] + yc[k]), min_deg)
         gy[k] += added
         if abs(gy[k]) < math.radians(min_deg):  # decision L702: a gap turning the heading 80 deg or more is a row
             continue
         gap = t <= s
+        if not gap.any():  # decision L709: a gap holding no lower-back sample is timed over the whole span
+            gap = np.ones(len(t), bool)
         t0, t1 = KG.fraction_times(t[gap], turn[gap])
         out.append(dict(zip(GAP_TURN_KEYS, (t0, t1, math.degrees(float(gy[k])),
                                             math.degrees(float(np.abs(rate[gap]).max())), math.degrees(added)),
