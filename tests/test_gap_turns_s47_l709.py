@@ -30,12 +30,7 @@ def test_the_kernel_takes_a_rest_bias_off_before_the_gate():
 
 
 def test_a_biased_waist_gyroscope_makes_no_turn_of_a_long_stand():
-    s = simulate_path(parse_route("stand:3, straight:8, stand:30, straight:8, sit:10, straight:5, stand:3"),
-                      UserProfile.from_seed(15340), rate_hz=20, seed=0, name="bias")
-    gyr = s.streams["wGyroscope"]
-    acc = s.streams["wAccelerometer"].values
-    up = acc[: int(2 * 20)].mean(axis=0)
-    gyr.values = gyr.values + math.radians(3.0) * up / np.linalg.norm(up)  # +3 deg/s about the waist's vertical
+    s = _biased("stand:3, straight:8, stand:30, straight:8, sit:10, straight:5, stand:3", 15340, 3.0)  # +3 deg/s
     result = get_pipeline("plasys")(s)
     summary = track_summary(result, s, pipeline="plasys")
     assert not result.info.get("waist_gap_turns")  # main: a 26.75 s "turn" of about 90 deg over the stand
@@ -61,3 +56,23 @@ def test_a_rest_gap_without_a_lower_back_sample_is_timed_over_its_span():
     assert 1.0 <= rows[0]["start_s"] < rows[0]["end_s"] <= 2.0
     assert math.degrees(fd.gap_yaw_[1]) == pytest.approx(120, abs=10)
     assert all(math.isnan(x) for x in fraction_times(np.array([]), np.array([])))
+
+
+def _biased(route: str, user: int, dps: float):
+    s = simulate_path(parse_route(route), UserProfile.from_seed(user), rate_hz=20, seed=0, name="bias")
+    acc = s.streams["wAccelerometer"].values
+    up = acc[: int(2 * 20)].mean(axis=0)  # the waist's vertical over the set-up stand
+    s.streams["wGyroscope"].values = s.streams["wGyroscope"].values + math.radians(dps) * up / np.linalg.norm(up)
+    return s
+
+
+def test_a_biased_waist_keeps_a_slow_spin_and_its_row():
+    # the rest bias is the set-up stand's (W105), not W126's profile of every rest: the 10 s spin passes the
+    # standstill mask, and its own rate read as a bias took the spin off (checked: turn_count 0, -120 deg lost)
+    s = _biased("stand:3, straight:8, spin:-120:10, straight:8, stand:3", 15351, 3.0)
+    result = get_pipeline("plasys")(s)
+    summary = track_summary(result, s, pipeline="plasys")
+    rows = clinical_tables(result, None)["turns.csv"]
+    row = rows[rows["n_rows"] == 0]
+    assert len(row) == 1 and row["angle_deg"].iloc[0] == pytest.approx(-120, abs=30)  # main: no row
+    assert summary["turn_count"] == 1 and summary["final_position_error_m"] < 1.5
