@@ -31,11 +31,18 @@ def vertical_rate(gyr: np.ndarray, acc: np.ndarray) -> np.ndarray:
     return np.asarray(gyr, float) @ (up / n)
 
 
-def gated_turn(t: np.ndarray, gyr: np.ndarray, acc: np.ndarray, *, gate_rad_s: float = GAP_TURN_GATE_RAD_S
-               ) -> tuple[np.ndarray, np.ndarray]:
+def gated_turn(t: np.ndarray, gyr: np.ndarray, acc: np.ndarray, *, gate_rad_s: float = GAP_TURN_GATE_RAD_S,
+               bias_rad_s: np.ndarray | float | None = None) -> tuple[np.ndarray, np.ndarray]:
     """The lower back's turn over a span: its vertical rate (:func:`vertical_rate`) zeroed on the samples whose
-    |gyr| is under ``gate_rad_s``, and the running turn (rad, trapezoid, 0 at the first sample) at each sample."""
+    |gyr| is under ``gate_rad_s``, and the running turn (rad, trapezoid, 0 at the first sample) at each sample.
+    ``bias_rad_s`` (scalar or (n,)): the vertical-rate bias read at rest (W125 / W126), taken off the rate about
+    the span's vertical before the gate (decision L709: a bias over the gate would count as a turn)."""
     w = np.asarray(gyr, float)
+    if bias_rad_s is not None:  # decision L709
+        up = np.add.reduce(np.asarray(acc, float), axis=0)
+        n = float(np.sqrt(np.dot(up, up)))
+        if n > 0:
+            w = w - np.multiply.outer(np.broadcast_to(np.asarray(bias_rad_s, float), (len(w),)), up / n)
     rate = np.where(np.sqrt(np.add.reduce(w * w, axis=1)) >= gate_rad_s, vertical_rate(w, acc), 0.0)
     if len(t) < 2:
         return rate, np.zeros(len(t))
@@ -52,7 +59,10 @@ def missed_turn(waist_rad: float, foot_rad: float, min_deg: float, miss_deg: flo
 
 def fraction_times(t: np.ndarray, turn: np.ndarray, fractions: tuple[float, float] = GAP_TURN_FRACTIONS
                    ) -> tuple[float, float]:
-    """The first times (s) at which the running ``turn`` has gone ``fractions`` of its last value (L208)."""
+    """The first times (s) at which the running ``turn`` has gone ``fractions`` of its last value (L208); (nan, nan)
+    on an empty span (decision L709)."""
+    if not len(t):
+        return math.nan, math.nan
     total = float(turn[-1]) if len(turn) else 0.0
     if not total:
         return float(t[0]), float(t[-1])

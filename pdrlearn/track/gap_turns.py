@@ -16,6 +16,7 @@ import numpy as np
 
 from pdrlearn.kernels import gap_turn as KG
 from pdrlearn.track.clinical import TURN_COUNT_MIN_DEG
+from pdrlearn.waist.plausibility import STILL_YAW_RATE_WARN_RPS
 
 #: decisions L701 / L702: the columns of a track's ``info["waist_gap_turns"]`` records: the 5-95 % times of the lower
 #: back's gated turn over the gap, the heading's turn there (deg), the lower back's peak rate, L701's addition (deg)
@@ -32,13 +33,24 @@ def _span(stream: Callable[[str], tuple[np.ndarray, np.ndarray]], t0: float, t1:
     return tg[i0:i1], g[i0:i1], a[j0:j1]
 
 
+def setup_rest_bias(rest) -> float | None:
+    """Decision L709: the waist's vertical rate (rad/s) over its first standstill (W105's, ``rest[0]`` of
+    :func:`pdrlearn.waist.plausibility.waist_bias_check`) when W105 calls it a bias (over
+    ``STILL_YAW_RATE_WARN_RPS``), else None. Not W126's profile of every rest: a slow spin on the spot passes its
+    standstill mask, and its rate read as a bias would take the spin off."""
+    first = rest[0] if rest else None
+    if first is None or abs(first[0]) <= STILL_YAW_RATE_WARN_RPS:
+        return None
+    return float(first[0])
+
+
 def add_waist_gap_turns(fd, stream: Callable[[str], tuple[np.ndarray, np.ndarray]],
-                        min_deg: float = TURN_COUNT_MIN_DEG) -> list[dict]:
+                        min_deg: float = TURN_COUNT_MIN_DEG, bias_rad_s: float | None = None) -> list[dict]:
     """Decisions L701 / L702 (module docstring): ``fd`` (a fitted ``FootDisplacement`` with ``start_s_`` / ``end_s_``,
     ``yaw_change_``, ``gap_yaw_``) gains the lower back's missed turn in its gaps; ``stream(name)`` -> ``(t, values)``
     of the session's ``wGyroscope`` / ``wAccelerometer`` on the foot's clock; ``min_deg``: L104's
-    ``turn_count_min_deg``. Returns the gaps' records
-    (:data:`GAP_TURN_KEYS`)."""
+    ``turn_count_min_deg``; ``bias_rad_s``: the waist's vertical-rate bias (:func:`setup_rest_bias`), taken off
+    before the gate (decision L709); None: none. Returns the gaps' records (:data:`GAP_TURN_KEYS`)."""
     yc = np.asarray(getattr(fd, "yaw_change_", []), float)
     if len(yc) < 2:
         return []
@@ -53,12 +65,14 @@ def add_waist_gap_turns(fd, stream: Callable[[str], tuple[np.ndarray, np.ndarray
         if whole is None:
             continue
         t, g, a = whole
-        rate, turn = KG.gated_turn(t, g, a)
+        rate, turn = KG.gated_turn(t, g, a, bias_rad_s=bias_rad_s)
         added = KG.missed_turn(float(turn[-1]), float(gy[k] + yc[k]), min_deg)
         gy[k] += added
         if abs(gy[k]) < math.radians(min_deg):  # decision L702: a gap turning the heading 80 deg or more is a row
             continue
         gap = t <= s
+        if not gap.any():  # decision L709: a gap holding no lower-back sample is timed over the whole span
+            gap = np.ones(len(t), bool)
         t0, t1 = KG.fraction_times(t[gap], turn[gap])
         out.append(dict(zip(GAP_TURN_KEYS, (t0, t1, math.degrees(float(gy[k])),
                                             math.degrees(float(np.abs(rate[gap]).max())), math.degrees(added)),

@@ -105,7 +105,7 @@ from pdrlearn.track.gait import (
     stride_rows,
     turn_rows,
 )
-from pdrlearn.track.gap_turns import add_waist_gap_turns
+from pdrlearn.track.gap_turns import add_waist_gap_turns, setup_rest_bias
 from pdrlearn.track.gaps import (
     FOOT_IMU,
     drop_steps_across_gaps,
@@ -1560,7 +1560,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
 
     bridge_foot_yaw(fd, foot_gaps, (lambda n: (work.streams[n].t, work.streams[n].values)) if bridged else None)
     # decision L701: a rest gap takes the lower back's turn the foot's heading missed (a stepless turn on the spot)
-    gap_turns = add_waist_gap_turns(fd, lambda n: (work.streams[n].t, work.streams[n].values)) if has_waist else None
+    bias_line, rest = waist_bias_check(work) if has_waist else (None, None)  # decisions W125, W421 (read once)
+    gap_turns = add_waist_gap_turns(fd, lambda n: (work.streams[n].t, work.streams[n].values),
+                                    bias_rad_s=setup_rest_bias(rest)) if has_waist else None  # decision L709
     hsrc = heading or cfg["heading"]
     hard_iron_info, compass_info, mount_info = None, None, None
     if hsrc in ("waist", "fused") and not has_waist:
@@ -1581,7 +1583,6 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         if hsrc == "fused" and (HARD_IRON_FIT if hard_iron_fit is None else hard_iron_fit):  # decision L84
             hard_iron, hard_iron_info = fit_waist_hard_iron(work, strides, relative, keep=~in_gap)
         # decision L98: without a magnetometer the waist heading starts at initial_heading, as the docstring says
-        bias_line, rest = waist_bias_check(work)  # decisions W125, W421: the waist unit this heading turns by
         yaw_bias = rest[1] if bias_line and (waist_bias is None or bool(waist_bias)) else None
         warnings += [bias_removed(bias_line) if yaw_bias is not None else bias_line] if bias_line else []  # W422
         wh = WaistHeading(hard_iron_ut=hard_iron, initial_heading=initial_heading,
