@@ -43,7 +43,9 @@ def built(tmp_path_factory) -> dict:
     repository (as a clone is): ``{"src", "commit", "sdist", "wheel"}``."""
     src = tmp_path_factory.mktemp("pkg") / "src"
     src.mkdir()
-    for name in ("pyproject.toml", "README.md", "CHANGELOG.md", "LICENSE", "MANIFEST.in", "build_backend.py"):
+    # .gitignore as a clone has it: the build's own bytecode (__pycache__/) is no change to the tree (session 47)
+    for name in ("pyproject.toml", "README.md", "CHANGELOG.md", "LICENSE", "MANIFEST.in", "build_backend.py",
+                 ".gitignore"):
         if (ROOT / name).exists():
             shutil.copy2(ROOT / name, src / name)
     ignore = shutil.ignore_patterns("__pycache__", "*.pyc", ".hypothesis", "_build.json")
