@@ -22,13 +22,17 @@ GAP_TURN_MISS_DEG = 45.0
 GAP_TURN_FRACTIONS = (0.05, 0.95)
 
 
-def vertical_rate(gyr: np.ndarray, acc: np.ndarray) -> np.ndarray:
-    """(n,) the rate (rad/s, CCW) about the mean specific force ``acc`` (m, 3) of the span: the unit's vertical."""
+def _span_up(acc: np.ndarray) -> np.ndarray | None:
+    """The unit vector of the span's summed specific force ``acc`` (m, 3): the unit's vertical; None without one."""
     up = np.add.reduce(np.asarray(acc, float), axis=0)
     n = float(np.sqrt(np.dot(up, up)))
-    if not n > 0:
-        return np.zeros(len(gyr))
-    return np.asarray(gyr, float) @ (up / n)
+    return up / n if n > 0 else None
+
+
+def vertical_rate(gyr: np.ndarray, acc: np.ndarray) -> np.ndarray:
+    """(n,) the rate (rad/s, CCW) about the mean specific force ``acc`` (m, 3) of the span: the unit's vertical."""
+    up = _span_up(acc)
+    return np.zeros(len(gyr)) if up is None else np.asarray(gyr, float) @ up
 
 
 def gated_turn(t: np.ndarray, gyr: np.ndarray, acc: np.ndarray, *, gate_rad_s: float = GAP_TURN_GATE_RAD_S,
@@ -38,11 +42,9 @@ def gated_turn(t: np.ndarray, gyr: np.ndarray, acc: np.ndarray, *, gate_rad_s: f
     ``bias_rad_s`` (scalar or (n,)): the vertical-rate bias read at rest (W125 / W126), taken off the rate about
     the span's vertical before the gate (decision L709: a bias over the gate would count as a turn)."""
     w = np.asarray(gyr, float)
-    if bias_rad_s is not None:  # decision L709
-        up = np.add.reduce(np.asarray(acc, float), axis=0)
-        n = float(np.sqrt(np.dot(up, up)))
-        if n > 0:
-            w = w - np.multiply.outer(np.broadcast_to(np.asarray(bias_rad_s, float), (len(w),)), up / n)
+    up = None if bias_rad_s is None else _span_up(acc)
+    if up is not None:  # decision L709
+        w = w - np.multiply.outer(np.broadcast_to(np.asarray(bias_rad_s, float), (len(w),)), up)
     rate = np.where(np.sqrt(np.add.reduce(w * w, axis=1)) >= gate_rad_s, vertical_rate(w, acc), 0.0)
     if len(t) < 2:
         return rate, np.zeros(len(t))
