@@ -9,6 +9,7 @@ import pandas as pd
 from pdrlearn.cli.common import asymmetry_clause
 from pdrlearn.report.stairs_asymmetry import asymmetry_line
 from pdrlearn.track import labelled_asymmetry as la
+from tests.fakes import FakeWaistSession
 
 
 def _walk(step_s: float, n: int = 40, seed: int = 14940):
@@ -31,19 +32,9 @@ def test_a_childs_short_steps_give_no_index_but_a_standard_error_w532():
 
 
 def test_the_track_reason_console_and_clinical_line_say_why_and_name_gait_w532(monkeypatch):
-    class _Stream:
-        rate_hz = 100.0
-
-    class _Session:
-        streams = {"wAccelerometer": _Stream()}
-        meta = {}
-
-        def has(self, *names):
-            return True
-
     foot, waist = _walk(0.38)
     monkeypatch.setattr(la, "waist_ic_contacts", lambda session: waist)
-    out = la.track_asymmetry(_Session(), pd.DataFrame({"event_s": foot, "unit": "foot"}))
+    out = la.track_asymmetry(FakeWaistSession(), pd.DataFrame({"event_s": foot, "unit": "foot"}))
     assert out["step_time_asymmetry_pct"] is None
     reason = out["step_time_asymmetry_reason"]
     assert reason.startswith("not given: the foot's median step 0.380 s is under 0.45 s") and "W532" in reason

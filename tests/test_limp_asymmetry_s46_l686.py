@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from pdrlearn.track import labelled_asymmetry as la
+from tests.fakes import FakeWaistSession
 
 
 def _limp(step_s: float, lead: float, seed: int = 686):
@@ -60,19 +61,9 @@ def test_track_reason_names_it_l686(monkeypatch):
 
     foot, waist = _limp(0.7, 0.445)
 
-    class _Stream:
-        rate_hz = 100.0
-
-    class _Session:
-        streams = {"wAccelerometer": _Stream()}
-        meta = {}
-
-        def has(self, *names):
-            return True
-
     monkeypatch.setattr(la, "waist_ic_contacts", lambda session: waist)
     steps = pd.DataFrame({"event_s": foot, "unit": "foot"})
-    out = la.track_asymmetry(_Session(), steps)
+    out = la.track_asymmetry(FakeWaistSession(), steps)
     assert "decision L686" in out["step_time_asymmetry_reason"]
     assert "uncertain" in out["step_time_asymmetry_reason"]
     assert out["step_time_asymmetry_se_points"] > la.UNCERTAIN_SE_POINTS

@@ -10,12 +10,12 @@ import numpy as np
 import pytest
 
 from pdrlearn.io.plasys import write_session
-from pdrlearn.io.session import Stream
 from pdrlearn.kernels.rate_change import rate_changes
 from pdrlearn.runtime import Tracker, load_bundle
 from pdrlearn.runtime.__main__ import replay
 from pdrlearn.runtime.rate_watch import RateWatch
 from pdrlearn.sim.simulate import simulate
+from tests.fakes import slow_foot_from
 
 BUNDLE = Path(__file__).resolve().parents[1] / "models" / "plasys-sim-default"
 
@@ -27,14 +27,7 @@ def walks(tmp_path_factory):
     root = tmp_path_factory.mktemp("e309")
     sim = simulate("walk", 14650, rate_hz=100.0, seed=0, length_m=40.0)
     steady = write_session(sim, root / "steady")
-    for name in ("fAccelerometer", "fGyroscope"):
-        s = sim.streams[name]
-        late = s.t >= s.t[0] + 12.0
-        keep = ~late | (np.arange(len(s)) % 2 == 0)
-        v = s.values.copy()
-        nxt = np.vstack([v[1:], v[-1:]])
-        v[late & keep] = 0.5 * (v[late & keep] + nxt[late & keep])
-        sim.streams[name] = Stream(name, s.t[keep], v[keep])
+    slow_foot_from(sim)
     return steady, write_session(sim, root / "changed"), sim
 
 
@@ -64,14 +57,8 @@ def test_b461_the_changed_stretch_is_no_dropped_samples_live(walks, slow_first):
     streams = {n: sim.streams[n] for n in ("fAccelerometer", "fGyroscope")}
     if slow_first:  # the 100 Hz walk with every other sample of its first 12 s left out (each kept one its pair's mean)
         base = simulate("walk", 14650, rate_hz=100.0, seed=0, length_m=40.0)
-        for n in ("fAccelerometer", "fGyroscope"):
-            s0 = base.streams[n]
-            early = s0.t < s0.t[0] + 12.0
-            keep = ~early | (np.arange(len(s0)) % 2 == 0)
-            v = s0.values.copy()
-            nxt = np.vstack([v[1:], v[-1:]])
-            v[early & keep] = 0.5 * (v[early & keep] + nxt[early & keep])
-            streams[n] = Stream(n, s0.t[keep], v[keep])
+        slow_foot_from(base, slow_first=True)
+        streams = {n: base.streams[n] for n in ("fAccelerometer", "fGyroscope")}
     rates = {n: 100.0 for n in streams} if slow_first else None
     tracker = Tracker(load_bundle(BUNDLE), units=("foot",), sensors=list(streams), input_rates_hz=rates)
     t = streams["fAccelerometer"].t

@@ -12,6 +12,7 @@ from pdrlearn.io.plasys import write_session
 from pdrlearn.io.session import Stream
 from pdrlearn.kernels.rate_change import rate_changes
 from pdrlearn.sim.simulate import simulate
+from tests.fakes import slow_foot_from
 
 
 def _changed(rate0: float, rate1: float, at: float, end: float) -> np.ndarray:
@@ -75,14 +76,7 @@ def _pair_mean_walk(tmp_path):
     """B458's sessions: a 100 Hz walk whose foot unit runs at 50 Hz from 12 s on, each sample its pair's mean."""
     sim = simulate("walk", 2, rate_hz=100.0, seed=0, length_m=40.0)
     steady = write_session(sim, tmp_path / "steady")
-    for name in ("fAccelerometer", "fGyroscope"):
-        s = sim.streams[name]
-        late = s.t >= s.t[0] + 12.0
-        keep = ~late | (np.arange(len(s)) % 2 == 0)
-        v = s.values.copy()
-        nxt = np.vstack([v[1:], v[-1:]])
-        v[late & keep] = 0.5 * (v[late & keep] + nxt[late & keep])
-        sim.streams[name] = Stream(name, s.t[keep], v[keep])
+    slow_foot_from(sim)
     return steady, write_session(sim, tmp_path / "changed")
 
 

@@ -12,6 +12,7 @@ import pandas as pd
 import pytest
 
 from pdrlearn.track import labelled_asymmetry as la
+from tests.fakes import FakeWaistSession
 
 
 def _slow_walk(seed: int = 677):
@@ -53,19 +54,9 @@ def test_a_tight_lag_adds_nothing_l677():
 def test_track_calls_the_slow_walkers_index_uncertain_l677(monkeypatch):
     """The plasys track's reason of the slow walker's index carries L490's "uncertain" note (it did not before)."""
 
-    class _Stream:
-        rate_hz = 100.0
-
-    class _Session:
-        streams = {"wAccelerometer": _Stream()}
-        meta = {}
-
-        def has(self, *names):
-            return True
-
     foot, waist = _slow_walk()
     monkeypatch.setattr(la, "waist_ic_contacts", lambda session: waist)
-    out = la.track_asymmetry(_Session(), pd.DataFrame({"event_s": foot, "unit": "foot"}))
+    out = la.track_asymmetry(FakeWaistSession(), pd.DataFrame({"event_s": foot, "unit": "foot"}))
     assert out["step_time_asymmetry_pct"] is not None
     assert "uncertain" in out["step_time_asymmetry_reason"] and "L677" in out["step_time_asymmetry_reason"]
     assert out["step_time_asymmetry_se_points"] > la.UNCERTAIN_SE_POINTS
