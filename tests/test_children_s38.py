@@ -160,10 +160,11 @@ def test_uncalibrated_pll_warns_a_child_of_its_size_w405(tmp_path):
     from pdrlearn.sim import Stand, Straight, UserProfile, simulate_path
     from pdrlearn.track.units import keep_units
     from pdrlearn.track.waist import track_waist
-    from pdrlearn.waist.plausibility import pll_short_walker_message
+    from pdrlearn.waist.plausibility import short_walker_message
 
-    assert pll_short_walker_message({"height_m": 1.8}) is None and pll_short_walker_message({}) is None
-    assert "1.10 m" in pll_short_walker_message({"leg_length_m": 0.583})  # the height its leg implies (W115)
+    assert short_walker_message({"height_m": 1.8}, "waist-pll") is None
+    assert short_walker_message({}, "waist-pll") is None
+    assert "1.10 m" in short_walker_message({"leg_length_m": 0.583}, "waist-pll")  # the height its leg implies (W115)
     child = UserProfile.from_seed(9585).scaled(1.25, 0.62)
     child = dataclasses.replace(child, step_length_m=0.42, step_time_s=0.38)
     s = keep_units(simulate_path([Stand(2), Straight(12), Stand(2)], child, rate_hz=100, seed=9585), ("waist",))

@@ -68,3 +68,14 @@ def test_a_brisk_walkers_lower_back_track_says_no_flight_w538(tmp_path):
     assert summary["n_flight_phases"] == 0, summary["n_flight_phases"]
     assert not [ln for ln in summary["info"]["warnings"] if "flight phase" in ln]
     assert "waist" not in (out / "flights.csv").read_text()
+
+
+def test_a_step_period_of_0_4_s_read_just_under_it_is_no_run_r1_f4():
+    """Review R1 F4 (session 48): on a clock starting at 3.7 s the 40-sample lag reads 0.3999999999999915 s; W538's
+    "under 0.4 s" is a cadence over 150 steps/min, not float noise (before: 49 lower-back flights)."""
+    t, g = _bounce(step_s=0.4, amp_g=1.0)
+    t = t + 3.7
+    acc = _acc(g)
+    phases = flight_phases(t, acc)
+    assert len(phases) >= 40 and step_period_at(t, acc, phases[3]) < 0.4
+    assert unit_flights("waist", t, acc) == []

@@ -76,3 +76,21 @@ def test_a_biased_waist_keeps_a_slow_spin_and_its_row():
     row = rows[rows["n_rows"] == 0]
     assert len(row) == 1 and row["angle_deg"].iloc[0] == pytest.approx(-120, abs=30)  # main: no row
     assert summary["turn_count"] == 1 and summary["final_position_error_m"] < 1.5
+
+
+def test_waist_bias_false_keeps_the_gap_turns_bias_too_r1_f6(monkeypatch):
+    """Review R1 F6 (session 48): ``waist_bias`` false (``--params``) leaves the waist's rest bias on in the gap turns
+    as in the heading; the default takes it off (L709)."""
+    import pdrlearn.track.plasys as plasys
+
+    seen = []
+
+    def spy(fd, read, bias_rad_s=None):
+        seen.append(bias_rad_s)
+        return []
+
+    monkeypatch.setattr(plasys, "add_waist_gap_turns", spy)
+    s = _biased("stand:3, straight:4, stand:3", 15342, 3.0)
+    get_pipeline("plasys")(s)
+    get_pipeline("plasys")(s, waist_bias=False)
+    assert seen[0] is not None and seen[1] is None, seen

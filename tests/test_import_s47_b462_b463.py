@@ -65,3 +65,16 @@ def test_b463_no_acc_is_the_lower_backs_only(tmp_path, capsys):
     assert main(["import", str(gyro_only), "--no-acc", "--out", str(tmp_path / "s")]) != 0  # the default foot unit
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "--no-acc" in err[0] and "--unit waist" in err[0] and not (tmp_path / "s").exists()
+
+
+def test_b463_names_the_streams_it_would_write_r1_f5(tmp_path, capsys):
+    """Review R1 F5 (session 48): a magnetometer-only waist file is not called a gyroscope."""
+    n = 300
+    csv = tmp_path / "mag.csv"
+    pd.DataFrame({"Time_s": np.arange(n) / 100, **{f"Mag{a}_uT": np.full(n, 20.0) for a in "XYZ"}}).to_csv(csv,
+                                                                                                          index=False)
+    assert main(["import", str(csv), "--unit", "waist", "--mag", "MagX_uT,MagY_uT,MagZ_uT", "--out",
+                 str(tmp_path / "s")]) != 0
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "decision B463" in err[0], err
+    assert "write the magnetometer now" in err[0] and "gyroscope" not in err[0]

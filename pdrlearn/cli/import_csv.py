@@ -504,9 +504,12 @@ def _require_waist_acc(session, record: dict, csv: Path, no_acc: bool) -> None:
              else "no accelerometer columns recognised")
     unused = record.get("unused_columns") or []
     among = f" (unused columns: {', '.join(unused[:6])})" if unused else ""
+    from pdrlearn.io.sensors import SENSORS
+
+    kinds = " and ".join(SENSORS[n].kind if n in SENSORS else n for n in session.streams)  # review R1 F5 (session 48)
     raise DataError(f"{csv}: {found}, and every lower-back pipeline needs the waist accelerometer; nothing written: "
                     f"map them with --acc X,Y,Z{among} (with --acc-unit g | m/s2 | mg), or pass --no-acc to write "
-                    "the gyroscope now and add the accelerometer's own file with --acc X,Y,Z --merge (decision B463)")
+                    f"the {kinds} now and add the accelerometer's own file with --acc X,Y,Z --merge (decision B463)")
 
 
 def _write_parts(parts: list, csv: Path, unit: str, out: Path, force_frame: bool, as_json: bool) -> None:

@@ -72,7 +72,7 @@ def unit_flights(unit: str, t, acc) -> list[tuple[float, float]]:
     if unit != "waist":
         return phases
     return [p for p in phases
-            if p[1] - p[0] >= WAIST_JUMP_S - 1e-9 or step_period_at(t, acc, p) < RUN_STEP_S]
+            if p[1] - p[0] >= WAIST_JUMP_S - 1e-9 or step_period_at(t, acc, p) < RUN_STEP_S - 1e-9]  # R1 F4
 
 
 #: decision W416: each unit's accelerometer; a lower-back track reads the waist's (a pelvis in free fall reads ~0 g too)

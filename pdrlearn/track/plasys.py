@@ -1562,7 +1562,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     # decision L701: a rest gap takes the lower back's turn the foot's heading missed (a stepless turn on the spot)
     bias_line, rest = waist_bias_check(work) if has_waist else (None, None)  # decisions W125, W421 (read once)
     gap_turns = add_waist_gap_turns(fd, lambda n: (work.streams[n].t, work.streams[n].values),
-                                    bias_rad_s=setup_rest_bias(rest)) if has_waist else None  # decision L709
+                                    bias_rad_s=setup_rest_bias(rest) if waist_bias is None or bool(waist_bias)
+                                    else None) if has_waist else None  # decision L709 (R1 F6: --params waist_bias)
     hsrc = heading or cfg["heading"]
     hard_iron_info, compass_info, mount_info = None, None, None
     if hsrc in ("waist", "fused") and not has_waist:

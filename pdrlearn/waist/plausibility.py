@@ -902,7 +902,7 @@ PLL_SHORT_HEIGHT_M = 1.5
 DEFAULT_CADENCE_RANGES = {"waist-pll": (43.6, 50.3), "waist-pendulum": (-14.4, -0.8)}
 #: decision W533: uncalibrated distance error (%) of fresh simulated children (users 14970-14989: 1.15-1.45 m, step
 #: times 0.34-0.45 s, step lengths 0.30-0.50 m, bounce constant / pendulum, 30 m walks;
-#: experiments/children_waist_s47_w533.py, its results/children_waist_s47_w533.txt) by the band of their tracked
+#: experiments/children_waist_s47_w533.py, its results/children_waist_s47_w533.md) by the band of their tracked
 #: median step time: (band's lower bound s, upper bound s, {pipeline: (smallest, largest)}, children in the band)
 CHILD_STEP_BANDS = (
     (0.0, 0.38, {"waist-pll": (51.9, 100.7), "waist-pendulum": (-16.1, 29.9)}, 8),
@@ -955,8 +955,3 @@ def short_walker_message(meta: dict | None, pipeline: str, step_time_s: float | 
             "--out PARAMS.json', then --params PARAMS.json --pipeline waist-pendulum; decision W534); a "
             "waist-pll calibration on so short a walk counts its edge contacts into the step length (decision "
             "W393)")
-
-
-def pll_short_walker_message(meta: dict | None, step_time_s: float | None = None) -> str | None:
-    """Decision W405: :func:`short_walker_message` of waist-pll."""
-    return short_walker_message(meta, "waist-pll", step_time_s)
