@@ -42,3 +42,14 @@ def test_b467_a_16_g_foot_line_names_the_altitude_and_clip_noise():
     assert "B467" not in low and "-26.85 %" in low  # B453's measured cost, not B467's clause
     waist = saturation_warning("w.csv", "accelerometer", 6, 6878, 16 * G, "waist")
     assert "B467" not in waist and "clip_noise" not in waist
+
+
+def test_b466_track_all_keys_an_inline_json_by_its_text_t1_f5(tmp_path):
+    """Session 48, trial T1 F5: track-all's resume key read the inline JSON as a file name and stopped ("No such
+    file or directory"); the key is now the JSON's own text, a file's its bytes."""
+    from pdrlearn.cli.resume import session_keys
+
+    same, other = _write(tmp_path / "p.json", '{"clip_noise": true}'), _write(tmp_path / "q.json", '{"rest_s": 1}')
+    keys = [session_keys({}, [tmp_path], [{"params": p}], None)[0]
+            for p in ('{"clip_noise": true}', '{"clip_noise": false}', same, other)]
+    assert len(set(keys)) == 3 and keys[0] == keys[2]  # the same JSON, inline or in a file: the same key

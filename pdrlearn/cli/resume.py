@@ -67,9 +67,18 @@ def session_keys(options: dict, sessions: list[Path], settings: list[dict], mode
     keys = []
     for folder, st in zip(sessions, settings, strict=True):
         params = st.get("params")
-        par = None if params is None else hashlib.sha256(Path(params).read_bytes()).hexdigest()
+        par = None if params is None else hashlib.sha256(_params_bytes(params)).hexdigest()
         keys.append(_digest({**base, "params_sha256": par, "session": str(Path(folder).resolve())}))
     return keys
+
+
+def _params_bytes(params) -> bytes:
+    """What a ``--params`` value's output depends on: the file's bytes, or the JSON object given inline (decision
+    B466; trial T1 F5 of session 48: track-all read the inline JSON as a file name and stopped)."""
+    from pdrlearn.cli.track import _is_file
+
+    text = str(params).strip()
+    return text.encode() if text.startswith("{") and not _is_file(params) else Path(params).read_bytes()
 
 
 def write_record(file: Path, key: str, inputs: dict, value: dict, *, outputs: Path | None = None) -> dict:
