@@ -136,6 +136,18 @@ def read_json(path):
     return parse_json(read_text(path))
 
 
+def is_inline_json(value) -> bool:
+    """Decision B466: a ``--params`` value that names no existing file and starts with ``{`` is the JSON object
+    itself (``--params '{"clip_noise": true}'``); a file of that name still wins. A name the system cannot look up
+    (a component over 255 bytes: an inline object longer than that, review R1 finding 2 of session 47) is no file."""
+    if value is None or not str(value).strip().startswith("{"):
+        return False
+    try:
+        return not Path(value).exists()
+    except OSError:
+        return True
+
+
 def header_names(head: str) -> list[str]:
     """The column names of a comma-separated header line as every reader matches them: surrounding spaces
     dropped, case folded (decision B222: ``TIMESTAMP,X`` is ``timestamp,x`` for the full reader, this one and

@@ -53,3 +53,14 @@ def test_b466_track_all_keys_an_inline_json_by_its_text_t1_f5(tmp_path):
     keys = [session_keys({}, [tmp_path], [{"params": p}], None)[0]
             for p in ('{"clip_noise": true}', '{"clip_noise": false}', same, other)]
     assert len(set(keys)) == 3 and keys[0] == keys[2]  # the same JSON, inline or in a file: the same key
+
+
+def test_b466_the_lower_back_reads_inline_json_too_t2_f10():
+    """Session 48, trial T2 F10: ``track --units waist --params '{...}'`` said "parameter file not found"."""
+    from pdrlearn.waist.params import load_params
+
+    assert load_params('{"options": {"freeze_veto": true}}').options == {"freeze_veto": True}
+    with pytest.raises(DataError, match=r"not a file, and not a JSON object either"):
+        load_params('{"options": tru}')
+    with pytest.raises(DataError, match="waist parameters must be a JSON object|unknown key"):
+        load_params('{"clip_noise": true}')

@@ -75,10 +75,9 @@ def session_keys(options: dict, sessions: list[Path], settings: list[dict], mode
 def _params_bytes(params) -> bytes:
     """What a ``--params`` value's output depends on: the file's bytes, or the JSON object given inline (decision
     B466; trial T1 F5 of session 48: track-all read the inline JSON as a file name and stopped)."""
-    from pdrlearn.cli.track import _is_file
+    from pdrlearn.textfile import is_inline_json
 
-    text = str(params).strip()
-    return text.encode() if text.startswith("{") and not _is_file(params) else Path(params).read_bytes()
+    return str(params).strip().encode() if is_inline_json(params) else Path(params).read_bytes()
 
 
 def write_record(file: Path, key: str, inputs: dict, value: dict, *, outputs: Path | None = None) -> dict:

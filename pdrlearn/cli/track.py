@@ -31,7 +31,7 @@ from pdrlearn.cli.common import (
 )
 from pdrlearn.cli.registry_help import LENGTH_NAMES
 from pdrlearn.errors import DataError
-from pdrlearn.textfile import read_json
+from pdrlearn.textfile import is_inline_json, read_json
 
 #: The tracking options, shared by ``track`` and ``track-all`` (one declaration each, so the two commands
 #: cannot drift apart). ``--gnss``/``--fixes`` are per-recording files and belong to ``track`` only.
@@ -805,22 +805,13 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "length_reference": length_reference}  # decision C126
 
 
-def _is_file(path) -> bool:
-    """Whether ``path`` names an existing file; False for a name the system cannot look up (a component over 255
-    bytes: an inline JSON object longer than that, review R1 finding 2 of session 47)."""
-    try:
-        return Path(path).exists()
-    except OSError:
-        return False
-
-
 def read_params(params: Path):
     """The parsed ``--params`` JSON (a calibration file of ``pdrlearn calibrate`` or plasys settings), read once per
     file; one error line naming the file when it cannot be read. Decision B466: a value that is no file and starts
     with ``{`` is the JSON object itself (``--params '{"clip_noise": true}'``)."""
     try:
         text = str(params).strip()
-        if text.startswith("{") and not _is_file(params):  # decision B466: the JSON itself, inline
+        if is_inline_json(params):  # decision B466: the JSON itself, inline
             try:
                 par = json.loads(text)
             except json.JSONDecodeError as exc:

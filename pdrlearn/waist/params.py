@@ -17,7 +17,7 @@ import numpy as np
 from pdrlearn.errors import DataError
 from pdrlearn.io import Session
 from pdrlearn.settings import Rule, broken, broken_line
-from pdrlearn.textfile import read_json
+from pdrlearn.textfile import is_inline_json, parse_json, read_json
 
 SCHEMA = "pdrlearn.waist-params/1"
 DEFAULT_HEIGHT_M = 1.70  # used only when meta.json gives no height (a warning says so)
@@ -220,6 +220,14 @@ def load_params(params) -> WaistParams | None:
         return params
     if isinstance(params, dict):
         return WaistParams.from_dict(params)
+    if is_inline_json(params):  # decision B466 (trial T2 F10 of session 48: the lower back read it as a file name)
+        text = str(params).strip()
+        try:
+            d = parse_json(text)
+        except json.JSONDecodeError as exc:
+            raise DataError(f"--params {text}: not a file, and not a JSON object either ({exc.msg} at character "
+                            f"{exc.pos}); pass a file, or quote the JSON") from None
+        return WaistParams.from_dict(d, where=f"--params {text}")
     p = Path(params)
     if not p.is_file():
         raise DataError(f"{p}: parameter file not found; write one with 'pdrlearn calibrate'")
