@@ -97,17 +97,29 @@ class TrailingSeries:
         self._a += int(np.searchsorted(self._t[self._a:self._b], cut, side="right"))
 
 
-def trailing_period(t: np.ndarray, w: np.ndarray) -> float:
+#: decision L715 (session 48, review R1 F1; measured, NOT adopted: its rule's distance clause failed, 0.57 % mean
+#: |distance error| for L698's 0.40 %): the streamed segmenter cuts the rhythm's series at a gap in the foot's OWN
+#: samples (``StanceSegmenter.foot_gap_end``) instead of at any hole in the series (L698), which also cuts at the hole a
+#: stand leaves (L696) and brings a limping walk's lull fragments back after every stand; True = the candidate
+STREAMED_FOOT_GAP_CUT = False
+
+
+def trailing_period(t: np.ndarray, w: np.ndarray, since: float | None = None) -> float:
     """Decision L684: :func:`stride_period` of the trailing samples ``t (n,)`` s, ``w (n,)`` (the foot's |w| window
     mean) kept by a streamed segmenter, the longest lag searched cut to half of what they hold (a walk's first
     seconds); the rate is their median rate, so a gap in them (dropped samples, a restart) neither stretches the lags
     nor that cut; the first peak near the highest (decision L697). Decision L698: only the samples after the last
     interval longer than the shortest period searched (a foot gap loses the phase of every period; joined, its two
-    sides read a multiple of the period). NaN when they hold under two of the shortest periods."""
+    sides read a multiple of the period). Decision L715's candidate (``since`` given): only the samples at or after
+    ``since``, the end of the foot's own last gap; a hole in ``t`` alone (a stand L696 leaves out) is read through.
+    NaN when they hold under two of the shortest periods."""
     t, w = np.asarray(t, dtype=float), np.asarray(w, dtype=float)
-    hole = np.flatnonzero(np.diff(t) > PERIOD_RANGE_S[0])
-    if len(hole):
-        t, w = t[hole[-1] + 1:], w[hole[-1] + 1:]
+    if since is None:
+        hole = np.flatnonzero(np.diff(t) > PERIOD_RANGE_S[0])
+        k = hole[-1] + 1 if len(hole) else 0
+    else:
+        k = int(np.searchsorted(t, since))
+    t, w = t[k:], w[k:]
     if len(t) < 3:
         return float("nan")
     dt = float(np.median(np.diff(t)))

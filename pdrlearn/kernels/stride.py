@@ -159,7 +159,8 @@ class StanceSegmenter:
     since L696). Decision L696: the means are the walk's - a standing stance's samples (after it closed its stride
     early) join them only while no stride was returned in that window (a stand between walking bouts would make the
     bouts' repetition read as the period; a stand before the walk gives its first seconds their span); L697 / L698:
-    the period is the first autocorrelation peak near the highest, read after the last foot gap.
+    the period is the first autocorrelation peak near the highest, read after the last foot gap (L715's candidate, not
+    adopted: after the foot's own last gap, :attr:`foot_gap_end`, not the hole a stand leaves in the means).
     """
 
     def __init__(self, *, stance_gyro_rad_s: float = 0.8, min_stance_s: float = 0.1, stance_half_s: float = 0.3,
@@ -204,6 +205,8 @@ class StanceSegmenter:
         self.open_s: float | None = None  # start (s) of the stride in progress
         self.last_boundary: float | None = None
         self.walked_s = -np.inf  # decision L696: the end (s) of the last stride returned
+        self.last_t = -np.inf  # decision L715: the last sample's time (s)
+        self.foot_gap_end = -np.inf  # decision L715: the first sample (s) after the foot's last gap over 0.5 s
         self.prev_stance_end: float | None = None  # decision L120: the last stance's last still sample (s)
         self.moved = False  # decision L120: a sample since the last still one was not still
         self.run_start = -np.inf  # decision L120: the start (s) of the stance's current still run
@@ -240,6 +243,9 @@ class StanceSegmenter:
     def _push(self, ti: float, wi: float) -> tuple[float, float]:
         """Add one sample to the trailing window; its mean of |w| and the sample's stance threshold (decision
         L27: trailing floor; state carried across calls, so nothing depends on how the stream is chunked)."""
+        if ti - self.last_t > FR.PERIOD_RANGE_S[0]:  # L715's candidate: a hole in the foot's own samples (L698's 0.5 s)
+            self.foot_gap_end = ti
+        self.last_t = ti
         mq = self._mean_q
         mq.append([ti, wi, self.thr])
         self._mean_sum += wi
@@ -362,7 +368,8 @@ class StanceSegmenter:
         t, m = self._rhythm.arrays()
         if len(t) < 3:
             return 0.0
-        period = FR.trailing_period(t, m)
+        since = self.foot_gap_end if FR.STREAMED_FOOT_GAP_CUT else None  # L715's candidate: the foot's own gap
+        period = FR.trailing_period(t, m, since)
         return self.rhythm_frac * period if FR.min_rest_s(period, min_run) > 0 else 0.0  # where L597 acts
 
     def _keep_run(self) -> None:
