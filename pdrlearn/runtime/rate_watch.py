@@ -63,7 +63,8 @@ class RateWatch:
 
     def push(self, arrays: dict, fast: dict | None = None) -> list[str]:
         """One push (``arrays`` name -> ``(t, values)``, ``fast`` name -> one ``(t, values)`` sample, as
-        :class:`~pdrlearn.runtime.clip_watch.ClipWatch`); the lines of the changes the blocks it closes show."""
+        :class:`~pdrlearn.runtime.clip_watch.ClipWatch`); the lines of the changes now due (decision E310: held until
+        every stream judged the change's blocks)."""
         found: list[tuple[str, float, float, float, int]] = []
         for name, items in self.items.items():
             f = fast.get(name) if fast else None
