@@ -42,12 +42,14 @@ def test_without_toe_off_no_stance_is_invented_c195(tmp_path):
 
 
 def test_lower_back_track_has_no_spatiotemporal_line_c195(tmp_path):
-    summary = {"pipeline": "waist-pll", "gait_speed_mps": 1.66, "median_stride_length_m": None,
+    # what an uncalibrated lower-back track writes since W537: its stride length (the height model's, C197)
+    summary = {"pipeline": "waist-pll", "gait_speed_mps": 1.66, "median_stride_length_m": 1.19,
+               "info": {"params_source": "defaults"},
                "stride_time_cv_withheld": {"cause": "lower_back", "reason": "x"},
                "leg_length_m": 0.68, "leg_length_source": "meta.json leg_length_m"}
     lines = _lines(tmp_path, **summary)
     assert _line(lines, "- Spatiotemporal") is None, lines
-    # decision C196: an uncalibrated lower-back speed is the height model's, not normalised; nothing else measured
+    # decisions C196, C197: an uncalibrated lower-back speed and stride length are the height model's, not normalised
     assert _line(lines, "- Leg-length normalised") is None, lines
 
 

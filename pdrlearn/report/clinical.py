@@ -279,12 +279,13 @@ def clinical_lines(summary: dict, folder: Path) -> list[str]:
     speed = gait_speed_line(summary, unit)
     if speed:
         lines.append(speed)
-    walking = walking_line(summary, folder, unit, distance_given=unit != "lower-back unit" or _calibrated(summary)
+    own = unit != "lower-back unit" or _calibrated(summary)  # W446, C197: the wearer's step length, not the model's
+    walking = walking_line(summary, folder, unit, distance_given=own
                            or (summary.get("gait_speed_mps") or 0.0) >= VALIDATED_MIN_MPS)  # W515, W446
     if walking:
         lines.append(walking)
-    lines += [x for x in (spatiotemporal_line(summary, unit),  # decision C195
-                          _normalised(summary, unit, speed is not None)) if x]  # decision C196
+    lines += [x for x in (spatiotemporal_line(summary, unit, stride_given=own),  # decisions C195, C197
+                          _normalised(summary, unit, speed is not None and own, own)) if x]  # decisions C196, C197
     lines += [x for x in (stairs_line(summary, folder, unit), asymmetry_line(summary, unit)) if x]  # decision C190
     lines += travel_lines(summary, folder, unit)  # decision L582: backward / side strides, turns
     lines += daily_living_lines(summary, folder)
@@ -294,12 +295,12 @@ def clinical_lines(summary: dict, folder: Path) -> list[str]:
     return lines
 
 
-def _normalised(summary: dict, unit: str, speed_given: bool) -> str | None:
-    """Decision C196: a track's leg-length-normalised line: the gait speed only when its line gives it (W446) and
-    it is a foot unit's or a calibrated lower back's (an uncalibrated one is the height model's, not the walker's);
-    the median stride length (foot only)."""
-    trusted = speed_given and (unit != "lower-back unit" or _calibrated(summary))
-    return normalised_line(summary.get("gait_speed_mps") if trusted else None, summary.get("median_stride_length_m"),
+def _normalised(summary: dict, unit: str, speed_given: bool, stride_given: bool) -> str | None:
+    """Decisions C196, C197: a track's leg-length-normalised line: the gait speed when its line gives it (W446) and
+    the median stride length, each only when ``*_given`` says it is a foot unit's or a calibrated lower back's (an
+    uncalibrated one is the height model's step length, not the walker's)."""
+    return normalised_line(summary.get("gait_speed_mps") if speed_given else None,
+                           summary.get("median_stride_length_m") if stride_given else None,
                            measured_leg(summary.get("leg_length_m"), summary.get("leg_length_source")), unit)
 
 

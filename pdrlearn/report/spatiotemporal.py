@@ -31,14 +31,16 @@ def _cv_text(summary: dict) -> str | None:
     return f"stride-time CV not given ({str(cause).replace('_', ' ')})" if cause else None
 
 
-def spatiotemporal_line(summary: dict, unit: str) -> str | None:
+def spatiotemporal_line(summary: dict, unit: str, stride_given: bool = True) -> str | None:
     """Decision C195: ``- Spatiotemporal: stride length 0.82 m, stance 59.1 % / swing 40.9 % of the stride,
     stride-time CV 1.8 % (10 strides) (foot unit; ...)`` from a track's summary.json: the median stride length
-    (foot), the median stance share (``--toe-off``; swing is its complement, the same strides' median), the
-    stride-time CV or why it is withheld. None when the track measured none of the three (a lower-back track:
-    no stride length, stance or CV, L104). One foot has no double support: that needs two feet (`pdrlearn gait`)."""
+    (foot; decision C197: a lower back's, W537, only when ``stride_given``, i.e. calibrated), the median stance
+    share (``--toe-off``; swing is its complement, the same strides' median), the stride-time CV or why it is
+    withheld. None when the track measured none of the three (an uncalibrated lower-back track: its stride length
+    is the height model's, no stance or CV, L104). One foot has no double support: that needs two feet (`pdrlearn
+    gait`)."""
     parts = []
-    stride = _number(summary.get("median_stride_length_m"))
+    stride = _number(summary.get("median_stride_length_m")) if stride_given else None
     if stride is not None:
         parts.append(f"stride length {stride:.2f} m")
     stance = _number(summary.get("median_stance_pct"))

@@ -5,8 +5,9 @@ fed the same 1 s blocks of each stream's own time.
 A block is judged when the stream has a sample at or after its end (that sample closes its last interval, as the
 offline blocks' intervals run from each sample to the next; each stream a fraction of a block later than the one
 before, so that one push does not judge every stream's block) and at :meth:`RateWatch.flush` on what it holds. Each
-change is said once, in one line for the streams that changed the same way in one push, and kept in
-:attr:`RateWatch.changes` (``Tracker.rate_changes``). Per push: a list append and a comparison per stream; per
+change is said once, in one line for the streams that changed the same way (decision E310: the line is held until
+every other stream has judged its blocks up to the change's block, at most :data:`HOLD_BLOCKS` blocks more), and kept
+in :attr:`RateWatch.changes` (``Tracker.rate_changes``). Per push: a list append and a comparison per stream; per
 block: one median. Memory: the open block and the last :data:`KEPT_BLOCKS` blocks' times per stream (for the time
 of the change, B457's step back).
 """
@@ -22,6 +23,10 @@ from pdrlearn.kernels.rate_change import BLOCK_S, STRETCH_BLOCKS, RateLevels, ch
 
 #: the blocks kept for B457's step back to the change's first sample: the new stretch's and as many before it
 KEPT_BLOCKS = 2 * STRETCH_BLOCKS + 2
+
+#: decision E310: a held line is said at the latest when its first stream has closed this many further blocks (the
+#: other streams' blocks lag by less than one block each, RateWatch.lag; a stream that stopped does not hold it)
+HOLD_BLOCKS = 2
 
 #: decision E230 / B64: an interval over this many periods encloses dropped samples
 DROP_FACTOR = 1.5
@@ -52,10 +57,14 @@ class RateWatch:
         self.excess: dict[str, int] = dict.fromkeys(self.items, 0)
         #: decision B461: (stream, time of the change s, new period s, intervals to take back out) of the last push
         self.new: list[tuple[str, float, float, int]] = []
+        #: decision E310: the changes found and not yet said, each ``{"key", "streams", "end", "by"}``: ``end`` (s) the
+        #: end of the block of stream ``by`` that showed it, which every other stream is to have judged first
+        self.held: list[dict] = []
 
     def push(self, arrays: dict, fast: dict | None = None) -> list[str]:
         """One push (``arrays`` name -> ``(t, values)``, ``fast`` name -> one ``(t, values)`` sample, as
-        :class:`~pdrlearn.runtime.clip_watch.ClipWatch`); the lines of the changes the blocks it closes show."""
+        :class:`~pdrlearn.runtime.clip_watch.ClipWatch`); the lines of the changes now due (decision E310: held until
+        every stream judged the change's blocks)."""
         found: list[tuple[str, float, float, float, int]] = []
         for name, items in self.items.items():
             f = fast.get(name) if fast else None
@@ -76,16 +85,16 @@ class RateWatch:
         if not found:  # the common push: no block closed with a change
             if self.new:
                 self.new = []
-            return found
+            return self._said() if self.held else found
         return self._lines(found)
 
     def flush(self) -> list[str]:
-        """The end of the streams: each open block judged on what it holds."""
+        """The end of the streams: each open block judged on what it holds, every held line said."""
         found: list[tuple[str, float, float, float, int]] = []
         for name in self.items:
             if name in self.start:
                 found += self._close(name, final=True)
-        return self._lines(found)
+        return self._lines(found, final=True)
 
     def _close(self, name: str, final: bool = False) -> list[tuple[str, float, float, float, int]]:
         """The blocks the stream's samples so far close (all at ``final``), each judged by the levels."""
@@ -121,24 +130,40 @@ class RateWatch:
             return 0
         return int(np.count_nonzero((d > self.limit(name)) & (d <= min(DROP_FACTOR * period, MIN_GAP_S))))
 
-    def _lines(self, found: list[tuple[str, float, float, float, int]]) -> list[str]:
-        """One line per change (to 0.1 s and the rates' 4 digits, as read_session groups them) for the streams of
-        ``found``; a stream whose change was said in an earlier push joins that change quietly."""
-        groups: dict[tuple, list[str]] = {}
+    def _lines(self, found: list[tuple[str, float, float, float, int]], final: bool = False) -> list[str]:
+        """Decision E310: the changes of ``found`` (keyed to 0.1 s and the rates' 4 digits, as read_session groups
+        them) join the held line of the same change or start one; a stream whose change was already said joins it
+        quietly. Then the held lines that are due (:meth:`_said`)."""
         self.new = [(name, t_s, 1.0 / b, n) for name, t_s, _, b, n in found]
         for name, t_s, a, b, _ in found:
             key = (round(t_s, 1), f"{a:.4g}", f"{b:.4g}")
-            said = next((c for c in self.changes if c["key"] == key), None)
-            if said is not None:
-                said["streams"].append(name)
+            group = next((c for c in (*self.held, *self.changes) if c["key"] == key), None)
+            if group is not None:
+                group["streams"].append(name)
+            else:
+                self.held.append({"key": key, "streams": [name], "end": self._judged(name), "by": name})
+        return self._said(final)
+
+    def _judged(self, name: str) -> float:
+        """The time (s) up to which the stream's blocks are judged: the start of its open block."""
+        return self.start[name] + self.k[name] * BLOCK_S
+
+    def _said(self, final: bool = False) -> list[str]:
+        """Decision E310: one line per held change that every other stream seen has judged up to (its blocks to the
+        held block's end), whose first stream closed :data:`HOLD_BLOCKS` blocks since, or at ``final``; each kept in
+        :attr:`changes`."""
+        lines, held = [], []
+        for g in self.held:
+            due = final or self._judged(g["by"]) >= g["end"] + HOLD_BLOCKS * BLOCK_S or all(
+                self._judged(n) >= g["end"] - 1e-9 for n in self.start if n not in g["streams"])
+            if not due:
+                held.append(g)
                 continue
-            groups.setdefault(key, []).append(name)
-        lines = []
-        for key, names in groups.items():
-            t_s, a, b = key
-            self.changes.append({"key": key, "streams": names, "t_s": t_s, "before_hz": float(a),
+            t_s, a, b = g["key"]
+            self.changes.append({"key": g["key"], "streams": g["streams"], "t_s": t_s, "before_hz": float(a),
                                  "after_hz": float(b)})
-            lines.append(f"{change_text(names, [key])}: {LIVE_TAIL}")
+            lines.append(f"{change_text(g['streams'], [g['key']])}: {LIVE_TAIL}")
+        self.held = held
         return lines
 
 
