@@ -77,7 +77,8 @@ def live_options(p, warnings: list[str], **given) -> dict:
 
     given = {"realtime": True, "heading": "gyro", "refine_ic": None, "initial_heading": None, "resolve_signs": None,
              "integrate_stops": None, "turn_factor": None, "rhythm": None, "merge_fragments": None,
-             "length_smoothing": None, "slow_turn_rps": None, "gentle_curves": None, "pivot_steps": None, "stairs_length": None,
+             "length_smoothing": None, "slow_turn_rps": None, "gentle_curves": None, "pivot_steps": None,
+             "stairs_length": None,
              "pause_steps": None, "realtime_contact_shift": None,
              "freeze_index": None,  # W216: `run` computes the lower back's freeze index after the track, opt-in
              "pause_ride": None, "rest_bias": None,  # decisions E146, L308: a bundle's options
@@ -287,7 +288,8 @@ class WaistTracker(WaistStream):
                  height_m: float | None = None, frame=None, start=None, initial_heading: float | None = None,
                  integrate_stops: bool | None = None, turn_factor: bool | None = None, rhythm: bool | None = None,
                  merge_fragments: bool | None = None, slow_turn_rps: float | None = None,
-                 gentle_curves: bool | None = None, keep_steps: int | None = None, check_input: bool = True, sides: bool = False,
+                 gentle_curves: bool | None = None, keep_steps: int | None = None, check_input: bool = True,
+                 sides: bool = False,
                  pivot_steps: bool | None = None, pause_steps: bool | str | None = None):
         from pdrlearn.io.session import Session
         from pdrlearn.track.waist import _start
