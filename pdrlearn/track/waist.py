@@ -930,7 +930,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         so gentle curves are kept (decision W82; 0.035 tested, not the default: it failed its rule on sharp turns
         by 0.01 m); 0 (default) = seed 003's classifier alone
     gentle_curves : gyro heading: a step in a run of three strides whose mean vertical rate keeps its sign and
-        reaches 1.5 deg/s, and that seed 003 leaves out, adds its stride's mean rate over the step (decision W543)
+        reaches 1.5 deg/s, and that seed 003 leaves out, adds its stride's mean rate over the step (decision W543;
+        default True, adopted by its rule; False = seed 003's classifier alone)
     max_tilt_deg : a contact made while the trunk is tilted more than this (deg) from the session's walking upright is
         no step, and the step before it ends its sequence (decision W102, :mod:`pdrlearn.waist.posture`; sit-to-stand,
         bending); None (default) = no tilt gate

@@ -36,6 +36,7 @@ import logging
 
 import numpy as np
 
+from pdrlearn.decision_refs import decision_ref
 from pdrlearn.errors import DataError
 from pdrlearn.runtime.waist import FRAGMENT_CONTEXT_STEPS, LOOKAHEAD_ROWS, LiveStep, WaistStream
 
@@ -106,8 +107,8 @@ def live_options(p, warnings: list[str], **given) -> dict:
     asked = (p.options or {}).get("heading")
     if asked not in (None, "gyro"):  # decision W82: no silent override of the PARAMS.json heading
         warnings.append(f"the PARAMS.json option heading '{asked}' is not available live: the live tracker uses "
-                        "the gyro heading, which drops gentle curves unless the option slow_turn_rps is set "
-                        "(0.035, decision W82)")
+                        "the gyro heading, which keeps gentle curves only as runs of strides over 1.5 deg/s; the "
+                        f"option slow_turn_rps 0.035 adds slower ones ({decision_ref('W543', 'W82')})")
     return o
 
 
