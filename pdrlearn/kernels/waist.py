@@ -12,6 +12,7 @@ import functools
 
 import numpy as np
 
+from pdrlearn.decision_refs import decision_ref
 from pdrlearn.errors import DataError
 from pdrlearn.kernels import dsp
 from pdrlearn.kernels.nearest import nearest_distance
@@ -2138,9 +2139,43 @@ def slow_turn_strides(mrz: np.ndarray, threshold_rps: float | None) -> np.ndarra
     return np.abs((c[hi] - c[lo]) / (hi - lo)) >= threshold_rps
 
 
+#: Decision W543: a gentle curve is a run of at least this many consecutive strides of a sequence whose stride mean
+#: vertical rate (MRZ, seed 003 sec. 3.3) keeps its sign and reaches :data:`GENTLE_RPS` in magnitude
+GENTLE_RUN = 3
+#: Decision W543: the least |MRZ| (rad/s, 1.5 deg/s) of a gentle-curve stride: under seed 003's straight class
+#: (W7 prior N(0.03, 0.04), boundary 0.136 rad/s), a 50 m radius walked at 1.3 m/s
+GENTLE_RPS = 0.026
+#: Decision W543: the gyro heading keeps gentle curves by default (adopted by its rule: users 15580-15619, gentle
+#: curves' mean final error 86.536 -> 7.866 m, sharp turns and straight walks unchanged, a 0.5 deg/s bias +0.103 m)
+GENTLE_CURVES = True
+
+
+def gentle_curve_strides(mrz: np.ndarray, integrated: np.ndarray, *, run: int = GENTLE_RUN,
+                         rps: float = GENTLE_RPS) -> np.ndarray:
+    """Decision W543: the steps of a gentle curve that seed 003's integration leaves out. Step ``k`` qualifies when
+    it is not ``integrated``, neither is the other step of its stride window (step ``k-1``; step 1 for the first,
+    W24), and a run of ``run`` consecutive strides holding ``k`` and ending at ``k`` or ``k+1`` (one stride of
+    look-ahead, as W82's window: the live tracker knows it, W64) all have ``|mrz| >= rps`` with ``mrz[k]``'s sign."""
+    x = np.nan_to_num(np.asarray(mrz, np.float64))
+    done = np.asarray(integrated, dtype=bool)
+    n = x.size
+    q = np.where(np.abs(x) >= rps, np.sign(x), 0.0)
+    out = np.zeros(n, dtype=bool)
+    for k in range(n):
+        other = k - 1 if k > 0 else 1
+        if q[k] == 0 or done[k] or (other < n and done[other]):
+            continue
+        for a in (k - run + 1, k - run + 2):  # the windows holding k that end at k or k + 1
+            b = a + run
+            if a >= 0 and b <= n and np.all(q[a:b] == q[k]):
+                out[k] = True
+                break
+    return out
+
+
 def gyro_headings(t: np.ndarray, w_z: np.ndarray, events: np.ndarray, *, predict,
                   bias_rps: float = 0.0, heading0: float = 0.0, cum: np.ndarray | None = None,
-                  slow_turn_rps: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+                  slow_turn_rps: float = 0.0, gentle_curves: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """Per-step heading from the vertical gyroscope, integrated only over turning strides
     (seed 003 sec. 3.3).
 
@@ -2149,6 +2184,8 @@ def gyro_headings(t: np.ndarray, w_z: np.ndarray, events: np.ndarray, *, predict
     integrated over the steps classified as turning and over the step before and after each of them
     (seed 003: "integrate two straight steps occurring before and after a curved walking step"), and over
     the strides of a gentle curve when ``slow_turn_rps`` > 0 (:func:`slow_turn_strides`, decision W82).
+    ``gentle_curves`` (decision W543): the steps of a run of same-sign strides (:func:`gentle_curve_strides`) that
+    are not integrated add their stride's mean rate times their duration (the stride mean holds no pelvic swing).
     ``cum``: :func:`rate_integral` of ``(t, w_z - bias_rps)`` when the
     caller integrates the same rate over many sequences (one pass over the recording, W43).
 
@@ -2167,13 +2204,17 @@ def gyro_headings(t: np.ndarray, w_z: np.ndarray, events: np.ndarray, *, predict
     integrate = turning.astype(bool).copy()
     integrate[1:] |= turning[:-1].astype(bool)
     integrate[:-1] |= turning[1:].astype(bool)
+    gentle = gentle_curve_strides(mrz, integrate) if gentle_curves else np.zeros(n, dtype=bool)  # W543
     integrate |= slow_turn_strides(mrz, slow_turn_rps)  # W82, off by default
     dpsi = integrate_rate(t, w, ev[:-1], ev[1:], cum=cum)
+    gentle_dpsi = np.nan_to_num(mrz) * np.diff(ev)  # W543: the stride's mean rate over the step
     heading = np.empty(n)
     h = heading0
     for k in range(n):
         if integrate[k]:
             h += dpsi[k]
+        elif gentle[k]:
+            h += gentle_dpsi[k]
         heading[k] = h
     return heading, turning
 
@@ -2194,7 +2235,8 @@ def untracked_turn_message(diff_deg: float, t_s: float, integrate_stops: bool) -
     cause = ("turns made during undetected steps or while standing are dropped with integrate_stops off: set "
              "\"options\": {\"integrate_stops\": true} in the PARAMS.json (or integrate_stops=True)"
              if not integrate_stops else
-             "a turn on strides the turn classifier called straight (a gentle curve, under 8 deg/s: decision W82) "
+             "a turn on strides the turn classifier called straight (a gentle curve under 8 deg/s that no run of "
+             f"strides over 1.5 deg/s kept: {decision_ref('W82', 'W543')}) "
              "or a gyroscope bias; for curves set \"options\": {\"slow_turn_rps\": 0.035} (live too) or "
              "{\"heading\": \"ellipse\"} in the PARAMS.json, or use '--pipeline waist-pll'; for a bias calibrate "
              "on a walk with a full turn ('pdrlearn calibrate --turns 1 --fit-turns')")

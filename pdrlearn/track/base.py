@@ -320,7 +320,8 @@ def get_pipeline(name: str) -> Pipeline:
       ``integrate_stops``, ``turn_factor``, ``rhythm``, ``merge_fragments``, ``length_smoothing``, ``relative_gate``,
       ``stairs_length`` (decision W91, off; ``"climbs"``: W108's climbs only, W156), ``stairs_climb`` (decision
       W108, off: stairs only inside a climb above the barometer's still noise, z only on stairs), ``slow_turn_rps``
-      (decision W82, off), ``pelvic_rhythm_veto`` (decision W440, off; ``"slow"``: only below 70 steps/min -- a
+      (decision W82, off), ``gentle_curves`` (decision W543: runs of same-sign strides kept),
+      ``pelvic_rhythm_veto`` (decision W440, off; ``"slow"``: only below 70 steps/min -- a
       contact sooner than 0.6 of the pelvic gyroscope's local step period is dropped),
       ``max_tilt_deg`` (decision W102, off: a trunk-tilt gate on the contacts), ``sit_veto`` (decision W104:
       no contact around a sit-to-stand's trunk-flexion peak; ``"rhythm"``: W109, sparing left/right step pairs;

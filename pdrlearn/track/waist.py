@@ -39,7 +39,7 @@ from pdrlearn.kernels.freeze import inside_episodes
 from pdrlearn.kernels.lying_heading import long_axis_yaw_rate, stop_pieces  # decision W269
 from pdrlearn.kernels.rest_heading import rest_rotation  # decision L296
 from pdrlearn.kernels.step_events import EDGE_LOCK_VALUES  # decision W358
-from pdrlearn.kernels.waist import TURN_BRIDGE_SIDE, pll_slow_band  # decisions W384, W475
+from pdrlearn.kernels.waist import GENTLE_CURVES, TURN_BRIDGE_SIDE, pll_slow_band  # decisions W543, W384, W475
 from pdrlearn.runtime.detector_line import OWN_DETECTOR  # decision W479 (W483: shared with the runtime)
 from pdrlearn.settings import Rule, broken, broken_line
 from pdrlearn.steps import PLLStepDetector
@@ -481,6 +481,7 @@ def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, model: Ste
 
 def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: str, *,
                    resolve_signs: bool, integrate_stops: bool = False, slow_turn_rps: float = 0.0,
+                   gentle_curves: bool = False,
                    integrate_end: bool = False, rest_bias: bool = False, lying=None,
                    rest_frame: bool = False, still_mask=None) -> pd.DataFrame:
     """Steps table with ``heading_rad`` (navigation frame, before the start rotation), ``turning``
@@ -527,7 +528,8 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
                 current += turned
             if len(seq) > 1:
                 hd, tr = gyro_headings(imu, ev_all[seq], classifier=clf, bias_rps=p.gyro_bias_rps,
-                                       heading0=current, cum=cum, slow_turn_rps=slow_turn_rps)
+                                       heading0=current, cum=cum, slow_turn_rps=slow_turn_rps,
+                                       gentle_curves=gentle_curves)
                 turning[seq[:-1]] = tr
                 current = float(hd[-1])
                 per_seq.append(hd)
@@ -678,6 +680,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "resolve_signs": True, "integrate_stops": True, "turn_factor": True, "rhythm": True,
                    "merge_fragments": True, "length_smoothing": "none", "relative_gate": True,
                    "stairs_length": False, "stairs_climb": False, "slow_turn_rps": 0.0, "max_tilt_deg": None,
+                   "gentle_curves": GENTLE_CURVES,  # W543
                    "sit_veto": "opposite", "pause_steps": "standing", "vault_veto": False, "contact_shift": True,
                    "gait_check": False, "pll_check": False, "weak_fill": False,  # pll_check: W186
                    "pll_slow_check": False,  # W289: uncalibrated waist-pll over 1.25 x the pendulum at a slow gait
@@ -863,6 +866,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 merge_fragments: bool | None = None, length_smoothing: str | None = None,
                 relative_gate: bool | None = None, stairs_length: bool | None = None, stairs_climb: bool | None = None,
                 slow_turn_rps: float | None = None, max_tilt_deg: float | None = None,
+                gentle_curves: bool | None = None,
                 sit_veto: bool | str | None = None, pause_steps: bool | str | None = None,
                 vault_veto: bool | str | None = None, contact_shift: bool | None = None,
                 gait_check: bool | None = None, speed_check: bool | None = None, pll_check: bool | None = None,
@@ -925,6 +929,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     slow_turn_rps : gyro heading: also integrate the strides whose 5-stride mean vertical rate reaches this (rad/s),
         so gentle curves are kept (decision W82; 0.035 tested, not the default: it failed its rule on sharp turns
         by 0.01 m); 0 (default) = seed 003's classifier alone
+    gentle_curves : gyro heading: a step in a run of three strides whose mean vertical rate keeps its sign and
+        reaches 1.5 deg/s, and that seed 003 leaves out, adds its stride's mean rate over the step (decision W543;
+        default True, adopted by its rule; False = seed 003's classifier alone)
     max_tilt_deg : a contact made while the trunk is tilted more than this (deg) from the session's walking upright is
         no step, and the step before it ends its sequence (decision W102, :mod:`pdrlearn.waist.posture`; sit-to-stand,
         bending); None (default) = no tilt gate
@@ -1063,7 +1070,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "integrate_stops": integrate_stops, "turn_factor": turn_factor, "rhythm": rhythm,
              "merge_fragments": merge_fragments, "length_smoothing": length_smoothing,
              "relative_gate": relative_gate, "stairs_length": stairs_length, "stairs_climb": stairs_climb,
-             "slow_turn_rps": slow_turn_rps,
+             "slow_turn_rps": slow_turn_rps, "gentle_curves": gentle_curves,
              "max_tilt_deg": max_tilt_deg, "sit_veto": sit_veto, "pause_steps": pause_steps,
              "vault_veto": vault_veto, "contact_shift": contact_shift, "gait_check": gait_check, "pll_check": pll_check,
              "short_step_check": short_step_check,
@@ -1304,6 +1311,7 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
              and integrate_stops and not realtime else None)  # decision W269: offline (W222's lying reads ahead)
     steps = _step_headings(steps, imu, p, method, resolve_signs=resolve_signs, integrate_stops=integrate_stops,
                            slow_turn_rps=float(o["slow_turn_rps"] or 0.0),
+                           gentle_curves=bool(o["gentle_curves"]),  # decision W543
                            integrate_end=bool(o["integrate_end"]) and not realtime,  # W187: offline only
                            rest_bias=bool(o["rest_bias"]), lying=lying,  # decisions L296, W269
                            rest_frame=bool(o["rest_frame"]), still_mask=still_mask)  # decision W285

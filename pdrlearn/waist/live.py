@@ -36,6 +36,7 @@ import logging
 
 import numpy as np
 
+from pdrlearn.decision_refs import decision_ref
 from pdrlearn.errors import DataError
 from pdrlearn.runtime.waist import FRAGMENT_CONTEXT_STEPS, LOOKAHEAD_ROWS, LiveStep, WaistStream
 
@@ -77,7 +78,8 @@ def live_options(p, warnings: list[str], **given) -> dict:
 
     given = {"realtime": True, "heading": "gyro", "refine_ic": None, "initial_heading": None, "resolve_signs": None,
              "integrate_stops": None, "turn_factor": None, "rhythm": None, "merge_fragments": None,
-             "length_smoothing": None, "slow_turn_rps": None, "pivot_steps": None, "stairs_length": None,
+             "length_smoothing": None, "slow_turn_rps": None, "gentle_curves": None, "pivot_steps": None,
+             "stairs_length": None,
              "pause_steps": None, "realtime_contact_shift": None,
              "freeze_index": None,  # W216: `run` computes the lower back's freeze index after the track, opt-in
              "pause_ride": None, "rest_bias": None,  # decisions E146, L308: a bundle's options
@@ -105,8 +107,8 @@ def live_options(p, warnings: list[str], **given) -> dict:
     asked = (p.options or {}).get("heading")
     if asked not in (None, "gyro"):  # decision W82: no silent override of the PARAMS.json heading
         warnings.append(f"the PARAMS.json option heading '{asked}' is not available live: the live tracker uses "
-                        "the gyro heading, which drops gentle curves unless the option slow_turn_rps is set "
-                        "(0.035, decision W82)")
+                        "the gyro heading, which keeps gentle curves only as runs of strides over 1.5 deg/s; the "
+                        f"option slow_turn_rps 0.035 adds slower ones ({decision_ref('W543', 'W82')})")
     return o
 
 
@@ -262,7 +264,7 @@ class WaistTracker(WaistStream):
         ``lon`` (decision W137; the altitude is kept as :attr:`start_altitude_m`, not tracked), or None (origin)
     initial_heading : the direction the walker sets off in, radians ENU (counter-clockwise from east; 0 = east, the
         default); a magnitude above 2 pi (degrees, as the CLI's ``--initial-heading``) is refused (decision W81)
-    integrate_stops, turn_factor, rhythm, merge_fragments, slow_turn_rps, pivot_steps : as
+    integrate_stops, turn_factor, rhythm, merge_fragments, slow_turn_rps, gentle_curves, pivot_steps : as
         :func:`pdrlearn.track.waist.track_waist` (None: ``params.options``, else its defaults; ``pivot_steps``: W150)
     pause_steps : W134's ``"standing"`` (a step holding a stand of half its local period inside a walk keeps the
         trunk's travel; decision W165: decided once the third contact after the step is, at most
@@ -287,7 +289,8 @@ class WaistTracker(WaistStream):
                  height_m: float | None = None, frame=None, start=None, initial_heading: float | None = None,
                  integrate_stops: bool | None = None, turn_factor: bool | None = None, rhythm: bool | None = None,
                  merge_fragments: bool | None = None, slow_turn_rps: float | None = None,
-                 keep_steps: int | None = None, check_input: bool = True, sides: bool = False,
+                 gentle_curves: bool | None = None, keep_steps: int | None = None, check_input: bool = True,
+                 sides: bool = False,
                  pivot_steps: bool | None = None, pause_steps: bool | str | None = None):
         from pdrlearn.io.session import Session
         from pdrlearn.track.waist import _start
@@ -305,7 +308,8 @@ class WaistTracker(WaistStream):
         p, warnings = resolve_params(Session(name="live", meta=meta), params)
         o = live_options(p, warnings, initial_heading=initial_heading, integrate_stops=integrate_stops,
                          turn_factor=turn_factor, rhythm=rhythm, merge_fragments=merge_fragments,
-                         slow_turn_rps=slow_turn_rps, pivot_steps=pivot_steps, pause_steps=pause_steps)
+                         slow_turn_rps=slow_turn_rps, gentle_curves=gentle_curves, pivot_steps=pivot_steps,
+                         pause_steps=pause_steps)
         x0, y0, h0, latlon, self.start_altitude_m = _start(start, float(o["initial_heading"]))  # W137, L157
         rot, self._declared, self._declared_origin = _declared_frame(frame, meta)
         if rot is not None and self._declared is None:  # a matrix (an AxisFrame gets B108's check)
