@@ -4,6 +4,8 @@ between the stands over 30 s (``rest_drift`` true) against the set-up standstill
 (a) / (b) / (f): fresh simulated users 15500-15539, four walking bouts each ended by a 30-60 s stand; (c) short walks
 of the same users with a 20 s stand; (d) the real gaitmap foot recordings; (e) the demo table's scenario D (user 1);
 for information T2's long_nw (L711) when its folder is given: ``python experiments/foot_rest_drift_l712.py [LONG_NW]``.
+``--tau TAU`` (information, after the rule's run): (a) / (b) only, on the same users simulated with S110's bounded
+gyroscope bias drift (``gyro_bias_tau_s`` TAU).
 """
 
 from __future__ import annotations
@@ -53,7 +55,25 @@ def strides_change(a, b) -> float:
                for c in ("length_m", "heading_rad"))
 
 
+def bounded(tau: float) -> None:
+    """Information: (a) / (b)'s foot-only heading with S110's Gauss-Markov drift of correlation time ``tau``."""
+    rows = []
+    for user in USERS:
+        s = simulate_path(parse_route(long_route(user)), UserProfile.from_seed(user), seed=0, gyro_bias_tau_s=tau)
+        h0, h1 = (heading_errors(track(s, v, heading="foot"), s)[-1] for v in (False, True))
+        rows.append((h0, h1))
+        print(f"u{user} gm:{tau:g}: foot heading final error {h0:+.2f} -> {h1:+.2f} deg", flush=True)
+    r = np.array(rows)
+    grow = np.abs(r[:, 1]) - np.abs(r[:, 0])
+    print(f"gm:{tau:g} mean |final heading error| {np.mean(np.abs(r[:, 0])):.2f} -> "
+          f"{np.mean(np.abs(r[:, 1])):.2f} deg, "
+          f"mean signed {np.mean(r[:, 0]):+.2f} -> {np.mean(r[:, 1]):+.2f}; largest growth {grow.max():+.2f} deg, "
+          f"sessions grown > 20 deg: {int(np.sum(grow > 20))}", flush=True)
+
+
 def main() -> None:
+    if len(sys.argv) > 2 and sys.argv[1] == "--tau":
+        return bounded(float(sys.argv[2]))
     rows = []
     for user in USERS:
         s = simulate_path(parse_route(long_route(user)), UserProfile.from_seed(user), seed=0)

@@ -1,69 +1,66 @@
-"""Decision L711 (docs/decisions/localization.md): why L476's rest_bias with a 30 s rest limit left +270 deg on T2's long_nw.
+"""Decision L711 (docs/decisions/localization.md): why L476's rest bias with a 30 s rest limit left +268 deg on
+T2's long_nw. ``PYTHONPATH=. python experiments/foot_rest_drift_trace_l711.py NOISY NO_NOISE``: the same walk
+simulated with and without ``--no-noise``; the foot gyroscopes' difference about the set-up's gravity, 10 s means,
+is the bias and its walk. Per walking bout: the track's heading drift (``rest_bias`` true, the limit at 30 s) and
+the integral of the true bias less the one removed (forward as L476, with the true bias at the read, and
+interpolated between the reads either side)."""
 
-Usage: PYTHONPATH=. python experiments/foot_rest_drift_trace_l711.py NOISY_SESSION NO_NOISE_SESSION (the same walk simulated
-with and without --no-noise; the difference of the foot gyroscopes, 10 s means, is the bias and its walk)."""
+from __future__ import annotations
+
 import sys
+from pathlib import Path
+
 import numpy as np
+
+import pdrlearn.kernels.rest_heading as rest_heading
 from pdrlearn.io import read_session
 from pdrlearn.orient.filters import unit_data
 from pdrlearn.signal import standstill_mask
-import pdrlearn.kernels.rest_heading as RH
 from pdrlearn.track.plasys import track_plasys
 
-s = read_session(sys.argv[1]); si = read_session(sys.argv[2])
-u = unit_data(s, "foot"); ui = unit_data(si, "foot")
-n = min(len(u.t), len(ui.t))
-t = u.t[:n]
-still0 = standstill_mask(u.acc, u.gyr, u.fs)[:n]
-g = u.acc[still0][:200].mean(axis=0); g /= np.linalg.norm(g)
-err = (u.gyr[:n] - ui.gyr[:n]) @ g  # bias + walk + white noise, vertical (rad/s)
-k = int(10 * u.fs)
-btrue = np.convolve(err, np.ones(k) / k, mode="same")  # 10 s mean: the bias and its walk
-def bt(x): return np.interp(x, t, btrue)
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from foot_rest_drift_l712 import heading_errors  # noqa: E402
 
-def run(min_s, on):
-    RH.REST_BIAS_MIN_S = min_s
-    r = track_plasys(s, method="M3", model="oracle", heading="foot", params={"rest_bias": on})
-    st = r.steps
-    tr = s.trajectory
-    mid = 0.5 * (st.start_s.to_numpy() + st.end_s.to_numpy())
-    h = np.unwrap(st.heading_rad.to_numpy())
-    ht = np.interp(mid, tr.t.to_numpy(), np.unwrap(tr.heading_rad.to_numpy()))
-    e = np.degrees((h - h[0]) - (ht - ht[0]))
-    return st, mid, e
 
-st, mid, e = run(30.0, True)
-s0, s1 = st.start_s.to_numpy(), st.end_s.to_numpy()
-gaps = np.flatnonzero(s0[1:] - s1[:-1] > 20) + 1
-bounds = np.split(np.arange(len(s0)), gaps)
-rests = [(s1[b[0] - 1], s0[b[0]]) for b in bounds[1:]]
-# the bias the tracker read from each rest (its last 30 s block, vertical)
-reads = []
-for a, b in rests:
-    i, j = np.searchsorted(u.t, a), np.searchsorted(u.t, b, side="right")
-    c, r = RH.block_bias(u.t[i:j], u.gyr[i:j], still0[i:j])
-    reads.append((float(c[np.argmax(c)]), float(r[np.argmax(c)] @ g), float(bt(c[np.argmax(c)]))))
-setup = u.gyr[still0][: int(u.fs * 5)] @ g
-print("set-up bias read %.4f deg/s, true %.4f" % (np.degrees(setup.mean()), np.degrees(bt(5.0))))
-tot = {"fwd": 0, "interp": 0, "truthfwd": 0}
-for kb, b in enumerate(bounds):
-    ta, tb = s0[b[0]], s1[b[-1]]
-    tt = np.linspace(ta, tb, 2000); w = bt(tt)
-    drift = e[b[-1]] - (e[b[0] - 1] if kb else 0.0)
-    if kb == 0:
-        fwd = np.degrees(np.trapezoid(w - setup.mean(), tt)); line = ""
-    else:
-        c, rd, tru = reads[kb - 1]
-        fwd = np.degrees(np.trapezoid(w - rd, tt))
-        fwdt = np.degrees(np.trapezoid(w - tru, tt))
-        line = " read %.4f true %.4f deg/s (read err %+.4f); fwd-with-true-bias %+.2f" % (
-            np.degrees(rd), np.degrees(tru), np.degrees(rd - tru), fwdt)
-    if kb < len(reads):
-        c1, rd1, _ = reads[kb]
-        c0, rd0 = (5.0, setup.mean()) if kb == 0 else reads[kb - 1][:2]
-        lin = np.degrees(np.trapezoid(w - np.interp(tt, [c0, c1], [rd0, rd1]), tt))
-    else:
-        lin = fwd
-    print(f"bout {kb + 1}: {tb - ta:.0f} s, track drift {drift:+.2f} deg; bias-error integral forward {fwd:+.2f}, "
-          f"interpolated {lin:+.2f};{line}")
-print("end heading error %+.2f deg" % e[-1])
+def main() -> None:
+    s, si = read_session(sys.argv[1]), read_session(sys.argv[2])
+    u, ui = unit_data(s, "foot"), unit_data(si, "foot")
+    n = min(len(u.t), len(ui.t))
+    t = u.t[:n]
+    still = standstill_mask(u.acc, u.gyr, u.fs)
+    g = u.acc[still][:200].mean(axis=0)
+    g /= np.linalg.norm(g)
+    k = int(10 * u.fs)
+    truth = np.convolve((u.gyr[:n] - ui.gyr[:n]) @ g, np.ones(k) / k, mode="same")  # bias + walk, vertical
+
+    rest_heading.REST_BIAS_MIN_S = 30.0  # L710's scratch check: L476 reading the 45 s stops
+    r = track_plasys(s, method="M3", model="oracle", heading="foot", params={"rest_bias": True})
+    e = heading_errors(r, s)
+    s0, s1 = r.steps["start_s"].to_numpy(float), r.steps["end_s"].to_numpy(float)
+    bouts = np.split(np.arange(len(s0)), np.flatnonzero(s0[1:] - s1[:-1] > 20) + 1)
+    reads = []  # (time, read, true) of each stop's last 30 s block, vertical (rad/s)
+    for b in bouts[1:]:
+        i, j = np.searchsorted(u.t, s1[b[0] - 1]), np.searchsorted(u.t, s0[b[0]], side="right")
+        c, rate = rest_heading.block_bias(u.t[i:j], u.gyr[i:j], still[i:j])
+        m = int(np.argmax(c))
+        reads.append((float(c[m]), float(rate[m] @ g), float(np.interp(c[m], t, truth))))
+    setup = float((u.gyr[still][: int(u.fs * 5)] @ g).mean())
+    print(f"set-up bias read {np.degrees(setup):.4f} deg/s, true {np.degrees(np.interp(5.0, t, truth)):.4f}")
+    for kb, b in enumerate(bouts):
+        tt = np.linspace(s0[b[0]], s1[b[-1]], 2000)
+        w = np.interp(tt, t, truth)
+        drift = e[b[-1]] - (e[b[0] - 1] if kb else 0.0)
+        c0, rd0, tru0 = (5.0, setup, setup) if kb == 0 else reads[kb - 1]
+        fwd = np.degrees(np.trapezoid(w - rd0, tt))
+        lin = np.degrees(np.trapezoid(w - np.interp(tt, [c0, reads[kb][0]], [rd0, reads[kb][1]]), tt)
+                         ) if kb < len(reads) else fwd
+        line = "" if kb == 0 else (f" read {np.degrees(rd0):.4f} true {np.degrees(tru0):.4f} deg/s (read err "
+                                   f"{np.degrees(rd0 - tru0):+.4f}); fwd-with-true-bias "
+                                   f"{np.degrees(np.trapezoid(w - tru0, tt)):+.2f}")
+        print(f"bout {kb + 1}: {tt[-1] - tt[0]:.0f} s, track drift {drift:+.2f} deg; bias-error integral forward "
+              f"{fwd:+.2f}, interpolated {lin:+.2f};{line}")
+    print(f"end heading error {e[-1]:+.2f} deg")
+
+
+if __name__ == "__main__":
+    sys.exit(main())
