@@ -75,6 +75,23 @@ def parse_transfer_time(text: str) -> tuple[float, float]:
     return lo, hi
 
 
+def parse_gyro_bias_model(text: str) -> float | None:
+    """Decision S110: ``--gyro-bias-model walk`` (S12's unbounded random walk: None) or ``gm:TAU`` (a first-order
+    Gauss-Markov drift of correlation time TAU s, 1-100000: TAU); one ``error:`` line naming the option otherwise."""
+    word = str(text).strip().lower()
+    if word == "walk":
+        return None
+    head, _, tail = word.partition(":")
+    try:
+        tau = float(tail) if head == "gm" else math.nan
+    except ValueError:
+        tau = math.nan
+    if not (math.isfinite(tau) and 1.0 <= tau <= 1e5):
+        raise DataError(f"--gyro-bias-model {text!r}: give walk (S12's random walk, the default) or gm:TAU with TAU "
+                        "1-100000 s, e.g. gm:288 (the foot's bias bounded at Table 6's sd; decision S110)")
+    return tau
+
+
 def simulate_cmd(
     scenario: str | None = typer.Option(
         None,
@@ -146,6 +163,10 @@ def simulate_cmd(
     pelvis_height: float | None = typer.Option(
         None, "--pelvis-height", help="The waist unit's standing height (m), 0.5-1.2 x the leg length (default: the "
         "user's own, 0.55-0.6 x height): lower it for a crouch-like pelvis (decision S109)."),
+    gyro_bias_model: str = typer.Option(
+        "walk", "--gyro-bias-model", help="The gyroscopes' bias drift: walk (default: S12's unbounded random walk) "
+        "or gm:TAU, a first-order Gauss-Markov drift of correlation time TAU s with the same short-term steps, "
+        "bounded (gm:288: the foot's vertical bias at thesis Table 6's sd, for walks over ~10 min; decision S110)."),
     bounce_scale: float = typer.Option(
         1.0, "--bounce-scale", help="A factor on the user's pelvis bounce, 0-3 (default 1; 0.5 = a damped bounce, "
         "e.g. crouch-like; decision S109)."),
@@ -357,6 +378,7 @@ def simulate_cmd(
         foot_sensor_pos=foot_sensor_pos,  # decision S109
         pelvis_height_m=pelvis_height,  # decision S109
         bounce_scale=bounce_scale,  # decision S109
+        gyro_bias_tau_s=parse_gyro_bias_model(gyro_bias_model),  # decision S110
         heading0_deg=heading0,
         mag_disturbance_ut=mag_disturbance,
         baro_drift_hpa_per_h=baro_drift,  # decision S85

@@ -201,6 +201,12 @@ REFERENCE_POINTS = ("sensor", "heel")
 # ``rest_bias`` (decision L476): after a rest longer than L296's ``REST_BIAS_MIN_S`` between two strides, the foot
 # gyroscope's bias (``gyro_bias="standstill"``) is re-read from the rest's still samples; decision L477: not adopted
 # (two sessions grew by more than 0.3 m), opt-in.
+# ``rest_drift`` (decision L712): the foot gyroscope's bias interpolated in time through the set-up standstill's and
+# every stand over ``FOOT_REST_DRIFT_MIN_S``'s still-block reads (L711: the bias walks during the walking bouts).
+
+#: decision L712: a rest (lead-in, gap between strides, tail) longer than this (s) gives the foot's bias reads of
+#: ``rest_drift`` (L711: a 45 s stop's 30 s block reads within 0.031 deg/s; shorter stands are common inside a walk)
+FOOT_REST_DRIFT_MIN_S = 30.0
 
 #: decision L628: below this foot rate (Hz) the strides are integrated on L24's x5 histospline by default (L24 took
 #: it below 50 Hz, the 20 Hz firmware means); at 100 Hz L626's coning term leaves +0.0020 deg per stride of a
@@ -318,6 +324,12 @@ class FootDisplacement:
         (L296's 30 s blocks; the last one's mean, as the setup standstill's, thesis ch.4 / ch.7.2.1) instead of
         the setup standstill's: the gyroscope's bias drifts over minutes (warm-up, temperature). Walks without
         such a rest are unchanged bit for bit
+    rest_drift : decision L712: with ``gyro_bias="standstill"`` (and ``rest_bias`` false), every rest longer than
+        :data:`FOOT_REST_DRIFT_MIN_S` (the lead-in, a gap between strides, the tail) gives L296's 30 s still-block
+        bias reads; each stride removes the bias interpolated in time at its middle through the set-up standstill's
+        read and those (the nearest read held outside them): offline both ends of a walking bout are known, so the
+        bias's walk during the bout is followed, not lagged (L711). Walks without such a rest are unchanged bit for
+        bit
 
     Attributes
     ----------
@@ -340,7 +352,8 @@ class FootDisplacement:
                  reference_point: str = "sensor", min_rocker_samples: int = 20, gap_yaw: bool = True,
                  zaru_gyro_rad_s: float = 0.4, yaw: str = "twist", tilt_dedrift: bool = False,
                  tilt_clock: str = "rotation", timestamps: bool = False,
-                 upsample_runs: bool = False, rest_bias: bool = False, clip_noise: bool = False):
+                 upsample_runs: bool = False, rest_bias: bool = False, clip_noise: bool = False,
+                 rest_drift: bool = False):
         check_settings({k: v for k, v in locals().items() if k != "self"}, "FootDisplacement")  # decision B206
         if tilt_clock not in ("time", "rotation"):
             raise DataError(f"FootDisplacement: tilt_clock '{tilt_clock}' is not 'time' or 'rotation'")
@@ -348,6 +361,7 @@ class FootDisplacement:
         self.timestamps = bool(timestamps)
         self.upsample_runs = bool(upsample_runs)
         self.rest_bias = bool(rest_bias)
+        self.rest_drift = bool(rest_drift)
         self.clip_noise = bool(clip_noise)
         if yaw not in ("twist", "x-axis"):
             raise DataError(f"FootDisplacement: yaw '{yaw}' is not 'twist' or 'x-axis'")
@@ -464,9 +478,11 @@ class FootDisplacement:
         elif self.gyro_bias == "standstill" and B:
             still0 = standstill_mask(unit.acc, unit.gyr, fs0)
             bias = np.tile(self._standstill_bias(unit.gyr, fs0, still0), (B, 1))
-        self.rest_bias_rests_: list[tuple[float, float]] = []  # decision L476: the rests a bias was read from
+        self.rest_bias_rests_: list[tuple[float, float]] = []  # decisions L476 / L712: the rests a bias was read from
         if self.gyro_bias == "standstill" and self.rest_bias and B:
             bias = self._rest_biases(unit, still0, bias)
+        elif self.gyro_bias == "standstill" and self.rest_drift and B:
+            bias = self._drift_biases(unit, still0, bias)
         idx, mask = K.stride_index(i0, i1)
         dt, tclock, weight = self._intervals(t, period, idx, mask)
         q = K.stride_attitude(gyr, dt, idx, mask, g_body, bias, init) if B else None
@@ -588,12 +604,46 @@ class FootDisplacement:
             self.rest_bias_rests_.append((t0, t1))
         return out
 
+    def _drift_biases(self, unit: UnitData, still: np.ndarray, bias: np.ndarray) -> np.ndarray:
+        """Decision L712: ``bias`` (B, 3), the set-up standstill's, interpolated in time at every stride's middle
+        through that read (at the middle of its still run) and the L296 still-block reads
+        (:func:`~pdrlearn.kernels.rest_heading.block_bias`) of every rest longer than :data:`FOOT_REST_DRIFT_MIN_S`:
+        the lead-in, the gaps between strides and the tail (thesis ch.4 / ch.7.2.1 read the offsets from a
+        standstill; a stand is one). No such read: ``bias`` unchanged."""
+        from pdrlearn.kernels.rest_heading import block_bias
+
+        t = unit.t
+        edges = [(float(t[0]), float(self.start_s_[0]))]
+        edges += [(float(a), float(b)) for a, b in zip(self.end_s_[:-1], self.start_s_[1:], strict=True)]
+        edges.append((float(self.end_s_[-1]), float(t[-1])))
+        times, reads = [], []
+        for t0, t1 in edges:
+            if t1 - t0 <= FOOT_REST_DRIFT_MIN_S:
+                continue
+            a, b = int(np.searchsorted(t, t0, side="left")), int(np.searchsorted(t, t1, side="right"))
+            blocks = block_bias(t[a:b], unit.gyr[a:b], still[a:b])
+            if blocks is None:
+                continue
+            times.append(blocks[0])
+            reads.append(blocks[1])
+            self.rest_bias_rests_.append((t0, t1))
+        if not reads or self.setup_run_ is None:
+            return bias
+        times = np.concatenate([[0.5 * (t[self.setup_run_[0]] + t[self.setup_run_[1]])], *times])
+        reads = np.vstack([bias[:1], *reads])
+        order = np.argsort(times, kind="stable")
+        mid = 0.5 * (self.start_s_ + self.end_s_)
+        return np.column_stack([np.interp(mid, times[order], reads[order, j]) for j in range(reads.shape[1])])
+
     def _standstill_bias(self, gyr: np.ndarray, fs: float, still: np.ndarray,
                          min_s: float = 1.0) -> np.ndarray:
         """Gyroscope offset (rad/s) over the first standstill of >= ``min_s`` s (thesis ch.7.2.1 setup) of the
-        still samples ``still`` (``standstill_mask``)."""
+        still samples ``still`` (``standstill_mask``); ``setup_run_`` that run's (first, last) sample (decision
+        L712's interpolation reads it at its middle), None when there is none."""
+        self.setup_run_ = None
         for a, b in runs(still):
             if (b - a) / fs >= min_s:
+                self.setup_run_ = (int(a), int(b) - 1)
                 return gyr[a:b].mean(axis=0)
         self.warnings_.append("no standstill of 1 s: gyroscope offset not removed")
         return np.zeros(3)

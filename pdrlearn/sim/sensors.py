@@ -95,6 +95,7 @@ def imu_readout(
     *,
     noise: bool,
     device_rng: np.random.Generator | None = None,
+    bias_tau_s: float | None = None,
 ) -> tuple[np.ndarray, dict]:
     """Apply scale error, bias, white noise, saturation and quantisation to 100 Hz ideal readings (n, 3).
 
@@ -104,6 +105,9 @@ def imu_readout(
     device_rng : the unit's own randomness: its scale factors (``model.scale_sd``) are drawn from it and
         the session adds ``model.scale_session_sd`` (decision S22). None: the whole scale error
         (``model.scale_sd``) is drawn per session (the model before S22).
+    bias_tau_s : decision S110: the bias drift is a first-order Gauss-Markov process of this correlation time (s)
+        driven by the same increments (``model.bias_walk``), bounded at a stationary sd of ``bias_walk *
+        sqrt(tau / 2)``; None (default): S12's unbounded random walk
 
     Returns the readings and a dict of the drawn errors (for the session metadata).
     """
@@ -118,11 +122,21 @@ def imu_readout(
     sd = np.asarray(model.noise_sd) * np.sqrt(FIRMWARE_AVERAGE)
     out = ideal * scale + bias + rng.normal(0.0, 1.0, ideal.shape) * sd
     if model.bias_walk > 0:  # 100 Hz samples: increments of sd bias_walk * sqrt(0.01 s)
-        out += np.cumsum(rng.normal(0.0, model.bias_walk * 0.1, ideal.shape), axis=0)
+        steps = rng.normal(0.0, model.bias_walk * 0.1, ideal.shape)
+        out += np.cumsum(steps, axis=0) if bias_tau_s is None else gauss_markov(steps, 0.01, bias_tau_s)
     out = np.clip(out, -model.full_scale, model.full_scale)
     if model.lsb:
         out = quantize(out, model.lsb)
     return out, {"bias": [float(b) for b in bias], "scale": [float(s) for s in scale]}
+
+
+def gauss_markov(steps: np.ndarray, dt: float, tau_s: float) -> np.ndarray:
+    """Decision S110: the first-order Gauss-Markov process ``b_k = exp(-dt / tau) b_(k-1) + steps_k`` (from 0) along
+    axis 0: S12's random walk (``np.cumsum(steps)``) pulled back to 0 with correlation time ``tau_s``; with
+    increments of sd ``q sqrt(dt)`` its stationary sd is ``q sqrt(tau / 2)`` (the walk's sd at t = tau / 2)."""
+    from scipy.signal import lfilter
+
+    return lfilter([1.0], [1.0, -float(np.exp(-dt / tau_s))], steps, axis=0)
 
 
 def magnetometer_readout(

@@ -124,6 +124,9 @@ KNOBS: dict[str, object] = {
     "gaps": (),
     # decision S95: the range (s) of each sit-down's / stand-up's duration (sim.transfer.TRANSFER_S by default)
     "transfer_s": TRANSFER_S,
+    # decision S110: the gyroscopes' bias drift a first-order Gauss-Markov process of this correlation time (s),
+    # bounded; None: S12's unbounded random walk
+    "gyro_bias_tau_s": None,
 }
 #: decision S83: the units a gap may name
 GAP_UNITS = ("foot", "waist", "both")
@@ -131,7 +134,7 @@ GAP_UNITS = ("foot", "waist", "both")
 META_ONLY_WHEN_SET = ("pelvis", "bounce", "waist_mount_deg", "rocker", "contact", "foot_sensor_pos",
                       "pelvis_height_m", "bounce_scale", "step_time_asymmetry", "step_length_asymmetry",
                       "stance_time_asymmetry", "sit_start_s", "sit_end_s", "instrumented_foot", "paretic_side", "gaps",
-                      "transfer_s")
+                      "transfer_s", "gyro_bias_tau_s")
 #: decisions S54, S55: the values of the two foot-side knobs
 FEET = ("left", "right")
 
@@ -236,6 +239,11 @@ def _check_knobs(knobs: dict) -> dict:
         raise DataError(f"simulate: rocker={out['rocker']!r} must be one of {', '.join(ROCKER_MODES)}")
     if out["contact"] not in CONTACT_MODES:  # decision S108
         raise DataError(f"simulate: contact={out['contact']!r} must be one of {', '.join(CONTACT_MODES)}")
+    tau = out["gyro_bias_tau_s"]  # decision S110
+    if tau is not None and (isinstance(tau, bool) or not isinstance(tau, int | float | np.number)
+                            or not math.isfinite(tau) or tau <= 0):
+        raise DataError(f"simulate: gyro_bias_tau_s={tau!r} must be a positive number of seconds (the bias drift's "
+                        "correlation time), or None for S12's random walk")
     out["foot_sensor_pos"] = check_foot_sensor_pos(out["foot_sensor_pos"])  # decision S109
     ph = out["pelvis_height_m"]  # decision S109: checked against the user's leg in simulate_path
     if ph is not None and (isinstance(ph, bool) or not isinstance(ph, int | float | np.number)
@@ -575,7 +583,8 @@ def simulate_path(
     acc_f, e_af = sn.imu_readout(
         _to_sensor(f_body, foot_m, mis_f), sn.FOOT_ACC, f_rng, noise=noise, device_rng=unit(f_dev + "fAccelerometer")
     )
-    gyr_f, e_gf = sn.imu_readout(_to_sensor(w_body, foot_m, mis_f), sn.FOOT_GYR, f_rng, noise=noise)
+    tau = opt["gyro_bias_tau_s"]  # decision S110
+    gyr_f, e_gf = sn.imu_readout(_to_sensor(w_body, foot_m, mis_f), sn.FOOT_GYR, f_rng, noise=noise, bias_tau_s=tau)
     load_h, load_t = foot_loads(t100, foot, steps, ev, user)
     if freezes:  # decision S51: the heel and forefoot loads alternate while trembling
         load_h, load_t = freeze_loads(t100, load_h, load_t, freezes, freeze_starts)
@@ -639,7 +648,8 @@ def simulate_path(
     acc_w, e_aw = sn.imu_readout(
         _to_sensor(fw_body, waist_m, mis_w), sn.WAIST_ACC, s_rng, noise=noise, device_rng=unit("wAccelerometer")
     )
-    gyr_w, e_gw = sn.imu_readout(_to_sensor(ww_body, waist_m, mis_w), sn.WAIST_GYR, s_rng, noise=noise)
+    gyr_w, e_gw = sn.imu_readout(_to_sensor(ww_body, waist_m, mis_w), sn.WAIST_GYR, s_rng, noise=noise,
+                                 bias_tau_s=tau)  # decision S110
     acc_w, gyr_w = out(acc_w), out(gyr_w)  # decision S62
     del fw_body, ww_body
     b_enu = earth_field_enu(
