@@ -17,6 +17,7 @@ from pdrlearn.waist.heading import TurnClassifier
 from pdrlearn.waist.lengths import pause_scaled_message
 from pdrlearn.waist.params import DEFAULT_K, TAU_K, WaistParams, resolve_params
 from pdrlearn.waist.plausibility import (  # noqa: F401  (W99 moved to plausibility; its names stay importable here)
+    GYRO_OVERCOUNT_CAUSE,
     MISSED_STEPS_CAUSE,
     STEP_COUNT_DISAGREE,
     STEP_COUNT_MARGIN_S,
@@ -253,7 +254,8 @@ def step_count_check(session: Session, event_s: np.ndarray) -> str | None:
     n_w, n_g = counts
     if max(n_w, n_g) < STEP_COUNT_MIN or abs(n_w - n_g) <= STEP_COUNT_DISAGREE * n_g:
         return None
-    why = (f"fewer contacts than steps: {MISSED_STEPS_CAUSE}" if steps_missed(counts)  # decision W114
+    why = (f"fewer contacts than pelvic-gyro steps: either {MISSED_STEPS_CAUSE}, {GYRO_OVERCOUNT_CAUSE}"  # W114, W554
+           if steps_missed(counts)
            else "more contacts than steps: a very slow walker's phantom contacts, a walking aid's strikes")
     return (f"{session.name}: the waist step detector counted {n_w} contacts on this walk, the pelvic-gyro detector "
             f"{n_g} (more than {100 * STEP_COUNT_DISAGREE:.0f} % apart, decision W99): the step count is doubtful, and "

@@ -141,6 +141,13 @@ def step_counts(session: Session, event_s: np.ndarray, gyro_s: np.ndarray | None
 MISSED_STEPS_CAUSE = ("the waist detector misses steps, as when steps come faster than its shortest step (a young "
                       "child's or a very fast cadence), so the step count, cadence and distance read low")
 
+#: decision W554: the other reading of fewer contacts than pelvic-gyro steps when the contacts alternate (W441's line):
+#: the pelvic-gyro detector counts the trunk's sway as steps (session 48's trial T2, patient-like irregular wide-based
+#: walks, users 15661-15663: pelvic-gyro 33 / 28 / 29 steps for 20 / 16 / 17)
+GYRO_OVERCOUNT_CAUSE = ("or the pelvic-gyro detector counts the trunk's sway as steps, as in an irregular, "
+                        "staggering or wide-based gait (it read 65-75 % high on simulated walks of that kind, "
+                        "decision W554)")
+
 
 def steps_missed(counts: tuple[int, int] | None) -> bool:
     """Decision W114: the pelvic-gyro count of :func:`step_counts` ``(n_waist, n_gyro)`` exceeds the waist contacts
@@ -232,14 +239,13 @@ def count_mismatch_message(counts: tuple[int, int] | None) -> str | None:
     """Decision W441's one line when the two counts of :func:`step_counts` disagree by more than
     :data:`STEP_COUNT_DISAGREE` of the pelvic-gyro count, in either direction (W114's line says it only with W98's);
     None when they agree or were not read."""
-    if steps_missed(counts):
-        cause = MISSED_STEPS_CAUSE
-    elif steps_added(counts):
-        cause = ADDED_STEPS_CAUSE
-    else:
+    if steps_missed(counts):  # decision W554: either detector may be the wrong one; a foot unit tells
+        return (_counts_text(counts, "more than 30 % apart warns, decision W441") + f": either {MISSED_STEPS_CAUSE}, "
+                f"{GYRO_OVERCOUNT_CAUSE}; check the step count with a foot unit or by counting the steps of a walk")
+    if not steps_added(counts):
         return None
-    return (_counts_text(counts, "more than 30 % apart warns, decision W441") + f": {cause}; use 'pdrlearn steps "
-            "DIR --detector pelvic-gyro' for the step count and cadence, or a foot unit")
+    return (_counts_text(counts, "more than 30 % apart warns, decision W441") + f": {ADDED_STEPS_CAUSE}; use "
+            "'pdrlearn steps DIR --detector pelvic-gyro' for the step count and cadence, or a foot unit")
 
 
 def not_alternating_message(index: float, pairs: int, counts: tuple[int, int] | None = None) -> str:
