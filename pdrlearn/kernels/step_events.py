@@ -89,6 +89,7 @@ class BurstParams:
     event_cutoff_hz: float = 0.0
     event_delay_s: float = 0.0
     pre_n: int = 0
+    cluster_s: float = 0.0  # steps decision 91: at the rhythm's cutoff the head of a split impact (contact.split_head)
 
 
 @dataclass
@@ -204,7 +205,7 @@ def burst_kernel(t: np.ndarray, a: np.ndarray, still: np.ndarray, state: BurstSt
                 f = rhythm_cutoff_hz(period, p.event_cutoff_hz, p.short_period_s, p.fast_period_s, p.fast_cutoff_hz)
                 rt, rm = zip(*s.raw, strict=True)
                 ic, e_f, emx_f = impact_peak(np.array(rt), np.array(rm), p.rest, p.peak_frac, f, p.subsample,
-                                             p.prominence)
+                                             p.prominence, p.cluster_s)  # steps decision 91
                 if ic == ic:
                     t_ev, e_ev, emx = ic + p.event_delay_s, e_f, emx_f
             if short:
@@ -717,7 +718,7 @@ class AccelProcessor:
             prominence=float(det.peak_prominence),
             short_period_s=det.short_period_s, fast_period_s=det.fast_period_s,  # steps decisions 87, 88
             fast_cutoff_hz=det.fast_event_cutoff_hz, event_cutoff_hz=det.event_cutoff_hz, event_delay_s=self.delay,
-            pre_n=int(round(PRE_SWING_S * fs)))
+            pre_n=int(round(PRE_SWING_S * fs)), cluster_s=det.impact_cluster_s)  # steps decision 91
         self.state.need_n = self.params.max_still_n if det.quiet_frac > 0 else self.params.min_still_n
 
     def process(self, t: np.ndarray, v: np.ndarray) -> list:

@@ -42,6 +42,7 @@ from pdrlearn.kernels.contact import (
     FORCE_OFF_FRAC,
     FORCE_ON_FRAC,
     FORCE_REF_STANCES,
+    IMPACT_CLUSTER_S,
     PEAK_FRAC,
     PEAK_PROMINENCE,
     SHORT_PERIOD_S,
@@ -58,7 +59,7 @@ ACCEL = {"cutoff_hz": 3.0, "order": 3, "threshold": 1.7, "still_window_s": 0.08,
          "peak_frac": PEAK_FRAC, "peak_prominence": PEAK_PROMINENCE, "event_cutoff_hz": EVENT_CUTOFF_HZ,
          "gravity": 9.80665, "subsample": None,  # steps decision 89: peak_prominence
          "short_period_s": SHORT_PERIOD_S, "fast_period_s": FAST_PERIOD_S,  # steps decisions 87, 88
-         "fast_event_cutoff_hz": FAST_EVENT_CUTOFF_HZ}
+         "fast_event_cutoff_hz": FAST_EVENT_CUTOFF_HZ, "impact_cluster_s": IMPACT_CLUSTER_S}  # steps decision 91
 FORCE = {"cutoff_hz": 3.0, "order": 3, "threshold": FORCE_AMP, "force_on_frac": FORCE_ON_FRAC,
          "force_off_frac": FORCE_OFF_FRAC, "min_swing_s": FORCE_MIN_SWING_S, "subsample": None,
          "ref_stances": FORCE_REF_STANCES, "confirm": True}  # steps decision 54

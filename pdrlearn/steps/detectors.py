@@ -24,6 +24,7 @@ from pdrlearn.kernels.contact import (
     FORCE_OFF_FRAC,
     FORCE_ON_FRAC,
     FORCE_REF_STANCES,
+    IMPACT_CLUSTER_S,
     MAX_STRIDE_S,
     PEAK_FRAC,
     PEAK_PROMINENCE,
@@ -106,6 +107,9 @@ class AccelStepDetector(StepDetector):
         ``fast_period_s`` and shorter: at a child's short swing the 8 Hz signal merges the terminal-swing
         deceleration and the impact into one peak, 60-88 ms early (steps decisions 87, 88); ``short_period_s=0`` is
         decision 3 alone
+    impact_cluster_s : at the rhythm's cutoff the impact is the head of a split impact among the last peak reaching
+        the level and those up to this long (s) before it (steps decision 91: a child's impact splits at 20 Hz, its
+        tail under 0.75 of the head, ``pdrlearn.kernels.contact.split_head``); 0 = the last peak (steps 88)
     """
 
     name = "accel"
@@ -123,7 +127,8 @@ class AccelStepDetector(StepDetector):
                  event_cutoff_hz: float = EVENT_CUTOFF_HZ,
                  gravity: float = G, subsample: bool | None = None,
                  short_period_s: float = SHORT_PERIOD_S,  # steps decisions 87, 88
-                 fast_period_s: float = FAST_PERIOD_S, fast_event_cutoff_hz: float = FAST_EVENT_CUTOFF_HZ):
+                 fast_period_s: float = FAST_PERIOD_S, fast_event_cutoff_hz: float = FAST_EVENT_CUTOFF_HZ,
+                 impact_cluster_s: float = IMPACT_CLUSTER_S):  # steps decision 91
         if int(quiet_rank) != quiet_rank or quiet_rank < 1:
             raise DataError(f"accel detector: quiet_rank must be an integer >= 1 (1 = the longest recent rest, "
                             f"decision 14; 2 = the second longest, decision 16), got {quiet_rank!r}")
