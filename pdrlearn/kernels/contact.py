@@ -22,6 +22,23 @@ from pdrlearn.kernels.samples import values
 GRAVITY = 9.80665
 #: the impact's low-pass cutoff (Hz) and order: AccelStepDetector's ``event_cutoff_hz`` (steps decision 14)
 EVENT_CUTOFF_HZ = 8.0
+#: steps decisions 87, 88: a stride whose impact at 8 Hz comes less than this (s) after the previous stride's IC (a
+#: child's 126 steps/min) takes its impact on |acc| low-passed at the stride's own cutoff (:func:`rhythm_cutoff_hz`):
+#: at 8 Hz its terminal-swing deceleration and impact merge into one peak, the deceleration's, 60-88 ms early
+SHORT_PERIOD_S = 0.95
+#: steps decision 88: at this IC-to-IC time (s) and shorter the cutoff is :data:`FAST_EVENT_CUTOFF_HZ` (a child's
+#: 0.34 s steps; u14906's 60 ms gap needed 20 Hz, steps 87)
+FAST_PERIOD_S = 0.68
+#: steps decision 88: the cap of the rhythm's cutoff (Hz, 2nd order, its own group delay)
+FAST_EVENT_CUTOFF_HZ = 20.0
+#: steps decision 91: at the rhythm's cutoff the impact is looked for among the last peak reaching the level and the
+#: peaks up to this long (s) before it (:func:`split_head`): at 20 Hz a child's impact splits into the contact and a
+#: tail 30-50 ms later (steps 88), which the last-peak rule took. 0: the last peak (steps 88)
+IMPACT_CLUSTER_S = 0.05
+#: steps decision 91: an earlier peak of that cluster is the impact when the later one is under this share of it (the
+#: split tails of development children 14900-14911 / 15200-15219 were 0.43-0.70 of their impact 40-50 ms before; an
+#: impact 40-50 ms after the deceleration peak was 0.76 of it or more)
+IMPACT_SPLIT_RATIO = 0.75
 #: the impact must rise at least this fraction of the swing's largest rise (AccelStepDetector ``peak_frac``)
 PEAK_FRAC = 0.3
 #: steps decision 89 (not adopted: 0, every local maximum in samples): a local maximum whose dip from the bump before
@@ -151,29 +168,87 @@ def local_maxima(e: np.ndarray) -> np.ndarray:
     return np.flatnonzero((e[1:-1] > e[:-2]) & (e[2:] <= e[1:-1])) + 1
 
 
-def impact_time(t: np.ndarray, acc: np.ndarray, *, rest: float = GRAVITY, peak_frac: float = PEAK_FRAC,
-                cutoff_hz: float = EVENT_CUTOFF_HZ, prominence: float = PEAK_PROMINENCE) -> float:
-    """Decision E49: the IC (s) of one stride from its foot accelerometer samples ``t`` (n,) s, ``acc`` (n, 3)
-    m/s^2 (stance to stance): |acc| low-passed by :func:`butter2` (cutoff below 0.45 x the rate), the last bump
-    (steps decision 89: local maxima grouped by ``prominence``, :func:`bump_peaks`) reaching ``peak_frac`` of the
-    largest rise above ``rest`` (:func:`last_impact`), less the filter's group delay at 1 Hz. NaN with fewer than 3
-    samples, no such peak, or an IC before ``t[0]``."""
+def short_stride(period_s: float, short_period_s: float = SHORT_PERIOD_S) -> bool:
+    """Steps decision 87: True when a stride whose 8 Hz impact comes ``period_s`` (s) after the previous stride's IC
+    takes its impact on the rhythm's cutoff (under ``short_period_s``; NaN, no previous contact: False)."""
+    return bool(period_s < short_period_s)
+
+
+def rhythm_cutoff_hz(period_s: float, cutoff_hz: float = EVENT_CUTOFF_HZ, short_period_s: float = SHORT_PERIOD_S,
+                     fast_period_s: float = FAST_PERIOD_S, fast_cutoff_hz: float = FAST_EVENT_CUTOFF_HZ) -> float:
+    """Steps decision 88: the impact's cutoff (Hz) of a stride whose 8 Hz impact comes ``period_s`` (s) after the
+    previous stride's IC: ``cutoff_hz`` from ``short_period_s`` up (and without a previous IC), rising linearly to
+    ``fast_cutoff_hz`` at ``fast_period_s`` and held there below (the filter's span follows the closing gap between the
+    terminal-swing deceleration and the impact)."""
+    if not short_stride(period_s, short_period_s):
+        return float(cutoff_hz)
+    share = min(1.0, (short_period_s - period_s) / max(short_period_s - fast_period_s, 1e-9))
+    return float(cutoff_hz + share * (max(fast_cutoff_hz, cutoff_hz) - cutoff_hz))
+
+
+def split_head(peak_t, peak_values, k: int, cluster_s: float, ratio: float = IMPACT_SPLIT_RATIO) -> int:
+    """Steps decision 91: the impact among the peaks ``peak_values`` (times ``peak_t``, s, in order) when peak ``k`` is
+    the last one reaching the impact level: going back from ``k`` over the peaks up to ``cluster_s`` (s) before it, an
+    earlier peak takes the choice when the chosen one is under ``ratio`` of it (a split impact's tail: the impact
+    stays the larger head; the terminal-swing deceleration lies further back or is not that much larger). ``k``
+    itself when ``cluster_s`` is 0."""
+    best = k
+    for j in range(k - 1, -1, -1):
+        if peak_t[j] < peak_t[k] - cluster_s:
+            break
+        if peak_values[best] < ratio * peak_values[j]:
+            best = j
+    return best
+
+
+def impact_peak(t: np.ndarray, m: np.ndarray, rest: float, peak_frac: float, cutoff_hz: float,
+                subsample: bool, prominence: float = PEAK_PROMINENCE,
+                cluster_s: float = 0.0) -> tuple[float, float, float]:
+    """Decision E49's rule on the magnitude ``m`` (n,) at times ``t`` (n,) s at one cutoff (Hz, below 0.45 x the
+    rate): (IC (s) less the filter's group delay at 1 Hz, the peak's filtered value, the largest filtered value);
+    the IC is NaN with fewer than 3 samples or no peak reaching ``peak_frac`` of the largest rise above ``rest``.
+    Steps decision 91: with ``cluster_s`` > 0 the peak is the head of a split impact among the last one reaching the
+    level and those up to ``cluster_s`` (s) before it (:func:`split_head`). :func:`impact_time` and the offline
+    detector's rhythm cutoff (steps decision 88) share it."""
     t = np.asarray(t, dtype=float)
     if len(t) < 3:
-        return math.nan
+        return math.nan, math.nan, math.nan
     fs = 1.0 / float(np.median(np.diff(t)))
     b, a = butter2(min(cutoff_hz, MAX_CUTOFF_FRAC * fs), fs)
-    acc = np.asarray(acc, dtype=float)
-    e = lowpass2(np.sqrt(np.einsum("ij,ij->i", acc, acc)), b, a)
+    e = lowpass2(m, b, a)
     pk = local_maxima(e)
     dips = [math.inf] + [float(e[i + 1:j + 1].min()) for i, j in zip(pk[:-1], pk[1:], strict=True)]
     pk = pk[bump_peaks(e[pk], dips, prominence)]  # steps decision 89
-    k = last_impact(e[pk], float(e.max()), rest, peak_frac)
+    emx = float(e.max())
+    k = last_impact(e[pk], emx, rest, peak_frac)
     if k < 0:
+        return math.nan, math.nan, emx
+    i = int(pk[split_head(t[pk], e[pk], k, cluster_s)])  # steps decision 91
+    tp = peak_time(*(float(v) for v in (*t[i - 1:i + 2], *e[i - 1:i + 2]))) if subsample else float(t[i])
+    return tp - group_delay_s(b, a, fs), float(e[i]), emx
+
+
+def impact_time(t: np.ndarray, acc: np.ndarray, *, rest: float = GRAVITY, peak_frac: float = PEAK_FRAC,
+                cutoff_hz: float = EVENT_CUTOFF_HZ, prominence: float = PEAK_PROMINENCE, prev_ic_s: float = math.nan,
+                short_period_s: float = SHORT_PERIOD_S, fast_period_s: float = FAST_PERIOD_S,
+                fast_cutoff_hz: float = FAST_EVENT_CUTOFF_HZ, cluster_s: float = IMPACT_CLUSTER_S) -> float:
+    """Decision E49: the IC (s) of one stride from its foot accelerometer samples ``t`` (n,) s, ``acc`` (n, 3)
+    m/s^2 (stance to stance): |acc| low-passed by :func:`butter2` (cutoff below 0.45 x the rate), the last bump
+    (steps decision 89: local maxima grouped by ``prominence``, :func:`bump_peaks`) reaching ``peak_frac`` of the
+    largest rise above ``rest`` (:func:`last_impact`), less the filter's group delay at 1 Hz (:func:`impact_peak`).
+    NaN with fewer than 3 samples, no such peak, or an IC before ``t[0]``. Steps decisions 87, 88: re-taken at the
+    rhythm's cutoff (:func:`rhythm_cutoff_hz`) when it comes less than ``short_period_s`` after ``prev_ic_s``, the
+    previous stride's contact; steps decision 91: there the head of a split impact (:func:`split_head`)."""
+    t = np.asarray(t, dtype=float)
+    if len(t) < 3:
         return math.nan
-    i = int(pk[k])
-    tp = peak_time(*(float(v) for v in (*t[i - 1:i + 2], *e[i - 1:i + 2]))) if SUBSAMPLE else float(t[i])
-    ic = tp - group_delay_s(b, a, fs)
+    acc = np.asarray(acc, dtype=float)
+    m = np.sqrt(np.einsum("ij,ij->i", acc, acc))
+    ic = impact_peak(t, m, rest, peak_frac, cutoff_hz, SUBSAMPLE, prominence)[0]
+    f = rhythm_cutoff_hz(ic - prev_ic_s, cutoff_hz, short_period_s, fast_period_s, fast_cutoff_hz)
+    if f != cutoff_hz:  # steps decision 88 (no peak at the rhythm's cutoff: the 8 Hz one stays, as offline)
+        ic2 = impact_peak(t, m, rest, peak_frac, f, SUBSAMPLE, prominence, cluster_s)[0]
+        ic = ic2 if ic2 == ic2 else ic
     return ic if ic >= t[0] else math.nan
 
 
@@ -353,15 +428,17 @@ def force_onset(t: np.ndarray, acc: np.ndarray, force: np.ndarray) -> float:
     return float(ev[-1][0]) if ev else math.nan
 
 
-def stride_contact(t: np.ndarray, acc: np.ndarray, force: np.ndarray | None = None) -> float:
+def stride_contact(t: np.ndarray, acc: np.ndarray, force: np.ndarray | None = None,
+                   prev_ic_s: float = math.nan) -> float:
     """Decisions E49 / E50: the initial contact (s) of one streamed stride (stance to stance; ``t`` (n,) s, foot
     ``acc`` (n, 3) m/s^2, ``force`` (n, 2) heel and toe at ``t`` or None): offline's source - the force sensors'
-    stance onset (:func:`force_onset`) when given and found, else the accelerometer impact (:func:`impact_time`)."""
+    stance onset (:func:`force_onset`) when given and found, else the accelerometer impact (:func:`impact_time`;
+    ``prev_ic_s`` the previous stride's contact, steps decision 87)."""
     if force is not None:
         ic = force_onset(t, acc, force)
         if math.isfinite(ic):
             return ic
-    return impact_time(t, acc)
+    return impact_time(t, acc, prev_ic_s=prev_ic_s)
 
 
 def force_at(t: np.ndarray, streams) -> np.ndarray | None:

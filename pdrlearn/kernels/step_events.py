@@ -25,9 +25,12 @@ from pdrlearn.kernels.contact import (  # noqa: F401
     TareState,
     bump_peaks,
     force_kernel,
+    impact_peak,
     last_impact,
     peak_time,
+    rhythm_cutoff_hz,
     running_tare,
+    short_stride,
 )
 from pdrlearn.kernels.dsp import magnitude
 from pdrlearn.kernels.samples import values
@@ -75,6 +78,18 @@ class BurstParams:
     rests_only: bool = False
     subsample: bool = False  # steps decision 32: each peak's time at the vertex of its parabola
     prominence: float = 0.0  # steps decision 89: maxima grouped into bumps by this dip (m/s^2; 0: every maximum)
+    # steps decisions 87, 88: a swing whose event comes less than short_period_s after the last accepted stride's
+    # event takes it again from the raw magnitude ``m`` low-passed at the rhythm's cutoff (contact.rhythm_cutoff_hz
+    # of event_cutoff_hz, fast_period_s, fast_cutoff_hz), as the streamed contact does, over the swing and the pre_n
+    # samples before it; event_delay_s (the event signal's group delay, which the processor subtracts from every
+    # event) is added back. 0: ``e`` only
+    short_period_s: float = 0.0
+    fast_period_s: float = 0.0
+    fast_cutoff_hz: float = 0.0
+    event_cutoff_hz: float = 0.0
+    event_delay_s: float = 0.0
+    pre_n: int = 0
+    cluster_s: float = 0.0  # steps decision 91: at the rhythm's cutoff the head of a split impact (contact.split_head)
 
 
 @dataclass
@@ -94,6 +109,9 @@ class BurstState:
     emx: float = -math.inf
     peaks: list = field(default_factory=list)  # local maxima (t, a, dip before it) of the current swing
     low: float = math.inf  # steps decision 89: the lowest event value since the swing's last local maximum
+    raw: list = field(default_factory=list)  # steps decision 88: (t, |acc|) of the swing and the pre_n before it
+    last_ic: float = math.nan  # steps decision 87: the held (pending) stride's event, and the one before it
+    before_ic: float = math.nan
     pending: Event | None = None  # last accepted stride, held back until min_stride_s has passed
     pending_amp: float = 0.0
     pending_emx: float = -math.inf
@@ -110,7 +128,8 @@ def _still_need(s: BurstState, p: BurstParams) -> int:
 
 
 def burst_kernel(t: np.ndarray, a: np.ndarray, still: np.ndarray, state: BurstState,
-                 p: BurstParams, e: np.ndarray | None = None) -> tuple[list[Event], BurstState]:
+                 p: BurstParams, e: np.ndarray | None = None,
+                 m: np.ndarray | None = None) -> tuple[list[Event], BurstState]:
     """Swing detection: a swing starts at the first non-still sample and ends after ``min_still_n``
     still samples; it is a stride when the filtered magnitude ``a`` spans more than ``p.amp`` (thesis
     ch.5.1 max - current > 1.7 m/s^2) and it lasts ``min_dur_s``..``max_dur_s``. The event is the
@@ -120,13 +139,18 @@ def burst_kernel(t: np.ndarray, a: np.ndarray, still: np.ndarray, state: BurstSt
     ``min_stride_s`` are merged, keeping the larger one. ``e`` (default ``a``) is the signal whose peaks
     locate the event (a less smoothed magnitude keeps the impact apart from the push-off). With
     ``p.subsample`` a peak's time is the vertex of the parabola through it and its neighbours (steps decision 32;
-    its value, and so the choice of the peak, stays the sample's).
+    its value, and so the choice of the peak, stays the sample's). Steps decisions 87, 88: with the raw
+    magnitude ``m`` and ``p.short_period_s``, a swing whose event comes within ``short_period_s`` of the last accepted
+    stride's event takes it again from ``m`` low-passed at the rhythm's cutoff (decision 3's stride time, as the
+    streamed contact reads it; :func:`pdrlearn.kernels.contact.impact_peak`, the streamed rule).
     """
     out: list[Event] = []
     s = state
     tl, al, sl = values(t), values(a), values(still)  # decision E195: no whole-session lists
     el = al if e is None else values(e)  # a memoryview / list iterates afresh in zip
-    for ti, ai, si, ei in zip(tl, al, sl, el, strict=True):
+    short = m is not None and p.short_period_s > 0  # steps decisions 87, 88
+    ml = values(m) if short else el
+    for ti, ai, si, ei, mi in zip(tl, al, sl, el, ml, strict=True):
         s.last_t = ti
         if s.pending is not None and ti - s.pending[0] >= p.min_stride_s and not (
                 s.active and s.i0_t - s.pending[0] < p.min_stride_s):
@@ -143,6 +167,10 @@ def burst_kernel(t: np.ndarray, a: np.ndarray, still: np.ndarray, state: BurstSt
         was_rising, prev_a, prev_t, prev2_a, prev2_t = s.rising, s.prev_a, s.prev_t, s.prev2_a, s.prev2_t
         s.rising = ei > prev_a if prev_a == prev_a else False
         s.prev2_a, s.prev2_t, s.prev_a, s.prev_t = prev_a, prev_t, ei, ti
+        if short:  # steps decision 88: the swing's raw magnitude, and the pre_n samples before it
+            s.raw.append((ti, mi))
+            if not s.active and len(s.raw) > p.pre_n:
+                del s.raw[:len(s.raw) - p.pre_n]
         if not s.active:
             if not si:
                 s.active, s.i0_t, s.mx, s.mx_t, s.mn = True, ti, ai, ti, ai
@@ -166,23 +194,39 @@ def burst_kernel(t: np.ndarray, a: np.ndarray, still: np.ndarray, state: BurstSt
             span = s.mx - s.mn
             bumps = [s.peaks[j] for j in bump_peaks([pa for _, pa, _ in s.peaks], [d for _, _, d in s.peaks],
                                                      p.prominence)]  # steps decision 89
-            k = last_impact([pa for _, pa, _ in bumps], s.emx, p.rest, p.peak_frac)  # E49: the streamed IC's rule
-            t_ev, e_ev = bumps[k][:2] if k >= 0 else (s.mx_t, s.emx)
+            emx = s.emx
+            k = last_impact([pa for _, pa, _ in bumps], emx, p.rest, p.peak_frac)  # E49: the streamed IC's rule
+            t_ev, e_ev = bumps[k][:2] if k >= 0 else (s.mx_t, emx)
+            # steps decision 87: the rhythm from the stride before; a piece of the held stride (merged below) reads
+            # it from the stride before that one
+            merging = s.pending is not None and t_ev - s.pending[0] < p.min_stride_s
+            period = t_ev - (s.before_ic if merging else s.last_ic)
+            if short and short_stride(period, p.short_period_s):  # steps decision 88: the rhythm's cutoff
+                f = rhythm_cutoff_hz(period, p.event_cutoff_hz, p.short_period_s, p.fast_period_s, p.fast_cutoff_hz)
+                rt, rm = zip(*s.raw, strict=True)
+                ic, e_f, emx_f = impact_peak(np.array(rt), np.array(rm), p.rest, p.peak_frac, f, p.subsample,
+                                             p.prominence, p.cluster_s)  # steps decision 91
+                if ic == ic:
+                    t_ev, e_ev, emx = ic + p.event_delay_s, e_f, emx_f
+            if short:
+                del s.raw[:len(s.raw) - p.pre_n]
             if s.pending is not None and t_ev - s.pending[0] < p.min_stride_s and span > p.amp:
                 # the same swing split by a brief false rest: merge; the event stays the last impact
                 # (a wobble below the threshold while standing is ignored, it never moves the event)
                 pe = s.pending
-                s.pending_emx = max(s.pending_emx, s.emx)
+                s.pending_emx = max(s.pending_emx, emx)
                 amp = max(s.pending_amp, span)
                 conf = min(1.0, amp / (2.0 * p.amp))
                 merged_level = p.rest + p.peak_frac * (s.pending_emx - p.rest)
                 t_m = t_ev if e_ev >= merged_level else pe[0]
                 s.pending, s.pending_amp = (t_m, pe[1], ti, conf, {"amplitude": amp}), amp
+                s.last_ic = t_m  # steps decision 87
             elif span > p.amp and p.min_dur_s <= dur <= p.max_dur_s:
                 if s.pending is not None:
                     out.append(s.pending)
+                s.before_ic, s.last_ic = s.last_ic, t_ev  # steps decision 87
                 conf = min(1.0, span / (2.0 * p.amp))
-                s.pending, s.pending_amp, s.pending_emx = (t_ev, s.i0_t, ti, conf, {"amplitude": span}), span, s.emx
+                s.pending, s.pending_amp, s.pending_emx = (t_ev, s.i0_t, ti, conf, {"amplitude": span}), span, emx
     return out, s
 
 
@@ -646,6 +690,9 @@ MIN_STILL_WINDOW_SAMPLES = 3
 #: steps decision 37: detections closer than this (s) are one stride of the foot; 0.6 s (decision 3) merged the
 #: strides of children at 200+ steps/min (experiments/results/child_strides.md)
 MIN_STRIDE_S = 0.4
+#: steps decision 88: the offline rhythm cutoff filters the swing's raw |acc| from this long (s) before its first moving
+#: sample (a rest; the filter started at its steady state has settled there, as the streamed stride's from its start)
+PRE_SWING_S = 0.2
 
 
 class AccelProcessor:
@@ -668,7 +715,10 @@ class AccelProcessor:
             rest=det.gravity, peak_frac=det.peak_frac, max_still_n=need(det.max_quiet_s),
             quiet_frac=det.quiet_frac, history=4, window_n=self.w, cap_n=int(round(0.6 * fs)),
             quiet_rank=det.quiet_rank, rests_only=det.rests_only, subsample=subsample_of(det),
-            prominence=float(det.peak_prominence))
+            prominence=float(det.peak_prominence),
+            short_period_s=det.short_period_s, fast_period_s=det.fast_period_s,  # steps decisions 87, 88
+            fast_cutoff_hz=det.fast_event_cutoff_hz, event_cutoff_hz=det.event_cutoff_hz, event_delay_s=self.delay,
+            pre_n=int(round(PRE_SWING_S * fs)), cluster_s=det.impact_cluster_s)  # steps decision 91
         self.state.need_n = self.params.max_still_n if det.quiet_frac > 0 else self.params.min_still_n
 
     def process(self, t: np.ndarray, v: np.ndarray) -> list:
@@ -678,7 +728,7 @@ class AccelProcessor:
             self.tail = np.full(self.w - 1, m[0])
         mean, std, self.tail = trailing_window_std(m, self.tail, self.w)
         still = (std < self.det.still_std) & (np.abs(mean - self.det.gravity) < self.det.still_level_tol)
-        ev, self.state = burst_kernel(t, a, still, self.state, self.params, e=self.lp_event.push(m))
+        ev, self.state = burst_kernel(t, a, still, self.state, self.params, e=self.lp_event.push(m), m=m)
         return shift_events(ev, self.delay)
 
     def flush(self) -> list:

@@ -35,13 +35,17 @@ from pdrlearn.kernels.align import (
 )
 from pdrlearn.kernels.contact import (
     EVENT_CUTOFF_HZ,
+    FAST_EVENT_CUTOFF_HZ,
+    FAST_PERIOD_S,
     FORCE_AMP,
     FORCE_MIN_SWING_S,
     FORCE_OFF_FRAC,
     FORCE_ON_FRAC,
     FORCE_REF_STANCES,
+    IMPACT_CLUSTER_S,
     PEAK_FRAC,
     PEAK_PROMINENCE,
+    SHORT_PERIOD_S,
 )
 from pdrlearn.kernels.step_events import MIN_STRIDE_S, AccelProcessor, ForceProcessor, PLLProcessor
 from pdrlearn.kernels.waist import PLL_F0_HZ
@@ -53,7 +57,9 @@ ACCEL = {"cutoff_hz": 3.0, "order": 3, "threshold": 1.7, "still_window_s": 0.08,
          "still_level_tol": 1.2, "min_quiet_s": 0.1, "max_quiet_s": 0.2, "quiet_frac": 0.5, "quiet_rank": 2,
          "rests_only": True, "min_swing_s": 0.2, "max_swing_s": 2.5, "min_stride_s": MIN_STRIDE_S,
          "peak_frac": PEAK_FRAC, "peak_prominence": PEAK_PROMINENCE, "event_cutoff_hz": EVENT_CUTOFF_HZ,
-         "gravity": 9.80665, "subsample": None}  # steps decision 89: peak_prominence
+         "gravity": 9.80665, "subsample": None,  # steps decision 89: peak_prominence
+         "short_period_s": SHORT_PERIOD_S, "fast_period_s": FAST_PERIOD_S,  # steps decisions 87, 88
+         "fast_event_cutoff_hz": FAST_EVENT_CUTOFF_HZ, "impact_cluster_s": IMPACT_CLUSTER_S}  # steps decision 91
 FORCE = {"cutoff_hz": 3.0, "order": 3, "threshold": FORCE_AMP, "force_on_frac": FORCE_ON_FRAC,
          "force_off_frac": FORCE_OFF_FRAC, "min_swing_s": FORCE_MIN_SWING_S, "subsample": None,
          "ref_stances": FORCE_REF_STANCES, "confirm": True}  # steps decision 54

@@ -754,6 +754,7 @@ class Tracker(OwnGuard, FixInput):
         self._groups: tuple[tuple[str, ...], tuple[str, ...]] = ((), ())  # (buffered sensors, their groups)
         self.n_steps = 0
         self._prev_end: float | None = None  # end (s) of the last measured stride (decision L31)
+        self._contacts: list[tuple[float, float]] = []  # steps decision 87: the last strides' (start, contact) (s)
         self._gated_run_dz = 0.0  # decision L206: the summed dz of the current run of gated level strides (m)
         self._row_gaps, self._heights = [], HeightLog()  # decisions E46, E47 (E75: typed arrays)
         self.waist_gap_yaw = bool(waist_gap_yaw)  # decision L61
@@ -2121,6 +2122,8 @@ class Tracker(OwnGuard, FixInput):
             spec = None
         bridged = False
         prev = self._prev_end
+        before = [c for c in self._contacts if c[0] < t0]  # steps decision 87: a stride measured again, the same
+        prev_ic = before[-1][1] if before else math.nan
         pause_gap = False  # decision L90: the pause before this stride overlaps a foot IMU gap over 1 s
         if self._foot_gaps:  # decision E30 / B11: a stride across a foot gap over 1 s moves 0 m
             pause_gap = prev is not None and prev < t0 and any(
@@ -2133,6 +2136,7 @@ class Tracker(OwnGuard, FixInput):
                 if self._bridged() and any(long and imu for _, long, imu in over):  # decision L91
                     bridge = waist_bridge_yaw(self._stream, min(t0, t0 if prev is None else prev), t1)
                 self._prev_end = t1  # no L31 pivot across it either: the foot's turn inside the gap is unknown
+                self._contacts = (before + [(t0, math.nan)])[-2:]  # steps decision 87: no contact
                 return ("gap", t0, t1, _pedal.unjudged_row(t0, t1), gap, bridge)  # E280: in its chain, not judged
             bridged = bool(over)  # a shorter gap in the foot accelerometer / gyroscope: no classes (B11)
         if bridged:  # no classes, as UserModel.predict_steps leaves a step without the foot unit (offline, track
@@ -2191,7 +2195,8 @@ class Tracker(OwnGuard, FixInput):
         else:  # decision L621: the foot's own rest reading, causally (E280)
             row = (t0, t1, float(disp[2]), self._foot_rest.unrested(self._stream, t0, t1), float(np.hypot(*disp[:2])),
                    True)
-        event_s = self._contact(t0, t1) if self.contacts else math.nan
+        event_s = self._contact(t0, t1, prev_ic) if self.contacts else math.nan
+        self._contacts = (before + [(t0, event_s)])[-2:]
         return ("stride", t0, t1, row, lev, classes, proba, disp, dyaw, turn, event_s)
 
     def _apply(self, rec: tuple, pedal: bool = False) -> Step | None:
@@ -2299,10 +2304,11 @@ class Tracker(OwnGuard, FixInput):
         return max([stride_hole(self._taken_times(name), t0, t1) for name in sorted(_FOOT_IMU) if name in self._buf],
                    default=0.0)
 
-    def _contact(self, t0: float, t1: float) -> float:
+    def _contact(self, t0: float, t1: float, prev_ic_s: float = math.nan) -> float:
         """Decisions E49 / E50: the initial contact (s) of the stride ``[t0, t1]`` from its buffered samples
         (:func:`pdrlearn.kernels.contact.stride_contact`: the force sensors' stance onset when they are buffered,
-        else the foot accelerometer's impact; offline's sources), NaN when it has none."""
+        else the foot accelerometer's impact; offline's sources), NaN when it has none. ``prev_ic_s``: the previous
+        stride's contact (steps decision 87)."""
         ring = self._buf.get("fAccelerometer")
         if ring is None:
             return math.nan
@@ -2311,7 +2317,7 @@ class Tracker(OwnGuard, FixInput):
         t, v = t[i0:i1], v[i0:i1, :3]
         fa, fb = self._buf.get("fForceA"), self._buf.get("fForceB")
         force = None if fa is None or fb is None else force_at(t, (fa.view(), fb.view()))
-        return stride_contact(t, v, force)
+        return stride_contact(t, v, force, prev_ic_s)
 
     def _non_finite(self, t0: float, t1: float, heading: float, direction: float, xyz: tuple, motion: tuple) -> None:
         """Decision E38: a stride of data that passed every input check left a non-finite heading or position:

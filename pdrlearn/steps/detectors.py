@@ -17,14 +17,18 @@ from pdrlearn.errors import DataError
 from pdrlearn.io.session import Session
 from pdrlearn.kernels.contact import (
     EVENT_CUTOFF_HZ,
+    FAST_EVENT_CUTOFF_HZ,
+    FAST_PERIOD_S,
     FORCE_AMP,
     FORCE_MIN_SWING_S,
     FORCE_OFF_FRAC,
     FORCE_ON_FRAC,
     FORCE_REF_STANCES,
+    IMPACT_CLUSTER_S,
     MAX_STRIDE_S,
     PEAK_FRAC,
     PEAK_PROMINENCE,
+    SHORT_PERIOD_S,
 )
 from pdrlearn.kernels.step_events import (  # decision L177: the online processors, numpy only given a low-pass
     MIN_STILL_SAMPLES,  # noqa: F401 (re-exported)
@@ -97,6 +101,15 @@ class AccelStepDetector(StepDetector):
     gravity : rest magnitude (m/s^2)
     subsample : the contact's time at the vertex of the parabola through the peak and its two neighbouring
         samples instead of the peak sample (decision 32); None = ``pdrlearn.kernels.contact.SUBSAMPLE``
+    short_period_s, fast_period_s, fast_event_cutoff_hz : a stride whose 8 Hz impact comes less than
+        ``short_period_s`` (s) after the previous stride's IC takes its impact on |acc| low-passed at the rhythm's
+        cutoff, rising linearly from ``event_cutoff_hz`` at ``short_period_s`` to ``fast_event_cutoff_hz`` at
+        ``fast_period_s`` and shorter: at a child's short swing the 8 Hz signal merges the terminal-swing
+        deceleration and the impact into one peak, 60-88 ms early (steps decisions 87, 88); ``short_period_s=0`` is
+        decision 3 alone
+    impact_cluster_s : at the rhythm's cutoff the impact is the head of a split impact among the last peak reaching
+        the level and those up to this long (s) before it (steps decision 91: a child's impact splits at 20 Hz, its
+        tail under 0.75 of the head, ``pdrlearn.kernels.contact.split_head``); 0 = the last peak (steps 88)
     """
 
     name = "accel"
@@ -112,7 +125,10 @@ class AccelStepDetector(StepDetector):
                  min_stride_s: float = MIN_STRIDE_S, peak_frac: float = PEAK_FRAC,
                  peak_prominence: float = PEAK_PROMINENCE,
                  event_cutoff_hz: float = EVENT_CUTOFF_HZ,
-                 gravity: float = G, subsample: bool | None = None):
+                 gravity: float = G, subsample: bool | None = None,
+                 short_period_s: float = SHORT_PERIOD_S,  # steps decisions 87, 88
+                 fast_period_s: float = FAST_PERIOD_S, fast_event_cutoff_hz: float = FAST_EVENT_CUTOFF_HZ,
+                 impact_cluster_s: float = IMPACT_CLUSTER_S):  # steps decision 91
         if int(quiet_rank) != quiet_rank or quiet_rank < 1:
             raise DataError(f"accel detector: quiet_rank must be an integer >= 1 (1 = the longest recent rest, "
                             f"decision 14; 2 = the second longest, decision 16), got {quiet_rank!r}")

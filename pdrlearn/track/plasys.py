@@ -2140,7 +2140,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         a, b = np.searchsorted(fa_t, t0, side="left"), np.searchsorted(fa_t, t1, side="right")
         if contacts:  # decisions E49-E51 (an option): the runtime's initial contact
             force = force_at(fa_t[a:b], [streams[n] for n in ("fForceA", "fForceB")]) if has_force else None
-            ic[i] = stride_contact(fa_t[a:b], fa_v[a:b, :3], force)
+            ic[i] = stride_contact(fa_t[a:b], fa_v[a:b, :3], force, ic[i - 1] if i else float("nan"))  # steps 87
         place[i] = SK.placement_offset(lev, heading, disp[i])  # decision L34
         frame[i] = KSW.step_frame(lev)  # decision E124: the step frame's direction from the foot's facing
         foot_turn[i] = KSW.foot_turn(lev)  # decision L400

@@ -28,13 +28,14 @@ BIAS_SOURCE = {"imu": "IMU-only contacts (against motion capture on gaitmap's re
                         "drop-off, early; no real insole reference)"}
 
 
-#: decision L703 (steps 87, not adopted): below this gait cycle (s) some IMU-only contacts fire 50-80 ms early at the
-#: terminal-swing deceleration (simulated children at 0.34-0.44 s steps, 0.68-0.88 s cycles; none on adults' 1.0-1.2
-#: s cycles), so the stance reads long on some strides and the sign of the support bias is not known there
+#: decision L703 (steps 87): below this gait cycle (s) IMU-only contacts fired 50-80 ms early at the terminal-swing
+#: deceleration on some strides (simulated children at 0.34-0.44 s steps, 0.68-0.88 s cycles; none on adults' 1.0-1.2
+#: s cycles); steps 91 re-dates them there, so the sign of the support bias is still not claimed (simulated only)
 IMU_EARLY_CYCLE_S = 0.95
-#: decision L703: the median stance-time error (ms) of the simulated children's IMU-only walks (users 14900-14919,
-#: 0.68-0.88 s cycles, session 47), lowest and highest
-IMU_CHILD_STANCE_MS = (-23.5, 23.5)
+#: steps decision 92: the median stance-time error (ms) of the simulated children's IMU-only walks after steps 91's
+#: re-dating (users 15540-15559, 0.68-0.88 s cycles, session 48), lowest and highest; L703's -23.5 to +23.5 ms (users
+#: 14900-14919) was decision 3's
+IMU_CHILD_STANCE_MS = (-30.1, -3.8)
 
 
 def stance_bias_ms(setup: str, cycle_s: float | None) -> tuple[float, float] | None:
@@ -74,10 +75,10 @@ def bias_terms(setup: str | None, cycle_s: float | None) -> str:
                      f"stance, {2 * pp[0]:+.1f} to {2 * pp[1]:+.1f} of double support and {-pp[1]:+.1f} to "
                      f"{-pp[0]:+.1f} of single support")
         if s == "imu" and cycle_s is not None and cycle_s < IMU_EARLY_CYCLE_S:
-            text += (f"; but at a gait cycle under {IMU_EARLY_CYCLE_S:g} s some IMU-only contacts fire 50-80 ms early "
-                     "(the terminal-swing deceleration, steps 87): simulated children's stance read "
-                     f"{IMU_CHILD_STANCE_MS[0]:+.0f} to {IMU_CHILD_STANCE_MS[1]:+.0f} ms, so their double support can "
-                     "read high")
+            text += (f"; but at a gait cycle under {IMU_EARLY_CYCLE_S:g} s IMU-only contacts are re-dated at the "
+                     "stride's rhythm (steps 91; before it some fired 50-80 ms early, steps 87): simulated children's "
+                     f"stance read {IMU_CHILD_STANCE_MS[0]:+.0f} to {IMU_CHILD_STANCE_MS[1]:+.0f} ms (steps 92), a "
+                     "simulated measure only, so no sign is claimed")
         parts.append(text)
     return "; ".join(parts)
 
