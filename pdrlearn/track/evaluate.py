@@ -967,6 +967,15 @@ def _reference_distance(session: Session, *, waist: bool = False) -> tuple[float
 #: distance or the final position; judged only when the track goes at least STATIONARY_REF_MIN_TRACK_M from its start
 STATIONARY_REF_FRAC = 0.1
 STATIONARY_REF_MIN_TRACK_M = 5.0
+#: decision L727: a reference that goes this far (m) or farther from its start travels, whatever the track did (a 400 m
+#: athletics oval goes ~128 m from its start; a lab-frame pelvis on a belt under 1 m)
+STATIONARY_REF_MAX_M = 5.0
+
+
+def stationary_reference(ref_m: float, track_m: float) -> bool:
+    """Decisions L319, L727: whether a reference that goes ``ref_m`` from its start while the track goes ``track_m``
+    from its own is a treadmill's lab frame (it walked in place) rather than a travelled path."""
+    return track_m >= STATIONARY_REF_MIN_TRACK_M and ref_m < min(STATIONARY_REF_FRAC * track_m, STATIONARY_REF_MAX_M)
 
 
 def reference_travel(gt: pd.DataFrame, tr: pd.DataFrame) -> tuple[float, float]:
@@ -991,7 +1000,7 @@ def _ground_truth(result: TrackResult, session: Session, out: dict) -> None:
     still = False  # decision L319: a reference that does not travel while the track does (a treadmill's lab frame)
     if gt is not None and len(gt) > 1 and len(tr):
         ref_m, track_m = reference_travel(gt, tr)
-        still = track_m >= STATIONARY_REF_MIN_TRACK_M and ref_m < STATIONARY_REF_FRAC * track_m
+        still = stationary_reference(ref_m, track_m)
         if still:
             out["reference_travel_m"] = ref_m
     if still and source.startswith("trajectory.csv path"):  # its wobble's path is no distance walked (L357 too)
