@@ -757,11 +757,11 @@ RACE_WALK_GAITS = ("a cadence above the walking range the pipelines were validat
 #: decision W549: what that line adds - the lower back alone cannot tell the two (the simulator's shufflers and race
 #: walkers read about the same 0.63 m step at 160-215 steps/min) and they read in opposite directions (the ranges:
 #: experiments/race_walk_s48_w549.py on fresh users 15840-15859, race and shuffling gaits, uncalibrated)
-RACE_WALK_CLAUSE = ("; on the uncalibrated lower back fast long strides (race walking) read short (simulated race walks: "
-                    "{race} % distance) and short fast steps read long (simulated shuffling: {shuffle} %), so the "
-                    "distance is off either way: calibrate on this walker's own walk of known length ('pdrlearn "
-                    "calibrate DIR --distance M --out PARAMS.json', then track with --params PARAMS.json; decision "
-                    "W549)")
+RACE_WALK_CLAUSE = ("; on the uncalibrated lower back fast long strides (race walking) read short (simulated race "
+                    "walks: {race} % distance) and short fast steps read long (simulated shuffling: {shuffle} %), "
+                    "so the distance is off either way: calibrate on this walker's own walk of known length "
+                    "('pdrlearn calibrate DIR --distance M --out PARAMS.json', then track with --params "
+                    "PARAMS.json; decision W549)")
 RACE_WALK_RANGES = {"race": "-? to -?", "shuffle": "+? to +?"}
 
 
