@@ -1249,9 +1249,11 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
     turn_spans = [(y["start_s"] if y.get("start_5_s") is None else y["start_5_s"],
                    y["end_s"] if y.get("end_95_s") is None else y["end_95_s"]) for y in yaw]
     carried = seated_spans(transfers) + strideless_spans(turn_spans, strides, unit_span(session, "foot"))  # W547
+    n_foot_rest = 0
     if foot_runs and o["foot_rest_veto"]:
         carried += ride_spans(steps["event_s"].to_numpy(float), foot_runs)
         steps = drop_contacts(steps, foot_rest_keep(len(steps), foot_runs), "n_foot_rest")
+        n_foot_rest = steps.attrs["n_foot_rest"]
     # W440, W441: read once, offline; W485: the ones --detector pll read for its band, if it did
     gyro_s = functools.cache(lambda: None if realtime else pelvic[0] if pelvic else read_once(det, session))
     n_ride = 0
@@ -1459,6 +1461,7 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
         "n_rescored_contacts": n_rescored,  # decision W203
         "n_frozen_contacts": n_frozen,  # decision W214
         "n_rhythm_contacts": n_rhythm,  # decision W440
+        "n_foot_rest_contacts": n_foot_rest,  # decision W336 (C198: track-all names a track they emptied)
         "n_ride_contacts": n_ride,  # decision W486: the contacts its line names (still counted)
         "n_pelvic_gyro_steps": None if counts is None else counts[1],  # decision W441: over the contacts' span
         "step_count_unusable": bool(uncountable),  # decision W442: L95's line names no fast gait then
