@@ -33,6 +33,9 @@ def test_track_all_fails_a_ride_whose_contacts_were_all_dropped(tmp_path):
     args = {"session_dir": str(tmp_path / "s"), "out": str(tmp_path / "o"), "resume_key": "k", "input_sha256": {},
             "settings": track_settings(pipeline="waist-pendulum")}
     with pytest.raises(DataError, match=r"0 steps: all \d+ lower-back contacts found were dropped \(\d+ by "
-                                        r"foot_rest_veto, W336\)"):
+                                        r"foot_rest_veto, W336\)") as err:
         _track_job(args)
     assert not (tmp_path / "o").exists()
+    # W547: W76's "no steps found" line of such a track names the veto and the way to track the lower back alone
+    said = err.value.pdrlearn_job_extra["warnings"]
+    assert any("no steps found" in w and "--units waist" in w and "decision W547" in w for w in said)

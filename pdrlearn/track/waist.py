@@ -1340,7 +1340,10 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
     if not steps["has_next"].to_numpy(bool).any() and not (upright_source == "still" and len(transfers)):
         warnings.append(no_steps_message(thr, sigma, gate_source, n_contacts=len(steps)) + (
             f"; freeze_veto (decision W214) dropped {n_frozen} contact(s) inside freeze episodes: track without it "
-            "(decision W396)" if n_frozen else ""))
+            "(decision W396)" if n_frozen else "") + (
+            f"; foot_rest_veto (decision W336) dropped {n_foot_rest} contact(s) made while the foot unit took no "
+            "swinging stride: if the walker walked, track the lower back alone with --units waist, or set "
+            "{\"options\": {\"foot_rest_veto\": false}} (decision W547)" if n_foot_rest else ""))
     elif not steps["has_next"].to_numpy(bool).any() and len(steps):
         warnings.append(f"the {len(steps)} contact(s) counted are isolated, none followed by another within "
                         f"{MAX_STEP_S:g} s: the chair transfers' own movement, no step and no distance (decision W312)")
