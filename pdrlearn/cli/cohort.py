@@ -502,10 +502,10 @@ SESSION_COLUMNS = ("path", "group", "subject", "visit", "visit_as_written", "sta
 WARNINGS_SEP = " | "
 
 
-#: decision C198: the track options that drop lower-back contacts, by their info count (the options' names)
-DROPPING_VETOES = {"n_foot_rest_contacts": "foot_rest_veto, W336", "n_vetoed_contacts": "sit_veto, W104",
-                   "n_unvaulted_contacts": "vault_veto, W119", "n_frozen_contacts": "freeze_veto, W214",
-                   "n_rhythm_contacts": "pelvic_rhythm_veto, W440"}
+#: decision C198: the track options that drop lower-back contacts, by their info count (the options' names); not the
+#: sit veto (W104, W487): a chair test's rises are the transfers its track is for (W277), no lost walk
+DROPPING_VETOES = {"n_foot_rest_contacts": "foot_rest_veto, W336", "n_unvaulted_contacts": "vault_veto, W119",
+                   "n_frozen_contacts": "freeze_veto, W214", "n_rhythm_contacts": "pelvic_rhythm_veto, W440"}
 
 
 def emptied_track(info: dict, n_steps: int) -> str | None:
@@ -533,8 +533,8 @@ def _track_job(args: dict) -> dict:
         try:
             tracked = track_session(Path(args["session_dir"]), args["settings"])
             emptied = emptied_track(tracked["result"].info, len(tracked["result"].steps))  # decision C198
-            if emptied:
-                raise DataError(emptied)
+            if emptied:  # a data outcome, as a foot track without a stride (B318's exit code; B389's skip of a part)
+                raise NoStridesError(emptied)
             with atomic_directory(Path(args["out"])) as tmp:
                 summary, _ = write_track(tmp, tracked)
                 # decision E154: the summary's warnings (every one track_session caught), then any later one
