@@ -3,8 +3,9 @@
 summed |distance error|; (b) the same users standing in a vehicle ride (S71): contacts inside the ride, F1;
 (c) the real recordings with both a foot and a lower-back unit (counted).
 
-Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD python experiments/waist_foot_rest_w337.py [W342]
-Writes experiments/results/waist_foot_rest_w337.md (with W342: waist_foot_rest_w342.md, decision W342's re-run).
+Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD python experiments/waist_foot_rest_w337.py [W342|W548]
+Writes experiments/results/waist_foot_rest_w337.md (with W342: waist_foot_rest_w342.md, decision W342's re-run; with
+W548: waist_foot_rest_w548.md, W548's check on fresh users 15840-15849 with its part (d), race walkers).
 """
 
 from __future__ import annotations
@@ -126,8 +127,27 @@ def verdict(decision: str, title: str, parts: dict, out_name: str, yes: str = "A
     print(buf.getvalue())
 
 
+def race() -> bool:
+    """Decision W548 (d): race walkers (W549's race gait and route, the foot unit present): the veto drops nothing."""
+    from race_walk_s48_w549 import gait_session
+
+    print("## (d) race walkers, waist-pendulum: contacts off -> on\n\n| user | off | on |\n|---|---|---|")
+    ok = True
+    for u in USERS:
+        s = gait_session(u, "race")
+        n = {v: _run(s, "waist-pendulum", v)[0].size for v in (False, True)}
+        ok &= n[True] == n[False]
+        print(f"| {u} | {n[False]} | {n[True]} |", flush=True)
+    print(f"\n(d) {'met' if ok else 'NOT met'}\n")
+    return ok
+
+
 if __name__ == "__main__":
     # W342 re-ran W337's rule unchanged after the stride fix: `python experiments/waist_foot_rest_w337.py W342`
     name = sys.argv[1] if len(sys.argv) > 1 else "W337"
-    verdict(name, "foot_rest_veto, off -> on", {"a": routes, "b": rides, "c": real},
-            f"waist_foot_rest_{name.lower()}.md")
+    parts = {"a": routes, "b": rides, "c": real}
+    if name == "W548":  # decision W548's check: fresh users, and race walkers
+        USERS = range(15840, 15850)
+        parts["d"] = race
+    verdict(name, "foot_rest_veto, off -> on", parts, f"waist_foot_rest_{name.lower()}.md",
+            yes="met: W548 kept" if name == "W548" else "ADOPT")

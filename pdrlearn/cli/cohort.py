@@ -502,6 +502,25 @@ SESSION_COLUMNS = ("path", "group", "subject", "visit", "visit_as_written", "sta
 WARNINGS_SEP = " | "
 
 
+#: decision C198: the track options that drop lower-back contacts, by their info count (the options' names); not the
+#: sit veto (W104, W487): a chair test's rises are the transfers its track is for (W277), no lost walk
+DROPPING_VETOES = {"n_foot_rest_contacts": "foot_rest_veto, W336", "n_unvaulted_contacts": "vault_veto, W119",
+                   "n_frozen_contacts": "freeze_veto, W214", "n_rhythm_contacts": "pelvic_rhythm_veto, W440"}
+
+
+def emptied_track(info: dict, n_steps: int) -> str | None:
+    """Decision C198: why a track of 0 steps is no track of a walk - its contacts were found and every one dropped
+    by a veto (T1 finding F2: the foot-rest veto dropped all 2646 of a race walk, and track-all said "ok, 0.0 m" and
+    averaged the -100 % in); None when it has a step or dropped none."""
+    dropped = {k: int(info.get(k) or 0) for k in DROPPING_VETOES}
+    if n_steps or not sum(dropped.values()):
+        return None
+    named = ", ".join(f"{n} by {DROPPING_VETOES[k]}" for k, n in dropped.items() if n)
+    return (f"0 steps: all {sum(dropped.values())} lower-back contacts found were dropped ({named}), so the track "
+            "reads 0 m: not counted as tracked nor averaged into groups.csv; its warnings say why, and `pdrlearn "
+            f"track DIR` writes its files ({decision_ref('C198', topic='cohort')})")
+
+
 def _track_job(args: dict) -> dict:
     """Track one session (in this process or on a Dask worker) into ``args["out"]`` (atomically: the
     session's folder is complete or absent); its warnings are returned, not printed (said once per batch)."""
@@ -513,6 +532,9 @@ def _track_job(args: dict) -> dict:
     with captured_warnings() as warned:
         try:
             tracked = track_session(Path(args["session_dir"]), args["settings"])
+            emptied = emptied_track(tracked["result"].info, len(tracked["result"].steps))  # decision C198
+            if emptied:  # a data outcome, as a foot track without a stride (B318's exit code; B389's skip of a part)
+                raise NoStridesError(emptied)
             with atomic_directory(Path(args["out"])) as tmp:
                 summary, _ = write_track(tmp, tracked)
                 # decision E154: the summary's warnings (every one track_session caught), then any later one

@@ -381,7 +381,7 @@ def get_pipeline(name: str) -> Pipeline:
       contacts whose vertical stride regularity is under 0.4, a vehicle's bounce; W339's rule was not met),
       ``foot_rest_veto`` (decisions W336 / W337, on: with a foot unit, a run of 4 or more lower-back contacts none
       within 1 s of a foot stride that swings the foot is dropped, a standing passenger's bounce in a vehicle; the
-      runs are named in a warning line either way),
+      runs are named in a warning line either way; decision W547: a foot unit `--units` left out is not read),
       ``pll_edge_lock`` (decisions W356 / W357: true makes waist-pll keep a gated run's first and last PLL peak only
       when the loop is locked at it, phase error within 45 deg; a free-running peak at a bout's edge is no step, W345;
       ``"trailing"`` judges only the run's last peak, decision W358; ``"walk-end"`` (W368) only a

@@ -275,11 +275,13 @@ def swing_pitch_extremes(gyr: np.ndarray, fs: float, i0: np.ndarray, i1: np.ndar
     return down, up
 
 
-def _declared_foot(session, *, need_frame: bool = True, span: tuple[float, float] | None = None):
+def _declared_foot(session, *, need_frame: bool = True, span: tuple[float, float] | None = None,
+                   rhythm_frac: float | None = None):
     """The session's foot unit with its declared frame, for :func:`foot_push_off` and :func:`foot_travel_angles`:
     ``(t, acc, gyr, fs, frame, stance)`` (the accelerometer's clock, the gyro resampled onto it, the ZUPT stance
     mask); None without a foot unit, a declared foot frame (``need_frame=False``: frame None allowed, decision
-    W336's frame-free read), enough finite samples or a rate. ``span`` (s): only the samples inside it (W415)."""
+    W336's frame-free read), enough finite samples or a rate. ``span`` (s): only the samples inside it (W415).
+    ``rhythm_frac``: :func:`pdrlearn.displace.foot.inertial_stance`'s (None: L596's default; 0: every rest, W548)."""
     from pdrlearn.displace.foot import inertial_stance
     from pdrlearn.signal.filters import interp_rows
 
@@ -299,7 +301,7 @@ def _declared_foot(session, *, need_frame: bool = True, span: tuple[float, float
     gyr, fs = interp_rows(t, gyr_s.t, gyr_s.values), float(acc_s.rate_hz)
     if not (np.isfinite(acc).all() and np.isfinite(gyr).all()):
         return None
-    return t, acc, gyr, fs, frame, inertial_stance(acc, gyr, fs)
+    return t, acc, gyr, fs, frame, inertial_stance(acc, gyr, fs, rhythm_frac=rhythm_frac)
 
 
 def foot_push_off(session) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
@@ -321,8 +323,9 @@ def foot_swing_strides(session) -> tuple[np.ndarray, np.ndarray, np.ndarray] | N
     """Start and end time (s) and total rotation (rad, the integral of |w|) of each swing between two rests of the
     session's foot unit (:func:`rest_swings`, decision W342; W336 took rest-to-rest strides), in any frame (decision
     W336: a walking stride swings the foot, a vehicle's vibration breaking the rest does not); None without a foot
-    unit."""
-    foot = _declared_foot(session, need_frame=False)
+    unit. Decision W548: the stance without L596's rhythm rule (W336 asks whether the foot swung, not how long it
+    rested: a race walker's 0.08-0.15 s rests are under L596's 6 % of a period read at six strides)."""
+    foot = _declared_foot(session, need_frame=False, rhythm_frac=0.0)
     if foot is None:
         return None
     t, _acc, gyr, fs, _frame, stance = foot

@@ -751,6 +751,26 @@ FAST_GAITS = {"running": ("this looks like running, and running is not supported
                              "short fast steps or running")}
 
 
+#: decision W549: the running-first gait's names on an uncalibrated ``waist-pendulum`` track (fast long strides too)
+RACE_WALK_GAITS = ("a cadence above the walking range the pipelines were validated on (fast long strides: race walking "
+                   "or running; or short fast steps: quick dance steps, a festinating or shuffling gait): ")
+#: decision W549: what that line adds - the lower back alone cannot tell the two (the simulator's shufflers and race
+#: walkers read about the same 0.63 m step at 160-215 steps/min) and they read in opposite directions (the ranges:
+#: experiments/race_walk_s48_w549.py on fresh users 15840-15859, race and shuffling gaits, uncalibrated)
+RACE_WALK_CLAUSE = ("; on the uncalibrated lower back fast long strides (race walking) read short (simulated race "
+                    "walks: {race} % distance) and short fast steps read long (simulated shuffling: {shuffle} %), "
+                    "so the distance is off either way: calibrate on this walker's own walk of known length "
+                    "('pdrlearn calibrate DIR --distance M --out PARAMS.json', then track with --params "
+                    "PARAMS.json; decision W549)")
+RACE_WALK_RANGES = {"race": "-50.21 to -32.00", "shuffle": "+54.54 to +133.36"}  # W549, as printed
+
+
+def race_walk_case(summary: dict, info: dict, gait: str) -> bool:
+    """Decision W549: a running-first ``gait`` (W178) on an uncalibrated ``waist-pendulum`` track."""
+    pipeline = str(summary.get("pipeline") or info.get("pipeline") or "")
+    return gait == "running_first" and pipeline == "waist-pendulum" and info.get("params_source") == "defaults"
+
+
 def fast_gait(cad: float | None, speed: float | None, leg_m: float | None, other_speed: float | None = None) -> str:
     """The :data:`FAST_GAITS` key of a gait above L95's range. Decision W144: "looks like running" needs the speed
     above the range (or no cadence); a fast cadence at a walking speed is short fast steps or running. Decision
@@ -868,7 +888,9 @@ def gait_range_warning(summary: dict) -> str | None:
     validated = _validated(summary, leg)
     # decisions W144, W178, L197: which fast gait to name first
     gait_speed = _finite(summary.get("gait_speed_mps"))
-    what = (FAST_GAITS[fast_gait(cad, speed, leg, gait_speed)][0] if side == "fast"
+    gait = fast_gait(cad, speed, leg, gait_speed)
+    race = side == "fast" and race_walk_case(summary, info, gait) and not info.get("step_count_unusable")  # W549
+    what = (RACE_WALK_GAITS if race else FAST_GAITS[gait][0] if side == "fast"
             else "this is slower than the walking the pipelines were validated on: ")
     if side == "fast" and info.get("step_count_unusable"):  # decision W442: the contacts are not steps here
         what = ("no gait to name: the lower back's contacts are no step count here (the steps are too small or too "
@@ -885,9 +907,11 @@ def gait_range_warning(summary: dict) -> str | None:
         extra += ("; the waist step length is uncalibrated and the default model is not validated at slow "
                   "cadence: the distance and speed depend on a calibration on this walker's own walk of known "
                   "length ('pdrlearn calibrate DIR --distance M', e.g. a 10 m walk test)")
+    if race:  # decision W549: which way each fast gait reads on the uncalibrated lower back
+        extra += RACE_WALK_CLAUSE.format(**RACE_WALK_RANGES)
     if side == "fast" and leg is None:  # decision L492: no height or leg known, the adult range was judged
         extra += f"; {NO_HEIGHT_HINT}"
-    fast_steps = side == "fast" and fast_gait(cad, speed, leg, gait_speed) != "running" and \
+    fast_steps = side == "fast" and gait != "running" and \
         not info.get("step_count_unusable")  # decision C192: a fast cadence at a walking speed
     return f"{figs}: {what}{validated}; {_unreliable(summary, info, slow, fast_steps)}{extra}"
 

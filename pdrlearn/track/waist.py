@@ -1246,18 +1246,21 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
         line = freeze_hint(session_freezes(session, pipeline), steps)
         if line:
             warnings.append(line)
-    strides = foot_swing_strides(with_left_out_units(session))  # W336's foot strides (None: no foot unit)
-    foot_runs = foot_rest_runs(steps, with_left_out_units(session), strides)  # W336: contacts while the foot rests
+    # W336's foot strides (None: no foot unit); decision W547: of the tracked session only - a foot unit --units left
+    # out changes no step (W253's put-back read is for the lines that only name: W173, L219)
+    strides = foot_swing_strides(session)
+    foot_runs = foot_rest_runs(steps, session, strides)  # W336: contacts while the foot rests
     warnings.extend(foot_rest_message(steps, a, b, bool(o["foot_rest_veto"])) for a, b in foot_runs)
     # decision W488: where the pelvis turned with a seat or a vehicle (seated; the foot unit at rest; a ride's contacts)
     yaw = yaw_turns(imu, p.gyro_bias_rps)  # decision L210: El-Gohary's turns, read once
     turn_spans = [(y["start_s"] if y.get("start_5_s") is None else y["start_5_s"],
                    y["end_s"] if y.get("end_95_s") is None else y["end_95_s"]) for y in yaw]
-    carried = seated_spans(transfers) + strideless_spans(turn_spans, strides,
-                                                         unit_span(with_left_out_units(session), "foot"))
+    carried = seated_spans(transfers) + strideless_spans(turn_spans, strides, unit_span(session, "foot"))  # W547
+    n_foot_rest = 0
     if foot_runs and o["foot_rest_veto"]:
         carried += ride_spans(steps["event_s"].to_numpy(float), foot_runs)
         steps = drop_contacts(steps, foot_rest_keep(len(steps), foot_runs), "n_foot_rest")
+        n_foot_rest = steps.attrs["n_foot_rest"]
     # W440, W441: read once, offline; W485: the ones --detector pll read for its band, if it did
     gyro_s = functools.cache(lambda: None if realtime else pelvic[0] if pelvic else read_once(det, session))
     n_ride = 0
@@ -1285,8 +1288,8 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
         return TrackResult(steps=steps[["start_s", "end_s", "event_s"]].copy(), trajectory=pd.DataFrame(),
                            info={"transfers": None if transfers is None else transfers.to_dict("records"),
                                  "yaw_turns": mark_carried(yaw, carried)})  # decisions L210, W488, as below
-    # W338: phone only (W336 reads a foot unit); W339: measured, not kept by default (an opt-in PARAMS.json option)
-    if o["rhythm_warning"] and not with_left_out_units(session).placement_streams("foot"):
+    # W338: phone only (W336 reads a foot unit; W547: not one --units left out); W339: measured, an opt-in option
+    if o["rhythm_warning"] and not session.placement_streams("foot"):
         warnings.extend(arrhythmic_message(steps, a, b, r)
                         for a, b, r in arrhythmic_sequences(steps, imu.t, imu.acc_v, imu.fs))
     steps = _step_lengths(steps, imu, p, model, thr, turn_factor=bool(o["turn_factor"]),
@@ -1345,7 +1348,10 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
     if not steps["has_next"].to_numpy(bool).any() and not (upright_source == "still" and len(transfers)):
         warnings.append(no_steps_message(thr, sigma, gate_source, n_contacts=len(steps)) + (
             f"; freeze_veto (decision W214) dropped {n_frozen} contact(s) inside freeze episodes: track without it "
-            "(decision W396)" if n_frozen else ""))
+            "(decision W396)" if n_frozen else "") + (
+            f"; foot_rest_veto (decision W336) dropped {n_foot_rest} contact(s) made while the foot unit took no "
+            "swinging stride: if the walker walked, track the lower back alone with --units waist, or set "
+            "{\"options\": {\"foot_rest_veto\": false}} (decision W547)" if n_foot_rest else ""))
     elif not steps["has_next"].to_numpy(bool).any() and len(steps):
         warnings.append(f"the {len(steps)} contact(s) counted are isolated, none followed by another within "
                         f"{MAX_STEP_S:g} s: the chair transfers' own movement, no step and no distance (decision W312)")
@@ -1466,6 +1472,7 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
         "n_rescored_contacts": n_rescored,  # decision W203
         "n_frozen_contacts": n_frozen,  # decision W214
         "n_rhythm_contacts": n_rhythm,  # decision W440
+        "n_foot_rest_contacts": n_foot_rest,  # decision W336 (C198: track-all names a track they emptied)
         "n_ride_contacts": n_ride,  # decision W486: the contacts its line names (still counted)
         "n_pelvic_gyro_steps": None if counts is None else counts[1],  # decision W441: over the contacts' span
         "step_count_unusable": bool(uncountable),  # decision W442: L95's line names no fast gait then

@@ -480,6 +480,7 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
     if spans is not None and len(spans) not in (1, len(sessions)):
         raise DataError(f"calibrate: {len(spans)} --start/--end stretches for {len(sessions)} sessions; "
                         "give one per session or one for all")
+    from pdrlearn.track.units import keep_units
     from pdrlearn.track.waist import OPTION_DEFAULTS, track_waist, without_heading_note
 
     base, _ = resolve_params(sessions[0], params)
@@ -502,7 +503,10 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
     for i, s in enumerate(sessions):
         d = None if distances is None else distances[i if len(distances) > 1 else 0]
         with without_heading_note():  # W83: calibration does not use the heading
-            res = track_waist(s, pipeline=pipeline, params=base, detector=det)
+            # decision C199: the lower back alone, as `track --units waist` (W547): a foot unit the waist pipelines do
+            # not track changes no calibration step (T1 F2: W336's veto read a race walker's foot as at rest)
+            waist = keep_units(s, ("waist",)) if s.placement_streams("foot") else s
+            res = track_waist(waist, pipeline=pipeline, params=base, detector=det)
         cadence_law = cadence_law or res.info.get("options", {}).get("cadence_law") or False  # W261: its value
         edge_lock = res.info.get("options", {}).get("pll_edge_lock", edge_lock)  # W369: one value (base's options)
         pause_steps = res.info.get("options", {}).get("pause_steps", pause_steps)  # W514: one value (base's options)
