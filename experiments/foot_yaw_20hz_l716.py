@@ -26,6 +26,7 @@ from pdrlearn.displace.foot import FootDisplacement
 from pdrlearn.io import read_session
 from pdrlearn.orient.filters import UnitData, unit_data
 from pdrlearn.sim import UserProfile, simulate_path
+from pdrlearn.sim.kernels import block_mean  # the firmware's averaging (thesis ch.4.2.3)
 from pdrlearn.sim.route import parse_route
 
 ROUTE = "stand:5, straight:100, stand:5"
@@ -97,19 +98,14 @@ def variants(user: int, foot: str) -> dict[str, np.ndarray]:
     }
 
 
-def _block_means(x: np.ndarray, k: int) -> np.ndarray:
-    n = len(x) // k * k
-    return x[:n].reshape(n // k, k, *x.shape[1:]).mean(axis=1)
-
-
 def real_check() -> None:
     for name in REAL:
         s = read_session(f"/work/shared/data/{name}")
         u = unit_data(s, "foot")
         per = {}
         for k in (1, 10):
-            uu = u if k == 1 else UnitData(u.placement, _block_means(u.t, k), _block_means(u.acc, k),
-                                           _block_means(u.gyr, k), None, u.fs / k)
+            uu = u if k == 1 else UnitData(u.placement, block_mean(u.t, k), block_mean(u.acc, k),
+                                           block_mean(u.gyr, k), None, u.fs / k)
             fd = FootDisplacement().estimate(uu, s.steps)
             per[k] = dict(zip(fd.rows_.tolist(), np.degrees(fd.yaw_change_ + fd.gap_yaw_), strict=True))
         rows = sorted(set(per[1]) & set(per[10]))

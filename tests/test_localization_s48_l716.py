@@ -6,7 +6,6 @@ grid is exact again. If a change removes the 20 Hz gain, the last test fails: up
 
 from __future__ import annotations
 
-import numpy as np
 import pytest
 
 from experiments.foot_yaw_20hz_l716 import simulate, stride_yaw_errors
