@@ -292,22 +292,24 @@ def constant_bounce_line(meta: dict, info: dict) -> str | None:
                  "step length, or read the foot's periods (decision S69)", "S69")
 
 
-def _period_gait(steps: pd.DataFrame, rows: np.ndarray) -> dict:
+def interval_gait(steps: pd.DataFrame, rows: np.ndarray) -> dict:
     """Decision L320: the median stride time and cadence of the period's steps (``rows``), by the summary's own
     rule (:func:`pdrlearn.track.gait.gait_summary`, its default medians) on those rows; None without a stride time.
     Decision L340: and :data:`PERIOD_GAIT_KEYS`, each by the summary's own rule on those rows - the median stride
     length (``evaluate.median_stride_length``; lower back: W537), the median per-stride speed (``gait_summary``), the
     stride-time and stride-length CVs and their ``n_cv_strides`` (``clinical.clinical_summary``: steady straight level
-    forward strides, 10 needed, L104 / L212; foot only, L214)."""
+    forward strides, 10 needed, L104 / L212; foot only, L214). Decision L725: and ``median_stance_pct`` (L73's,
+    None without the toe-off columns), which splits.csv gives (periods.csv and segments.csv do not list it)."""
     from pdrlearn.track.clinical import clinical_summary
     from pdrlearn.track.evaluate import median_stride_length
     from pdrlearn.track.gait import gait_summary
 
     if not rows.any():
-        return dict.fromkeys(("median_stride_time_s", "median_cadence_spm", *PERIOD_GAIT_KEYS))
+        return dict.fromkeys(("median_stride_time_s", "median_cadence_spm", *PERIOD_GAIT_KEYS, "median_stance_pct"))
     st = steps[rows].reset_index(drop=True)
     g, c = gait_summary(st), clinical_summary(st)
     return {"median_stride_time_s": g.get("median_stride_time_s"), "median_cadence_spm": g.get("median_cadence_spm"),
+            "median_stance_pct": g.get("median_stance_pct"),  # decision L725
             "median_stride_length_m": median_stride_length(st), "median_speed_mps": g.get("median_speed_mps"),
             "stride_time_cv_pct": c.get("stride_time_cv_pct"), "stride_length_cv_pct": c.get("stride_length_cv_pct"),
             "n_cv_strides": None if (c.get("stride_time_cv_withheld") or {}).get("cause") == "lower_back"
@@ -486,7 +488,7 @@ def interval_rows(result, session, starts, ends, closed, *, unit: str | None, bo
                "distance_m": float(length[m].sum()), "n_steps": int(m.sum()), "n_steps_counts": counts,
                # decision L449: both feet's steps whatever the unit, as the summary's (2 per foot stride)
                "n_steps_both_feet": step_counts(steps[m])["n_steps_both_feet"],
-               **_period_gait(steps, m), **timeline.budget(a, b), **timeline.posture_budget(a, b)}
+               **interval_gait(steps, m), **timeline.budget(a, b), **timeline.posture_budget(a, b)}
         c = inside(climb_t)
         row["floors_up"] = int(climb_n[c & (climb_n > 0)].sum()) if climbs is not None else None  # L277
         row["floors_down"] = int(-climb_n[c & (climb_n < 0)].sum()) if climbs is not None else None
