@@ -953,6 +953,8 @@ PERIODS: tuple[Column, ...] = (
                                           "it sums to n_turns (L691)"),
     ("net_rotation_deg", "deg", "number", "the signed sum of those turns' angle_deg, left + (a 360 deg spin "
                                           "reads 360, L690; L691); 0 without a turn"),
+    ("median_stance_pct", "%", "number", "--toe-off only: the period's median stance share of the stride, the "
+                                         "summary's rule (L73; L725); empty without toe-off columns"),
     *_clocks("start_s", "end_s"),
 )
 

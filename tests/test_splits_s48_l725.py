@@ -48,3 +48,14 @@ def test_a_track_without_toe_off_gives_no_stance_l725():
     splits, _, _ = split_table(st, (5.0,))
     assert splits["n_steps"].tolist() == [4] and splits["median_stance_pct"].isna().all()
     assert splits["median_stride_length_m"].tolist() == pytest.approx([1.4])
+
+
+def test_periods_and_segments_give_the_stance_too_l725():
+    """Trial T1 F6: segments.csv had no stance %; periods.csv and segments.csv end with it, by the same kernel."""
+    from pdrlearn.track.periods import PERIOD_COLUMNS, interval_gait
+    from pdrlearn.track.segments import segment_columns
+
+    assert PERIOD_COLUMNS[-1] == segment_columns()[-1] == "median_stance_pct"
+    st = _strides([1.0] * 6, [1.0] * 6, stance=[58.0, 60.0, 62.0, 64.0, 66.0, 68.0])
+    assert interval_gait(st, np.arange(6) >= 2)["median_stance_pct"] == pytest.approx(65.0)
+    assert interval_gait(st, np.zeros(6, bool))["median_stance_pct"] is None

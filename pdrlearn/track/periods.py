@@ -58,7 +58,8 @@ PERIOD_COLUMNS = ("session", "subject", "visit", "period", "start_s", "end_s", "
                   *POSTURE_KEYS, "floors_up", "floors_down", "ascent_m", "descent_m", "n_bouts", "n_turns",
                   "n_backward_strides", "n_side_strides", "data_gap", "position_sigma_end_m",
                   *POSITION_KEYS, "n_sit_to_stand",  # decision W448: after the columns before it, kept in place
-                  "n_turns_left", "n_turns_right", "net_rotation_deg")  # decision L691: W448's way, last
+                  "n_turns_left", "n_turns_right", "net_rotation_deg",  # decision L691: W448's way, last
+                  "median_stance_pct")  # decision L725: splits.csv's, here too (trial T1: segments.csv had none)
 #: decision L277: ``--per`` units (s); decision B305: no "m" (every distance the tool prints is in metres)
 PER_UNITS = {"s": 1.0, "min": 60.0, "h": 3600.0}
 PER_USAGE = "give --per a period such as 1h, 30min, 15min or 3600 (seconds)"
@@ -299,7 +300,7 @@ def interval_gait(steps: pd.DataFrame, rows: np.ndarray) -> dict:
     length (``evaluate.median_stride_length``; lower back: W537), the median per-stride speed (``gait_summary``), the
     stride-time and stride-length CVs and their ``n_cv_strides`` (``clinical.clinical_summary``: steady straight level
     forward strides, 10 needed, L104 / L212; foot only, L214). Decision L725: and ``median_stance_pct`` (L73's,
-    None without the toe-off columns), which splits.csv gives (periods.csv and segments.csv do not list it)."""
+    None without the toe-off columns), which splits.csv, periods.csv and segments.csv give (their last column)."""
     from pdrlearn.track.clinical import clinical_summary
     from pdrlearn.track.evaluate import median_stride_length
     from pdrlearn.track.gait import gait_summary
