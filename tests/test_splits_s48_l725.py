@@ -13,7 +13,6 @@ from pdrlearn.track.splits import SPLIT_COLUMNS, EverySplit, split_table
 
 def _strides(lengths, times, stance=None):
     """A foot step table of back-to-back strides (no gap) with the gait columns the summary reads."""
-    n = len(lengths)
     start = np.r_[0.0, np.cumsum(times)[:-1]] + 5.0
     end = start + np.asarray(times, float)
     st = pd.DataFrame({"start_s": start, "end_s": end, "event_s": end, "length_m": np.asarray(lengths, float),
