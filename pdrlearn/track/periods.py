@@ -293,26 +293,40 @@ def constant_bounce_line(meta: dict, info: dict) -> str | None:
                  "step length, or read the foot's periods (decision S69)", "S69")
 
 
-def interval_gait(steps: pd.DataFrame, rows: np.ndarray) -> dict:
-    """Decision L320: the median stride time and cadence of the period's steps (``rows``), by the summary's own
+#: decision L725: the medians :func:`interval_medians` gives (splits.csv reads them without the CVs)
+MEDIAN_KEYS = ("median_stride_time_s", "median_cadence_spm", "median_stride_length_m", "median_speed_mps",
+               "median_stance_pct")
+
+
+def interval_medians(steps: pd.DataFrame, rows: np.ndarray) -> dict:
+    """Decision L320: the median stride time and cadence of the interval's steps (``rows``), by the summary's own
     rule (:func:`pdrlearn.track.gait.gait_summary`, its default medians) on those rows; None without a stride time.
-    Decision L340: and :data:`PERIOD_GAIT_KEYS`, each by the summary's own rule on those rows - the median stride
-    length (``evaluate.median_stride_length``; lower back: W537), the median per-stride speed (``gait_summary``), the
-    stride-time and stride-length CVs and their ``n_cv_strides`` (``clinical.clinical_summary``: steady straight level
-    forward strides, 10 needed, L104 / L212; foot only, L214). Decision L725: and ``median_stance_pct`` (L73's,
-    None without the toe-off columns), which splits.csv, periods.csv and segments.csv give (their last column)."""
-    from pdrlearn.track.clinical import clinical_summary
+    Decision L340: the median stride length (``evaluate.median_stride_length``; lower back: W537) and per-stride
+    speed (``gait_summary``) by the summary's rules too. Decision L725: and ``median_stance_pct`` (L73's, None
+    without the toe-off columns). :data:`MEDIAN_KEYS`, all None for no row."""
     from pdrlearn.track.evaluate import median_stride_length
     from pdrlearn.track.gait import gait_summary
 
     if not rows.any():
-        return dict.fromkeys(("median_stride_time_s", "median_cadence_spm", *PERIOD_GAIT_KEYS, "median_stance_pct"))
+        return dict.fromkeys(MEDIAN_KEYS)
     st = steps[rows].reset_index(drop=True)
-    g, c = gait_summary(st), clinical_summary(st)
-    return {"median_stride_time_s": g.get("median_stride_time_s"), "median_cadence_spm": g.get("median_cadence_spm"),
-            "median_stance_pct": g.get("median_stance_pct"),  # decision L725
-            "median_stride_length_m": median_stride_length(st), "median_speed_mps": g.get("median_speed_mps"),
-            "stride_time_cv_pct": c.get("stride_time_cv_pct"), "stride_length_cv_pct": c.get("stride_length_cv_pct"),
+    g = gait_summary(st)
+    return {**{k: g.get(k) for k in MEDIAN_KEYS}, "median_stride_length_m": median_stride_length(st)}
+
+
+def interval_gait(steps: pd.DataFrame, rows: np.ndarray) -> dict:
+    """Periods.csv's and segments.csv's gait of the interval's steps (``rows``): :func:`interval_medians` and (decision
+    L340) the stride-time and stride-length CVs and their ``n_cv_strides`` (``clinical.clinical_summary``: steady
+    straight level forward strides, 10 needed, L104 / L212; foot only, L214) - :data:`PERIOD_GAIT_KEYS` and the rest
+    by the summary's own rules on those rows."""
+    from pdrlearn.track.clinical import clinical_summary
+
+    out = interval_medians(steps, rows)
+    if not rows.any():
+        return {**out, **dict.fromkeys(PERIOD_GAIT_KEYS[2:])}
+    c = clinical_summary(steps[rows].reset_index(drop=True))
+    return {**out, "stride_time_cv_pct": c.get("stride_time_cv_pct"),
+            "stride_length_cv_pct": c.get("stride_length_cv_pct"),
             "n_cv_strides": None if (c.get("stride_time_cv_withheld") or {}).get("cause") == "lower_back"
             else c.get("n_cv_strides")}
 
