@@ -610,8 +610,26 @@ def t_interval(mean, sd, n):
 GROUP_METRICS = ("distance_error_pct", "gait_speed_mps", "median_cadence_spm", "median_stride_length_m")
 
 
-def group_table(sessions, metrics: Sequence[str] = GROUP_METRICS):
-    """``groups.csv`` from ``sessions.csv`` (a DataFrame): one row per ``group`` (natural order, C102) with
+#: decision C202: groups.csv's group of a session naming no visit under ``track-all --group-by visit``
+NO_VISIT_GROUP = "(no visit)"
+
+
+def group_labels(sessions, by: str | None = None):
+    """The group of each row of ``sessions.csv`` (a DataFrame) that groups.csv counts it in, as text: its ``group``
+    (the folder, ``--group-depth``, C12), or with ``by`` ``"visit"`` (decision C202, ``track-all --group-by visit``)
+    its ``visit`` - changes.csv's (C82: ``--visit-map`` applied) - and :data:`NO_VISIT_GROUP` where it names none."""
+    import pandas as pd
+
+    if by != "visit":
+        return sessions["group"].astype(str)
+    visit = sessions["visit"] if "visit" in sessions else pd.Series([None] * len(sessions), index=sessions.index)
+    text = visit.astype(object).where(visit.notna(), "").astype(str).str.strip()
+    return text.where(text != "", NO_VISIT_GROUP)
+
+
+def group_table(sessions, metrics: Sequence[str] = GROUP_METRICS, by: str | None = None):
+    """``groups.csv`` from ``sessions.csv`` (a DataFrame): one row per ``group`` (natural order, C102; decision
+    C202: ``by`` ``"visit"`` groups by visit instead, :func:`group_labels`) with
     ``n_tracked`` (sessions tracked; decision C19: was ``n_sessions``, which ``track-all --json`` uses for every
     session found), ``n_failed`` (not a skipped split part, B389), and for each metric column that has a value in
     some tracked session ``<metric>_n`` (sessions with a value), ``_mean``, ``_sd`` (sample standard deviation,
@@ -620,17 +638,18 @@ def group_table(sessions, metrics: Sequence[str] = GROUP_METRICS):
     statistics (decision C12)."""
     import pandas as pd
 
-    ok = sessions[sessions["status"] == "ok"]
-    groups = sorted(sessions["group"].astype(str).unique(), key=natural_key)  # decision C102
+    label = group_labels(sessions, by)  # decision C202
+    is_ok = sessions["status"] == "ok"
+    ok, ok_label = sessions[is_ok], label[is_ok]
+    groups = sorted(label.unique(), key=natural_key)  # decision C102
     out = pd.DataFrame({"group": groups})
-    out["n_tracked"] = [int((ok["group"].astype(str) == g).sum()) for g in groups]
+    out["n_tracked"] = [int((ok_label == g).sum()) for g in groups]
     # decision B389: a skipped split part at rest is neither tracked nor failed
-    out["n_failed"] = [int(((sessions["group"].astype(str) == g) & (sessions["status"] == "failed")).sum())
-                       for g in groups]
+    out["n_failed"] = [int(((label == g) & (sessions["status"] == "failed")).sum()) for g in groups]
     for m in metrics:
         if m not in ok or not pd.to_numeric(ok[m], errors="coerce").notna().any():
             continue
-        stats = (pd.to_numeric(ok[m], errors="coerce").groupby(ok["group"].astype(str))
+        stats = (pd.to_numeric(ok[m], errors="coerce").groupby(ok_label)
                  .agg(["count", "mean", "std", "median"]).reindex(groups))
         n = stats["count"].fillna(0).astype(int).to_numpy()
         out[f"{m}_n"] = n

@@ -953,6 +953,8 @@ PERIODS: tuple[Column, ...] = (
                                           "it sums to n_turns (L691)"),
     ("net_rotation_deg", "deg", "number", "the signed sum of those turns' angle_deg, left + (a 360 deg spin "
                                           "reads 360, L690; L691); 0 without a turn"),
+    ("median_stance_pct", "%", "number", "--toe-off only: the period's median stance share of the stride, the "
+                                         "summary's rule (L73; L725); empty without toe-off columns"),
     *_clocks("start_s", "end_s"),
 )
 
@@ -1526,6 +1528,15 @@ SPLITS: tuple[Column, ...] = (
     ("split_time_s", "s", "number", "time_s minus the previous mark's (the first: time_s)"),
     ("speed_mps", "m/s", "number", "the metres since the previous mark / split_time_s"),
     ("pace_min_per_km", "min/km", "number", "split_time_s in minutes / the kilometres since the previous mark (L554)"),
+    ("n_steps", "count", "integer", "rows of steps.csv whose middle lies between the previous mark's time and this "
+                                    "one's (the last split holds its end; segments.csv's rule): strides of the "
+                                    "tracked foot on a foot track, steps on the lower back (L725)"),
+    ("median_cadence_spm", "steps/min", "number", "median cadence of the split's steps, by the summary's default rule "
+                                                  "(as segments.csv's, L320; L725)"),
+    ("median_stride_length_m", "m", "number", "the split's median stride length, the summary's rule (as "
+                                              "segments.csv's, L340; L725)"),
+    ("median_stance_pct", "%", "number", "--toe-off only: the split's median stance share of the stride (L73; "
+                                         "L725); empty without toe-off columns"),
 )
 
 #: decision L412: a foot track's direction_changes.csv, one row per change of travel direction

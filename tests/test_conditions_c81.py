@@ -114,7 +114,7 @@ def test_track_all_compares_conditions_the_user_names_and_the_tables_join_c81_c8
     measures = "gait_speed_mps,median_cadence_spm,median_stride_time_s,stride_time_cv_pct,median_stride_length_m"
     out = tmp_path / "o"
     assert main(["track-all", "--no-plot", str(root), "--out", str(out), "--visit-map", str(tmp_path / "map.json"),
-                 "--metrics", measures]) == 0
+                 "--metrics", measures, "--group-by", "visit"]) == 0  # decision C202: groups.csv per visit
     assert "mean % change [95 % CI]" in capsys.readouterr().out
     read = {"dtype": {"subject": str, "visit": str}}
     sessions = pd.read_csv(out / "sessions.csv", **read)
@@ -139,8 +139,16 @@ def test_track_all_compares_conditions_the_user_names_and_the_tables_join_c81_c8
     assert {f"{m}_change_pct" for m in measures.split(",")} <= set(changes.columns)
     assert "distance_error_pct_change" not in changes  # only the measures asked for
     assert json.loads((out / "run.json").read_text())["options"]["metrics"] == measures
+    # decision C202: groups.csv has a row per visit across the subjects (sessions.csv's group: still the folder)
+    groups = pd.read_csv(out / "groups.csv", dtype={"group": str}).set_index("group")
+    assert groups.index.tolist() == ["baseline", "followup"] and set(sessions["group"]) == {"u7880", "u7881", "u7882"}
+    for visit in ("baseline", "followup"):
+        assert groups.loc[visit, "n_tracked"] == (sessions["visit"] == visit).sum()
+        assert groups.loc[visit, "gait_speed_mps_mean"] == pytest.approx(
+            sessions.loc[sessions["visit"] == visit, "gait_speed_mps"].mean(), rel=1e-9)
     assert main(["report", str(out), "--out", str(tmp_path / "rep")]) == 0  # the run's measures, from run.json
-    assert "stride_time_cv_pct" in (tmp_path / "rep" / "report.md").read_text()
+    text = (tmp_path / "rep" / "report.md").read_text()
+    assert "stride_time_cv_pct" in text and "| followup " in text  # C202: the report reads the visit groups
     capsys.readouterr()
     assert main(["track-all", "--no-plot", str(root), "--out", str(tmp_path / "o2"), "--metrics",
                  "gait_speed_mps,cadence"]) == 2

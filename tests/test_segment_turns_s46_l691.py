@@ -23,8 +23,8 @@ def test_turn_totals_split_by_side_and_sum_signed():
 
 
 def test_the_columns_come_last_w448s_way():
-    assert PERIOD_COLUMNS[-3:] == ("n_turns_left", "n_turns_right", "net_rotation_deg")
-    assert PERIOD_COLUMNS.index("n_sit_to_stand") == len(PERIOD_COLUMNS) - 4
+    assert PERIOD_COLUMNS[-4:-1] == ("n_turns_left", "n_turns_right", "net_rotation_deg")  # L725's stance % last
+    assert PERIOD_COLUMNS.index("n_sit_to_stand") == len(PERIOD_COLUMNS) - 5
 
 
 @pytest.fixture(scope="module")

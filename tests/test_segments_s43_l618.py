@@ -66,6 +66,9 @@ def test_segments_csv_is_in_the_dictionary(day):
     ("start_s,end_s\n0,10\n8,12\n", "legs may not overlap"),
     ("start_s,end_s\n10,12\n0,5\n", "sort the legs by start_s"),
     ("start_s,end_s\n0,10\n30,99\n", "ends after the recording"),
+    # decision L726 (trial T1 F6): a `name` column was dropped silently, the label left empty
+    ("start_s,end_s,name\n0,10,lap1\n", "column name is not read (--segments reads start_s, end_s, label): a leg's "
+                                       "name is the column label - rename name to label"),
 ])
 def test_a_bad_legs_file_is_one_line_before_any_tracking(day, tmp_path, monkeypatch, capsys, text, said):
     """L618: each bad LEGS.csv is refused in one `error:` line naming the file, before the session is tracked

@@ -67,7 +67,7 @@ def test_group_by_test_gives_a_row_per_subject_and_test_c171(study, tmp_path, ca
 def test_group_by_is_checked_before_tracking_c171(study, tmp_path, capsys):
     assert main(["track-all", str(study), "--out", str(tmp_path / "a"), "--group-by", "trial"]) == 2
     err = capsys.readouterr().err
-    assert "--group-by trial: subjects.csv's rows can be grouped by meta.json's \"test\" only" in err
+    assert "--group-by trial: not a choice; pass --group-by test" in err and "decision C171" in err  # C202: or visit
     meta = json.loads((study / "S1_Test5_Trial1" / "meta.json").read_text())
     copy = tmp_path / "plain2" / "s"
     copy.mkdir(parents=True)

@@ -1035,10 +1035,13 @@ def track_all(
                                      "output tree, every table, each session's files and figure titles; run.json "
                                      "keeps the map's SHA-256 only (decision C86)."),
     metrics: str = typer.Option(None, "--metrics", metavar="A,B,...", help=METRICS_HELP),
-    group_by: str = typer.Option(None, "--group-by", metavar="test", help="subjects.csv's rows per subject, visit "
-                                 "and meta.json's \"test\" (mobgap's Test5, Test11), not the subject's tests pooled, "
-                                 "and changes.csv's per subject and test: each test's visits paired on their own "
-                                 "(sessions.csv has each session's test and trial; decisions C170, C171, C174)."),
+    group_by: str = typer.Option(None, "--group-by", metavar="test|visit", help="test: subjects.csv's rows per "
+                                 "subject, visit and meta.json's \"test\" (mobgap's Test5, Test11), not the subject's "
+                                 "tests pooled, and changes.csv's per subject and test: each test's visits paired on "
+                                 "their own (sessions.csv has each session's test and trial; decisions C170, C171, "
+                                 "C174). visit: groups.csv's rows per visit (a condition, e.g. shoe A / B) across "
+                                 "subjects, the visit changes.csv pairs (--visit-map applied), not per folder "
+                                 "(decision C202)."),
     redact_paths: bool = _track.REDACT_PATHS_OPT,  # decision E176
     resume: bool = typer.Option(False, "--resume", help=RESUME_HELP),
     jobs: int = typer.Option(1, "--jobs", "-j", min=1, help="Sessions tracked at once: 1 = one after the other "
@@ -1134,7 +1137,8 @@ def track_all(
     rels = [p.relative_to(root).as_posix() for p in found]
     labels = [session_labels(p) for p in found]  # decision C22: meta.json's subject and visit
     tests = [session_test_labels(p) for p in found]  # decision C170: meta.json's test and trial
-    _check_group_by(group_by, tests, root)  # decision C171: before any tracking
+    _check_group_by(group_by, tests, root, labels, group_depth)  # decisions C171, C202: before any tracking
+    label_by = group_by if group_by in LABEL_GROUP_BY else None  # decision C202: visit splits groups.csv only
     per_session = [settings] * len(found)
     if params_dir is not None:  # decision C26: each subject's file, all checked and read before any tracking
         from pdrlearn.cli.track import read_params
@@ -1203,13 +1207,13 @@ def track_all(
                 row["params_file"] = Path(st["params"]).name
         _paired_visits(rows, vmap)  # decision C82: sessions.csv's and bouts.csv's visit is changes.csv's
         sessions = _sessions_table(rows)
-        groups = group_table(sessions)
-        changes, summary = _changes(sessions, vmap, measures, group_by)  # decision C174: per test with --group-by
+        groups = group_table(sessions, by=group_by)  # decision C202: per visit with --group-by visit
+        changes, summary = _changes(sessions, vmap, measures, label_by)  # decision C174: per test with --group-by
         from pdrlearn.visits import subject_totals
 
         # cohort C25: None when no session names a subject (C40: visits; decision C171: and tests, --group-by)
-        subjects = subject_totals(sessions, vmap, by=group_by)
-        if subjects is not None and group_by is None:
+        subjects = subject_totals(sessions, vmap, by=label_by)
+        if subjects is not None and label_by is None:
             _pooled_tests_warning(sessions)  # decision C171
         strides = combined_strides(tmp, rows, dict(zip(rels, found, strict=True)))  # decision E163
         if subjects is not None:  # decision C146: each subject's strides pooled over its sessions
@@ -1289,17 +1293,30 @@ def track_all(
 
 #: decision C171: the meta.json labels ``--group-by`` splits subjects.csv's rows by (``trial`` would pool Test5
 #: Trial1 with Test11 Trial1)
-GROUP_BY_CHOICES = ("test",)
+LABEL_GROUP_BY = ("test",)
+#: decisions C171, C202: ``--group-by``'s choices (``visit``: groups.csv's rows per visit, subjects.csv unchanged)
+GROUP_BY_CHOICES = (*LABEL_GROUP_BY, "visit")
 
 
-def _check_group_by(group_by: str | None, tests: list[dict], root: Path) -> None:
+def _check_group_by(group_by: str | None, tests: list[dict], root: Path, labels: list[tuple] = (),
+                    group_depth: int = 1) -> None:
     """Decision C171: ``--group-by`` names meta.json's ``test`` (the one label it groups by), and some session under
-    ``root`` names one; one line otherwise, before any tracking."""
+    ``root`` names one; decision C202: or ``visit``, some session naming a visit (``labels``: each session's
+    (subject, visit)) and ``--group-depth`` left at 1. One line otherwise, before any tracking."""
     if group_by is None:
         return
     if group_by not in GROUP_BY_CHOICES:
-        raise DataError(f"track-all: --group-by {group_by}: subjects.csv's rows can be grouped by meta.json's "
-                        "\"test\" only; pass --group-by test, or leave it out (decision C171)")
+        raise DataError(f"track-all: --group-by {group_by}: not a choice; pass --group-by test (subjects.csv's and "
+                        "changes.csv's rows per meta.json \"test\", decision C171) or --group-by visit (groups.csv's "
+                        "rows per visit, decision C202), or leave it out")
+    if group_by == "visit":
+        if group_depth != 1:
+            raise DataError(f"track-all: --group-by visit groups groups.csv by visit and --group-depth {group_depth} "
+                            "by folder; give one of them (decision C202)")
+        if not any(v is not None and str(v).strip() for _, v in labels):
+            raise DataError(f"track-all: --group-by visit groups groups.csv by visit, and no session under {root} "
+                            "names one; add \"visit\" to their meta.json, or leave --group-by out (decision C202)")
+        return
     if not any(t.get("test") for t in tests):
         raise DataError(f"track-all: --group-by test groups subjects.csv by meta.json's \"test\", and no session "
                         f"under {root} names one; add \"test\" to their meta.json, or leave --group-by out (decision "

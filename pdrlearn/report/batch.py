@@ -32,7 +32,7 @@ def read_batch(folder: str | Path) -> tuple[pd.DataFrame, pd.DataFrame]:
     sessions.csv, one without track-all's columns or rows, or a groups.csv that does not fit it is one
     :class:`DataError` line naming the file. A folder without groups.csv gets it recomputed from sessions.csv
     (it is a ``groupby`` of it, C12)."""
-    from pdrlearn.cohort import group_table
+    from pdrlearn.cohort import group_labels, group_table
 
     folder = Path(folder)
     path = folder / "sessions.csv"
@@ -53,9 +53,11 @@ def read_batch(folder: str | Path) -> tuple[pd.DataFrame, pd.DataFrame]:
         raise DataError(f"{path}: column status must be ok, failed or skipped, found {', '.join(bad[:3])}; "
                         f"{_REGENERATE}")
     sessions["group"] = sessions["group"].astype(str)
+    by = _run_option(folder, "group_by")  # decision C202: --group-by visit's groups.csv is per visit
+    by = by if by == "visit" else None
     gpath = folder / "groups.csv"
     if not gpath.is_file():
-        return sessions, group_table(sessions)
+        return sessions, group_table(sessions, by=by)
     groups = read_table(gpath, text_columns=("group",))  # as sessions.csv's (LABEL_COLUMNS)
     if "n_tracked" not in groups and "n_sessions" in groups:  # decision C19: the column's name before C19
         groups = groups.rename(columns={"n_sessions": "n_tracked"})
@@ -63,9 +65,10 @@ def read_batch(folder: str | Path) -> tuple[pd.DataFrame, pd.DataFrame]:
     if missing:
         raise DataError(f"{gpath}: not a track-all groups.csv (no column {', '.join(missing)}); {_REGENERATE}")
     groups["group"] = groups["group"].astype(str)
-    if set(groups["group"]) != set(sessions["group"]):
+    expected = set(group_labels(sessions, by))  # decision C202: the visits, with --group-by visit
+    if set(groups["group"]) != expected:
         raise DataError(f"{gpath}: its groups ({', '.join(sorted(groups['group'])[:4])}) are not those of "
-                        f"sessions.csv ({', '.join(sorted(set(sessions['group']))[:4])}); {_REGENERATE}")
+                        f"sessions.csv ({', '.join(sorted(expected)[:4])}); {_REGENERATE}")
     return sessions, groups
 
 
@@ -137,7 +140,8 @@ def run_group_by(folder: Path) -> str | None:
     """Cohort C171: the ``--group-by`` a track-all run used (OUT/run.json), for the report's subject rows to be
     subjects.csv's; None without it."""
     given = _run_option(folder, "group_by")
-    return given if isinstance(given, str) else None
+    # decision C202: --group-by visit splits groups.csv only; subjects.csv and changes.csv are as without it
+    return given if isinstance(given, str) and given != "visit" else None
 
 
 def run_metrics(folder: Path) -> tuple[str, ...] | None:

@@ -58,7 +58,8 @@ PERIOD_COLUMNS = ("session", "subject", "visit", "period", "start_s", "end_s", "
                   *POSTURE_KEYS, "floors_up", "floors_down", "ascent_m", "descent_m", "n_bouts", "n_turns",
                   "n_backward_strides", "n_side_strides", "data_gap", "position_sigma_end_m",
                   *POSITION_KEYS, "n_sit_to_stand",  # decision W448: after the columns before it, kept in place
-                  "n_turns_left", "n_turns_right", "net_rotation_deg")  # decision L691: W448's way, last
+                  "n_turns_left", "n_turns_right", "net_rotation_deg",  # decision L691: W448's way, last
+                  "median_stance_pct")  # decision L725: splits.csv's, here too (trial T1: segments.csv had none)
 #: decision L277: ``--per`` units (s); decision B305: no "m" (every distance the tool prints is in metres)
 PER_UNITS = {"s": 1.0, "min": 60.0, "h": 3600.0}
 PER_USAGE = "give --per a period such as 1h, 30min, 15min or 3600 (seconds)"
@@ -292,24 +293,40 @@ def constant_bounce_line(meta: dict, info: dict) -> str | None:
                  "step length, or read the foot's periods (decision S69)", "S69")
 
 
-def _period_gait(steps: pd.DataFrame, rows: np.ndarray) -> dict:
-    """Decision L320: the median stride time and cadence of the period's steps (``rows``), by the summary's own
+#: decision L725: the medians :func:`interval_medians` gives (splits.csv reads them without the CVs)
+MEDIAN_KEYS = ("median_stride_time_s", "median_cadence_spm", "median_stride_length_m", "median_speed_mps",
+               "median_stance_pct")
+
+
+def interval_medians(steps: pd.DataFrame, rows: np.ndarray) -> dict:
+    """Decision L320: the median stride time and cadence of the interval's steps (``rows``), by the summary's own
     rule (:func:`pdrlearn.track.gait.gait_summary`, its default medians) on those rows; None without a stride time.
-    Decision L340: and :data:`PERIOD_GAIT_KEYS`, each by the summary's own rule on those rows - the median stride
-    length (``evaluate.median_stride_length``; lower back: W537), the median per-stride speed (``gait_summary``), the
-    stride-time and stride-length CVs and their ``n_cv_strides`` (``clinical.clinical_summary``: steady straight level
-    forward strides, 10 needed, L104 / L212; foot only, L214)."""
-    from pdrlearn.track.clinical import clinical_summary
+    Decision L340: the median stride length (``evaluate.median_stride_length``; lower back: W537) and per-stride
+    speed (``gait_summary``) by the summary's rules too. Decision L725: and ``median_stance_pct`` (L73's, None
+    without the toe-off columns). :data:`MEDIAN_KEYS`, all None for no row."""
     from pdrlearn.track.evaluate import median_stride_length
     from pdrlearn.track.gait import gait_summary
 
     if not rows.any():
-        return dict.fromkeys(("median_stride_time_s", "median_cadence_spm", *PERIOD_GAIT_KEYS))
+        return dict.fromkeys(MEDIAN_KEYS)
     st = steps[rows].reset_index(drop=True)
-    g, c = gait_summary(st), clinical_summary(st)
-    return {"median_stride_time_s": g.get("median_stride_time_s"), "median_cadence_spm": g.get("median_cadence_spm"),
-            "median_stride_length_m": median_stride_length(st), "median_speed_mps": g.get("median_speed_mps"),
-            "stride_time_cv_pct": c.get("stride_time_cv_pct"), "stride_length_cv_pct": c.get("stride_length_cv_pct"),
+    g = gait_summary(st)
+    return {**{k: g.get(k) for k in MEDIAN_KEYS}, "median_stride_length_m": median_stride_length(st)}
+
+
+def interval_gait(steps: pd.DataFrame, rows: np.ndarray) -> dict:
+    """Periods.csv's and segments.csv's gait of the interval's steps (``rows``): :func:`interval_medians` and (decision
+    L340) the stride-time and stride-length CVs and their ``n_cv_strides`` (``clinical.clinical_summary``: steady
+    straight level forward strides, 10 needed, L104 / L212; foot only, L214) - :data:`PERIOD_GAIT_KEYS` and the rest
+    by the summary's own rules on those rows."""
+    from pdrlearn.track.clinical import clinical_summary
+
+    out = interval_medians(steps, rows)
+    if not rows.any():
+        return {**out, **dict.fromkeys(PERIOD_GAIT_KEYS[2:])}
+    c = clinical_summary(steps[rows].reset_index(drop=True))
+    return {**out, "stride_time_cv_pct": c.get("stride_time_cv_pct"),
+            "stride_length_cv_pct": c.get("stride_length_cv_pct"),
             "n_cv_strides": None if (c.get("stride_time_cv_withheld") or {}).get("cause") == "lower_back"
             else c.get("n_cv_strides")}
 
@@ -486,7 +503,7 @@ def interval_rows(result, session, starts, ends, closed, *, unit: str | None, bo
                "distance_m": float(length[m].sum()), "n_steps": int(m.sum()), "n_steps_counts": counts,
                # decision L449: both feet's steps whatever the unit, as the summary's (2 per foot stride)
                "n_steps_both_feet": step_counts(steps[m])["n_steps_both_feet"],
-               **_period_gait(steps, m), **timeline.budget(a, b), **timeline.posture_budget(a, b)}
+               **interval_gait(steps, m), **timeline.budget(a, b), **timeline.posture_budget(a, b)}
         c = inside(climb_t)
         row["floors_up"] = int(climb_n[c & (climb_n > 0)].sum()) if climbs is not None else None  # L277
         row["floors_down"] = int(-climb_n[c & (climb_n < 0)].sum()) if climbs is not None else None

@@ -14,6 +14,9 @@ Decision L619: each leg is ``[start_s, end_s)`` when the next leg starts at its 
 on the edge is counted once, in the later leg, as periods.csv's periods are), else ``[start_s, end_s]`` - so legs equal
 to ``--per``'s periods give its totals row for row.
 
+Decision L726: a column other than ``start_s``, ``end_s`` and ``label`` is one ``error:`` line naming it (a user's
+``name`` column was dropped and segments.csv's label left empty, silently).
+
 Decision D53: after a ``--common-span`` cut a leg is accounted from the first sample the session holds, as
 periods.csv's periods (C185 amended): its ``start_s`` and ``duration_s`` say so, and the cut's seconds stay
 ``common_span_cut_s``, not "no steps"; a leg wholly before the cut is one ``error:`` line.
@@ -30,6 +33,8 @@ from pdrlearn.errors import DataError
 
 #: segments.csv's columns, in order (docs/columns.md): the leg's key, then periods.csv's totals after ``partial``
 SEGMENT_KEY = ("session", "subject", "visit", "segment", "label", "start_s", "end_s", "duration_s")
+#: decision L618: LEGS.csv's columns (decision L726: no other is accepted)
+LEGS_COLUMNS = ("start_s", "end_s", "label")
 LEGS_USAGE = ("give a CSV with a header start_s,end_s (and optionally label), one leg a row, seconds from the "
               "session's start as --window takes them, sorted and not overlapping, e.g. start_s,end_s,label / "
               "0,600,walk / 600,1500,bus (decision L618)")
@@ -64,6 +69,12 @@ def read_legs(path: Path | str | None) -> pd.DataFrame | None:
     if missing:
         raise DataError(f"{where}: no column {', '.join(missing)} (it has {', '.join(legs.columns) or 'none'}); "
                         f"{LEGS_USAGE}")
+    unread = [c for c in legs.columns  # a trailing comma's empty, unnamed column is no column of the user's
+              if c not in LEGS_COLUMNS and not (c.startswith("Unnamed:") and legs[c].isna().all())]
+    if unread:  # decision L726: a leg's name is `label`; another column was dropped silently before
+        raise DataError(f"{where}: column {', '.join(unread)} is not read (--segments reads "
+                        f"{', '.join(LEGS_COLUMNS)}): a leg's name is the column label - rename "
+                        f"{unread[0]} to label, or drop it (decision L726); {LEGS_USAGE}")
     if not len(legs):
         raise DataError(f"{where}: no leg (a header alone); {LEGS_USAGE}")
     times = legs[["start_s", "end_s"]].apply(pd.to_numeric, errors="coerce").to_numpy(float)
