@@ -32,7 +32,7 @@ LAP_USERS = range(15876, 15900)
 #: trial T1's half lap (mk.sh's lap: a straight, the bend, a straight): the end 73.6 m from the start
 HALF_LAP = "stand:5, straight:84.39, curve:180:36.8, straight:84.39, stand:5"
 STAIR_SPEEDS = ("slow", "normal", "fast", "brisk")
-LAP_KINDS = ("racewalk", "fast")
+LAP_KINDS = ("racewalk", "lapfast")
 RANGES = {"none": None, "4g": (4, 500), "8g": (8, 1000)}
 WORK = Path(sys.argv[0]).resolve().parent / "results"
 SIM = Path("/tmp/fe_s48/sim")
@@ -57,7 +57,7 @@ def simulate(user: int, kind: str) -> Path:
         elif kind == "racewalk":
             length, time = race_step(user)
             args = ["--route", HALF_LAP, "--step-length", str(length), "--step-time", str(time)]
-        else:
+        else:  # "lapfast"
             args = ["--route", HALF_LAP, "--speed", "fast"]
         try:
             main(["simulate", *args, "--user-seed", str(user), "--seed", str(user), "--rate", "100", "--out", str(d),
@@ -92,9 +92,10 @@ def score(s) -> dict:
     return r
 
 
-def run(worker: int, n: int) -> None:
-    jobs = ([(u, k, rng) for u in STAIR_USERS for k in STAIR_SPEEDS for rng in RANGES]
-            + [(u, k, "16g") for u in LAP_USERS for k in LAP_KINDS])[worker::n]
+def run(worker: int, n: int, kinds: tuple = (*STAIR_SPEEDS, *LAP_KINDS), part: str = "") -> None:
+    """Worker ``worker`` of ``n``: its share of the sessions of ``kinds`` (rows: results/..._part{part}{worker}.csv)."""
+    jobs = ([(u, k, rng) for u in STAIR_USERS for k in STAIR_SPEEDS if k in kinds for rng in RANGES]
+            + [(u, k, "16g") for u in LAP_USERS for k in LAP_KINDS if k in kinds])[worker::n]
     rows = []
     for u, k, rng in jobs:
         s0 = read_session(simulate(u, k))
@@ -102,7 +103,7 @@ def run(worker: int, n: int) -> None:
         r = {"user": u, "kind": k, "range": rng, **score(s)}
         print(r, flush=True)
         rows.append(r)
-        pd.DataFrame(rows).to_csv(WORK / f"clip_default_s48_part{worker}.csv", index=False)
+        pd.DataFrame(rows).to_csv(WORK / f"clip_default_s48_part{part}{worker}.csv", index=False)
 
 
 def real() -> None:
@@ -170,5 +171,7 @@ if __name__ == "__main__":
         report()
     elif sys.argv[1:2] == ["real"]:
         real()
+    elif sys.argv[1:2] == ["lapfast"]:  # the half lap's fast walks alone (a first run simulated the stair route's)
+        run(int(sys.argv[2]), int(sys.argv[3]), ("lapfast",), "_lapfast")
     else:
         run(int(sys.argv[1]) if len(sys.argv) > 1 else 0, int(sys.argv[2]) if len(sys.argv) > 2 else 1)
