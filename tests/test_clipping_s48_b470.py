@@ -34,3 +34,20 @@ def test_b470_the_user_s_params_m1_and_an_unclipped_file_are_left_alone():
     m1 = {"integrator": "integration"}
     assert clip_noise_default(m1, None, _acc(4.0)) == (m1, None)  # M1: no end ZUPT to attribute
     assert clip_noise_default(kw, None, _acc(None)) == (kw, None)  # nothing clipped: as before
+
+
+def test_b471_the_16_g_line_s_race_walk_figures_are_the_experiment_s():
+    """The +-16 g foot line's race-walk cost (B471) is the median experiments/clip_default_s48.py printed (its rows are
+    committed), with and without B470's default."""
+    from pathlib import Path
+
+    import pandas as pd
+
+    from pdrlearn.kernels.clipping import FOOT_ACCEL_RACE_WALK_16G
+
+    rows = Path(__file__).resolve().parents[1] / "experiments" / "results"
+    df = pd.concat([pd.read_csv(p) for p in sorted(rows.glob("clip_default_s48_part*.csv"))])
+    race = df[df.kind == "racewalk"]
+    assert len(race) == 24 and (race.clipped_samples > 0).all()
+    got = (race.distance_error_pct_off.median(), race.distance_error_pct_cand.median())
+    assert np.allclose(FOOT_ACCEL_RACE_WALK_16G, got, atol=0.005)
