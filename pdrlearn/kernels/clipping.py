@@ -259,8 +259,8 @@ FOOT_GYRO_RANGE_DPS = 1000
 #: walks (a 2.04 m flight up and back down); +-16 g cost nothing measurable (the brisk walk's peaks reach ~16 g)
 FOOT_ACCEL_CLIP_COST = {2.0: (-7.12, -15.13, -29.19, -50.77, 4.54), 4.0: (-1.26, -2.75, -8.25, -26.85, 1.06),
                         8.0: (+0.14, -0.11, -0.37, -3.20, 0.22)}
-#: decision B454: the same figures with ``FootDisplacement(clip_noise=True)`` (a --params JSON file with
-#: {"clip_noise": true}; kept as an option by B454's rule), measured at +-4 g and +-8 g only
+#: decision B454: the same figures with ``FootDisplacement(clip_noise=True)`` (kept as an option by B454's rule; the
+#: offline track's default on a clipped foot accelerometer since B470), measured at +-4 g and +-8 g only
 FOOT_ACCEL_CLIP_NOISE = {4.0: (+0.35, -0.39, -1.04, -21.40, 0.01), 8.0: (+0.15, -0.13, -0.11, -0.46, 0.01)}
 #: decision B471 (session 48, trial T1 finding F1): the median distance error (%) of race walks at the simulator's own
 #: +-16 g, 100 Hz (0.93-1.00 m steps at 200-222 steps/min, 3.1-3.6 m/s; 2.5-8.1 % of the foot's samples clipped), with
