@@ -92,7 +92,7 @@ def score(s) -> dict:
     return r
 
 
-def run(worker: int, n: int, kinds: tuple = (*STAIR_SPEEDS, *LAP_KINDS), part: str = "") -> None:
+def run(worker: int = 0, n: int = 1, kinds: tuple = (*STAIR_SPEEDS, *LAP_KINDS), part: str = "") -> None:
     """Worker ``worker`` of ``n``: its share of the sessions of ``kinds`` (rows: results/..._part{part}{worker}.csv)."""
     jobs = ([(u, k, rng) for u in STAIR_USERS for k in STAIR_SPEEDS if k in kinds for rng in RANGES]
             + [(u, k, "16g") for u in LAP_USERS for k in LAP_KINDS if k in kinds])[worker::n]
@@ -163,15 +163,17 @@ def report() -> None:
     print("B470 (a)-(e), the real recordings aside:", bool(a and b and cc and d and e))
 
 
+def main(argv: list[str]) -> None:
+    """``report``, ``real``, ``lapfast W N`` (the half lap's fast walks alone: a first run simulated the stair
+    route's) or ``[W N]``: the worker's share of every session."""
+    modes = {"report": lambda: report(), "real": lambda: real(),
+             "lapfast": lambda: run(int(argv[1]), int(argv[2]), ("lapfast",), "_lapfast")}
+    mode = modes.get(argv[0] if argv else "")
+    mode() if mode else run(*(int(a) for a in argv[:2]))
+
+
 if __name__ == "__main__":
     logging.disable(logging.WARNING)
     warnings.simplefilter("ignore")
     WORK.mkdir(parents=True, exist_ok=True)
-    if sys.argv[1:2] == ["report"]:
-        report()
-    elif sys.argv[1:2] == ["real"]:
-        real()
-    elif sys.argv[1:2] == ["lapfast"]:  # the half lap's fast walks alone (a first run simulated the stair route's)
-        run(int(sys.argv[2]), int(sys.argv[3]), ("lapfast",), "_lapfast")
-    else:
-        run(int(sys.argv[1]) if len(sys.argv) > 1 else 0, int(sys.argv[2]) if len(sys.argv) > 2 else 1)
+    main(sys.argv[1:])
