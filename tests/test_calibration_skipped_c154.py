@@ -45,7 +45,11 @@ def test_skipped_calibration_is_said_with_both_causes_c154(exercise, caplog):
 def test_skipped_calibration_names_the_clipping_seen_c154(exercise, caplog):
     acc = exercise.streams["fAccelerometer"]
     clipped = Stream("fAccelerometer", acc.t, np.clip(acc.values, -2 * G, 2 * G))  # a +-2 g sensor
-    s = Session(name=exercise.name, streams={**exercise.streams, "fAccelerometer": clipped}, steps=exercise.steps,
+    # session 48, B470: the offline track's default clip_noise recovers most of a +-2 g walk (ratio 1.083, within
+    # C154's 10 %), so the labels are also 10 % long here, to keep the calibration skipped and the line said
+    steps = exercise.steps.copy()
+    steps["length_m"] = steps["length_m"] * 1.10
+    s = Session(name=exercise.name, streams={**exercise.streams, "fAccelerometer": clipped}, steps=steps,
                 trajectory=exercise.trajectory, extras=exercise.extras, meta=exercise.meta, frames=exercise.frames)
     model, lines = _lines(caplog, s)
     assert model.data_summary["distance_calibration"]["weight"] == 0.0, model.data_summary["distance_calibration"]

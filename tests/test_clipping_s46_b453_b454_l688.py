@@ -1,7 +1,7 @@
 """Decisions B453 / B454 / L688 (session 46, FE, trial T3 findings F1 / F2): a clipped foot accelerometer's line states
 the size of the effect and the range to buy (B453, figures from experiments/clip_range_s46.py); the ZUPT error put at
-the clipped samples is an option, ``clip_noise`` (B454: not adopted by its rule); the barometer line names the
-clipping and ``--altitude fused`` (L688)."""
+the clipped samples is an option, ``clip_noise`` (B454: not adopted by its rule; session 48, B470: the offline track's
+default when the foot accelerometer clips); the barometer line names the clipping and ``--altitude fused`` (L688)."""
 from __future__ import annotations
 
 from pathlib import Path
@@ -53,7 +53,8 @@ def test_b453_the_foot_accelerometer_line_gives_the_cost_and_the_range_to_buy():
     # before B453: "record with a range above +-4 g" alone, with no size of the effect
     assert "-1.26 / -2.75 / -8.25 / -26.85 %, 1.06 m off" in line
     assert "a foot: +-8 g or more for walking, +-16 g for brisk walking or running" in line
-    assert '{"clip_noise": true}' in line and "+0.35 / -0.39 / -1.04 / -21.40 %, 0.01 m (B454)" in line
+    assert "by default (B470; --params '{\"clip_noise\": false}' turns it off)" in line  # B454's option, B470
+    assert "+0.35 / -0.39 / -1.04 / -21.40 %, 0.01 m (B454)" in line
     eight = saturation_warning("f.csv", "accelerometer", 6, 6878, 8 * G, "foot")
     assert "-3.20 %" in eight and "(a foot: +-16 g for brisk walking or running)" in eight
     assert "simulated walks" not in saturation_warning("f.csv", "accelerometer", 6, 6878, 16 * G, "foot")
@@ -80,14 +81,16 @@ def test_b454_clip_noise_is_an_option_that_puts_the_zupt_error_at_the_clipped_sa
     truth = track_summary(track_plasys(read_session(clean)), read_session(clean))
     default = track_summary(track_plasys(s), s)
     noise = track_summary(track_plasys(s, params={"clip_noise": True}), s)
-    # the option recovers most of the distance and part of the phantom climb (before: no such keyword)
-    assert default["distance_error_pct"] < -2.0
-    assert abs(noise["distance_error_pct"]) < 0.5 * abs(default["distance_error_pct"])
-    assert abs(noise["altitude_change_m"]) < abs(default["altitude_change_m"]) - 0.5
-    assert abs(truth["distance_error_pct"]) < 1.5
-    # not adopted (B454's rule): the default track is L21's, no clip_noise line
     off = track_summary(track_plasys(s, params={"clip_noise": False}), s)
-    assert off["distance_m"] == default["distance_m"]
+    # the option recovers most of the distance and part of the phantom climb (before: no such keyword)
+    assert abs(noise["distance_error_pct"]) < 0.5 * abs(off["distance_error_pct"])
+    assert abs(noise["altitude_change_m"]) < abs(off["altitude_change_m"]) - 0.5
+    assert abs(truth["distance_error_pct"]) < 1.5
+    # B470 (session 48; B454 had kept it an option): the default sets it on a clipped foot accelerometer, with a
+    # line; {"clip_noise": false} gives L21's track back
+    assert noise["distance_m"] == default["distance_m"]
+    assert any("decision B470" in w for w in default["info"]["warnings"])
+    assert off["distance_error_pct"] < -2.0 and not any("decision B470" in w for w in off["info"]["warnings"])
 
 
 def test_b454_an_unclipped_file_is_unchanged_bit_for_bit(walks):
@@ -97,6 +100,7 @@ def test_b454_an_unclipped_file_is_unchanged_bit_for_bit(walks):
     a = track_plasys(s, params={"clip_noise": True}).steps
     b = track_plasys(s).steps
     pd.testing.assert_frame_equal(a, b)
+    pd.testing.assert_frame_equal(track_plasys(s, params={"clip_noise": False}).steps, b)  # B470 (e)
 
 
 def test_l688_the_barometer_line_names_the_clipping_and_altitude_fused(walks):
@@ -104,7 +108,7 @@ def test_l688_the_barometer_line_names_the_clipping_and_altitude_fused(walks):
     assert foot_accel_clip_g(read_session(clean)) is None
     s = read_session(clip)
     assert foot_accel_clip_g(s) == pytest.approx(4.0)
-    out = track_summary(track_plasys(s), s)
+    out = track_summary(track_plasys(s, params={"clip_noise": False}), s)  # B470's default leaves no such climb
     line = next(w for w in out["info"]["warnings"] if "disagrees with the waist barometer" in w)
     # before L688: it blamed a lift, an escalator or slopes only
     assert "the foot accelerometer clips at +-4 g (B77), the likely cause here" in line

@@ -148,7 +148,7 @@ def test_strict_exits_3_when_the_track_warned_and_writes_the_outputs_e156(sessio
     assert main(["track", "--no-plot", str(sessions["clip"]), "--model", "oracle", "--strict", "--json",
                  "--out", str(tmp_path / "warned")]) == 3
     out, err = capsys.readouterr()
-    assert json.loads(out)["info"]["warning_codes"] == ["B77"]
+    assert json.loads(out)["info"]["warning_codes"] == ["B470", "B77"]  # B470 (session 48): clip_noise's line
     assert "exit code 3" in err.splitlines()[-1]
     for name in ("summary.json", "steps.csv", "trajectory.csv", "run.json"):
         assert (tmp_path / "warned" / name).is_file()

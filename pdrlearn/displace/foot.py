@@ -308,12 +308,13 @@ class FootDisplacement:
         or "time"), as the ZUPT removes the velocity error; False (default; L68: not adopted) = the attitude of
         the gyroscope alone
     timestamps : decision L83: integrate each stride step over its own sample interval t_k - t_(k-1)
-    clip_noise : decision B454: the accelerometer's clipped samples (B77 / B311) carry the velocity error the ZUPT
-        finds at the next rest (:func:`pdrlearn.kernels.clip_noise.clip_variance`; the Kalman integrator's, M2 /
-        M3: M1's integration has no end ZUPT to attribute); False (default; B454: not adopted) = L21 alone
         (dropped samples lengthen it; an interval over B11's 1 s gap counts one period, as the stride
         across it is zeroed); a clock uniform to 1e-6 uses the fixed ``1 / rate`` bit for bit.
         False = the fixed ``1 / rate`` everywhere (the former rule)
+    clip_noise : decision B454: the accelerometer's clipped samples (B77 / B311) carry the velocity error the ZUPT
+        finds at the next rest (:func:`pdrlearn.kernels.clip_noise.clip_variance`; the Kalman integrator's, M2 /
+        M3: M1's integration has no end ZUPT to attribute); False (the class's default) = L21 alone; decision B470:
+        the offline track (``track.plasys``) sets it when the foot accelerometer clips
     upsample_runs : decision L87: with ``upsample`` > 1, split the samples where an interval exceeds 1.5 periods
         (a dropped sample) and upsample each run on its own, so no block mean is widened across the drop
         (L24's spline puts the block edges halfway between neighbours); meant with ``timestamps`` (the drop's

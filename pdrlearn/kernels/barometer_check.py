@@ -61,7 +61,7 @@ def clipped_cause(clip_g: float | None, fused: bool, over_m: float) -> str:
         return f"the foot accelerometer also clips at +-{clip_g:.3g} g (B77; it would make the foot read higher); "
     if not clip_g < CLIP_COSTLESS_G:
         return (f"the foot accelerometer also clips at +-{clip_g:.3g} g (B77; at +-{CLIP_COSTLESS_G:g} g or more "
-                "simulated walks lost nothing measurable, B453); ")
+                "simulated walks up to a brisk 2.26 m/s lost no height measurable, B453); ")
     return (f"the foot accelerometer clips at +-{clip_g:.3g} g (B77), the likely cause here: a clipped heel strike "
             "leaves each stride's vertical velocity off, so the foot's height creeps stride by stride"
             + ("" if fused else "; `track --altitude fused` (L154) takes the height from the barometer instead")

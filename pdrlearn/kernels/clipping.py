@@ -259,9 +259,14 @@ FOOT_GYRO_RANGE_DPS = 1000
 #: walks (a 2.04 m flight up and back down); +-16 g cost nothing measurable (the brisk walk's peaks reach ~16 g)
 FOOT_ACCEL_CLIP_COST = {2.0: (-7.12, -15.13, -29.19, -50.77, 4.54), 4.0: (-1.26, -2.75, -8.25, -26.85, 1.06),
                         8.0: (+0.14, -0.11, -0.37, -3.20, 0.22)}
-#: decision B454: the same figures with ``FootDisplacement(clip_noise=True)`` (a --params JSON file with
-#: {"clip_noise": true}; kept as an option by B454's rule), measured at +-4 g and +-8 g only
+#: decision B454: the same figures with ``FootDisplacement(clip_noise=True)`` (kept as an option by B454's rule; the
+#: offline track's default on a clipped foot accelerometer since B470), measured at +-4 g and +-8 g only
 FOOT_ACCEL_CLIP_NOISE = {4.0: (+0.35, -0.39, -1.04, -21.40, 0.01), 8.0: (+0.15, -0.13, -0.11, -0.46, 0.01)}
+#: decision B471 (session 48, trial T1 finding F1): the median distance error (%) of race walks at the simulator's own
+#: +-16 g, 100 Hz (0.93-1.00 m steps at 200-222 steps/min, 3.1-3.6 m/s; 2.5-8.1 % of the foot's samples clipped), with
+#: ``{"clip_noise": false}`` and with B470's default ``clip_noise``, printed by experiments/clip_default_s48.py (users
+#: 15876-15899, trial T1's half lap)
+FOOT_ACCEL_RACE_WALK_16G = (-4.34, -0.41)
 #: decision B453: the median distance error (%) of the same walks unclipped reaches at most this far from 0
 FOOT_UNCLIPPED_PCT = 0.20
 #: decision B453: the foot accelerometer ranges to buy (g): walking, brisk walking (the simulator has no running gait)
@@ -281,11 +286,11 @@ def foot_accel_cost(top: float) -> str:
         return " / ".join(f"{x:+.2f}" for x in row[:4]) + f" %, {row[4]:.2f} m"
 
     noise = FOOT_ACCEL_CLIP_NOISE.get(scale)
-    fix = ("" if noise is None else '; the offline track with a --params JSON file holding {"clip_noise": true} puts '
-           f"each stride's ZUPT error at the clipped samples: {figures(noise)} (B454)")
+    fix = ("" if noise is None else "; the offline track puts each stride's ZUPT error at the clipped samples by "
+           f"default (B470; --params '{{\"clip_noise\": false}}' turns it off): {figures(noise)} (B454)")
     return (f"; simulated walks clipped at +-{scale:g} g tracked the distance (median at slow / normal / fast / a "
             f"brisk 2.26 m/s; unclipped within {FOOT_UNCLIPPED_PCT:.2f} %) and the end height after a 2 m flight up "
-            f"and back down: {figures(FOOT_ACCEL_CLIP_COST[scale])} off{fix}")
+            f"and back down: {figures(FOOT_ACCEL_CLIP_COST[scale])} off without it{fix}")
 
 
 def saturation_warning(where: str, kind: str, n: int, total: int, top: float, unit_name: str = "foot", *,
@@ -311,13 +316,16 @@ def saturation_warning(where: str, kind: str, n: int, total: int, top: float, un
             remedy = f" (a foot: +-{walk} g or more for walking, +-{brisk} g for brisk walking or running)"
         elif top < 0.99 * brisk * STANDARD_GRAVITY:
             remedy = f" (a foot: +-{brisk} g for brisk walking or running)"
-        codes = "B77, B311, B453" if cost else codes
-        if not cost:  # decision B467: B453 measured no cost at +-16 g at 100 Hz, where a sample averages the impact
-            cost = ("; B453 measured no cost at this range at 100 Hz only, where each sample averages the impact: "
-                    "at a higher rate the impacts reach further, and a 1000 Hz stair walk clipped in 0.08 % of its "
-                    "samples read its flights +52 / -26 % high / low - check the altitude and the stair heights, and "
-                    "try --params with {\"clip_noise\": true} (B454), which put that walk back within 0.01 m")
-            codes = "B77, B311, B453, B467"
+        codes = ("B77, B311, B453, B470" if "B470" in cost else "B77, B311, B453") if cost else codes
+        if not cost:  # decisions B467 / B471: the cost at +-16 g measured at race pace, and what B470 leaves
+            off, left = FOOT_ACCEL_RACE_WALK_16G
+            cost = (f"; simulated race walks at this range (100 Hz, 3.1-3.6 m/s) read the distance {off:+.2f} % off "
+                    "(median), walks up to a brisk 2.26 m/s nothing measurable (B453); the offline track puts each "
+                    f"stride's ZUPT error at the clipped samples by default, which left {left:+.2f} % (B470; --params "
+                    "'{\"clip_noise\": false}' turns it off); at a higher rate the impacts reach further: a 1000 Hz "
+                    "stair walk clipped in 0.08 % of its samples read its flights +52 / -26 % high / low without it "
+                    "and within 0.01 m with it (B467) - check the altitude and the stair heights")
+            codes = "B77, B311, B453, B467, B470, B471"
     if kind == "gyroscope" and moving:  # decision B401: the size of the effect, measured on the file
         share = f"; {100.0 * n / moving:.2g} % of its moving samples (|w| >= {MOVING_RAD_S:g} rad/s) are at full scale"
         codes = "B77, B311, B401"

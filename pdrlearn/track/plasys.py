@@ -93,6 +93,7 @@ from pdrlearn.kernels.window import (
 from pdrlearn.orient import WaistHeading, unit_data, wrap_angle
 from pdrlearn.orient._kernels import fit_horizontal_hard_iron, level_axes
 from pdrlearn.signal import lowpass
+from pdrlearn.track.accel_clip import clip_noise_default
 from pdrlearn.track.altitude import apply_altitude, check_altitude, set_strides_dz
 from pdrlearn.track.base import TrackResult, check_keywords, keyword_names, register_pipeline
 from pdrlearn.track.evaluate import match_by_overlap
@@ -1407,6 +1408,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     fd_kw.update(check_foot_settings(params, "plasys params"))  # decisions B206 / B207
     if clipped[0]:  # decision L525 (a): the streamed stride's tilt correction and ZUPT clock
         fd_kw = clipped_foot_settings(fd_kw, params)
+    fd_kw, clip_line = clip_noise_default(fd_kw, params, foot.acc)  # decision B470: a clipped foot accelerometer
+    warnings += [clip_line] if clip_line else []
     fd = FootDisplacement(**fd_kw).estimate(foot, strides, stance=stance)
     trunk = SimpleNamespace(info={})  # decision L612: W418's transfers, read once, before the strides are final
     if transfers:
