@@ -1226,7 +1226,13 @@ FOOT_STEPS: tuple[Column, ...] = (
                                      "stride time): pair a walkway's footfall (heel strike) with this, not event_s "
                                      "(L672)"),
     ("max_sensor_lift_m", "m", "number", "offline foot track: the sensor's highest point above the line joining its "
-                                         "two rests (gaitmap's max_sensor_lift on level ground; L421)"),
+                                         "two rests (gaitmap's max_sensor_lift on level ground; L421): the unit's "
+                                         "own lift, so a higher or farther-forward mount reads another value for "
+                                         "the same foot motion; --reference-point heel leaves it as it is and adds "
+                                         "max_heel_lift_m (L721)"),
+    ("max_heel_lift_m", "m", "number", "offline foot track with --reference-point heel: the heel contact point's "
+                                       "highest point above the line joining its two rests (L22's lever arm from "
+                                       "the recording; the same for any mount of the unit; L721)"),
     ("ic_angle_deg", "deg", "number", "offline foot track: the sole angle at event_s, + toes up, 0 at the starting "
                                       "rest (gaitmap's ic_angle; L421)"),
     ("tc_angle_deg", "deg", "number", "offline foot track with a toe-off (--toe-off): the sole angle at tc_s "
