@@ -27,7 +27,8 @@ from pdrlearn.sim.route import parse_route
 
 ROUTE = "stand:3, straight:30, stand:3"
 MOUNTS = {"A": {"foot_sensor_height_m": 0.06}, "B": {"foot_sensor_height_m": 0.08, "foot_mount_pitch_deg": 15.0},
-          # docs/robustness.md "Mount sensitivity" only (not L721's rule): T3's laces mount, 0.65 of the foot from the heel
+          # docs/robustness.md "Mount sensitivity" only (not L721's rule): T3's laces mount, 0.65 of the foot
+          # from the heel
           "C": {"foot_sensor_height_m": 0.08, "foot_mount_pitch_deg": 30.0, "foot_sensor_pos": 0.65}}
 
 

@@ -1220,7 +1220,9 @@ FOOT_STEPS: tuple[Column, ...] = (
     ("swing_time_s", "s", "number", "--toe-off only: tc_s to this row's event_s (the next IC); against gaitmap's "
                                     "mocap +36.3 / +39.9 ms left / right (L672)"),
     ("stance_pct", "%", "number", "--toe-off only: 100 x stance_time_s / stride_time_s; against gaitmap's mocap "
-                                  "-3.3 / -3.8 points left / right (L672)"),
+                                  "-3.3 / -3.8 points left / right (L672); it moves with the unit's height and place "
+                                  "on the foot, not its tilt (simulated: +2 cm -0.53 points; L720, "
+                                  "docs/robustness.md)"),
     ("cycle_start_s", "s", "number", "--toe-off only: the IC opening the gait cycle stance_time_s / swing_time_s "
                                      "split, event_s - stride_time_s (the previous row's event_s; empty without a "
                                      "stride time): pair a walkway's footfall (heel strike) with this, not event_s "

@@ -276,8 +276,12 @@ def simulate_cmd(
         ("subject", subject, "subject's id", "P07"), ("visit", visit, "visit's name", "visit1"))}
     from pdrlearn.sim.body import BOUNCE_MODES, CONTACT_MODES, PELVIS_MODES, ROCKER_MODES, STEP_TIME_ASYMMETRY_MAX
     from pdrlearn.sim.route import parse_route
-    from pdrlearn.sim.simulate import (BOUNCE_SCALE_MAX, FOOT_SENSOR_HEIGHT_RANGE_M, FOOT_SENSOR_POS_RANGE,
-                                       STEP_LENGTH_ASYMMETRY_MAX)
+    from pdrlearn.sim.simulate import (
+        BOUNCE_SCALE_MAX,
+        FOOT_SENSOR_HEIGHT_RANGE_M,
+        FOOT_SENSOR_POS_RANGE,
+        STEP_LENGTH_ASYMMETRY_MAX,
+    )
 
     if (scenario is None) == (route is None):
         raise DataError("simulate: give either --scenario NAME or --route 'straight:10, up:12, ...' (one of them)")

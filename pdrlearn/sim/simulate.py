@@ -593,8 +593,9 @@ def simulate_path(
     f_body, w_body, pf_out, Rf_out = _unit_motion(t, foot_unit, dt, pose_every=k_out)
     # mounting: the user's few-degree misalignment, optionally on top of a deliberate toes-down tilt
     # (an instep mount like the real gaitmap stair recordings is pitched ~50 deg)
-    mis_f = (_misalignment([float(opt["foot_mount_roll_deg"]), 0.0, 0.0])  # decision S113: rolled after the pitch
-             @ _misalignment([0.0, float(opt["foot_mount_pitch_deg"]), 0.0]) @ _misalignment(user.foot_misalignment_deg))
+    mount_f = (_misalignment([float(opt["foot_mount_roll_deg"]), 0.0, 0.0])  # decision S113: rolled after the pitch
+               @ _misalignment([0.0, float(opt["foot_mount_pitch_deg"]), 0.0]))
+    mis_f = mount_f @ _misalignment(user.foot_misalignment_deg)
     foot_mis_deg = [round(float(v), 9) for v in np.degrees(Rotation.from_matrix(mis_f).as_rotvec())]
     foot_m = THESIS_FOOT_FRAME.matrix()
     s_rng = _rng(user.seed, int(seed), scenario, speed, "sensors")
