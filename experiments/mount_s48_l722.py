@@ -79,7 +79,7 @@ def sim(root: Path, lo: int, hi: int) -> None:
                 root / "track" / f"P{user}" / mount / "summary.json"))
             ok = np.isfinite(st["stance_pct"].to_numpy(float)) & np.isfinite(st["ref_stance_pct"].to_numpy(float))
             cur = stance(st, lambda t: t)
-            cand = stance(st, lambda t: remap(t, old, new))
+            cand = stance(st, lambda t, old=old, new=new: remap(t, old, new))
             ref = st["ref_stance_pct"].to_numpy(float)
             assert np.allclose(cur[ok], st["stance_pct"].to_numpy(float)[ok])
             rows += [dict(user=user, mount=mount, cur=c, cand=k, cur_err=abs(c - f), cand_err=abs(k - f))
