@@ -1222,13 +1222,21 @@ FOOT_STEPS: tuple[Column, ...] = (
     ("swing_time_s", "s", "number", "--toe-off only: tc_s to this row's event_s (the next IC); against gaitmap's "
                                     "mocap +36.3 / +39.9 ms left / right (L672)"),
     ("stance_pct", "%", "number", "--toe-off only: 100 x stance_time_s / stride_time_s; against gaitmap's mocap "
-                                  "-3.3 / -3.8 points left / right (L672)"),
+                                  "-3.3 / -3.8 points left / right (L672); it moves with the unit's height and place "
+                                  "on the foot, not its tilt (simulated: +2 cm -0.53 points; L720, "
+                                  "docs/robustness.md)"),
     ("cycle_start_s", "s", "number", "--toe-off only: the IC opening the gait cycle stance_time_s / swing_time_s "
                                      "split, event_s - stride_time_s (the previous row's event_s; empty without a "
                                      "stride time): pair a walkway's footfall (heel strike) with this, not event_s "
                                      "(L672)"),
     ("max_sensor_lift_m", "m", "number", "offline foot track: the sensor's highest point above the line joining its "
-                                         "two rests (gaitmap's max_sensor_lift on level ground; L421)"),
+                                         "two rests (gaitmap's max_sensor_lift on level ground; L421): the unit's "
+                                         "own lift, so a higher or farther-forward mount reads another value for "
+                                         "the same foot motion; --reference-point heel leaves it as it is and adds "
+                                         "max_heel_lift_m (L721)"),
+    ("max_heel_lift_m", "m", "number", "offline foot track with --reference-point heel: the heel contact point's "
+                                       "highest point above the line joining its two rests (L22's lever arm from "
+                                       "the recording; the same for any mount of the unit; L721)"),
     ("ic_angle_deg", "deg", "number", "offline foot track: the sole angle at event_s, + toes up, 0 at the starting "
                                       "rest (gaitmap's ic_angle; L421)"),
     ("tc_angle_deg", "deg", "number", "offline foot track with a toe-off (--toe-off): the sole angle at tc_s "

@@ -160,6 +160,12 @@ def simulate_cmd(
     foot_sensor_pos: float | None = typer.Option(
         None, "--foot-sensor-pos", help="The foot unit's distance from the heel as a share of the foot length, "
         "0.05-0.85 (default: the user's own, 0.25-0.50; 0.70 = on the forefoot dorsum; decision S109)."),
+    foot_sensor_height: float | None = typer.Option(
+        None, "--foot-sensor-height", metavar="METERS", help="The foot unit's height above the sole (m), 0.01-0.15 "
+        "(default: the user's own, 0.03-0.07; meta.json's user.foot_sensor_height_m records it; decision S112)."),
+    foot_mount_roll: float = typer.Option(
+        0.0, "--foot-mount-roll", help="Sideways tilt of the foot unit about the foot's forward axis (deg, -90 to "
+        "90; + lifts the unit's left edge), after --foot-mount-pitch (decision S113)."),
     pelvis_height: float | None = typer.Option(
         None, "--pelvis-height", help="The waist unit's standing height (m), 0.5-1.2 x the leg length (default: the "
         "user's own, 0.55-0.6 x height): lower it for a crouch-like pelvis (decision S109)."),
@@ -291,7 +297,12 @@ def simulate_cmd(
         ("subject", subject, "subject's id", "P07"), ("visit", visit, "visit's name", "visit1"))}
     from pdrlearn.sim.body import BOUNCE_MODES, CONTACT_MODES, PELVIS_MODES, ROCKER_MODES, STEP_TIME_ASYMMETRY_MAX
     from pdrlearn.sim.route import parse_route
-    from pdrlearn.sim.simulate import BOUNCE_SCALE_MAX, FOOT_SENSOR_POS_RANGE, STEP_LENGTH_ASYMMETRY_MAX
+    from pdrlearn.sim.simulate import (
+        BOUNCE_SCALE_MAX,
+        FOOT_SENSOR_HEIGHT_RANGE_M,
+        FOOT_SENSOR_POS_RANGE,
+        STEP_LENGTH_ASYMMETRY_MAX,
+    )
 
     if (scenario is None) == (route is None):
         raise DataError("simulate: give either --scenario NAME or --route 'straight:10, up:12, ...' (one of them)")
@@ -312,6 +323,12 @@ def simulate_cmd(
     if foot_sensor_pos is not None and not (math.isfinite(foot_sensor_pos) and lo <= foot_sensor_pos <= hi):
         raise DataError(f"--foot-sensor-pos {foot_sensor_pos:g}: give the unit's distance from the heel as a share "
                         f"of the foot length, {lo:g} to {hi:g} (0.70 = forefoot dorsum; decision S109)")
+    lo, hi = FOOT_SENSOR_HEIGHT_RANGE_M
+    if foot_sensor_height is not None and not (math.isfinite(foot_sensor_height) and lo <= foot_sensor_height <= hi):
+        raise DataError(f"--foot-sensor-height {foot_sensor_height:g}: give the foot unit's height above the sole in "
+                        f"metres, {lo:g} to {hi:g} (0.06 = on the instep; decision S112)")
+    if not (math.isfinite(foot_mount_roll) and -90.0 <= foot_mount_roll <= 90.0):  # decision S113
+        raise DataError(f"--foot-mount-roll {foot_mount_roll:g}: give a sideways tilt between -90 and 90 degrees")
     if not (math.isfinite(bounce_scale) and 0.0 <= bounce_scale <= BOUNCE_SCALE_MAX):  # decision S109
         raise DataError(f"--bounce-scale {bounce_scale:g}: give a factor on the user's pelvis bounce, 0 to "
                         f"{BOUNCE_SCALE_MAX:g} (1 = the user's own)")
@@ -376,6 +393,8 @@ def simulate_cmd(
         rocker=rocker,
         contact=contact,  # decision S108
         foot_sensor_pos=foot_sensor_pos,  # decision S109
+        foot_sensor_height_m=foot_sensor_height,  # decision S112
+        foot_mount_roll_deg=foot_mount_roll,  # decision S113
         pelvis_height_m=pelvis_height,  # decision S109
         bounce_scale=bounce_scale,  # decision S109
         gyro_bias_tau_s=parse_gyro_bias_model(gyro_bias_model),  # decision S110

@@ -93,7 +93,8 @@ GAIT_QUALITY_OPT = typer.Option(False, "--gait-quality", help="Lower back: fill 
 REFERENCE_POINT_OPT = typer.Option(None, "--reference-point", help="plasys: the point whose path is "
                                    "tracked: sensor (the unit, default) or heel (the heel contact, lever arm "
                                    "estimated from the recording, decision L22; = \"reference_point\" in "
-                                   "--params).")
+                                   "--params); heel also adds the heel's own lift max_heel_lift_m to steps.csv "
+                                   "(L721).")
 TOE_OFF_OPT = typer.Option(False, "--toe-off", help="plasys, offline: add the toe-off tc_s and "
                            "stance_time_s, swing_time_s, stance_pct, cycle_start_s (the IC whose stance it is, "
                            "L672) to steps.csv (decision L73: an option, not the default - its toe-off runs ~21 ms "

@@ -339,6 +339,8 @@ class FootDisplacement:
     start_idx_, end_idx_ : (B,) sample indices of the stride boundaries used; start_s_, end_s_ their times
     lever_arm_ : (3,) heel contact - sensor in the body frame (m) with ``reference_point="heel"``, else None;
         lever_fit_ : fraction of the heel-rocker velocity variance the rotation about it explains
+    heel_lift_m_ : (B,) with ``reference_point="heel"`` and a lever arm, the heel contact point's highest point above
+        the line joining its two rests (m, decision L721), else None;
     lift_m_ : (B,) the sensor's highest point above the line joining its two rests (m, decision L421);
         sole_pitch_deg_ (B, L) the sole angle of every stride sample (:meth:`sole_angle` reads it at a time)
     rows_ : (B,) rows of the input steps table the strides come from (dropped rows: no swing between)
@@ -519,7 +521,7 @@ class FootDisplacement:
                      if s2 > 0 else None)
             self.disp_ = K.double_integrate(a_nav, mask, dt, zupt_end=self.zupt_end, zupt=zm, clock=clock)
         self._swing_measures(a_nav, mask, dt, zm, q, idx, weight)  # decision L421
-        self.lever_arm_ = None
+        self.lever_arm_ = self.heel_lift_m_ = None
         if heel:
             self._to_heel(a_nav, mask, dt, zm, q, gyr_b, self.stance_[idx], period, weight)
         return self
@@ -581,6 +583,8 @@ class FootDisplacement:
         r = -rho
         self.lever_arm_, self.lever_fit_ = r, fit
         self.disp_ = K.move_reference(self.disp_, q[:, 0], q[np.arange(len(q)), mask.sum(axis=1) - 1], r)
+        self.heel_lift_m_ = heel_lift(K._cumtrapz(v, dt), q, mask, r)  # decision L721
+
 
     def _rest_biases(self, unit: UnitData, still: np.ndarray, bias: np.ndarray) -> np.ndarray:
         """Decision L476: ``bias`` (B, 3) with every stride from the end of a rest longer than L296's
@@ -690,3 +694,14 @@ class FootDisplacement:
         return initial + np.concatenate([[0.0], np.cumsum(self.yaw_change_)[:-1]]) + np.cumsum(gap)
 
 
+
+
+def heel_lift(pos: np.ndarray, q: np.ndarray, mask: np.ndarray, r_body: np.ndarray) -> np.ndarray:
+    """Decision L721: (B,) m, the highest point of the point at ``r_body`` (3,) m from the sensor (body frame; L22's
+    heel contact) above the line joining its two rests, from the sensor's stride positions ``pos`` (B, L, 3) and
+    attitudes ``q`` (B, L, 4) [w, x, y, z]: that point is at pos + R(t) r (L22), through L421's ``max_lift``."""
+    from pdrlearn.kernels.clearance import max_lift
+
+    q = np.where(mask[..., None], q, np.array([1.0, 0.0, 0.0, 0.0]))  # padding samples: any valid attitude
+    rb = np.broadcast_to(np.asarray(r_body, dtype=float), pos.shape)
+    return max_lift(pos + K._qrotate(q, rb), mask)

@@ -92,6 +92,8 @@ KNOBS: dict[str, object] = {
     "baro_drift_hpa_per_h": 0.3,  # sd of the weather drift slope
     "length_m": 1000.0,  # scenario "walk" only: path length
     "foot_mount_pitch_deg": 0.0,  # extra toes-down tilt of the foot unit (e.g. 50 for an instep mount)
+    # decision S113: a sideways tilt of the foot unit about the foot's forward axis (deg; + lifts its left edge)
+    "foot_mount_roll_deg": 0.0,
     # the waist unit turned on the belt: a rotation vector (deg) about the body's forward, left and up axes, on top
     # of the user's few-degree misalignment; meta.json's frame stays the belt's (decision S34)
     "waist_mount_deg": (0.0, 0.0, 0.0),
@@ -103,6 +105,8 @@ KNOBS: dict[str, object] = {
     # decision S109: the foot unit's distance from the heel as a share of the foot length (None: the user's own draw,
     # 25-50 %; up to 0.85 for a unit on the forefoot dorsum)
     "foot_sensor_pos": None,
+    # decision S112: the foot unit's height above the sole (m; None: the user's own draw, 0.03-0.07)
+    "foot_sensor_height_m": None,
     # decision S109: crouch-like pelvis - the waist unit's standing height (m; None: the user's, 0.55-0.6 x height)
     # and a factor on the user's pelvis bounce (1 = the user's; under 1 damped)
     "pelvis_height_m": None,
@@ -132,6 +136,7 @@ KNOBS: dict[str, object] = {
 GAP_UNITS = ("foot", "waist", "both")
 #: knobs meta.json records only when set (default sessions' meta.json as before they existed: S27, S29, S31, S34, S35)
 META_ONLY_WHEN_SET = ("pelvis", "bounce", "waist_mount_deg", "rocker", "contact", "foot_sensor_pos",
+                      "foot_sensor_height_m", "foot_mount_roll_deg",
                       "pelvis_height_m", "bounce_scale", "step_time_asymmetry", "step_length_asymmetry",
                       "stance_time_asymmetry", "sit_start_s", "sit_end_s", "instrumented_foot", "paretic_side", "gaps",
                       "transfer_s", "gyro_bias_tau_s")
@@ -245,6 +250,10 @@ def _check_knobs(knobs: dict) -> dict:
         raise DataError(f"simulate: gyro_bias_tau_s={tau!r} must be a positive number of seconds (the bias drift's "
                         "correlation time), or None for S12's random walk")
     out["foot_sensor_pos"] = check_foot_sensor_pos(out["foot_sensor_pos"])  # decision S109
+    out["foot_sensor_height_m"] = check_foot_sensor_height(out["foot_sensor_height_m"])  # decision S112
+    if not (isinstance(out["foot_mount_roll_deg"], int | float) and -90 <= out["foot_mount_roll_deg"] <= 90):  # S113
+        raise DataError(f"simulate: foot_mount_roll_deg={out['foot_mount_roll_deg']!r} must be -90 to 90 degrees (a "
+                        "sideways tilt of the foot unit; beyond 90 it would lie on its side upside down)")
     ph = out["pelvis_height_m"]  # decision S109: checked against the user's leg in simulate_path
     if ph is not None and (isinstance(ph, bool) or not isinstance(ph, int | float | np.number)
                            or not math.isfinite(ph) or ph <= 0):
@@ -266,7 +275,7 @@ def _check_knobs(knobs: dict) -> dict:
     out["transfer_s"] = check_transfer_s(out["transfer_s"])  # decision S95
     for k, default in KNOBS.items():
         v = out[k]
-        if isinstance(default, bool | str | tuple) or default is None:  # None: foot_sensor_pos, checked above
+        if isinstance(default, bool | str | tuple) or default is None:  # None: checked above (S109, S112)
             continue
         if isinstance(v, bool) or not isinstance(v, int | float | np.number) or not math.isfinite(v):
             raise DataError(f"simulate: {k}={v!r} must be a finite number")
@@ -296,6 +305,10 @@ def _check_knobs(knobs: dict) -> dict:
 #: (the instep / mid-dorsum, S1); a forefoot-dorsum unit sits over the metatarsals, short of the ball's 0.72 and the
 #: toes (ours: past 0.85 the strap would be on the toes, which bend at push-off and the rigid foot does not model)
 FOOT_SENSOR_POS_RANGE = (0.05, 0.85)
+#: decision S112: the foot unit's height above the sole (m) a session may give: the user draws 0.03-0.07 (S19, beside
+#: the heel to the instep); from a unit in the insole (0.01) to a strap at the top of a high shoe (0.15; ours, no
+#: value from a document)
+FOOT_SENSOR_HEIGHT_RANGE_M = (0.01, 0.15)
 
 
 #: decision S109: the waist unit's standing height a session may give, as a share of the user's leg length (ours):
@@ -307,12 +320,15 @@ BOUNCE_SCALE_MAX = 3.0
 
 
 def body_placement(user: UserProfile, opt: dict) -> UserProfile:
-    """Decision S109: the user with the session's ``foot_sensor_pos``, ``pelvis_height_m`` and ``bounce_scale``
+    """Decisions S109, S112: the user with the session's ``foot_sensor_pos``, ``foot_sensor_height_m``,
+    ``pelvis_height_m`` and ``bounce_scale``
     (each when set), so meta.json's ``user`` records the body simulated; one ``DataError`` line for a pelvis height
     outside :data:`PELVIS_HEIGHT_LEGS` of the leg."""
     changes = {}
     if opt["foot_sensor_pos"] is not None:
         changes["foot_sensor_x_frac"] = round(float(opt["foot_sensor_pos"]), 4)
+    if opt.get("foot_sensor_height_m") is not None:  # decision S112
+        changes["foot_sensor_height_m"] = round(float(opt["foot_sensor_height_m"]), 4)
     if opt["pelvis_height_m"] is not None:
         lo, hi = (k * user.leg_length_m for k in PELVIS_HEIGHT_LEGS)
         if not lo <= float(opt["pelvis_height_m"]) <= hi:
@@ -325,17 +341,34 @@ def body_placement(user: UserProfile, opt: dict) -> UserProfile:
     return dataclasses.replace(user, **changes) if changes else user
 
 
+def _check_in_range(name: str, value, bounds: tuple[float, float], what: str) -> float | None:
+    """A placement knob (decisions S109, S112): None (the user's own) or a finite number in ``bounds``; one
+    ``DataError`` line naming ``name`` and ``what`` it must be otherwise."""
+    if value is None:
+        return None
+    lo, hi = bounds
+    ok = isinstance(value, int | float | np.number) and not isinstance(value, bool) and math.isfinite(value)
+    if not ok or not lo <= float(value) <= hi:
+        raise DataError(f"simulate: {name}={value!r} must be {what} in [{lo:g}, {hi:g}] "
+                        f"{_PLACEMENT_EXAMPLES[name]}; leave it out for the user's own")
+    return float(value)
+
+
+_PLACEMENT_EXAMPLES = {"foot_sensor_pos": "(0.45 mid-dorsum, 0.70 forefoot dorsum)",
+                       "foot_sensor_height_m": "(0.06 on the instep, 0.08 on a raised strap)"}
+
+
 def check_foot_sensor_pos(value) -> float | None:
     """Decision S109: ``foot_sensor_pos`` as a share of the foot length in :data:`FOOT_SENSOR_POS_RANGE`, or None
     (the user's own); one ``DataError`` line otherwise."""
-    if value is None:
-        return None
-    lo, hi = FOOT_SENSOR_POS_RANGE
-    ok = isinstance(value, int | float | np.number) and not isinstance(value, bool) and math.isfinite(value)
-    if not ok or not lo <= float(value) <= hi:
-        raise DataError(f"simulate: foot_sensor_pos={value!r} must be a share of the foot length from the heel in "
-                        f"[{lo:g}, {hi:g}] (0.45 mid-dorsum, 0.70 forefoot dorsum); leave it out for the user's own")
-    return float(value)
+    return _check_in_range("foot_sensor_pos", value, FOOT_SENSOR_POS_RANGE, "a share of the foot length from the heel")
+
+
+def check_foot_sensor_height(value) -> float | None:
+    """Decision S112: ``foot_sensor_height_m``, the foot unit's height above the sole (m) in
+    :data:`FOOT_SENSOR_HEIGHT_RANGE_M`, or None (the user's own); one ``DataError`` line otherwise."""
+    return _check_in_range("foot_sensor_height_m", value, FOOT_SENSOR_HEIGHT_RANGE_M,
+                           "the foot unit's height above the sole in metres")
 
 
 def check_transfer_s(value) -> tuple[float, float]:
@@ -568,7 +601,9 @@ def simulate_path(
     f_body, w_body, pf_out, Rf_out = _unit_motion(t, foot_unit, dt, pose_every=k_out)
     # mounting: the user's few-degree misalignment, optionally on top of a deliberate toes-down tilt
     # (an instep mount like the real gaitmap stair recordings is pitched ~50 deg)
-    mis_f = _misalignment([0.0, float(opt["foot_mount_pitch_deg"]), 0.0]) @ _misalignment(user.foot_misalignment_deg)
+    mount_f = (_misalignment([float(opt["foot_mount_roll_deg"]), 0.0, 0.0])  # decision S113: rolled after the pitch
+               @ _misalignment([0.0, float(opt["foot_mount_pitch_deg"]), 0.0]))
+    mis_f = mount_f @ _misalignment(user.foot_misalignment_deg)
     foot_mis_deg = [round(float(v), 9) for v in np.degrees(Rotation.from_matrix(mis_f).as_rotvec())]
     foot_m = THESIS_FOOT_FRAME.matrix()
     s_rng = _rng(user.seed, int(seed), scenario, speed, "sensors")
