@@ -219,8 +219,9 @@ SESSIONS: tuple[Column, ...] = (
     ("distance_along_slope_m", "m", "number", "distance along the walked surface, sum of sqrt(length^2 + dz^2); "
                                               "empty without a grade_source (L300)"),
     ("n_ramps", "count", "integer", "rows of ramps.csv (L301); empty without a ramp_source"),
-    ("ramp_source", _ID, "text", "where ramps.csv's ramps come from: grade_source's, or foot (a foot track's own "
-                                 "heights, L39's strides of 0.10 m or more, no terrain classes: L717); empty: none"),
+    ("ramp_source", _ID, "text", "where ramps.csv's ramps come from: grade_source's, or foot (the option foot_ramps: "
+                                 "a foot track's own heights, L39's strides of 0.10 m or more, no terrain classes, "
+                                 "L717); empty: none"),
     ("ramps_rise_m", "m", "number", "what ramps.csv's ramps up climb, their rise_m summed (L717); empty without a "
                                     "ramp_source"),
     ("ramps_drop_m", "m", "number", "what ramps.csv's ramps down descend, their -rise_m summed, positive (L717); "

@@ -87,8 +87,8 @@ def test_the_fused_line_counts_the_foots_own_ramps_l717():
 def test_the_option_is_a_track_params_key_l717(tmp_path):
     from pdrlearn.cli.track import _track_params
     from pdrlearn.errors import DataError
-    from pdrlearn.track.plasys import _foot_ramps_option
     from pdrlearn.track.base import TrackResult
+    from pdrlearn.track.plasys import _foot_ramps_option
 
     assert _track_params({"foot_ramps": True}, tmp_path / "p.json", False) == ({}, {"foot_ramps": True})
     with pytest.raises(DataError, match='"foot_ramps" must be true or false'):

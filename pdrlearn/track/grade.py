@@ -396,8 +396,8 @@ def track_ramps(steps: pd.DataFrame, info: dict | None) -> FoundRamps:
     unit's window - the lower back's W517 slope over :data:`WAIST_SLOPE_WINDOW_M` of each walking sequence, ended
     where ``has_next`` is False -, L314's stair rows, the stair grade in force) with the rows' lengths and height
     changes it read; no ramps where :func:`ramp_source` is None (decision L717: a foot track's own L39 heights are
-    one with the option ``foot_ramps``). The tables and the summary take it as ``found=`` (session 42): computed once, inside the stair grade in
-    force (:func:`info_stair_grade`)."""
+    one with the option ``foot_ramps``). The tables and the summary take it as ``found=`` (session 42): computed
+    once, inside the stair grade in force (:func:`info_stair_grade`)."""
     if ramp_source(steps, info) is None:
         return [], np.zeros(0), np.zeros(0)
     valid = _valid(steps)
