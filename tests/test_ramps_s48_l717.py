@@ -96,3 +96,19 @@ def test_the_option_is_a_track_params_key_l717(tmp_path):
     res = TrackResult(steps=_foot(), trajectory=pd.DataFrame(), info=dict(DEFAULT))
     assert ramp_source(_foot(), _foot_ramps_option(res, False).info) is None
     assert ramp_source(_foot(), _foot_ramps_option(res, True).info) == "foot"
+
+
+def test_a_simulated_ramp_is_read_with_the_option_only_l717():
+    from pdrlearn.sim import UserProfile, simulate_path
+    from pdrlearn.sim.route import parse_route
+    from pdrlearn.track.evaluate import evaluate_track
+    from pdrlearn.track.plasys import track_plasys
+
+    # T3's user 15700 (1.42 m strides) up 10 m of 1:12 (truth 0.83 m), 50 Hz to keep it short
+    s = simulate_path(parse_route("stand:2, straight:3, slope:10:8.33, straight:3, stand:2"),
+                      UserProfile.from_seed(15700), rate_hz=50, seed=1)
+    off = evaluate_track(track_plasys(s), s)
+    assert off["n_ramps"] is None and off["n_ramp_strides_up"] == 0  # the default, as before L717
+    on = evaluate_track(track_plasys(s, foot_ramps=True), s)
+    assert on["ramp_source"] == "foot" and on["n_ramps"] == 1 and on["n_ramp_strides_up"] >= 5
+    assert 0.5 < on["ramps_rise_m"] < 0.9 and on["grade_source"] is None
