@@ -218,9 +218,16 @@ SESSIONS: tuple[Column, ...] = (
                                   "(L300)"),
     ("distance_along_slope_m", "m", "number", "distance along the walked surface, sum of sqrt(length^2 + dz^2); "
                                               "empty without a grade_source (L300)"),
-    ("n_ramps", "count", "integer", "rows of ramps.csv (L301); empty without a grade_source"),
+    ("n_ramps", "count", "integer", "rows of ramps.csv (L301); empty without a ramp_source"),
+    ("ramp_source", _ID, "text", "where ramps.csv's ramps come from: grade_source's, or foot (the option foot_ramps: "
+                                 "a foot track's own heights, L39's strides of 0.10 m or more, no terrain classes, "
+                                 "L717); empty: none"),
+    ("ramps_rise_m", "m", "number", "what ramps.csv's ramps up climb, their rise_m summed (L717); empty without a "
+                                    "ramp_source"),
+    ("ramps_drop_m", "m", "number", "what ramps.csv's ramps down descend, their -rise_m summed, positive (L717); "
+                                    "empty without a ramp_source"),
     ("max_ramp_grade_pct", "%", "number", "the steepest ramp run's grade in size, ramps.csv's largest "
-                                          "|max_run_grade_pct| (L572); empty without a ramp or a grade_source"),
+                                          "|max_run_grade_pct| (L572); empty without a ramp or a ramp_source"),
     ("n_rides", "count", "integer", "rows of rides.csv: rides while standing, lift / escalator / vehicle / other "
                                     "(L377, L616; a foot track's from the waist barometer, L378, or without one its "
                                     "vehicle rides from the foot's vibration, L624); empty without a barometer on the "
@@ -317,7 +324,7 @@ SESSIONS: tuple[Column, ...] = (
                                                "0.10 m (W527), outside ramps.csv's ramps"),
     ("n_stair_strides_down", "count", "integer", "as n_stair_strides_up, descending (L432, W527, L705)"),
     ("n_ramp_strides_up", "count", "integer", "strides (lower back: steps) inside ramps.csv's up ramps (L705); 0 "
-                                              "without a grade_source"),
+                                              "without a ramp_source (L717)"),
     ("n_ramp_strides_down", "count", "integer", "strides (lower back: steps) inside ramps.csv's down ramps (L705)"),
     ("n_flights_up", "count", "integer", "foot: stair flights up, stairs.csv's rows (L432); empty on the lower back"),
     ("n_flights_down", "count", "integer", "foot: stair flights down (L432); empty on the lower back"),

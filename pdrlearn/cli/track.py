@@ -1635,7 +1635,8 @@ def _reference_point(point: str, par, params: Path | None, pipeline: str, stream
 #: decision L565: ``fused_climb`` (L564's one height source inside a barometric climb, an option), offline and streamed
 #: decision L636: ``hard_iron_fit`` (L84's fit of the waist compass's hard-iron offset on the walk, an option that is
 #: not the default), offline only
-TRACK_PARAM_KEYS = ("waist_bias", "fused_climb", "hard_iron_fit")
+#: decision L717: ``foot_ramps`` (ramps.csv from a foot track's own L39 heights, an option: its rule failed)
+TRACK_PARAM_KEYS = ("waist_bias", "fused_climb", "hard_iron_fit", "foot_ramps")
 #: decision L615: the lower-back PARAMS ``options`` (``{"options": {...}}``) the plasys pipeline reads as well
 PLASYS_OPTION_KEYS = ("ride_vibration",)
 

@@ -61,7 +61,8 @@ def integrated_altitude_check(dz: np.ndarray, levelled: bool = True, raw_dz: np.
     dz = np.asarray(dz, dtype=float)
     kept = np.abs(dz) >= LEVEL_DZ_M
     info = {"source": "integrated (no terrain classes)", "strides": len(dz), "strides_with_height": int(kept.sum()),
-            "altitude_change_m": float(dz.sum())}
+            "altitude_change_m": float(dz.sum()),
+            "levelled": bool(levelled)}  # decision L717: L39's heights, which a foot track's own ramps are read from
     if raw_dz is not None and len(raw_dz) == len(dz):  # decision L145: what L39 discarded
         raw = np.nan_to_num(np.asarray(raw_dz, dtype=float))
         info["level_zeroed_m"] = float((raw - np.nan_to_num(dz)).sum())

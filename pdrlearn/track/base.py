@@ -312,7 +312,9 @@ def get_pipeline(name: str) -> Pipeline:
       default), ``fused_straight`` (decisions L589, L609: with heading ``"fused"``, the waist-to-foot offset fitted on
       straight strides only, so turns on the spot do not pull it; on by default since L609, False = L17's offset
       over every stride), ``ride_vibration`` (decisions L615, L616: offline, with a waist barometer, a ride or a long
-      standstill whose foot unit vibrates is a vehicle; on by default, ``{"options": {"ride_vibration": false}}``).
+      standstill whose foot unit vibrates is a vehicle; on by default, ``{"options": {"ride_vibration": false}}``),
+      ``foot_ramps`` (decision L717: without ``altitude="fused"`` and without terrain classes, ramps.csv and the ramp
+      strides from the foot's own L39 heights; off by default, its rule was not met).
     - ``"waist-pendulum"`` (lower back): initial contacts from the waist acceleration, inverted-pendulum
       step length; ``"waist-pll"``: PLL steps, step length linear in the step frequency. Keyword arguments:
       ``params`` (``pdrlearn calibrate``'s PARAMS.json path / dict), ``start``, ``realtime``

@@ -1532,29 +1532,39 @@ def ramps_need_fused_warning(summary: dict) -> str | None:
     stair walk whose flights the track lists stays quiet (``--altitude fused`` would add no ramp to it).
     Decision L680: each direction's band is the larger of that and :data:`FLIGHT_BAND_FRACTION` of the flights'
     height that way (their disagreement with the barometer grows with the climb: a 17 m stair loop's flights missed
-    0.58 m of the barometer's descent, streamed)."""
+    0.58 m of the barometer's descent, streamed). Decision L717: a foot track's own ramps (``ramp_source`` "foot",
+    ramps.csv from its L39 heights) explain their rise too (``ramps_rise_m`` / ``ramps_drop_m``), and the line then
+    says ramps.csv holds only the ramps of strides rising 0.10 m or more."""
     from pdrlearn.kernels.altitude_check import ASCENT_BAND_BARO_M
 
     up = float(summary.get("barometer_ascent_m") or 0.0)
     down = float(summary.get("barometer_descent_m") or 0.0)
     ridden = ridden_climbs(summary) or {"ascent": 0.0, "descent": 0.0}  # decision L632: rides.csv's lifts
     rise, drop = float(summary.get("flights_rise_m") or 0.0), float(summary.get("flights_drop_m") or 0.0)
-    left_up, left_down = up - ridden["ascent"] - rise, down - ridden["descent"] - drop  # decision L602
+    ramp_up, ramp_down = float(summary.get("ramps_rise_m") or 0.0), float(summary.get("ramps_drop_m") or 0.0)
+    left_up = up - ridden["ascent"] - rise - ramp_up  # decisions L602, L717
+    left_down = down - ridden["descent"] - drop - ramp_down
     band_up, band_down = (max(ASCENT_BAND_BARO_M, FLIGHT_BAND_FRACTION * h) for h in (rise, drop))  # decision L680
     if (not summary.get("barometer_unused") or summary.get("grade_source") is not None
             or not (left_up > band_up or left_down > band_down)
             or barometer_warning(summary) is not None):  # decision L632: one line, L145's, names ramps too
         return None
     what = " and ".join(w for w, on in (("stairs.csv's flights", rise or drop),
+                                        ("ramps.csv's ramps", ramp_up or ramp_down),  # decision L717
                                         ("rides.csv's rides", ridden["ascent"] or ridden["descent"])) if on)
     band = max(band_up if left_up > band_up else 0.0, band_down if left_down > band_down else 0.0)
     bands = ("" if band <= ASCENT_BAND_BARO_M else
              f", over {band:.2f} m: {100 * FLIGHT_BAND_FRACTION:g} % of the flights' climb, L680")
+    codes = "L602, L632" + (", L717" if ramp_up or ramp_down else "")
     flights = ("" if not what else f" ({max(left_up, 0.0):.2f} m / {max(left_down, 0.0):.2f} m more than {what}, "
-               f"L602, L632{bands})")
-    return (f"the waist barometer climbed {up:.2f} m and descended {down:.2f} m{flights}, but ramps.csv is empty and "
-            "steps.csv has no grade_pct: ramps / grades need --altitude fused (L300) - a foot track's own height "
-            "levels every stride under 0.10 m (L39), a 1:12 ramp's at strides under 1.2 m (decision L574)")
+               f"{codes}{bands})")
+    n = int(summary.get("n_ramps") or 0)
+    held = ("ramps.csv is empty" if not n else  # decision L717: the foot's own ramps
+            f"ramps.csv holds only the {n} ramp(s) of strides rising 0.10 m or more (the foot's own heights, L717)")
+    return (f"the waist barometer climbed {up:.2f} m and descended {down:.2f} m{flights}, but {held} and "
+            f"steps.csv has no grade_pct: {'other ' if n else ''}ramps / grades need --altitude fused (L300) - a foot "
+            "track's own height levels every stride under 0.10 m (L39), a 1:12 ramp's at strides under 1.2 m "
+            "(decision L574)")
 
 
 def lower_back_grade_warning(summary: dict) -> str | None:

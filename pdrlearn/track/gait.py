@@ -294,9 +294,9 @@ def stair_ramp_split(steps: pd.DataFrame, ramps: list[dict]) -> dict:
     ramps, L443, with or without ramps.csv); a lower-back track (no flights, L440) W527's steps outside ramps.csv's
     ramps. ``n_ramp_strides_up`` / ``_down``: the rows inside ramps.csv's ramps (``ramps``:
     :func:`pdrlearn.track.grade.track_ramps`' dicts, rows ``first`` to ``last`` of ``steps``) by their ramp's
-    direction (none without a grade source). The rows are the summary's own (:func:`walking_rows` less
-    ``--steady-trim``'s, L415; a lower-back track's are steps). ``n_stair_strides`` (L179's count, which the
-    gait-range guards L179 / L435 read) is not changed here."""
+    direction (none without a ramp source: L717's :func:`pdrlearn.track.grade.ramp_source`). The rows are the
+    summary's own (:func:`walking_rows` less ``--steady-trim``'s, L415; a lower-back track's are steps).
+    ``n_stair_strides`` (L179's count, which the gait-range guards L179 / L435 read) is not changed here."""
     from pdrlearn.track.clinical import _is_lower_back
     from pdrlearn.track.stair_flights import flight_stride_counts
     from pdrlearn.track.steady import trimmed_rows

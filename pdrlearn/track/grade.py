@@ -6,7 +6,9 @@ ramps, rides: ``floors_up_stairs`` ...), whose sums are L127's ``floors_up`` / `
 A grade is read only where the altitude measures a slope: a lower-back track with its barometer (W89) or a foot
 track with ``--altitude fused`` (L154). A foot track's own altitude does not: L39 levels every stride under 0.10 m
 (a 1:12 ramp stride of 1.2 m rises 0.10 m) and a terrain model's flat class keeps the altitude (thesis ch. 7.2.2),
-so its ``grade_pct`` is empty and ``grade_source`` is None (decision L300)."""
+so its ``grade_pct`` is empty and ``grade_source`` is None (decision L300). The option ``foot_ramps`` reads its ramps
+where its heights are L39's (no terrain classes): the strides of 0.10 m or more keep theirs, a 1:12 ramp's at strides
+of 1.2 m or more (decision L717, not the default: :func:`ramp_source`)."""
 
 from __future__ import annotations
 
@@ -86,6 +88,31 @@ def grade_source(steps: pd.DataFrame, info: dict | None) -> str | None:
         dz = pd.to_numeric(steps["dz_m"], errors="coerce").to_numpy(float)
         return "barometer" if np.any(np.nan_to_num(dz) != 0) else None
     return None
+
+
+#: decision L717: :func:`ramp_source`'s value for a foot track's own heights (L39's, no terrain classes)
+FOOT_RAMP_SOURCE = "foot"
+#: decision L717: the track's info key (``track_plasys(foot_ramps=True)``, ``--params '{"foot_ramps": true}'``) that
+#: reads a foot track's ramps from its own heights - an option: its adoption rule failed (16 of 20 users, 18 asked)
+FOOT_RAMPS_KEY = "foot_ramps"
+
+
+def ramp_source(steps: pd.DataFrame, info: dict | None) -> str | None:
+    """Decision L717: where the rows' ramps (ramps.csv, L301) are read from - :func:`grade_source` where it names
+    one; else, where the track's ``info`` sets the option :data:`FOOT_RAMPS_KEY` (not the default: L717's rule
+    failed), :data:`FOOT_RAMP_SOURCE` for a foot track whose altitude is its integrated height levelled by L39 (no
+    terrain classes: L69's ``info["altitude_check"]`` with ``levelled``), whose strides of 0.10 m or more keep their
+    height (a 1:12 ramp's at strides of 1.2 m or more); else None (the default, a terrain model's classes, a streamed
+    model without terrain classes - unlevelled heights, C17 -, mixed units). Steps.csv's ``grade_pct`` and the
+    summary's ``grade_source`` stay L300's: a levelled stride has no grade."""
+    src = grade_source(steps, info)
+    if src is not None or not len(steps) or "dz_m" not in steps or "length_m" not in steps:
+        return src
+    units = set(steps["unit"].astype(str)) if "unit" in steps else {"foot"}
+    check = (info or {}).get("altitude_check")
+    levelled = isinstance(check, dict) and bool(check.get("levelled"))
+    wanted = bool((info or {}).get(FOOT_RAMPS_KEY))
+    return FOOT_RAMP_SOURCE if wanted and units == {"foot"} and levelled else None
 
 
 def check_stair_grade(value) -> float | None:
@@ -368,9 +395,10 @@ def track_ramps(steps: pd.DataFrame, info: dict | None) -> FoundRamps:
     """Decisions L301, L568: :func:`ramp_runs` of a track's rows (the valid rows' ``length_m`` / ``dz_m``, the
     unit's window - the lower back's W517 slope over :data:`WAIST_SLOPE_WINDOW_M` of each walking sequence, ended
     where ``has_next`` is False -, L314's stair rows, the stair grade in force) with the rows' lengths and height
-    changes it read; no ramps where :func:`grade_source` is None. The tables and the summary take it as ``found=``
-    (session 42): computed once, inside the stair grade in force (:func:`info_stair_grade`)."""
-    if grade_source(steps, info) is None:
+    changes it read; no ramps where :func:`ramp_source` is None (decision L717: a foot track's own L39 heights are
+    one with the option ``foot_ramps``). The tables and the summary take it as ``found=`` (session 42): computed
+    once, inside the stair grade in force (:func:`info_stair_grade`)."""
+    if ramp_source(steps, info) is None:
         return [], np.zeros(0), np.zeros(0)
     valid = _valid(steps)
     length = np.where(valid, pd.to_numeric(steps["length_m"], errors="coerce").to_numpy(float), 0.0)
@@ -407,7 +435,7 @@ def ramp_table(steps: pd.DataFrame, info: dict | None, trajectory: pd.DataFrame 
     """``ramps.csv`` (decision L301): one row per ramp of :func:`ramp_runs` on the rows' ``length_m`` / ``dz_m``
     (numbered from 1, with its first row's ``start_s`` and last row's ``end_s``), L569's compliance flags and
     (L570) its ends' positions on ``trajectory`` (empty without one); no rows (the header alone) where
-    :func:`grade_source` is None. ``found``: :func:`track_ramps` of these rows, when the caller has it."""
+    :func:`ramp_source` is None (L717). ``found``: :func:`track_ramps` of these rows, when the caller has it."""
     from pdrlearn.track.ramp_audit import audit_flags, with_end_positions
 
     rows = []
@@ -422,7 +450,7 @@ def ramp_table(steps: pd.DataFrame, info: dict | None, trajectory: pd.DataFrame 
 
 def table_ramps(steps: pd.DataFrame, info: dict | None, found: FoundRamps | None = None) -> list[dict]:
     """Decision L301: the ramps of :func:`track_ramps` as ramps.csv lists them (and decision L573's curbs leave
-    out); none where :func:`grade_source` is None. ``found``: :func:`track_ramps` of these rows, already found."""
+    out); none where :func:`ramp_source` is None (L717). ``found``: :func:`track_ramps` of these rows, already found."""
     return (track_ramps(steps, info) if found is None else found)[0]
 
 
@@ -443,14 +471,22 @@ def climb_rows(steps: pd.DataFrame, info: dict | None = None) -> np.ndarray | No
 def grade_summary(steps: pd.DataFrame, info: dict | None, *, found: FoundRamps | None = None) -> dict:
     """Decision L300: ``grade_source`` (:func:`grade_source`), ``distance_along_slope_m`` (:func:`along_slope_m` of
     the valid rows; None without a source) and ``n_ramps`` (rows of :func:`ramp_table`; None without a source).
-    ``found``: :func:`track_ramps` of these rows, when the caller has it."""
-    src = grade_source(steps, info)
-    if src is None:
-        return {"grade_source": None, "distance_along_slope_m": None, "n_ramps": None, "max_ramp_grade_pct": None}
-    valid = _valid(steps)
-    length = pd.to_numeric(steps["length_m"], errors="coerce").to_numpy(float)[valid]
-    dz = pd.to_numeric(steps["dz_m"], errors="coerce").to_numpy(float)[valid]
+    ``found``: :func:`track_ramps` of these rows, when the caller has it. Decision L717: ``ramp_source``
+    (:func:`ramp_source`), and ``n_ramps`` / ``max_ramp_grade_pct`` / ``ramps_rise_m`` / ``ramps_drop_m`` (the ramps'
+    ``rise_m`` summed up / down, positive) wherever it is not None - a foot track's own ramps too, whose
+    ``grade_source`` and ``distance_along_slope_m`` stay None."""
+    src, rsrc = grade_source(steps, info), ramp_source(steps, info)
+    out = {"grade_source": src, "distance_along_slope_m": None, "n_ramps": None, "max_ramp_grade_pct": None,
+           "ramp_source": rsrc, "ramps_rise_m": None, "ramps_drop_m": None}
+    if src is not None:
+        valid = _valid(steps)
+        length = pd.to_numeric(steps["length_m"], errors="coerce").to_numpy(float)[valid]
+        dz = pd.to_numeric(steps["dz_m"], errors="coerce").to_numpy(float)[valid]
+        out["distance_along_slope_m"] = along_slope_m(length, dz)
+    if rsrc is None:
+        return out
     ramps = table_ramps(steps, info, found)
     steepest = max((abs(r["max_run_grade_pct"]) for r in ramps), default=None)  # decision L572
-    return {"grade_source": src, "distance_along_slope_m": along_slope_m(length, dz), "n_ramps": len(ramps),
-            "max_ramp_grade_pct": steepest}
+    rises = np.array([r["rise_m"] for r in ramps], dtype=float)
+    return {**out, "n_ramps": len(ramps), "max_ramp_grade_pct": steepest,
+            "ramps_rise_m": float(rises[rises > 0].sum()), "ramps_drop_m": float(-rises[rises < 0].sum()) + 0.0}

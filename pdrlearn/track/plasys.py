@@ -1134,7 +1134,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                  fallback_drift: bool | None = None, first_walk: bool = False, transfers: bool = True,
                  gated_level_dz: bool | str = False, fused_climb: bool = False,
                  fused_straight: bool = True, ride_vibration: bool = True, cycling: bool = True,
-                 **opts) -> TrackResult:
+                 foot_ramps: bool = False, **opts) -> TrackResult:
     """Track a foot (+ waist) session with PLASYS method M1, M2 or M3 (thesis ch.7).
 
     Parameters
@@ -1235,6 +1235,9 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     altitude : "foot" (default, None) - the strides' own height (L39 / the terrain classes) - or "fused": fused with
         the session's waist barometer (decision L154, :func:`pdrlearn.kernels.barometer.fuse_altitude`; an option,
         its adoption rule was not met), offline and streamed; ``info["altitude_source"]`` says which
+    foot_ramps : a foot track without ``altitude="fused"`` and without terrain classes: ramps.csv, ``n_ramps`` and
+        the ramp strides from its own L39 heights (a 1:12 ramp's strides of 1.2 m or more; decision L717, an option,
+        its rule was not met: 16 of 20 users within 2 strides, 18 asked), offline and streamed
     fused_climb : with ``altitude="fused"`` and no terrain model: a stride inside a barometric climb is fused with the
         foot's own un-levelled height instead of L39's level one (decision L564, an option: L565, its rule was not
         met - ramp ends within 0.06 s and grades steadier, but stair walks' end height up to 0.11 m worse)
@@ -1342,7 +1345,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
 
         # decision E293: the rides as offline (L378, L615, L624), and as `run` reads them (E6: one computation)
         foot_rides(res, with_left_out_units(session), ride_vibration)
-        return res
+        return _foot_ramps_option(res, foot_ramps)  # decision L717
     refusal = reads_force_refusal(steps) if ignore_force else None  # decision B299
     if refusal:
         raise DataError(f"plasys: {refusal}")
@@ -1836,6 +1839,16 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     from pdrlearn.track.trunk_pauses import add_trunk_pauses
 
     add_trunk_pauses(res)  # decision L687: the lower back's stops are the two-unit track's pauses
+    return _foot_ramps_option(res, foot_ramps)  # decision L717
+
+
+def _foot_ramps_option(res: TrackResult, foot_ramps: bool) -> TrackResult:
+    """Decision L717: ``foot_ramps=True`` recorded in ``res.info`` (:data:`pdrlearn.track.grade.FOOT_RAMPS_KEY`), so
+    the summary and the tables read the ramps of a track without terrain classes from its own L39 heights."""
+    if foot_ramps:
+        from pdrlearn.track.grade import FOOT_RAMPS_KEY
+
+        res.info[FOOT_RAMPS_KEY] = True
     return res
 
 
