@@ -59,6 +59,19 @@ def parse_gaps(texts: list[str]) -> tuple:
     return check_gaps([tuple(str(text).split(":")) for text in texts or []], option="--gap")
 
 
+def parse_jerk_size(text: str | None) -> dict:
+    """Decision S114: ``--trunk-jerk-size DEG_LO:DEG_HI:CM_LO:CM_HI`` as the knobs ``trunk_jerk_deg`` and
+    ``trunk_jerk_m``; one ``error:`` line naming the option otherwise (the ranges are checked by the knobs)."""
+    if text is None:
+        return {}
+    try:
+        d0, d1, c0, c1 = (float(x) for x in str(text).split(":"))
+    except ValueError:
+        raise DataError(f"--trunk-jerk-size {text!r}: give DEG_LO:DEG_HI:CM_LO:CM_HI, e.g. 4:12:1.5:4 (tilts of "
+                        "4-12 deg, bumps of 1.5-4 cm)") from None
+    return {"trunk_jerk_deg": (d0, d1), "trunk_jerk_m": (c0 / 100.0, c1 / 100.0)}
+
+
 def parse_transfer_time(text: str) -> tuple[float, float]:
     """Decision S95: ``--transfer-time LO:HI`` as ``(lo, hi)`` seconds; one ``error:`` line naming the option and a
     valid form otherwise (the range is checked by :func:`pdrlearn.sim.simulate.check_transfer_s`)."""
@@ -200,6 +213,13 @@ def simulate_cmd(
     sit_end: float = typer.Option(
         0.0, "--sit-end", help=f"End the session by sitting down after the last standstill and staying seated "
         f"this long (s, 0-{SIT_MAX_S:g}; decision S43)."),
+    trunk_jerks: float = typer.Option(
+        0.0, "--trunk-jerks", help="Involuntary trunk jerks (chorea-like) of the waist unit, jerks per second at random "
+        "times, standing and walking: 0.3-0.8 s trunk tilts about a random axis and vertical bumps; their times in "
+        "trunk_jerks.csv (0 = none, the default; decision S114)."),
+    trunk_jerk_size: str | None = typer.Option(
+        None, "--trunk-jerk-size", help="With --trunk-jerks: DEG_LO:DEG_HI:CM_LO:CM_HI, the ranges of each jerk's "
+        "peak tilt (deg) and vertical bump (cm); default 4:12:1.5:4 (decision S114)."),
     transfer_time: str | None = typer.Option(
         None, "--transfer-time", metavar="LO:HI", help="Draw each sit-down's and stand-up's duration (s) from LO to "
         "HI, e.g. '3:6' for a frail person's slow sit-to-stand (default 1.5:2.5; every sit:, lie: and "
@@ -368,6 +388,8 @@ def simulate_cmd(
         sit_end_s=sit_end,
         stand_s=stand,  # decision S90
         **({} if transfer_time is None else {"transfer_s": parse_transfer_time(transfer_time)}),  # decision S95
+        trunk_jerk_rate_hz=trunk_jerks,  # decision S114
+        **parse_jerk_size(trunk_jerk_size),  # decision S114
         instrumented_foot=foot,
         paretic_side=paretic_side,
     )
