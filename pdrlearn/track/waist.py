@@ -151,6 +151,7 @@ from pdrlearn.waist.posture import (
 from pdrlearn.waist.posture import stand_veto as drop_weak_runs
 from pdrlearn.waist.posture import vault_veto as drop_unvaulted
 from pdrlearn.waist.rhythm import arrhythmic_message, arrhythmic_sequences
+from pdrlearn.waist.trunk_rhythm import arrhythmic_line, rhythm_keep_mask
 from pdrlearn.waist.ride_runs import ride_message, ride_runs, ride_spans
 from pdrlearn.waist.sit_causal import causal_transfer_veto
 from pdrlearn.waist.steplength import CADENCE_LAW_STEADY, cadence_law_factor, calibration_cadence_hz, steady_steps
@@ -697,6 +698,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "foot_rest_veto": True,  # W336: the contacts while the foot unit makes no stride (W337 adopted)
                    "pelvic_rhythm_veto": False,  # W440: measured, not adopted (Test11's step F1 fell); an option
                    "rhythm_warning": False,  # W338: phone-only stride-rhythm warning; W339: not met, opt-in
+                   "trunk_rhythm_veto": False,  # W550: runs of contacts without a step rhythm (trunk jerks)
                    "side_at_contact": False,  # W235: the sequence rules' sides at the contact (offline pendulum)
                    "fast_fill": False,  # W242: a merged step's 5 Hz maximum (offline pendulum)
                    "ap_above_mean": False,  # W265: W29's IC, the last AP maximum above the AP mean (offline pendulum)
@@ -736,6 +738,8 @@ SCOPED_OPTIONS = {
                     lambda pl, rt, m, det, stops: not rt),
     "pelvic_rhythm_veto": ("the offline waist tracks (W440: the pelvic rhythm is read over the whole recording)",
                            lambda pl, rt, m, det, stops: not rt),
+    "trunk_rhythm_veto": ("the offline waist tracks (W550: a run is judged after its last contact)",
+                          lambda pl, rt, m, det, stops: not rt),
     "pll_edge_lock": ("waist-pll with its own PLL detector (W356)",
                       lambda pl, rt, m, det, stops: pl == "waist-pll" and not det),
     "pll_slow_follow": ("the offline waist-pll with its own PLL detector (W504)",
@@ -1076,6 +1080,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "pelvic_rhythm_veto": pelvic_rhythm_veto,  # W440
              "pll_edge_lock": pll_edge_lock,  # W356
              "rhythm_warning": None,  # W338 / W339: a PARAMS.json option only
+             "trunk_rhythm_veto": None,  # W550: a PARAMS.json option only
              "rest_bias": rest_bias, "step_bound": None,  # W230: a PARAMS.json option only
              "climb_veto": None,  # L330: a PARAMS.json option only
              "ride_vibration": None,  # L402 / L403: a PARAMS.json option only
@@ -1193,6 +1198,12 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
                                spare_adjacent=o["stand_veto"] in ("adjacent", "walking"),
                                walking_reference=o["stand_veto"] == "walking")  # W218: + the walking reference
         n_weak_run = steps.attrs["n_weak_run"]
+    if not realtime and len(steps):  # decision W550: runs of contacts without a step rhythm (trunk jerks)
+        rhythmic = rhythm_keep_mask(steps["event_s"].to_numpy(float), steps["has_next"].to_numpy(bool))
+        line = arrhythmic_line(int((~rhythmic).sum()), len(steps), bool(o["trunk_rhythm_veto"]))
+        warnings += [line] if line else []
+        if o["trunk_rhythm_veto"]:
+            steps = drop_contacts(steps, rhythmic, "n_arrhythmic")
     n_tilted = 0
     if o["max_tilt_deg"] is not None:  # W102: a contact made with the trunk far from its walking upright is no step
         steps = tilt_gate(steps, imu, float(o["max_tilt_deg"]))
