@@ -698,7 +698,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "foot_rest_veto": True,  # W336: the contacts while the foot unit makes no stride (W337 adopted)
                    "pelvic_rhythm_veto": False,  # W440: measured, not adopted (Test11's step F1 fell); an option
                    "rhythm_warning": False,  # W338: phone-only stride-rhythm warning; W339: not met, opt-in
-                   "trunk_rhythm_veto": False,  # W550: runs of contacts without a step rhythm (trunk jerks)
+                   "trunk_rhythm_veto": False,  # W550: runs without a step rhythm (trunk jerks); measured, not adopted
                    "side_at_contact": False,  # W235: the sequence rules' sides at the contact (offline pendulum)
                    "fast_fill": False,  # W242: a merged step's 5 Hz maximum (offline pendulum)
                    "ap_above_mean": False,  # W265: W29's IC, the last AP maximum above the AP mean (offline pendulum)

@@ -11,7 +11,9 @@ walking sequences (contacts <= 1.5 s apart) chain and the bout rules turn into w
 Walking repeats its step: a walking run holds a *rhythmic stretch*, :data:`MIN_RHYTHM_STEPS` consecutive step
 intervals each within :data:`RHYTHM_TOL` of the run's median interval. :func:`rhythm_keep_mask` keeps every contact of
 a run that holds one (its starts, stops and irregular steps too: only whole runs are judged) and leaves out the runs
-that hold none. :func:`arrhythmic_line` says so in one plain-language line. Pure functions of contact times.
+that hold none (the track option ``trunk_rhythm_veto``: measured, not adopted - dense jerks still chain into runs
+that pass, and an irregular patient-like walk can lose a real run). :func:`arrhythmic_line` says so in one
+plain-language line (always, offline). Pure functions of contact times.
 """
 
 from __future__ import annotations
