@@ -84,9 +84,8 @@ def measure(out: Path) -> None:
 
 def real() -> None:
     sys.path.insert(0, str(ROOT / "experiments"))
-    import waist as W
-
     import pdrlearn.track.waist as TW
+    import waist as W
 
     cfg = [c for c in W.CONFIGS if c[0] == "waist-pendulum"]
     out = []

@@ -55,7 +55,8 @@ def test_a_jerk_tilts_the_waist_unit_and_leaves_the_foot_alone(pair):
     mid = a.values[np.searchsorted(a.t, (row.start_s + row.end_s) / 2)]
     turn = np.degrees(np.arccos(np.dot(before, mid) / np.linalg.norm(before) / np.linalg.norm(mid)))
     assert 0.5 < turn <= row.peak_deg + 0.5  # gravity turns with the tilt in the unit's frame
-    outside = ~np.any([(g.t > a - 0.05) & (g.t < b + 0.05) for a, b in zip(table.start_s, table.end_s)], axis=0)
+    outside = ~np.any([(g.t > a - 0.05) & (g.t < b + 0.05) for a, b in zip(table.start_s, table.end_s, strict=True)],
+                      axis=0)
     assert np.abs(g.values[outside]).max() < 1e-3  # standing still: no rate outside the jerks
 
 

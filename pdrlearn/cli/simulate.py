@@ -214,9 +214,9 @@ def simulate_cmd(
         0.0, "--sit-end", help=f"End the session by sitting down after the last standstill and staying seated "
         f"this long (s, 0-{SIT_MAX_S:g}; decision S43)."),
     trunk_jerks: float = typer.Option(
-        0.0, "--trunk-jerks", help="Involuntary trunk jerks (chorea-like) of the waist unit, jerks per second at random "
-        "times, standing and walking: 0.3-0.8 s trunk tilts about a random axis and vertical bumps; their times in "
-        "trunk_jerks.csv (0 = none, the default; decision S114)."),
+        0.0, "--trunk-jerks", help="Involuntary trunk jerks (chorea-like) of the waist unit, jerks per second at "
+        "random times, standing and walking: 0.3-0.8 s trunk tilts about a random axis and vertical bumps; their "
+        "times in trunk_jerks.csv (0 = none, the default; decision S114)."),
     trunk_jerk_size: str | None = typer.Option(
         None, "--trunk-jerk-size", help="With --trunk-jerks: DEG_LO:DEG_HI:CM_LO:CM_HI, the ranges of each jerk's "
         "peak tilt (deg) and vertical bump (cm); default 4:12:1.5:4 (decision S114)."),

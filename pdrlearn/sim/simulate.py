@@ -40,7 +40,6 @@ from pdrlearn.sim.body import (
 )
 from pdrlearn.sim.cycle import cycle_foot, cycle_loads, cycle_pelvis
 from pdrlearn.sim.freeze import FreezeEpisode, freeze_foot, freeze_loads, freeze_pelvis, freeze_table
-from pdrlearn.sim.trunk_jerks import JERK_DEG, JERK_M, check_jerk_options, draw_jerks, jerk_pose, jerk_table
 from pdrlearn.sim.kernels import (
     angular_rate_body,
     block_mean,
@@ -61,6 +60,7 @@ from pdrlearn.sim.transfer import (
     transfer_starts,
     transfer_table,
 )
+from pdrlearn.sim.trunk_jerks import JERK_DEG, JERK_M, check_jerk_options, draw_jerks, jerk_pose, jerk_table
 from pdrlearn.sim.user import SPEEDS, UserProfile
 from pdrlearn.sim.vehicle import VehicleRide, vehicle_carry
 

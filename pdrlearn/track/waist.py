@@ -151,7 +151,6 @@ from pdrlearn.waist.posture import (
 from pdrlearn.waist.posture import stand_veto as drop_weak_runs
 from pdrlearn.waist.posture import vault_veto as drop_unvaulted
 from pdrlearn.waist.rhythm import arrhythmic_message, arrhythmic_sequences
-from pdrlearn.waist.trunk_rhythm import arrhythmic_line, rhythm_keep_mask
 from pdrlearn.waist.ride_runs import ride_message, ride_runs, ride_spans
 from pdrlearn.waist.sit_causal import causal_transfer_veto
 from pdrlearn.waist.steplength import CADENCE_LAW_STEADY, cadence_law_factor, calibration_cadence_hz, steady_steps
@@ -164,6 +163,7 @@ from pdrlearn.waist.transfers import (
     unmatched_posture_changes,
     upright_message,
 )
+from pdrlearn.waist.trunk_rhythm import arrhythmic_line, rhythm_keep_mask
 from pdrlearn.waist.turn_steps import mark_carried
 
 log = logging.getLogger(__name__)
