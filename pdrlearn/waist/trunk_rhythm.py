@@ -20,6 +20,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from pdrlearn.waist.lengths import walking_sequences
+
 #: decision W550: a run needs this many consecutive regular step intervals (5 contacts, two strides and a step; our
 #: choice a priori: a 3 m TUG leg at a slow 0.45 m step holds 6-7 steps before its turn)
 MIN_RHYTHM_STEPS = 4
@@ -29,17 +31,6 @@ RHYTHM_TOL = 0.5
 #: decision W550: the line names left-out contacts from this many on (a single dropped run of 2-3 contacts is a
 #: stumble or a weight shift; 4 or more is a pattern; our choice)
 LINE_MIN_CONTACTS = 4
-
-
-def runs_of(has_next: np.ndarray) -> list[tuple[int, int]]:
-    """The runs ``(first, last)`` of contacts chained by ``has_next`` (contact k's next contact is k + 1)."""
-    hn = np.asarray(has_next, dtype=bool)
-    out, a = [], 0
-    for k in range(hn.size):
-        if not hn[k] or k == hn.size - 1:
-            out.append((a, k))
-            a = k + 1
-    return out
 
 
 def has_rhythm(event_s: np.ndarray, *, min_steps: int = MIN_RHYTHM_STEPS, tol: float = RHYTHM_TOL) -> bool:
@@ -62,8 +53,8 @@ def rhythm_keep_mask(event_s: np.ndarray, has_next: np.ndarray, *, min_steps: in
     """Per contact: True when its run (``has_next`` chain) holds a rhythmic stretch (:func:`has_rhythm`)."""
     t = np.asarray(event_s, dtype=np.float64)
     keep = np.zeros(t.size, dtype=bool)
-    for a, b in runs_of(has_next):
-        keep[a:b + 1] = has_rhythm(t[a:b + 1], min_steps=min_steps, tol=tol)
+    for run in walking_sequences(has_next):  # W104's walking sequences: contacts chained by has_next
+        keep[run] = has_rhythm(t[run], min_steps=min_steps, tol=tol)
     return keep
 
 
