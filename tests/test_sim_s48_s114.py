@@ -66,3 +66,22 @@ def test_bad_jerk_options_are_one_line(knobs):
     opts = {"trunk_jerk_rate_hz": 1.0, "trunk_jerk_deg": (4, 12), "trunk_jerk_m": (0.015, 0.04), **knobs}
     with pytest.raises(DataError, match="trunk_jerk"):
         check_jerk_options(opts["trunk_jerk_rate_hz"], opts["trunk_jerk_deg"], opts["trunk_jerk_m"])
+
+
+def test_the_cli_size_option_parses_and_refuses_in_one_line():
+    from pdrlearn.cli.simulate import parse_jerk_size
+
+    assert parse_jerk_size("2:6:1:2") == {"trunk_jerk_deg": (2.0, 6.0), "trunk_jerk_m": (0.01, 0.02)}
+    assert parse_jerk_size(None) == {}
+    for bad in ("4:12", "12:4:1:2", "4:12:1:50", "a:b:c:d"):
+        with pytest.raises(DataError, match="--trunk-jerk-size"):
+            parse_jerk_size(bad)
+
+
+def test_the_cli_refuses_a_bad_rate_in_one_line(tmp_path, capsys):
+    from pdrlearn.cli import main
+
+    assert main(["simulate", "--route", "stand:2", "--trunk-jerks", "5", "--user-seed", "1",
+                 "--out", str(tmp_path / "x")]) == 2
+    err = capsys.readouterr().err
+    assert "--trunk-jerks 5: give the trunk jerks per second" in err and "Traceback" not in err

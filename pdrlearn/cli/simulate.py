@@ -64,11 +64,14 @@ def parse_jerk_size(text: str | None) -> dict:
     ``trunk_jerk_m``; one ``error:`` line naming the option otherwise (the ranges are checked by the knobs)."""
     if text is None:
         return {}
+    from pdrlearn.sim.trunk_jerks import JERK_DEG_MAX, JERK_M_MAX, check_jerk_options
+
     try:
         d0, d1, c0, c1 = (float(x) for x in str(text).split(":"))
-    except ValueError:
-        raise DataError(f"--trunk-jerk-size {text!r}: give DEG_LO:DEG_HI:CM_LO:CM_HI, e.g. 4:12:1.5:4 (tilts of "
-                        "4-12 deg, bumps of 1.5-4 cm)") from None
+        check_jerk_options(0.0, (d0, d1), (c0 / 100.0, c1 / 100.0))
+    except (ValueError, DataError):
+        raise DataError(f"--trunk-jerk-size {text!r}: give DEG_LO:DEG_HI:CM_LO:CM_HI with 0 <= LO <= HI, tilts up to "
+                        f"{JERK_DEG_MAX:g} deg and bumps up to {JERK_M_MAX * 100:g} cm, e.g. 4:12:1.5:4") from None
     return {"trunk_jerk_deg": (d0, d1), "trunk_jerk_m": (c0 / 100.0, c1 / 100.0)}
 
 
@@ -354,6 +357,11 @@ def simulate_cmd(
     if not (math.isfinite(stand) and STAND_RANGE_S[0] <= stand <= STAND_RANGE_S[1]):  # decision S90
         raise DataError(f"--stand {stand:g}: give the standstill before and after the walk in seconds, "
                         f"{STAND_RANGE_S[0]:g} to {STAND_RANGE_S[1]:g} (e.g. --stand 0.5 for a clinic TUG)")
+    from pdrlearn.sim.trunk_jerks import JERK_RATE_MAX_HZ
+
+    if not (math.isfinite(trunk_jerks) and 0.0 <= trunk_jerks <= JERK_RATE_MAX_HZ):  # decision S114
+        raise DataError(f"--trunk-jerks {trunk_jerks:g}: give the trunk jerks per second, 0 (none) to "
+                        f"{JERK_RATE_MAX_HZ:g} (1 = about one a second)")
     for name, v in (("--sit-start", sit_start), ("--sit-end", sit_end)):  # decision S43
         if not (math.isfinite(v) and 0.0 <= v <= SIT_MAX_S):
             raise DataError(f"{name} {v:g}: give the seated time in seconds, 0 (none) to {SIT_MAX_S:g}")
