@@ -59,6 +59,22 @@ def parse_gaps(texts: list[str]) -> tuple:
     return check_gaps([tuple(str(text).split(":")) for text in texts or []], option="--gap")
 
 
+def parse_jerk_size(text: str | None) -> dict:
+    """Decision S114: ``--trunk-jerk-size DEG_LO:DEG_HI:CM_LO:CM_HI`` as the knobs ``trunk_jerk_deg`` and
+    ``trunk_jerk_m``; one ``error:`` line naming the option otherwise (the ranges are checked by the knobs)."""
+    if text is None:
+        return {}
+    from pdrlearn.sim.trunk_jerks import JERK_DEG_MAX, JERK_M_MAX, check_jerk_options
+
+    try:
+        d0, d1, c0, c1 = (float(x) for x in str(text).split(":"))
+        check_jerk_options(0.0, (d0, d1), (c0 / 100.0, c1 / 100.0))
+    except (ValueError, DataError):
+        raise DataError(f"--trunk-jerk-size {text!r}: give DEG_LO:DEG_HI:CM_LO:CM_HI with 0 <= LO <= HI, tilts up to "
+                        f"{JERK_DEG_MAX:g} deg and bumps up to {JERK_M_MAX * 100:g} cm, e.g. 4:12:1.5:4") from None
+    return {"trunk_jerk_deg": (d0, d1), "trunk_jerk_m": (c0 / 100.0, c1 / 100.0)}
+
+
 def parse_transfer_time(text: str) -> tuple[float, float]:
     """Decision S95: ``--transfer-time LO:HI`` as ``(lo, hi)`` seconds; one ``error:`` line naming the option and a
     valid form otherwise (the range is checked by :func:`pdrlearn.sim.simulate.check_transfer_s`)."""
@@ -227,6 +243,13 @@ def simulate_cmd(
     sit_end: float = typer.Option(
         0.0, "--sit-end", help=f"End the session by sitting down after the last standstill and staying seated "
         f"this long (s, 0-{SIT_MAX_S:g}; decision S43)."),
+    trunk_jerks: float = typer.Option(
+        0.0, "--trunk-jerks", help="Involuntary trunk jerks (chorea-like) of the waist unit, jerks per second at "
+        "random times, standing and walking: 0.3-0.8 s trunk tilts about a random axis and vertical bumps; their "
+        "times in trunk_jerks.csv (0 = none, the default; decision S114)."),
+    trunk_jerk_size: str | None = typer.Option(
+        None, "--trunk-jerk-size", help="With --trunk-jerks: DEG_LO:DEG_HI:CM_LO:CM_HI, the ranges of each jerk's "
+        "peak tilt (deg) and vertical bump (cm); default 4:12:1.5:4 (decision S114)."),
     transfer_time: str | None = typer.Option(
         None, "--transfer-time", metavar="LO:HI", help="Draw each sit-down's and stand-up's duration (s) from LO to "
         "HI, e.g. '3:6' for a frail person's slow sit-to-stand (default 1.5:2.5; every sit:, lie: and "
@@ -372,6 +395,11 @@ def simulate_cmd(
     if not (math.isfinite(stand) and STAND_RANGE_S[0] <= stand <= STAND_RANGE_S[1]):  # decision S90
         raise DataError(f"--stand {stand:g}: give the standstill before and after the walk in seconds, "
                         f"{STAND_RANGE_S[0]:g} to {STAND_RANGE_S[1]:g} (e.g. --stand 0.5 for a clinic TUG)")
+    from pdrlearn.sim.trunk_jerks import JERK_RATE_MAX_HZ
+
+    if not (math.isfinite(trunk_jerks) and 0.0 <= trunk_jerks <= JERK_RATE_MAX_HZ):  # decision S114
+        raise DataError(f"--trunk-jerks {trunk_jerks:g}: give the trunk jerks per second, 0 (none) to "
+                        f"{JERK_RATE_MAX_HZ:g} (1 = about one a second)")
     for name, v in (("--sit-start", sit_start), ("--sit-end", sit_end)):  # decision S43
         if not (math.isfinite(v) and 0.0 <= v <= SIT_MAX_S):
             raise DataError(f"{name} {v:g}: give the seated time in seconds, 0 (none) to {SIT_MAX_S:g}")
@@ -409,6 +437,8 @@ def simulate_cmd(
         sit_end_s=sit_end,
         stand_s=stand,  # decision S90
         **({} if transfer_time is None else {"transfer_s": parse_transfer_time(transfer_time)}),  # decision S95
+        trunk_jerk_rate_hz=trunk_jerks,  # decision S114
+        **parse_jerk_size(trunk_jerk_size),  # decision S114
         instrumented_foot=foot,
         paretic_side=paretic_side,
     )

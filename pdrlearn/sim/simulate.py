@@ -60,6 +60,7 @@ from pdrlearn.sim.transfer import (
     transfer_starts,
     transfer_table,
 )
+from pdrlearn.sim.trunk_jerks import JERK_DEG, JERK_M, check_jerk_options, draw_jerks, jerk_pose, jerk_table
 from pdrlearn.sim.user import SPEEDS, UserProfile
 from pdrlearn.sim.vehicle import VehicleRide, vehicle_carry
 
@@ -131,6 +132,11 @@ KNOBS: dict[str, object] = {
     # decision S110: the gyroscopes' bias drift a first-order Gauss-Markov process of this correlation time (s),
     # bounded; None: S12's unbounded random walk
     "gyro_bias_tau_s": None,
+    # decision S114: involuntary trunk jerks (chorea-like) of the waist unit: jerks per second, peak tilt range (deg)
+    # and vertical bump range (m); 0 = none (sim.trunk_jerks)
+    "trunk_jerk_rate_hz": 0.0,
+    "trunk_jerk_deg": JERK_DEG,
+    "trunk_jerk_m": JERK_M,
 }
 #: decision S83: the units a gap may name
 GAP_UNITS = ("foot", "waist", "both")
@@ -139,7 +145,7 @@ META_ONLY_WHEN_SET = ("pelvis", "bounce", "waist_mount_deg", "rocker", "contact"
                       "foot_sensor_height_m", "foot_mount_roll_deg",
                       "pelvis_height_m", "bounce_scale", "step_time_asymmetry", "step_length_asymmetry",
                       "stance_time_asymmetry", "sit_start_s", "sit_end_s", "instrumented_foot", "paretic_side", "gaps",
-                      "transfer_s", "gyro_bias_tau_s")
+                      "transfer_s", "gyro_bias_tau_s", "trunk_jerk_rate_hz", "trunk_jerk_deg", "trunk_jerk_m")
 #: decisions S54, S55: the values of the two foot-side knobs
 FEET = ("left", "right")
 
@@ -273,6 +279,8 @@ def _check_knobs(knobs: dict) -> dict:
     out["waist_mount_deg"] = tuple(float(v) for v in mount)
     out["gaps"] = check_gaps(out["gaps"])  # decisions S83, B370
     out["transfer_s"] = check_transfer_s(out["transfer_s"])  # decision S95
+    out["trunk_jerk_rate_hz"], out["trunk_jerk_deg"], out["trunk_jerk_m"] = check_jerk_options(  # decision S114
+        out["trunk_jerk_rate_hz"], out["trunk_jerk_deg"], out["trunk_jerk_m"])
     for k, default in KNOBS.items():
         v = out[k]
         if isinstance(default, bool | str | tuple) or default is None:  # None: checked above (S109, S112)
@@ -649,6 +657,9 @@ def simulate_path(
     span = (float(t[0]), float(t[-1]))
     # decision S44: the trunk vibration is drawn once over the whole grid, then each part interpolates it
     vib_source = (trunk_vibration_source(*span, trunk_rng, TRUNK_ACC_SD + TRUNK_RATE_SD) if trunk > 0 else None)
+    # decision S114: the trunk jerks, drawn from their own stream (the other draws unchanged)
+    jerks = draw_jerks(*span, float(opt["trunk_jerk_rate_hz"]), opt["trunk_jerk_deg"], opt["trunk_jerk_m"],
+                       _rng(user.seed, int(seed), scenario, speed, "trunk_jerks"))
 
     def waist_unit(tt: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         p_pel, rot, _ = pelvis_pose(
@@ -667,6 +678,8 @@ def simulate_path(
         )
         if freezes:  # decision S51: the pelvis trembles with the legs
             p_pel = p_pel + freeze_pelvis(tt, freezes, freeze_starts)
+        if jerks:  # decision S114: the trunk tilts and bumps in its own frame
+            p_pel, rot = jerk_pose(tt, p_pel, rot, jerks)
         if lyings:  # decisions S58, S59: lying down on the bed, turning over, sitting up (body frame)
             p_pel, rot = _lie_down(tt, p_pel, rot, lyings, lying_starts)
         if cycling:  # decision S99: seated on the saddle, tilted forward, rocking with the crank (body frame)
@@ -778,6 +791,9 @@ def simulate_path(
     if freezes:  # decision S51: only sessions with a freeze have the table
         extras["freezes"] = pd.DataFrame(freeze_table(freezes, freeze_starts))
         extras["freezes"].attrs["time_columns"] = ["start_s", "end_s"]
+    if jerks:  # decision S114: only sessions with trunk jerks have the table
+        extras["trunk_jerks"] = pd.DataFrame(jerk_table(jerks), columns=["start_s", "end_s", "peak_deg", "bump_m"])
+        extras["trunk_jerks"].attrs["time_columns"] = ["start_s", "end_s"]
     if lyings:  # decision S58: only sessions with a lie have lying.csv and rolls.csv (S59)
         extras["lying"] = pd.DataFrame(lying_table(lyings, lying_starts))
         extras["lying"].attrs["time_columns"] = ["start_s", "lying_s", "rise_s", "end_s"]

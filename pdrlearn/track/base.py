@@ -381,6 +381,9 @@ def get_pipeline(name: str) -> Pipeline:
       index, freezes.csv, W213, are dropped, W214; implies ``freeze_index``),
       ``rhythm_warning`` (decisions W338 / W339, off: without a foot unit, one warning line per stretch of lower-back
       contacts whose vertical stride regularity is under 0.4, a vehicle's bounce; W339's rule was not met),
+      ``trunk_rhythm_veto`` (decision W550, off: offline, a run of lower-back contacts with no 4 consecutive step
+      intervals within +-50 % of its median is left out - trunk jerks of involuntary movements, S114; its rule was
+      not met; the runs are named in a warning line either way from 4 contacts on),
       ``foot_rest_veto`` (decisions W336 / W337, on: with a foot unit, a run of 4 or more lower-back contacts none
       within 1 s of a foot stride that swings the foot is dropped, a standing passenger's bounce in a vehicle; the
       runs are named in a warning line either way; decision W547: a foot unit `--units` left out is not read),

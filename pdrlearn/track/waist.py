@@ -163,6 +163,7 @@ from pdrlearn.waist.transfers import (
     unmatched_posture_changes,
     upright_message,
 )
+from pdrlearn.waist.trunk_rhythm import arrhythmic_line, rhythm_keep_mask
 from pdrlearn.waist.turn_steps import mark_carried
 
 log = logging.getLogger(__name__)
@@ -700,6 +701,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "foot_rest_veto": True,  # W336: the contacts while the foot unit makes no stride (W337 adopted)
                    "pelvic_rhythm_veto": False,  # W440: measured, not adopted (Test11's step F1 fell); an option
                    "rhythm_warning": False,  # W338: phone-only stride-rhythm warning; W339: not met, opt-in
+                   "trunk_rhythm_veto": False,  # W550: runs without a step rhythm (trunk jerks); measured, not adopted
                    "side_at_contact": False,  # W235: the sequence rules' sides at the contact (offline pendulum)
                    "fast_fill": False,  # W242: a merged step's 5 Hz maximum (offline pendulum)
                    "ap_above_mean": False,  # W265: W29's IC, the last AP maximum above the AP mean (offline pendulum)
@@ -739,6 +741,8 @@ SCOPED_OPTIONS = {
                     lambda pl, rt, m, det, stops: not rt),
     "pelvic_rhythm_veto": ("the offline waist tracks (W440: the pelvic rhythm is read over the whole recording)",
                            lambda pl, rt, m, det, stops: not rt),
+    "trunk_rhythm_veto": ("the offline waist tracks (W550: a run is judged after its last contact)",
+                          lambda pl, rt, m, det, stops: not rt),
     "pll_edge_lock": ("waist-pll with its own PLL detector (W356)",
                       lambda pl, rt, m, det, stops: pl == "waist-pll" and not det),
     "pll_slow_follow": ("the offline waist-pll with its own PLL detector (W504)",
@@ -1083,6 +1087,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "pelvic_rhythm_veto": pelvic_rhythm_veto,  # W440
              "pll_edge_lock": pll_edge_lock,  # W356
              "rhythm_warning": None,  # W338 / W339: a PARAMS.json option only
+             "trunk_rhythm_veto": None,  # W550: a PARAMS.json option only
              "rest_bias": rest_bias, "step_bound": None,  # W230: a PARAMS.json option only
              "climb_veto": None,  # L330: a PARAMS.json option only
              "ride_vibration": None,  # L402 / L403: a PARAMS.json option only
@@ -1200,6 +1205,12 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
                                spare_adjacent=o["stand_veto"] in ("adjacent", "walking"),
                                walking_reference=o["stand_veto"] == "walking")  # W218: + the walking reference
         n_weak_run = steps.attrs["n_weak_run"]
+    if not realtime and len(steps):  # decision W550: runs of contacts without a step rhythm (trunk jerks)
+        rhythmic = rhythm_keep_mask(steps["event_s"].to_numpy(float), steps["has_next"].to_numpy(bool))
+        line = arrhythmic_line(int((~rhythmic).sum()), len(steps), bool(o["trunk_rhythm_veto"]))
+        warnings += [line] if line else []
+        if o["trunk_rhythm_veto"]:
+            steps = drop_contacts(steps, rhythmic, "n_arrhythmic")
     n_tilted = 0
     if o["max_tilt_deg"] is not None:  # W102: a contact made with the trunk far from its walking upright is no step
         steps = tilt_gate(steps, imu, float(o["max_tilt_deg"]))

@@ -128,6 +128,7 @@ LIVE_UNAPPLIED_OPTIONS = ("stairs_climb", "max_tilt_deg", "sit_veto", "vault_vet
                           "pelvic_rhythm_veto",  # W440: the pelvic rhythm's window looks 3 s ahead
                           "foot_rest_veto",  # W336: a foot rest is judged over its whole run of contacts
                           "rhythm_warning",  # W338: a chunk of 16 contacts is judged after its last one
+                          "trunk_rhythm_veto",  # W550: a run is judged after its last contact
                           "side_at_contact",  # W235: the offline detector's sequence rules only
                           "fast_fill",  # W242: the offline detector's sequence rules only
                           "ap_above_mean",  # W265: W29's IC of the offline detector only
