@@ -39,6 +39,11 @@ DECLARED_SHORT_SHARE = 0.02
 #: decision C205: a calibrated lower back's share instead (its 10 m walks' shortfall, measured on fresh calibrated
 #: walkers); None = C193's :data:`DECLARED_SHORT_SHARE`
 DECLARED_SHORT_SHARE_LOWER_BACK: float | None = None
+#: decision C205 (measured, not adopted): what a calibrated lower back's refused walkway pass adds to its note
+LOWER_BACK_SHORT_NOTE = ("; a calibrated lower back tracks a walkway walked end to end up to 5 % short (simulated "
+                         "walkers: 0.0-5.0 %, decision C205) and gets no more tolerance than C193's 2 % (its timed "
+                         "speed already errs up to 5.45 %): have the walker start and stop 1 m beyond the walkway's "
+                         "ends, or time the walk with a foot unit")
 #: decision L649: the calibrated lower back's walk from standing, measured and not adopted
 #: (experiments/walk_test_calibrated_l649.py, users 12462-12470: the T25FW's speed error median +9.11 %, max 14.13 %)
 CALIBRATED_FROM_STANDING = "speed +9.1 % median, up to +14.1 %"
@@ -273,8 +278,9 @@ def ten_metre_walk(steps: pd.DataFrame, zones: tuple[float, float, float] | None
     walkway holds a ramp's row is not timed; ``ten_m_walk_declared`` says whether ``zones`` declared the walkway."""
     accel, timed, decel = zones or (ZONE_M, TIMED_M, ZONE_M)
     short = declared_short_share(steps, zones, calibrated)  # decisions C193, C205: a declared walkway only
+    more = LOWER_BACK_SHORT_NOTE if zones and calibrated and _is_lower_back(steps) else ""  # decision C205
     out = timed_walk(steps, accel, timed, KEYS, lower_back_note(accel, timed, calibrated),
-                     lambda longest, need: short_walk_note(longest, need, (accel, timed, decel)), decel_m=decel,
+                     lambda longest, need: short_walk_note(longest, need, (accel, timed, decel)) + more, decel_m=decel,
                      max_bout_m=_bout_limit(zones), passes=True, ramps=ramps, short_share=short)  # decision L673
     trials = ten_metre_walk_trials(steps, zones, calibrated, ramps=ramps)
     out["n_ten_m_walk_trials"] = len(trials)  # decision L524

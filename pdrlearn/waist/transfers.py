@@ -436,6 +436,26 @@ def one_sided_tug_note(tr: pd.DataFrame, contacts: np.ndarray) -> str | None:
             "a TUG, time it by hand or from transfers.csv and the steps")
 
 
+def no_rise_note(transfers, contacts, sitting_s: float | None) -> str | None:
+    """Decision W556: ``tug_time_note`` of a lower-back walk of at most :data:`TUG_MAX_S` (``contacts``: its steps'
+    start times, s) with no sit-to-stand in ``transfers`` (transfers.csv's rows) but sitting read (``sitting_s``,
+    W222's sitting time) or a stand-to-sit found: no TUG time, why, and how to time it; None otherwise (no walk, a
+    longer one, a rise found, no sitting at all)."""
+    tr = pd.DataFrame(list(transfers) if transfers is not None and not isinstance(transfers, pd.DataFrame)
+                      else transfers, columns=list(TRANSFER_COLUMNS)) if transfers is not None else _empty()
+    c = np.asarray(contacts, dtype=float)
+    if not c.size or c.max() - c.min() > TUG_MAX_S or (tr["kind"] == SIT_TO_STAND).any():
+        return None
+    n_sit = int((tr["kind"] == STAND_TO_SIT).sum())
+    if not n_sit and not (sitting_s or 0.0) > 0.0:
+        return None
+    found = f"{n_sit} stand-to-sit" if n_sit else "no chair transfer"
+    sat = f", sitting {sitting_s:.1f} s read from the trunk's tilt" if sitting_s else ""
+    return (f"no TUG time: no sit-to-stand found ({found}{sat}; steps {c.min():.1f}-{c.max():.1f} s): a slow (3-6 s) "
+            "or small rise is often missed on the lower back (W450, L648, W555); if this was a TUG, time it by hand "
+            "from the rise to the sit (decision W556)")
+
+
 def walked_between(contacts, t0: float, t1: float) -> bool:
     """Decisions W325, W340: at least one contact (start time, s) strictly between ``t0`` (a rise's end) and ``t1``
     (the next sit's start): the walk a TUG trial needs; without it a rise and a sit are a chair stand."""
