@@ -589,6 +589,8 @@ def transfer_line(summary: dict) -> str | None:
             parts.append(summary["tug_time_note"])  # (W325: with trials, their own line says it)
         if summary.get("sts5_time_s") is not None:  # decision W279
             parts.append(f"five-times sit-to-stand {summary['sts5_time_s']:.2f} s (first rise to last sit)")
+    elif rise == 0 and sit == 0 and summary.get("tug_time_note"):  # decision W556: sitting read, no transfer found
+        parts.append(f"0 sit-to-stand, 0 stand-to-sit (transfers.csv), {summary['tug_time_note']}")
     from pdrlearn.track.walk_test import free_walking_text
 
     free = free_walking_text(summary)  # decision L679: an automatic walk test is no declared test

@@ -1808,6 +1808,14 @@ def track_summary(result: TrackResult, session: Session, *, pipeline: str | None
     from pdrlearn.track.periods import time_accounting
 
     summary.update(time_accounting(result, session))  # decision L275 (track --window sets the window's own)
+    if summary.get("tug_time_s") is None and summary.get("tug_time_note") is None and result.info.get(
+            "transfers") is not None:  # decision W556: sitting read or a sit found, no rise: why no TUG time
+        from pdrlearn.track.trunk_tug import tug_contacts
+        from pdrlearn.waist.transfers import no_rise_note
+
+        steps = tug_contacts(result)
+        summary["tug_time_note"] = no_rise_note(result.info["transfers"], steps["start_s"] if steps is not None and len(
+            steps) else [], summary.get("sitting_time_s"))
     summary["session"] = session.name
     from pdrlearn.track.bouts import session_ids
 

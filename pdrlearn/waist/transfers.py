@@ -193,7 +193,7 @@ def transfers_from_tilt(imu: WaistIMU, tilt: np.ndarray, *, slow_bounds: dict | 
 
 
 def with_slow_edges(imu: WaistIMU, tilt: np.ndarray, rows: pd.DataFrame, contacts: np.ndarray, *,
-                    final_turn: bool = True) -> pd.DataFrame:
+                    final_turn: bool = True, standstill: bool = True) -> pd.DataFrame:
     """Decision L648: W182's ``rows`` with the session's first rise and last sit of W450's candidate C reading
     (:data:`W450_CANDIDATE`: a slow 3-6 s transfer's wider bounds, kept only with a still trunk on its seated side)
     where W182 has none: the last sit-to-stand starting before the first of ``contacts`` (s) when no W182 row starts
@@ -204,7 +204,9 @@ def with_slow_edges(imu: WaistIMU, tilt: np.ndarray, rows: pd.DataFrame, contact
     alone): when no such
     sit starts within :data:`SLOW_EDGE_WALK_S` of the last contact, the window is counted from the end of a pelvis
     yaw-rate turn of at least C180's 90 deg that starts at most :data:`SLOW_EDGE_WALK_S` after the last contact and
-    ends after it (the stepless turn in front of the chair, W331)."""
+    ends after it (the stepless turn in front of the chair, W331). ``standstill`` (decision W555; False: L648 and
+    W506 alone): the window does not count the samples where the trunk stands upright (:func:`not_upright_s`): a
+    standstill between rising and walking off, or between the turn and sitting."""
     if not len(contacts):
         return rows
     first, last = float(np.min(contacts)), float(np.max(contacts))
@@ -215,14 +217,31 @@ def with_slow_edges(imu: WaistIMU, tilt: np.ndarray, rows: pd.DataFrame, contact
     slow = transfers_from_tilt(imu, tilt, slow_bounds=W450_CANDIDATE)
     added = []
     rise = slow[(slow["kind"] == SIT_TO_STAND) & (slow["start_s"] < first)] if need_rise else slow.iloc[:0]
-    if len(rise) and float(rise["end_s"].iloc[-1]) >= first - SLOW_EDGE_WALK_S:  # a TUG walks off once up
+    def gap_s(t0: float, t1: float) -> float:  # decision W555: a standstill upright is not counted
+        return not_upright_s(imu.t, tilt, t0, t1) if standstill else t1 - t0
+
+    if len(rise) and gap_s(float(rise["end_s"].iloc[-1]), first) <= SLOW_EDGE_WALK_S:  # a TUG walks off once up
         added.append(rise.iloc[[-1]])
     sit = slow[(slow["kind"] == STAND_TO_SIT) & (slow["end_s"] > last)] if need_sit else slow.iloc[:0]
-    if len(sit) and float(sit["start_s"].iloc[0]) <= last + SLOW_EDGE_WALK_S:  # ... and sits once back
+    if len(sit) and gap_s(last, float(sit["start_s"].iloc[0])) <= SLOW_EDGE_WALK_S:  # ... and sits once back
         added.append(sit.iloc[[0]])
     elif len(sit) and final_turn and float(sit["start_s"].iloc[0]) <= _final_turn_end(imu, last) + SLOW_EDGE_WALK_S:
         added.append(sit.iloc[[0]])  # decision W506: ... once back and turned about in front of the chair
     return _with_added(rows, added)
+
+
+def not_upright_s(t: np.ndarray, tilt: np.ndarray, t0: float, t1: float) -> float:
+    """Decision W555 (a pure kernel): the time (s) from ``t0`` to ``t1`` (0 when ``t1 <= t0``) less that of the
+    samples (times ``t``, s) where the trunk's ``tilt`` (deg from the track's upright) is under W222's
+    :data:`~pdrlearn.waist.posture_time.SITTING_TILT_DEG`: the time the trunk was not standing upright."""
+    if t1 <= t0:
+        return 0.0
+    from pdrlearn.waist.posture_time import SITTING_TILT_DEG
+
+    t, tilt = np.asarray(t, dtype=float), np.asarray(tilt, dtype=float)
+    inside = (t >= t0) & (t <= t1)
+    share = float((tilt[inside] < SITTING_TILT_DEG).mean()) if inside.any() else 0.0  # W222's standing tilt
+    return (t1 - t0) * (1.0 - share)
 
 
 def _with_added(rows: pd.DataFrame, added: list) -> pd.DataFrame:
@@ -415,6 +434,26 @@ def one_sided_tug_note(tr: pd.DataFrame, contacts: np.ndarray) -> str | None:
         missing = f"no sit-to-stand before its first step at {c.min():.1f} s"
     return (f"no TUG time: {found} but {missing}: a slow (3-6 s) transfer is often missed (W450, L648); if this was "
             "a TUG, time it by hand or from transfers.csv and the steps")
+
+
+def no_rise_note(transfers, contacts, sitting_s: float | None) -> str | None:
+    """Decision W556: ``tug_time_note`` of a lower-back walk of at most :data:`TUG_MAX_S` (``contacts``: its steps'
+    start times, s) with no sit-to-stand in ``transfers`` (transfers.csv's rows) but sitting read (``sitting_s``,
+    W222's sitting time) or a stand-to-sit found: no TUG time, why, and how to time it; None otherwise (no walk, a
+    longer one, a rise found, no sitting at all)."""
+    tr = pd.DataFrame(list(transfers) if transfers is not None and not isinstance(transfers, pd.DataFrame)
+                      else transfers, columns=list(TRANSFER_COLUMNS)) if transfers is not None else _empty()
+    c = np.asarray(contacts, dtype=float)
+    if not c.size or c.max() - c.min() > TUG_MAX_S or (tr["kind"] == SIT_TO_STAND).any():
+        return None
+    n_sit = int((tr["kind"] == STAND_TO_SIT).sum())
+    if not n_sit and not (sitting_s or 0.0) > 0.0:
+        return None
+    found = f"{n_sit} stand-to-sit" if n_sit else "no chair transfer"
+    sat = f", sitting {sitting_s:.1f} s read from the trunk's tilt" if sitting_s else ""
+    return (f"no TUG time: no sit-to-stand found ({found}{sat}; steps {c.min():.1f}-{c.max():.1f} s): a slow (3-6 s) "
+            "or small rise is often missed on the lower back (W450, L648, W555); if this was a TUG, time it by hand "
+            "from the rise to the sit (decision W556)")
 
 
 def walked_between(contacts, t0: float, t1: float) -> bool:
