@@ -31,8 +31,8 @@ def test_a_run_needs_four_regular_steps_in_a_row():
 def test_the_line_names_the_count_and_the_option():
     assert arrhythmic_line(3, 20, False) is None
     line = arrhythmic_line(12, 30, False)
-    assert "trunk movement without a step rhythm (involuntary movements?)" in line
-    assert "12 of 30" in line and "trunk_rhythm_veto" in line and "unvalidated" in line
+    assert "trunk movement without a step rhythm (involuntary movements, or the single steps" in line
+    assert "12 of 30 lower-back contacts (40 %)" in line and "trunk_rhythm_veto" in line and "unvalidated" in line
     assert "left out of the steps" in arrhythmic_line(12, 30, True)
 
 

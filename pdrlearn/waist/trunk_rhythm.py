@@ -64,6 +64,7 @@ def arrhythmic_line(n_out: int, n_all: int, dropped: bool) -> str | None:
         return None
     what = ("left out of the steps and walking bouts (trunk_rhythm_veto, decision W550)" if dropped else
             "still counted as steps; the track option trunk_rhythm_veto leaves them out (decision W550)")
-    return (f"the recording holds trunk movement without a step rhythm (involuntary movements?): {n_out} of {n_all} "
-            f"lower-back contacts lie in runs with no {MIN_RHYTHM_STEPS} regular steps in a row, {what}; lower-back "
-            "step counts unvalidated for such movements")
+    share = 100.0 * n_out / max(n_all, 1)  # the lead's ruling in W550: the share, and daily life's own such runs
+    return (f"{n_out} of {n_all} lower-back contacts ({share:.0f} %) lie in runs with no {MIN_RHYTHM_STEPS} regular "
+            "steps in a row: trunk movement without a step rhythm (involuntary movements, or the single steps and "
+            f"shuffles of daily activity), {what}; lower-back step counts are unvalidated for involuntary movements")
