@@ -14,6 +14,7 @@ from __future__ import annotations
 import math
 
 from pdrlearn.decision_refs import decision_ref
+from pdrlearn.kernels.contact import TOUCH_S
 
 
 def cycle_flights(ic_f: float, tc_o: float, ic_o: float, tc_f: float, ic_next: float) -> tuple[float, float]:
@@ -25,7 +26,8 @@ def cycle_flights(ic_f: float, tc_o: float, ic_o: float, tc_f: float, ic_next: f
     if not all(map(math.isfinite, (ic_f, tc_o, ic_o, tc_f, ic_next))) or not (
             ic_o - T < tc_o < ic_o and ic_f < tc_f < ic_next):
         return math.nan, math.nan
-    return max(0.0, ic_f - tc_o), max(0.0, ic_o - tc_f)
+    gaps = (ic_f - tc_o, ic_o - tc_f)  # a hand-over within TOUCH_S (two events of one instant) is no flight
+    return tuple(g if g > TOUCH_S else 0.0 for g in gaps)
 
 
 def flight_after(side: str, other: str, after_other: float, after_own: float) -> str | None:
