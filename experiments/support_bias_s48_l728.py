@@ -69,8 +69,9 @@ def main() -> None:
                 tracks = [track_plasys(s, toe_off=True, ignore_force=setup == "imu", transfers=False)
                           for s in sessions]
                 res = bilateral_gait(*(t.steps for t in tracks), contact_source=setup)["walk"]
-                ic = np.concatenate([errors_ms(t.steps["event_s"], lab["ic_s"]) for t, lab in zip(tracks, labels)])
-                to = np.concatenate([errors_ms(t.steps["tc_s"], lab["tc_s"]) for t, lab in zip(tracks, labels)])
+                pairs = list(zip(tracks, labels, strict=True))
+                ic = np.concatenate([errors_ms(t.steps["event_s"], lab["ic_s"]) for t, lab in pairs])
+                to = np.concatenate([errors_ms(t.steps["tc_s"], lab["tc_s"]) for t, lab in pairs])
                 ds, ds0 = res["double_support_pct"], truth["double_support_pct"]
                 cyc = 0.5 * (truth["stride_time_s_left"] + truth["stride_time_s_right"])
                 st = [res[f"stance_time_s_{s}"] - truth[f"stance_time_s_{s}"] for s in ("left", "right")

@@ -35,7 +35,8 @@ def test_a_childs_gait_states_its_own_points_per_setup():
     imu = bilateral_gait(left, right, contact_source={"left": "imu", "right": "imu"})["reason"]
     force = bilateral_gait(left, right, contact_source="force")["reason"]
     assert "0.80 s gait cycle" in imu and "-10.0 to -9.2 of double support" in imu and "37-40 ms short" in imu
-    assert "-9.7 to -8.6 of double support" in force and "insole" in force  # L730 (L703: -9.3 to -8.2) and "IMU-only" not in force
+    assert "-9.7 to -8.6 of double support" in force  # L730 (L703's: -9.3 to -8.2)
+    assert "insole" in force and "IMU-only" not in force
     assert "re-dated at the stride's rhythm (steps 91" in imu and "not known" in imu and "fire" not in force
     assert "stance read -30 to -4 ms (steps 92)" in imu  # steps decision 92
     assert force.startswith("double support reads low")
