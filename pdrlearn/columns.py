@@ -1359,6 +1359,11 @@ GAIT_CYCLES: tuple[Column, ...] = (
                                           "cycle; no known sign for IMU-only contacts under a 0.95 s cycle, L703); "
                                           "empty when the events are out of order"),
     ("single_support_pct", "%", "number", "the other foot's swing, % of the cycle (L262)"),
+    ("flight_time_s", "s", "number", "the time with neither foot on the ground: a toe-off before the other foot's "
+                                     "contact (a loss of contact, or a clock offset between the units; L729); 0 in "
+                                     "walking order, empty without both toe-offs"),
+    ("flight_after", _ID, "text", "the foot whose toe-off started the cycle's flight, or both (flights after one "
+                                  "foot's only: a clock offset's pattern; L729); empty without a flight"),
     ("kind", _ID, "text", "as gait_steps.csv's kind, of the cycle's two contacts after start_s (L538)"),
 )
 #: ``pdrlearn gait``'s gait_bouts.csv (decisions L259-L262, L284, L287): one row per walking bout of the pair; the same
@@ -1390,6 +1395,9 @@ GAIT_BOUTS: tuple[Column, ...] = (
     ("impact_sharpness_right", "m/s^3", "number", "gait_summary.json walk only: the same of the right foot; over 3 x "
                                                   "apart, the feet's contacts are not comparable (L318)"),
     ("n_support_cycles", "count", "integer", "cycles with a double support"),
+    ("n_flight_cycles", "count", "integer", "cycles with a flight: a toe-off before the other foot's contact (a loss "
+                                            "of contact, or a clock offset; no double support; L729)"),
+    ("flight_time_s", "s", "number", "the mean flight time of those cycles (L729); empty without one"),
     ("double_support_pct", "%", "number", "mean double support, % of the gait cycle (L262; reads low, L285; by how "
                                           "much in this walk: reason, L703)"),
     *_pair("single_support_pct", "%", "single support (the other foot's swing), % of the gait cycle (L262)"),

@@ -22,20 +22,21 @@ def test_setups_and_their_bias_in_ms():
     assert setup_of("force") == "force" and setup_of("inertial") == "imu"
     assert setup_of({"left": "imu", "right": "imu"}) == "imu" and setup_of({"left": "imu", "right": "force"}) is None
     assert stance_bias_ms("imu", None) == (-40.1, -36.9)  # L73's real gaitmap walks, whatever the cycle
-    lo, hi = stance_bias_ms("force", 0.8)  # the simulated insoles: a share of the cycle
-    assert np.isclose(lo, -4.67 * 8.0) and np.isclose(hi, -4.12 * 8.0)
+    lo, hi = stance_bias_ms("force", 0.8)  # the simulated insoles: ms plus a share of the cycle (L730)
+    assert np.isclose(lo, -15.9 - 2.86 * 8.0) and np.isclose(hi, -13.4 - 2.61 * 8.0)
     assert stance_bias_ms("force", None) is None
 
 
 def test_a_childs_gait_states_its_own_points_per_setup():
     """A 0.80 s cycle: IMU-only 36.9-40.1 ms = -9.2 to -10.0 points of double support, but at a child's short cycle
     some IMU contacts fired early (steps 87) and are re-dated (steps 91, 92), so no sign is claimed; insoles
-    4.12-4.67 % of the cycle = -8.2 to -9.3; the old fixed adult numbers are gone."""
+    13.4-15.9 ms plus 2.61-2.86 % of the cycle (L730) = -8.6 to -9.7; the old fixed adult numbers are gone."""
     left, right = _foot(np.arange(6) * 0.8), _foot(0.4 + np.arange(6) * 0.8)
     imu = bilateral_gait(left, right, contact_source={"left": "imu", "right": "imu"})["reason"]
     force = bilateral_gait(left, right, contact_source="force")["reason"]
     assert "0.80 s gait cycle" in imu and "-10.0 to -9.2 of double support" in imu and "37-40 ms short" in imu
-    assert "-9.3 to -8.2 of double support" in force and "insole" in force and "IMU-only" not in force
+    assert "-9.7 to -8.6 of double support" in force  # L730 (L703's: -9.3 to -8.2)
+    assert "insole" in force and "IMU-only" not in force
     assert "re-dated at the stride's rhythm (steps 91" in imu and "not known" in imu and "fire" not in force
     assert "stance read -30 to -4 ms (steps 92)" in imu  # steps decision 92
     assert force.startswith("double support reads low")

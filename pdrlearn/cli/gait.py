@@ -57,6 +57,9 @@ def gait_lines(summary: dict, by_kind: dict | None = None) -> list[str]:
         lines.append(f"double support {w['double_support_pct']:.1f} % of the gait cycle, single support left/right "
                      f"{_fmt(w['single_support_pct_left'], '.1f')} / {_fmt(w['single_support_pct_right'], '.1f')} % "
                      f"({w['n_support_cycles']} cycles)")
+    if w.get("n_flight_cycles"):  # decision L729: cycles with a toe-off before the other foot's contact
+        lines.append(f"flight (a loss of contact, or a clock offset between the units) in {w['n_flight_cycles']} "
+                     f"cycles, {1000 * w['flight_time_s']:.0f} ms on average (L729)")
     if w.get("cadence_spm") is not None:  # decision L539
         lines.append(pace_line(w))
     return lines

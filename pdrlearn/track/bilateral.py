@@ -42,6 +42,7 @@ from pdrlearn.track.clinical import CV_MIN_STRIDES, bout_rows, symmetry_index_pc
 from pdrlearn.track.contact_quality import comparability_warning, impact_sharpness
 from pdrlearn.track.flags import flag_values
 from pdrlearn.track.foot_heights import height_warning
+from pdrlearn.track.gait_flight import cycle_flights, flight_after, flight_warning
 from pdrlearn.track.support_bias import setup_of, support_note
 
 #: the columns :func:`foot_events` gives: one row per initial contact of one foot; ``x_m`` / ``y_m`` (the foot's
@@ -361,7 +362,10 @@ def cycle_table(both: pd.DataFrame) -> pd.DataFrame:
     IC of the other foot between them - a stride either track or label table lacks makes no cycle): ``side``,
     ``bout``, ``start_s``, ``end_s``, ``stride_time_s``, ``stance_time_s`` (decision L327: the foot's IC to its
     toe-off inside the cycle, NaN without one), ``double_support_pct`` and ``single_support_pct`` (module
-    docstring; NaN where a toe-off is missing or the events are out of order) and (decision L538) ``kind``
+    docstring; NaN where a toe-off is missing or the events are out of order), (decision L729) ``flight_time_s``
+    (:func:`pdrlearn.track.gait_flight.cycle_flights`: the time with neither foot on the ground after a toe-off
+    that came before the other foot's contact, 0 in walking order, NaN without both toe-offs in their strides) and
+    ``flight_after`` (the foot whose toe-off started it, "both", or None) and (decision L538) ``kind``
     (:func:`joined_kind` of the foot's next contact and the other foot's contact inside the cycle)."""
     rows = []
     kinds = contact_kinds(both)  # decision L538
@@ -380,10 +384,12 @@ def cycle_table(both: pd.DataFrame) -> pd.DataFrame:
             if ic_f < tc_o < ic_o < tc_f < ic_next:  # Perry & Burnfield 2010: the cycle's event order
                 ds = 100.0 * ((tc_o - ic_f) + (tc_f - ic_o)) / T
                 ss = 100.0 * (ic_o - tc_o) / T
+            fl = cycle_flights(ic_f, tc_o, ic_o, tc_f, ic_next)  # decision L729: a toe-off before the contact
+            after = flight_after(s, side[a + 1], *fl) if math.isfinite(fl[0]) else None
             kind = joined_kind(kinds[[b]], kinds[[a + 1]])[0]  # decision L538
-            rows.append((s, int(bout[a]), t[a], t[b], T, stance, ds, ss, kind))
+            rows.append((s, int(bout[a]), t[a], t[b], T, stance, ds, ss, fl[0] + fl[1], after, kind))
     cols = ["side", "bout", "start_s", "end_s", "stride_time_s", "stance_time_s", "double_support_pct",
-            "single_support_pct", "kind"]
+            "single_support_pct", "flight_time_s", "flight_after", "kind"]
     return pd.DataFrame(rows, columns=cols).sort_values("start_s", kind="stable").reset_index(drop=True)
 
 
@@ -447,6 +453,9 @@ def gait_measures(both: pd.DataFrame, steps: pd.DataFrame, cycles: pd.DataFrame)
     out["clock_offset_s"] = clock_offset_s(steps)
     ok = cycles["double_support_pct"].notna()
     out["n_support_cycles"] = int(ok.sum())
+    fl = cycles["flight_time_s"].to_numpy(float) > 0 if "flight_time_s" in cycles else np.zeros(len(cycles), bool)
+    out["n_flight_cycles"] = int(fl.sum())  # decision L729: cycles with a toe-off before the other foot's contact
+    out["flight_time_s"] = _mean(cycles.loc[fl, "flight_time_s"]) if fl.any() else None
     out["double_support_pct"] = _mean(cycles.loc[ok, "double_support_pct"])
     out.update(_pair("single_support_pct", *(_mean(cycles.loc[ok & (cycles["side"] == s), "single_support_pct"])
                                              for s in SIDES)))
@@ -679,7 +688,8 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
     walk.update({f"n_steps_all_{s}": int((steps["side"] == s).sum()) for s in SIDES})
     walk["step_length_scale_pct"] = None if scale is None else 100.0 * scale  # decision L310
     log = logging.getLogger(__name__)
-    for line in (clock_offset_warning(walk), stance_warning(walk) if "event_s" in left_steps else None,
+    for line in (clock_offset_warning(walk), flight_warning(walk, cycles[masks[2]]),  # L729: the headline's
+                 stance_warning(walk) if "event_s" in left_steps else None,
                  unanchored_warning(walk, steps) if np.isfinite(both["x_m"]).any() else None):
         if line is not None:  # L285 judges a track's toe-off, not a label table's
             log.warning(line)

@@ -14,18 +14,22 @@ import math
 from pdrlearn.track.toeoff import TOE_OFF_STANCE_BIAS_MS
 
 #: decision L703: the stance-time error (ours - reference, each set-up's range over its measured walks) by the source
-#: of the contacts, in ms or in % of the gait cycle - whichever held constant where measured. "imu": L73's real
-#: gaitmap level walks against motion capture (lateral shoe mount, adults, one 1.09 s cycle: ms,
-#: ``pdrlearn.track.toeoff.TOE_OFF_STANCE_BIAS_MS``); "force": the simulator's insoles (IC at the force onset, late;
-#: toe-off at the drop-off, early), session 47, users 14931-14933 (children, 0.76-0.84 s cycles, -35.5 to -37.8 ms)
-#: and 14935-14937 (adults, 1.04-1.19 s, -43.8 to -49.0 ms): a share of the cycle, -4.12 to -4.67 %
+#: of the contacts. "imu": L73's real gaitmap level walks against motion capture (lateral shoe mount, adults, one
+#: 1.09 s cycle: ms, ``pdrlearn.track.toeoff.TOE_OFF_STANCE_BIAS_MS``). "force" (decision L730, replacing L703's
+#: -4.67 to -4.12 % of the cycle): the simulator's insoles, as two terms - the contact's lag (:data:`FORCE_IC_LAG_PCT`,
+#: a share of the cycle) and the toe-off's error (:data:`FORCE_TOE_OFF_MS`, ms)
 STANCE_BIAS = {"imu": ((min(TOE_OFF_STANCE_BIAS_MS), max(TOE_OFF_STANCE_BIAS_MS)), "ms"),
-               "force": ((-4.67, -4.12), "% of the gait cycle")}
+               "force": (((2.61, 2.86), (-15.9, -13.4)), "ms and % of the gait cycle")}
+#: decision L730: the insoles' contact lag (force onset at 10 % of the stance peak - the simulator's contact, % of the
+#: gait cycle; its load rises from zero slope over 10 % of the cycle) and toe-off error (ms: the gyroscope's toe-off,
+#: L73 - the drop-off is not gait's toe-off, L388 not adopted), lowest and highest per-walk medians over users
+#: 16000-16009 at normal, fast and race pace (0.58-1.18 s cycles; experiments/support_bias_s48_l728.py)
+FORCE_IC_LAG_PCT, FORCE_TOE_OFF_MS = STANCE_BIAS["force"][0]
 #: decision L703: where each range was measured (the line names it)
 BIAS_SOURCE = {"imu": "IMU-only contacts (against motion capture on gaitmap's real level walks, lateral shoe mount, "
                       "adults; L73)",
-               "force": "force-insole contacts (the simulator's insoles: IC at the force onset, late, toe-off at the "
-                        "drop-off, early; no real insole reference)"}
+               "force": "force-insole contacts (the simulator's insoles: IC at the force onset, late by a share of "
+                        "the cycle; toe-off the gyroscope's, early; L730; no real insole reference)"}
 
 
 #: decision L703 (steps 87): below this gait cycle (s) IMU-only contacts fired 50-80 ms early at the terminal-swing
@@ -46,7 +50,8 @@ def stance_bias_ms(setup: str, cycle_s: float | None) -> tuple[float, float] | N
         return lo, hi
     if cycle_s is None or not math.isfinite(cycle_s) or cycle_s <= 0:
         return None
-    return 10.0 * lo * cycle_s, 10.0 * hi * cycle_s
+    (lag_lo, lag_hi), (to_lo, to_hi) = lo, hi  # decision L730: toe-off (ms) - contact lag (% of the cycle)
+    return to_lo - 10.0 * lag_hi * cycle_s, to_hi - 10.0 * lag_lo * cycle_s
 
 
 def setup_of(source) -> str | None:
@@ -63,10 +68,11 @@ def bias_terms(setup: str | None, cycle_s: float | None) -> str:
     setups = [setup] if setup in STANCE_BIAS else list(STANCE_BIAS)
     parts = []
     for s in setups:
-        (lo, hi), unit = STANCE_BIAS[s]
         ms = stance_bias_ms(s, cycle_s)
-        if ms is None:
-            parts.append(f"with {BIAS_SOURCE[s]} each stance reads {-hi:.1f}-{-lo:.1f} {unit} short")
+        if ms is None:  # decision L730: the insoles' two terms without a cycle to add them in
+            (lag_lo, lag_hi), (to_lo, to_hi) = STANCE_BIAS[s][0]
+            parts.append(f"with {BIAS_SOURCE[s]} each stance reads {-to_hi:.0f}-{-to_lo:.0f} ms plus "
+                         f"{lag_lo:.1f}-{lag_hi:.1f} % of the gait cycle short")
             continue
         text = f"with {BIAS_SOURCE[s]} each stance reads {-ms[1]:.0f}-{-ms[0]:.0f} ms short"
         if cycle_s is not None and math.isfinite(cycle_s) and cycle_s > 0:

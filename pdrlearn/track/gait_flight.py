@@ -1,0 +1,59 @@
+"""Decision L729: the gait cycles whose toe-offs come before the other foot's contact (a flight) - counted, timed and
+told instead of left out of the double support without a word.
+
+A gait cycle of foot F (its IC to its next) has two hand-overs: the other foot's toe-off against F's contact, and
+F's toe-off against the other foot's contact. In walking each overlaps (a double-support period, Perry & Burnfield
+2010, Gait Analysis ch. 1); when a toe-off comes first, neither foot is on the ground until the contact (a flight:
+race walking's loss of contact, running) - or the two units' clocks differ, which moves one hand-over's overlap down
+and the other's up by the offset (decision L284). A flight after both feet's toe-offs is a loss of contact's pattern;
+flights after one foot's toe-off only, the other hand-over's double support longer, a clock offset's.
+"""
+
+from __future__ import annotations
+
+import math
+
+from pdrlearn.decision_refs import decision_ref
+from pdrlearn.kernels.contact import TOUCH_S
+
+
+def cycle_flights(ic_f: float, tc_o: float, ic_o: float, tc_f: float, ic_next: float) -> tuple[float, float]:
+    """Decision L729 (pure kernel): the flight times (s) of one gait cycle of foot F - after the other foot's
+    toe-off ``tc_o`` until F's contact ``ic_f``, and after F's toe-off ``tc_f`` until the other's contact ``ic_o``
+    (0 where the hand-over overlaps); NaN, NaN when a toe-off is missing or outside its own stride (``tc_o`` after
+    ``ic_o`` or more than a cycle before it; ``tc_f`` not between ``ic_f`` and ``ic_next``)."""
+    T = ic_next - ic_f
+    if not all(map(math.isfinite, (ic_f, tc_o, ic_o, tc_f, ic_next))) or not (
+            ic_o - T < tc_o < ic_o and ic_f < tc_f < ic_next):
+        return math.nan, math.nan
+    gaps = (ic_f - tc_o, ic_o - tc_f)  # a hand-over within TOUCH_S (two events of one instant) is no flight
+    return tuple(g if g > TOUCH_S else 0.0 for g in gaps)
+
+
+def flight_after(side: str, other: str, after_other: float, after_own: float) -> str | None:
+    """Decision L729: the foot (``side`` / ``other``) whose toe-off started the cycle's flight, ``"both"``, or None
+    without a flight."""
+    feet = [f for f, v in ((other, after_other), (side, after_own)) if v > 0]
+    return None if not feet else feet[0] if len(feet) == 1 else "both"
+
+
+def flight_warning(walk: dict, cycles) -> str | None:
+    """Decision L729: one line when the walk's cycles (``cycles``: gait_cycles.csv's rows with ``flight_time_s``
+    and ``flight_after``) have a flight, naming both causes (a loss of contact; a clock offset, L284); None
+    without one."""
+    n = walk.get("n_flight_cycles") or 0
+    if not n:
+        return None
+    fl = cycles[cycles["flight_time_s"] > 0]
+    by = {f: int((fl["flight_after"] == f).sum()) for f in ("left", "right", "both")}
+    of = n + (walk.get("n_support_cycles") or 0)
+    off = walk.get("clock_offset_s")
+    off_txt = "" if off is None else f" (clock_offset_s {1000 * off:+.0f} ms)"
+    return (f"bilateral gait: {n} of {of} gait cycles have a flight - a foot's toe-off before the other foot's "
+            f"contact, {1000 * walk['flight_time_s']:.0f} ms on average with neither foot on the ground (after the "
+            f"left foot's toe-off in {by['left']}, the right's in {by['right']}, both in {by['both']}): a loss of "
+            "contact (race walking's fault, running) or a clock offset between the two units, which shortens the "
+            "double support after one foot's toe-off and lengthens it after the other's - flights after one foot's "
+            f"toe-off only point to the clock{off_txt}. These cycles give no double or single support "
+            "(n_support_cycles counts the others); gait_cycles.csv's flight_time_s and flight_after give each ("
+            f"{decision_ref('L729', 'L284')})")
