@@ -69,6 +69,9 @@ def test_segments_csv_is_in_the_dictionary(day):
     # decision L726 (trial T1 F6): a `name` column was dropped silently, the label left empty
     ("start_s,end_s,name\n0,10,lap1\n", "column name is not read (--segments reads start_s, end_s, label): a leg's "
                                        "name is the column label - rename name to label"),
+    # review R2 F6 (session 48): with a label column there, another column is only to drop
+    ("start_s,end_s,label,notes\n0,10,lap1,x\n", "column notes is not read (--segments reads start_s, end_s, label): "
+                                                  "drop it (decision L726)"),
 ])
 def test_a_bad_legs_file_is_one_line_before_any_tracking(day, tmp_path, monkeypatch, capsys, text, said):
     """L618: each bad LEGS.csv is refused in one `error:` line naming the file, before the session is tracked

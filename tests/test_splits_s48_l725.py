@@ -58,3 +58,14 @@ def test_periods_and_segments_give_the_stance_too_l725():
     st = _strides([1.0] * 6, [1.0] * 6, stance=[58.0, 60.0, 62.0, 64.0, 66.0, 68.0])
     assert interval_gait(st, np.arange(6) >= 2)["median_stance_pct"] == pytest.approx(65.0)
     assert interval_gait(st, np.zeros(6, bool))["median_stance_pct"] is None
+
+
+def test_a_lower_back_tables_last_contact_counts_in_the_last_split_r2_f4():
+    """Review R2 F4 (session 48): the clock credits a lower-back contact row's length at its start; its middle had
+    put the last contact after the last crossing (145 of 147 rows counted on the reviewer's walk)."""
+    n = 12
+    start = 5.0 + 0.5 * np.arange(n)
+    st = pd.DataFrame({"start_s": start, "end_s": start + 0.5, "event_s": start, "length_m": 0.7,
+                       "unit": "waist", "heading_rad": 0.0, "impossible": False})
+    splits, _, _ = split_table(st, EverySplit(4.2))
+    assert splits["n_steps"].sum() == n, splits

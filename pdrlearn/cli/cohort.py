@@ -515,6 +515,8 @@ def emptied_track(info: dict, n_steps: int) -> str | None:
     dropped = {k: int(info.get(k) or 0) for k in DROPPING_VETOES}
     if n_steps or not sum(dropped.values()):
         return None
+    if sum(dropped.values()) == dropped["n_foot_rest_contacts"]:  # the lead's ruling in C198 (review R2 F5): the
+        return None  # foot unit made no stride, so it was a ride (W336): 0 m is the answer, not a failed track
     named = ", ".join(f"{n} by {DROPPING_VETOES[k]}" for k, n in dropped.items() if n)
     return (f"0 steps: all {sum(dropped.values())} lower-back contacts found were dropped ({named}), so the track "
             "reads 0 m: not counted as tracked nor averaged into groups.csv; its warnings say why, and `pdrlearn "

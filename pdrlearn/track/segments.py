@@ -72,9 +72,10 @@ def read_legs(path: Path | str | None) -> pd.DataFrame | None:
     unread = [c for c in legs.columns  # a trailing comma's empty, unnamed column is no column of the user's
               if c not in LEGS_COLUMNS and not (c.startswith("Unnamed:") and legs[c].isna().all())]
     if unread:  # decision L726: a leg's name is `label`; another column was dropped silently before
+        fix = ("drop it" if "label" in legs.columns else  # review R2 F6: a label column is there already
+               f"a leg's name is the column label - rename {unread[0]} to label, or drop it")
         raise DataError(f"{where}: column {', '.join(unread)} is not read (--segments reads "
-                        f"{', '.join(LEGS_COLUMNS)}): a leg's name is the column label - rename "
-                        f"{unread[0]} to label, or drop it (decision L726); {LEGS_USAGE}")
+                        f"{', '.join(LEGS_COLUMNS)}): {fix} (decision L726); {LEGS_USAGE}")
     if not len(legs):
         raise DataError(f"{where}: no leg (a header alone); {LEGS_USAGE}")
     times = legs[["start_s", "end_s"]].apply(pd.to_numeric, errors="coerce").to_numpy(float)

@@ -154,14 +154,17 @@ def split_table(steps: pd.DataFrame, marks) -> tuple[pd.DataFrame, dict, list[st
 
 def _split_strides(steps: pd.DataFrame, t0: float, times: np.ndarray) -> list[dict]:
     """Decision L725: per split (crossing ``times``, s from the first row's start ``t0``) its :data:`STRIDE_KEYS`:
-    the rows whose middle lies in ``[previous crossing, this crossing)`` (the last split ``[.., ..]``, as
-    periods.csv's last period, L277) and their medians by :func:`pdrlearn.track.periods.interval_medians` (not the
-    CVs periods.csv adds: with them ``every:10`` on a 2.8 km walk took 4.05 s CPU for its 280 splits, 1.13 s
-    without)."""
+    the rows whose middle (a lower-back contact row: its start, where the clock credits its length; review R2 F4)
+    lies in ``[previous crossing, this crossing)`` (the last split ``[.., ..]``, as periods.csv's last period, L277)
+    and their medians by :func:`pdrlearn.track.periods.interval_medians` (not the CVs periods.csv adds: with them
+    ``every:10`` on a 2.8 km walk took 4.05 s CPU for its 280 splits, 1.13 s without)."""
+    from pdrlearn.track.clinical import _is_lower_back
     from pdrlearn.track.periods import interval_medians
 
     st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
     mid = 0.5 * (st["start_s"].to_numpy(float) + st["end_s"].to_numpy(float)) - t0
+    if _is_lower_back(st):  # review R2 F4 (session 48): the clock credits a contact's length at its start
+        mid = st["start_s"].to_numpy(float) - t0
     out, prev = [], 0.0
     for k, t in enumerate(times):
         rows = (mid >= prev) & ((mid <= t) if k == len(times) - 1 else (mid < t))
