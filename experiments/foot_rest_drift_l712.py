@@ -55,6 +55,19 @@ def strides_change(a, b) -> float:
                for c in ("length_m", "heading_rad"))
 
 
+def real_and_demo_checks() -> None:
+    """(d) the real gaitmap foot recordings, (e) the demo table's scenario D: every stride with false and true."""
+    for p in sorted(DATA.glob("gaitmap_*")):
+        s = read_session(p)
+        print(f"(d) {p.name}: largest stride change {strides_change(track(s, False), track(s, True)):.3g}", flush=True)
+    d = simulate("D", user_seed=1)
+    for m in ("M1", "M2", "M3"):
+        a, b = track(d, False, method=m), track(d, True, method=m)
+        da, db = (float(track_summary(x, d)["distance_error_pct"]) for x in (a, b))
+        print(f"(e) scenario D {m}: distance error {da:.3f} -> {db:.3f} %, largest stride change "
+              f"{strides_change(a, b):.3g}", flush=True)
+
+
 def bounded(tau: float) -> None:
     """Information: (a) / (b)'s foot-only heading with S110's Gauss-Markov drift of correlation time ``tau``."""
     rows = []
@@ -97,15 +110,7 @@ def main() -> None:
     print(f"(c) short walks: largest stride change {np.max(r[:, 7]):.3g}", flush=True)
     print(f"(f) fused mean final position error {np.mean(r[:, 5]):.3f} -> {np.mean(r[:, 6]):.3f} m "
           f"({100 * (np.mean(r[:, 6]) / np.mean(r[:, 5]) - 1):+.2f} %)", flush=True)
-    for p in sorted(DATA.glob("gaitmap_*")):
-        s = read_session(p)
-        print(f"(d) {p.name}: largest stride change {strides_change(track(s, False), track(s, True)):.3g}", flush=True)
-    d = simulate("D", user_seed=1)
-    for m in ("M1", "M2", "M3"):
-        a, b = track(d, False, method=m), track(d, True, method=m)
-        da, db = (float(track_summary(x, d)["distance_error_pct"]) for x in (a, b))
-        print(f"(e) scenario D {m}: distance error {da:.3f} -> {db:.3f} %, largest stride change "
-              f"{strides_change(a, b):.3g}", flush=True)
+    real_and_demo_checks()
     if len(sys.argv) > 1:
         s = read_session(sys.argv[1])
         e = [heading_errors(track(s, v, heading="foot"), s)[-1] for v in (False, True)]
