@@ -55,6 +55,28 @@ def strides_change(a, b) -> float:
                for c in ("length_m", "heading_rad"))
 
 
+def measure(user: int, rate_hz: float = 20.0):
+    """One user's row ``(user, h0, h1, p0, p1, f0, f1, c)`` (false -> true: foot-only final heading error, deg, and
+    final position error, m; the fused track's final position error; (c)'s largest short-walk stride change) and the
+    fused tracks (false, true), the long route and the short walk simulated at ``rate_hz``."""
+    s = simulate_path(parse_route(long_route(user)), UserProfile.from_seed(user), seed=0, rate_hz=rate_hz)
+    off, on = track(s, False, heading="foot"), track(s, True, heading="foot")
+    h0, h1 = heading_errors(off, s)[-1], heading_errors(on, s)[-1]
+    p0, p1 = (float(track_summary(r, s)["final_position_error_m"]) for r in (off, on))
+    fused = (track(s, False), track(s, True))
+    f0, f1 = (float(track_summary(r, s)["final_position_error_m"]) for r in fused)
+    short = simulate_path(parse_route(SHORT), UserProfile.from_seed(user), seed=0, rate_hz=rate_hz)
+    c = strides_change(track(short, False, heading="foot"), track(short, True, heading="foot"))
+    return (user, h0, h1, p0, p1, f0, f1, c), fused
+
+
+def heading_growth(r: np.ndarray):
+    """(a) / (b)'s numbers from :func:`measure`'s rows: mean |final heading error| false, true, each session's growth
+    of it and the row of the largest."""
+    grow = np.abs(r[:, 2]) - np.abs(r[:, 1])
+    return np.mean(np.abs(r[:, 1])), np.mean(np.abs(r[:, 2])), grow, int(np.argmax(grow))
+
+
 def real_and_demo_checks() -> None:
     """(d) the real gaitmap foot recordings, (e) the demo table's scenario D: every stride with false and true."""
     for p in sorted(DATA.glob("gaitmap_*")):
@@ -89,20 +111,13 @@ def main() -> None:
         return bounded(float(sys.argv[2]))
     rows = []
     for user in USERS:
-        s = simulate_path(parse_route(long_route(user)), UserProfile.from_seed(user), seed=0)
-        off, on = track(s, False, heading="foot"), track(s, True, heading="foot")
-        h0, h1 = heading_errors(off, s)[-1], heading_errors(on, s)[-1]
-        p0, p1 = (float(track_summary(r, s)["final_position_error_m"]) for r in (off, on))
-        f0, f1 = (float(track_summary(track(s, v), s)["final_position_error_m"]) for v in (False, True))
-        short = simulate_path(parse_route(SHORT), UserProfile.from_seed(user), seed=0)
-        c = strides_change(track(short, False, heading="foot"), track(short, True, heading="foot"))
-        rows.append((user, h0, h1, p0, p1, f0, f1, c))
+        row, _ = measure(user)
+        rows.append(row)
+        _, h0, h1, p0, p1, f0, f1, c = row
         print(f"u{user}: foot heading final error {h0:+.2f} -> {h1:+.2f} deg, final position {p0:.2f} -> {p1:.2f} m; "
               f"fused final position {f0:.2f} -> {f1:.2f} m; short walk max stride change {c:.3g}", flush=True)
     r = np.array(rows)
-    mh0, mh1 = np.mean(np.abs(r[:, 1])), np.mean(np.abs(r[:, 2]))
-    grow = np.abs(r[:, 2]) - np.abs(r[:, 1])
-    worst = int(np.argmax(grow))
+    mh0, mh1, grow, worst = heading_growth(r)
     print(f"(a) mean |final heading error| {mh0:.2f} -> {mh1:.2f} deg ({100 * (mh1 / mh0 - 1):+.1f} %); mean final "
           f"position error {np.mean(r[:, 3]):.2f} -> {np.mean(r[:, 4]):.2f} m", flush=True)
     print(f"(b) largest |final heading error| growth {grow[worst]:+.2f} deg (u{int(r[worst, 0])}); sessions grown "

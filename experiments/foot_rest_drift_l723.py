@@ -12,10 +12,7 @@ import sys
 
 import numpy as np
 
-from foot_rest_drift_l712 import SHORT, heading_errors, long_route, real_and_demo_checks, strides_change, track
-from pdrlearn.sim import UserProfile, simulate_path
-from pdrlearn.sim.route import parse_route
-from pdrlearn.track.evaluate import track_summary
+from foot_rest_drift_l712 import heading_growth, measure, real_and_demo_checks
 
 USERS = range(16020, 16060)
 F2_MAX_M = 10.0  # L723 (f2): a session on the same fused path grows by at most this (m)
@@ -32,23 +29,15 @@ def main() -> None:
     rate = float(sys.argv[1])
     rows, paths = [], []
     for user in USERS:
-        s = simulate_path(parse_route(long_route(user)), UserProfile.from_seed(user), seed=0, rate_hz=rate)
-        off, on = track(s, False, heading="foot"), track(s, True, heading="foot")
-        h0, h1 = heading_errors(off, s)[-1], heading_errors(on, s)[-1]
-        p0, p1 = (float(track_summary(r, s)["final_position_error_m"]) for r in (off, on))
-        fo, fn = track(s, False), track(s, True)
-        f0, f1 = (float(track_summary(r, s)["final_position_error_m"]) for r in (fo, fn))
+        row, (fo, fn) = measure(user, rate)
+        rows.append(row)
         paths.append((fused_path(fo), fused_path(fn)))
-        short = simulate_path(parse_route(SHORT), UserProfile.from_seed(user), seed=0, rate_hz=rate)
-        c = strides_change(track(short, False, heading="foot"), track(short, True, heading="foot"))
-        rows.append((user, h0, h1, p0, p1, f0, f1, c))
+        _, h0, h1, p0, p1, f0, f1, c = row
         print(f"u{user} {rate:g} Hz: foot heading final error {h0:+.2f} -> {h1:+.2f} deg, final position {p0:.2f} -> "
               f"{p1:.2f} m; fused final position {f0:.2f} -> {f1:.2f} m ({paths[-1][0]} -> {paths[-1][1]}); short "
               f"walk max stride change {c:.3g}", flush=True)
     r = np.array(rows)
-    mh0, mh1 = np.mean(np.abs(r[:, 1])), np.mean(np.abs(r[:, 2]))
-    grow = np.abs(r[:, 2]) - np.abs(r[:, 1])
-    worst = int(np.argmax(grow))
+    mh0, mh1, grow, worst = heading_growth(r)
     print(f"{rate:g} Hz (a) mean |final heading error| {mh0:.2f} -> {mh1:.2f} deg ({100 * (mh1 / mh0 - 1):+.1f} %); "
           f"mean signed {np.mean(r[:, 1]):+.2f} -> {np.mean(r[:, 2]):+.2f}; mean final position error "
           f"{np.mean(r[:, 3]):.2f} -> {np.mean(r[:, 4]):.2f} m; heading better on {int(np.sum(grow < 0))} of {len(r)}",
