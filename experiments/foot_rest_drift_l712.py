@@ -55,6 +55,41 @@ def strides_change(a, b) -> float:
                for c in ("length_m", "heading_rad"))
 
 
+def measure(user: int, rate_hz: float = 20.0):
+    """One user's row ``(user, h0, h1, p0, p1, f0, f1, c)`` (false -> true: foot-only final heading error, deg, and
+    final position error, m; the fused track's final position error; (c)'s largest short-walk stride change) and the
+    fused tracks (false, true), the long route and the short walk simulated at ``rate_hz``."""
+    s = simulate_path(parse_route(long_route(user)), UserProfile.from_seed(user), seed=0, rate_hz=rate_hz)
+    off, on = track(s, False, heading="foot"), track(s, True, heading="foot")
+    h0, h1 = heading_errors(off, s)[-1], heading_errors(on, s)[-1]
+    p0, p1 = (float(track_summary(r, s)["final_position_error_m"]) for r in (off, on))
+    fused = (track(s, False), track(s, True))
+    f0, f1 = (float(track_summary(r, s)["final_position_error_m"]) for r in fused)
+    short = simulate_path(parse_route(SHORT), UserProfile.from_seed(user), seed=0, rate_hz=rate_hz)
+    c = strides_change(track(short, False, heading="foot"), track(short, True, heading="foot"))
+    return (user, h0, h1, p0, p1, f0, f1, c), fused
+
+
+def heading_growth(r: np.ndarray):
+    """(a) / (b)'s numbers from :func:`measure`'s rows: mean |final heading error| false, true, each session's growth
+    of it and the row of the largest."""
+    grow = np.abs(r[:, 2]) - np.abs(r[:, 1])
+    return np.mean(np.abs(r[:, 1])), np.mean(np.abs(r[:, 2])), grow, int(np.argmax(grow))
+
+
+def real_and_demo_checks() -> None:
+    """(d) the real gaitmap foot recordings, (e) the demo table's scenario D: every stride with false and true."""
+    for p in sorted(DATA.glob("gaitmap_*")):
+        s = read_session(p)
+        print(f"(d) {p.name}: largest stride change {strides_change(track(s, False), track(s, True)):.3g}", flush=True)
+    d = simulate("D", user_seed=1)
+    for m in ("M1", "M2", "M3"):
+        a, b = track(d, False, method=m), track(d, True, method=m)
+        da, db = (float(track_summary(x, d)["distance_error_pct"]) for x in (a, b))
+        print(f"(e) scenario D {m}: distance error {da:.3f} -> {db:.3f} %, largest stride change "
+              f"{strides_change(a, b):.3g}", flush=True)
+
+
 def bounded(tau: float) -> None:
     """Information: (a) / (b)'s foot-only heading with S110's Gauss-Markov drift of correlation time ``tau``."""
     rows = []
@@ -76,20 +111,13 @@ def main() -> None:
         return bounded(float(sys.argv[2]))
     rows = []
     for user in USERS:
-        s = simulate_path(parse_route(long_route(user)), UserProfile.from_seed(user), seed=0)
-        off, on = track(s, False, heading="foot"), track(s, True, heading="foot")
-        h0, h1 = heading_errors(off, s)[-1], heading_errors(on, s)[-1]
-        p0, p1 = (float(track_summary(r, s)["final_position_error_m"]) for r in (off, on))
-        f0, f1 = (float(track_summary(track(s, v), s)["final_position_error_m"]) for v in (False, True))
-        short = simulate_path(parse_route(SHORT), UserProfile.from_seed(user), seed=0)
-        c = strides_change(track(short, False, heading="foot"), track(short, True, heading="foot"))
-        rows.append((user, h0, h1, p0, p1, f0, f1, c))
+        row, _ = measure(user)
+        rows.append(row)
+        _, h0, h1, p0, p1, f0, f1, c = row
         print(f"u{user}: foot heading final error {h0:+.2f} -> {h1:+.2f} deg, final position {p0:.2f} -> {p1:.2f} m; "
               f"fused final position {f0:.2f} -> {f1:.2f} m; short walk max stride change {c:.3g}", flush=True)
     r = np.array(rows)
-    mh0, mh1 = np.mean(np.abs(r[:, 1])), np.mean(np.abs(r[:, 2]))
-    grow = np.abs(r[:, 2]) - np.abs(r[:, 1])
-    worst = int(np.argmax(grow))
+    mh0, mh1, grow, worst = heading_growth(r)
     print(f"(a) mean |final heading error| {mh0:.2f} -> {mh1:.2f} deg ({100 * (mh1 / mh0 - 1):+.1f} %); mean final "
           f"position error {np.mean(r[:, 3]):.2f} -> {np.mean(r[:, 4]):.2f} m", flush=True)
     print(f"(b) largest |final heading error| growth {grow[worst]:+.2f} deg (u{int(r[worst, 0])}); sessions grown "
@@ -97,15 +125,7 @@ def main() -> None:
     print(f"(c) short walks: largest stride change {np.max(r[:, 7]):.3g}", flush=True)
     print(f"(f) fused mean final position error {np.mean(r[:, 5]):.3f} -> {np.mean(r[:, 6]):.3f} m "
           f"({100 * (np.mean(r[:, 6]) / np.mean(r[:, 5]) - 1):+.2f} %)", flush=True)
-    for p in sorted(DATA.glob("gaitmap_*")):
-        s = read_session(p)
-        print(f"(d) {p.name}: largest stride change {strides_change(track(s, False), track(s, True)):.3g}", flush=True)
-    d = simulate("D", user_seed=1)
-    for m in ("M1", "M2", "M3"):
-        a, b = track(d, False, method=m), track(d, True, method=m)
-        da, db = (float(track_summary(x, d)["distance_error_pct"]) for x in (a, b))
-        print(f"(e) scenario D {m}: distance error {da:.3f} -> {db:.3f} %, largest stride change "
-              f"{strides_change(a, b):.3g}", flush=True)
+    real_and_demo_checks()
     if len(sys.argv) > 1:
         s = read_session(sys.argv[1])
         e = [heading_errors(track(s, v, heading="foot"), s)[-1] for v in (False, True)]
