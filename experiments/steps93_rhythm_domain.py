@@ -5,7 +5,7 @@ Walks (fresh simulated users, each simulated once per rate and detected by every
 (steps 87 / 88 / 91's command: ``--route "stand:3, straight:20, stand:3" --rocker smooth --height H --leg-length
 0.523 H --step-length 0.323 H --step-time T``, H cycling 1.15 / 1.25 / 1.30 / 1.35 / 1.45 m and T 0.34 / 0.36 /
 0.38 / 0.40 / 0.42 / 0.44 s by the user's index), race walkers 16112-16121 (trial R2's ``race_ics.py``: a step of
-0.90-1.05 m in 0.27-0.33 s drawn from the user's seed, ``stand:3, straight:60, stand:3``), adults 16122-16127 (the
+0.90-1.05 m (capped at the simulator's 1 m) in 0.27-0.33 s drawn from the user's seed, ``stand:3, straight:60, stand:3``), adults 16122-16127 (the
 drawn adult) and 16128-16133 (``--speed fast``) on ``stand:3, straight:30, stand:3``; every walk at 50 and 100 Hz;
 fForce* deleted. Variants: ``dec3`` (``short_period_s=0``, decision 3 alone), ``s91`` (steps 91, the default before),
 ``s93`` (``short_min_rate_hz=90``), ``s94`` (``short_max_amp=65``) and ``s93+94`` (both). Each of the instrumented
@@ -59,7 +59,7 @@ def command(u: int, rate: int) -> tuple[str, list[str]]:
                                 f"{0.523 * h:.4f}", "--step-length", f"{0.323 * h:.3f}", "--step-time", f"{t:.3f}"]
     if u in RACE:
         rng = np.random.default_rng(u)
-        length, t = rng.uniform(0.90, 1.05), rng.uniform(0.27, 0.33)
+        length, t = min(rng.uniform(0.90, 1.05), 1.0), rng.uniform(0.27, 0.33)  # simulate takes steps up to 1 m
         return "race", base + ["--route", "stand:3, straight:60, stand:3", "--step-length", f"{length:.3f}",
                                "--step-time", f"{t:.3f}"]
     speed = ["--speed", "fast"] if u in FAST else []
@@ -71,7 +71,9 @@ def walk(u: int, rate: int) -> tuple[str, Path]:
     d = SIM / f"u{u}_{rate}"
     if not (d / "ics.csv").exists():
         with contextlib.redirect_stdout(io.StringIO()):
-            main(["simulate", *opts, "-o", str(d), "--force"])
+            code = main(["simulate", *opts, "-o", str(d), "--force"])
+        if code:
+            raise SystemExit(f"simulate {' '.join(opts)}: exit {code}")
         for n in ("fForceA.csv", "fForceB.csv"):
             (d / n).unlink(missing_ok=True)
     return group, d
