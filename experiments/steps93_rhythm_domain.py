@@ -1,17 +1,18 @@
 """Steps decisions 91, 93, 94 (session 48, FM; trial R2-F1 / F2 / F7): the domain of steps 91's rhythm re-take of a
 short stride's impact, measured by the rules written in docs/decisions/steps.md before measuring.
 
-Walks (fresh simulated users, each simulated once per rate and detected by every variant): children 16100-16111
-(steps 87 / 88 / 91's command: ``--route "stand:3, straight:20, stand:3" --rocker smooth --height H --leg-length
-0.523 H --step-length 0.323 H --step-time T``, H cycling 1.15 / 1.25 / 1.30 / 1.35 / 1.45 m and T 0.34 / 0.36 /
-0.38 / 0.40 / 0.42 / 0.44 s by the user's index), race walkers 16112-16121 (trial R2's ``race_ics.py``: a step of
-0.90-1.05 m (capped at the simulator's 1 m) in 0.27-0.33 s drawn from the user's seed, ``stand:3, straight:60, stand:3``), adults 16122-16127 (the
-drawn adult) and 16128-16133 (``--speed fast``) on ``stand:3, straight:30, stand:3``; every walk at 50 and 100 Hz;
-fForce* deleted. Variants: ``dec3`` (``short_period_s=0``, decision 3 alone), ``s91`` (steps 91, the default before),
-``s93`` (``short_min_rate_hz=90``), ``s94`` (``short_max_amp=65``) and ``s93+94`` (both). Each of the instrumented
-foot's ics.csv contacts is matched to the nearest detected ``event_s`` within 0.3 s; early = an error under -50 ms,
-late = over +25 ms; CV = the detected IC-to-IC stride times' CV between the second and the second-last true contact,
-its truth the true contacts' (trial R2's scripts). The real gaitmap recordings are scored by ``score_steps_events``.
+Walks (fresh simulated users, each simulated once per rate and detected by every variant): children 16100-16111 (steps
+87 / 88 / 91's command: ``--route "stand:3, straight:20, stand:3" --rocker smooth --height H --leg-length 0.523 H
+--step-length 0.323 H --step-time T``, H cycling 1.15 / 1.25 / 1.30 / 1.35 / 1.45 m and T 0.34 / 0.36 / 0.38 / 0.40 /
+0.42 / 0.44 s by the user's index), race walkers 16112-16121 (trial R2's ``race_ics.py``: a step of 0.90-1.05 m
+(capped at the simulator's 1 m) in 0.27-0.33 s drawn from the user's seed, ``stand:3, straight:60, stand:3``), adults
+16122-16127 (the drawn adult) and 16128-16133 (``--speed fast``) on ``stand:3, straight:30, stand:3``; every walk at
+50 and 100 Hz; fForce* deleted. Variants: ``dec3`` (``short_period_s=0``, decision 3 alone), ``s91`` (steps 91, the
+default before: both gates 0), ``s93`` (``short_min_rate_hz=90``), ``s94`` (``short_max_amp=65``, the default since
+steps 94) and ``s93+94`` (both). Each of the instrumented foot's ics.csv contacts is matched to the nearest detected
+``event_s`` within 0.3 s; early = an error under -50 ms, late = over +25 ms; CV = the detected IC-to-IC stride times'
+CV between the second and the second-last true contact, its truth the true contacts' (trial R2's scripts). The real
+gaitmap recordings are scored by ``score_steps_events``.
 
 Run ``python experiments/steps93_rhythm_domain.py`` (sessions under /tmp/fm_s48/sim, kept between runs); it prints
 the per-walk rows, the per-group summaries and the real recordings and writes
@@ -43,8 +44,10 @@ RACE = range(16112, 16122)
 ADULTS = range(16122, 16128)
 FAST = range(16128, 16134)
 RATES = (50, 100)
-VARIANTS = {"dec3": {"short_period_s": 0.0}, "s91": {}, "s93": {"short_min_rate_hz": 90.0},
-            "s94": {"short_max_amp": 65.0}, "s93+94": {"short_min_rate_hz": 90.0, "short_max_amp": 65.0}}
+VARIANTS = {"dec3": {"short_period_s": 0.0}, "s91": {"short_min_rate_hz": 0.0, "short_max_amp": 0.0},
+            "s93": {"short_min_rate_hz": 90.0, "short_max_amp": 0.0},
+            "s94": {"short_min_rate_hz": 0.0, "short_max_amp": 65.0},
+            "s93+94": {"short_min_rate_hz": 90.0, "short_max_amp": 65.0}}
 HEIGHTS = (1.15, 1.25, 1.30, 1.35, 1.45)
 STEP_TIMES = (0.34, 0.36, 0.38, 0.40, 0.42, 0.44)
 

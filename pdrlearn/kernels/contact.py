@@ -38,7 +38,7 @@ SHORT_MIN_RATE_HZ = 0.0
 #: ``amplitude``) keeps decision 3's 8 Hz impact (0: none): development race walkers 16060-16065 (0.9-1.05 m steps
 #: in 0.27-0.33 s, trial R2-F2) spanned 80-147, children 16070-16073 22-52, and their IC-to-IC strides overlap
 #: (0.53-0.69 s against 0.61-0.86 s), so the stride time cannot part them
-SHORT_MAX_AMP = 0.0
+SHORT_MAX_AMP = 65.0
 #: steps decision 93: the streamed stride's span is read on |acc| low-passed at this (Hz; AccelStepDetector's
 #: ``cutoff_hz``, thesis ch.5.1)
 AMP_CUTOFF_HZ = 3.0
