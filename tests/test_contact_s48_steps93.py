@@ -88,3 +88,31 @@ def test_the_swing_span_cap_is_the_default_and_the_rate_gate_is_not():
     det = AccelStepDetector()
     assert (det.short_max_amp, det.short_min_rate_hz) == (C.SHORT_MAX_AMP, C.SHORT_MIN_RATE_HZ) == (65.0, 0.0)
     assert (ACCEL["short_max_amp"], ACCEL["short_min_rate_hz"]) == (65.0, 0.0)
+
+
+@pytest.fixture(scope="module")
+def race50(tmp_path_factory):
+    """A race walker (steps 94's development range: 0.95 m steps in 0.29 s) on a short walk at 50 Hz."""
+    from pdrlearn.cli import main
+    from pdrlearn.io import read_session
+
+    d = tmp_path_factory.mktemp("steps94") / "race"
+    with contextlib.redirect_stdout(io.StringIO()):
+        main(["simulate", "--route", "stand:2, straight:12, stand:2", "--rocker", "smooth", "--rate", "50",
+              "--user-seed", "16061", "--step-length", "0.95", "--step-time", "0.29", "-o", str(d)])
+    for name in ("fForceA.csv", "fForceB.csv"):
+        (d / name).unlink()
+    return read_session(d)
+
+
+def test_a_race_walkers_swing_keeps_decision_3_offline_and_streamed(race50):
+    from pdrlearn.track import get_pipeline
+
+    dec3 = _events(race50, short_period_s=0.0)
+    assert not np.array_equal(_events(race50, short_max_amp=0.0), dec3)  # steps 91 re-dates these strides
+    np.testing.assert_array_equal(_events(race50), dec3)  # steps 94, the default: every swing spans over 65
+    st = get_pipeline("plasys")(race50, streaming=True, contacts=True).steps["event_s"].to_numpy(float)
+    st = st[np.isfinite(st)][2:]  # the walk's opening strides are cut differently
+    assert len(st) >= 4
+    # the streamed contact reads the stride's span as the detector does (contact.swing_span): decision 3's impact
+    np.testing.assert_allclose(st, [dec3[np.argmin(np.abs(dec3 - x))] for x in st], rtol=0, atol=1e-9)

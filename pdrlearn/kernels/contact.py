@@ -39,8 +39,8 @@ SHORT_MIN_RATE_HZ = 0.0
 #: in 0.27-0.33 s, trial R2-F2) spanned 80-147, children 16070-16073 22-52, and their IC-to-IC strides overlap
 #: (0.53-0.69 s against 0.61-0.86 s), so the stride time cannot part them
 SHORT_MAX_AMP = 65.0
-#: steps decision 93: the streamed stride's span is read on |acc| low-passed at this (Hz; AccelStepDetector's
-#: ``cutoff_hz``, thesis ch.5.1)
+#: steps decision 94: the streamed stride's span is read on |acc| low-passed at this (Hz; AccelStepDetector's
+#: ``cutoff_hz``, thesis ch.5.1; :func:`swing_span`)
 AMP_CUTOFF_HZ = 3.0
 #: steps decision 91: at the rhythm's cutoff the impact is looked for among the last peak reaching the level and the
 #: peaks up to this long (s) before it (:func:`split_head`): at 20 Hz a child's impact splits into the contact and a
@@ -199,6 +199,17 @@ def rhythm_cutoff_hz(period_s: float, cutoff_hz: float = EVENT_CUTOFF_HZ, short_
     return float(cutoff_hz + share * (max(fast_cutoff_hz, cutoff_hz) - cutoff_hz))
 
 
+def swing_span(m: np.ndarray, fs: float) -> float:
+    """Steps decision 93 / 94: the span (m/s^2) of the magnitude ``m`` (n,) at ``fs`` Hz low-passed as
+    AccelStepDetector's ``amplitude`` (3rd-order Butterworth at :data:`AMP_CUTOFF_HZ`, thesis ch.5.1; causal, started
+    at its steady state on the first sample): the streamed stride's counterpart of the offline swing's span."""
+    from pdrlearn.kernels import dsp
+
+    sos = dsp.butter_sos(3, min(AMP_CUTOFF_HZ, MAX_CUTOFF_FRAC * fs), fs, "low")
+    e = dsp.sosfilt(sos, np.asarray(m, dtype=float), dsp.sosfilt_zi(sos) * float(m[0]))[0]
+    return float(e.max() - e.min())
+
+
 def split_head(peak_t, peak_values, k: int, cluster_s: float, ratio: float = IMPACT_SPLIT_RATIO) -> int:
     """Steps decision 91: the impact among the peaks ``peak_values`` (times ``peak_t``, s, in order) when peak ``k`` is
     the last one reaching the impact level: going back from ``k`` over the peaks up to ``cluster_s`` (s) before it, an
@@ -253,8 +264,8 @@ def impact_time(t: np.ndarray, acc: np.ndarray, *, rest: float = GRAVITY, peak_f
     NaN with fewer than 3 samples, no such peak, or an IC before ``t[0]``. Steps decisions 87, 88: re-taken at the
     rhythm's cutoff (:func:`rhythm_cutoff_hz`) when it comes less than ``short_period_s`` after ``prev_ic_s``, the
     previous stride's contact; steps decision 91: there the head of a split impact (:func:`split_head`); steps
-    decision 93: only at a rate of ``min_rate_hz`` and up and when |acc| low-passed at 3 Hz (the detector's
-    ``cutoff_hz``, 2nd order here) spans at most ``max_amp`` over the stride."""
+    decision 93: only at a rate of ``min_rate_hz`` and up; steps decision 94: only when the stride's
+    :func:`swing_span` is at most ``max_amp``."""
     t = np.asarray(t, dtype=float)
     if len(t) < 3:
         return math.nan
@@ -266,8 +277,7 @@ def impact_time(t: np.ndarray, acc: np.ndarray, *, rest: float = GRAVITY, peak_f
         short_period_s = 0.0
     f = rhythm_cutoff_hz(ic - prev_ic_s, cutoff_hz, short_period_s, fast_period_s, fast_cutoff_hz)
     if f != cutoff_hz and max_amp > 0:  # steps decision 93: a race walker's swing keeps the 8 Hz impact
-        e3 = lowpass2(m, *butter2(min(AMP_CUTOFF_HZ, MAX_CUTOFF_FRAC * fs), fs))
-        f = f if short_stride(0.0, 1.0, float(e3.max() - e3.min()), max_amp) else cutoff_hz
+        f = f if short_stride(0.0, 1.0, swing_span(m, fs), max_amp) else cutoff_hz
     if f != cutoff_hz:  # steps decision 88 (no peak at the rhythm's cutoff: the 8 Hz one stays, as offline)
         ic2 = impact_peak(t, m, rest, peak_frac, f, SUBSAMPLE, prominence, cluster_s)[0]
         ic = ic2 if ic2 == ic2 else ic
