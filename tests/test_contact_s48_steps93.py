@@ -4,14 +4,14 @@ offline and streamed alike."""
 
 from __future__ import annotations
 
-import contextlib
-import io
 import logging
 
 import numpy as np
 import pytest
 
 from pdrlearn.kernels import contact as C
+from tests.cli_helpers import insole_free_walk
+from tests.test_contact_s48_steps91 import CHILD_15219
 
 
 @pytest.fixture(autouse=True)
@@ -53,17 +53,7 @@ def test_impact_time_re_takes_only_at_90_hz_and_up(fs):
 @pytest.fixture(scope="module")
 def child50(tmp_path_factory):
     """Steps 88's development child u15219 (1.45 m, 0.36 s steps) on a short walk at a 50 Hz foot rate."""
-    from pdrlearn.cli import main
-    from pdrlearn.io import read_session
-
-    d = tmp_path_factory.mktemp("steps93") / "u15219"
-    with contextlib.redirect_stdout(io.StringIO()):
-        main(["simulate", "--route", "stand:2, straight:8, stand:2", "--rocker", "smooth", "--rate", "50",
-              "--user-seed", "15219", "--height", "1.45", "--leg-length", "0.7584", "--step-length", "0.4684",
-              "--step-time", "0.36", "-o", str(d)])
-    for name in ("fForceA.csv", "fForceB.csv"):
-        (d / name).unlink()
-    return read_session(d)
+    return insole_free_walk(tmp_path_factory.mktemp("steps93") / "u15219", *CHILD_15219, "--rate", "50")
 
 
 def _events(session, **kw) -> np.ndarray:
@@ -93,16 +83,9 @@ def test_the_swing_span_cap_is_the_default_and_the_rate_gate_is_not():
 @pytest.fixture(scope="module")
 def race50(tmp_path_factory):
     """A race walker (steps 94's development range: 0.95 m steps in 0.29 s) on a short walk at 50 Hz."""
-    from pdrlearn.cli import main
-    from pdrlearn.io import read_session
-
-    d = tmp_path_factory.mktemp("steps94") / "race"
-    with contextlib.redirect_stdout(io.StringIO()):
-        main(["simulate", "--route", "stand:2, straight:12, stand:2", "--rocker", "smooth", "--rate", "50",
-              "--user-seed", "16061", "--step-length", "0.95", "--step-time", "0.29", "-o", str(d)])
-    for name in ("fForceA.csv", "fForceB.csv"):
-        (d / name).unlink()
-    return read_session(d)
+    return insole_free_walk(tmp_path_factory.mktemp("steps94") / "race", "--route", "stand:2, straight:12, stand:2",
+                            "--rocker", "smooth", "--rate", "50", "--user-seed", "16061", "--step-length", "0.95",
+                            "--step-time", "0.29")
 
 
 def test_a_race_walkers_swing_keeps_decision_3_offline_and_streamed(race50):
