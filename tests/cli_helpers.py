@@ -47,3 +47,18 @@ def tracked_slow_walk(tmp_path: Path, capsys, route: str, user: int, step_length
     traj = pd.read_csv(d / "trajectory.csv")
     return (out, summary, traj["timestamp"].to_numpy(float) / 1000,
             traj["x"].to_numpy(float) - traj["x"].iloc[0], d)
+
+
+def insole_free_walk(folder: Path, *options: str):
+    """``simulate *options -o folder`` (quiet) with the foot's force insoles deleted (fForceA / fForceB: the IMU-only
+    contact), read back: the contact tests' short walks (steps decisions 91, 93, 94)."""
+    import contextlib
+    import io
+
+    from pdrlearn.io import read_session
+
+    with contextlib.redirect_stdout(io.StringIO()):
+        assert main(["simulate", *options, "-o", str(folder)]) == 0
+    for name in ("fForceA.csv", "fForceB.csv"):
+        (folder / name).unlink()
+    return read_session(folder)

@@ -3,8 +3,6 @@ of a split impact (``contact.split_head``), not its last peak; offline and strea
 
 from __future__ import annotations
 
-import contextlib
-import io
 import logging
 
 import numpy as np
@@ -12,8 +10,12 @@ import pandas as pd
 import pytest
 
 from pdrlearn.kernels import contact as C
+from tests.cli_helpers import insole_free_walk
 
 FS = 100.0
+#: steps 88's development child u15219's short walk (the rate added by each test module)
+CHILD_15219 = ("--route", "stand:2, straight:8, stand:2", "--rocker", "smooth", "--user-seed", "15219", "--height",
+               "1.45", "--leg-length", "0.7584", "--step-length", "0.4684", "--step-time", "0.36")
 
 
 @pytest.fixture(autouse=True)
@@ -49,18 +51,10 @@ def test_impact_peak_at_20_hz_takes_the_head_of_a_split_impact():
 @pytest.fixture(scope="module")
 def child(tmp_path_factory):
     """Steps 88's development child u15219 (1.45 m, 0.36 s steps, smooth rocker, no insoles) on a short walk."""
-    from pdrlearn.cli import main
-    from pdrlearn.io import read_session
-
     d = tmp_path_factory.mktemp("steps91") / "u15219"
-    with contextlib.redirect_stdout(io.StringIO()):
-        main(["simulate", "--route", "stand:2, straight:8, stand:2", "--rocker", "smooth", "--rate", "100",
-              "--user-seed", "15219", "--height", "1.45", "--leg-length", "0.7584", "--step-length", "0.4684",
-              "--step-time", "0.36", "-o", str(d)])
-    for name in ("fForceA.csv", "fForceB.csv"):
-        (d / name).unlink()
+    session = insole_free_walk(d, *CHILD_15219, "--rate", "100")
     ics = pd.read_csv(d / "ics.csv")
-    return read_session(d), np.sort(ics[ics.foot == "right"]["ic_ms"].to_numpy(float) / 1000.0)
+    return session, np.sort(ics[ics.foot == "right"]["ic_ms"].to_numpy(float) / 1000.0)
 
 
 def _errors(session, truth, **kw) -> np.ndarray:

@@ -31,6 +31,17 @@ SHORT_PERIOD_S = 0.95
 FAST_PERIOD_S = 0.68
 #: steps decision 88: the cap of the rhythm's cutoff (Hz, 2nd order, its own group delay)
 FAST_EVENT_CUTOFF_HZ = 20.0
+#: steps decision 93: the rhythm's re-take only at a foot rate (Hz) of at least this (0: at every rate): at 50 Hz its
+#: 20 Hz cutoff is capped at 0.45 x the rate only and hardly smooths (trial R2-F1); steps 91 was measured at 100 Hz
+SHORT_MIN_RATE_HZ = 0.0
+#: steps decision 93: a swing whose |acc| low-passed at 3 Hz spans more than this (m/s^2; AccelStepDetector's
+#: ``amplitude``) keeps decision 3's 8 Hz impact (0: none): development race walkers 16060-16065 (0.9-1.05 m steps
+#: in 0.27-0.33 s, trial R2-F2) spanned 80-147, children 16070-16073 22-52, and their IC-to-IC strides overlap
+#: (0.53-0.69 s against 0.61-0.86 s), so the stride time cannot part them
+SHORT_MAX_AMP = 65.0
+#: steps decision 94: the streamed stride's span is read on |acc| low-passed at this (Hz; AccelStepDetector's
+#: ``cutoff_hz``, thesis ch.5.1; :func:`swing_span`)
+AMP_CUTOFF_HZ = 3.0
 #: steps decision 91: at the rhythm's cutoff the impact is looked for among the last peak reaching the level and the
 #: peaks up to this long (s) before it (:func:`split_head`): at 20 Hz a child's impact splits into the contact and a
 #: tail 30-50 ms later (steps 88), which the last-peak rule took. 0: the last peak (steps 88)
@@ -168,10 +179,12 @@ def local_maxima(e: np.ndarray) -> np.ndarray:
     return np.flatnonzero((e[1:-1] > e[:-2]) & (e[2:] <= e[1:-1])) + 1
 
 
-def short_stride(period_s: float, short_period_s: float = SHORT_PERIOD_S) -> bool:
+def short_stride(period_s: float, short_period_s: float = SHORT_PERIOD_S, amp: float = 0.0,
+                 max_amp: float = SHORT_MAX_AMP) -> bool:
     """Steps decision 87: True when a stride whose 8 Hz impact comes ``period_s`` (s) after the previous stride's IC
-    takes its impact on the rhythm's cutoff (under ``short_period_s``; NaN, no previous contact: False)."""
-    return bool(period_s < short_period_s)
+    takes its impact on the rhythm's cutoff (under ``short_period_s``; NaN, no previous contact: False); steps
+    decision 93: not when its swing's ``amp`` (m/s^2) is over ``max_amp`` > 0 (a race walker's long, quick swing)."""
+    return bool(period_s < short_period_s) and not (max_amp > 0 and amp > max_amp)
 
 
 def rhythm_cutoff_hz(period_s: float, cutoff_hz: float = EVENT_CUTOFF_HZ, short_period_s: float = SHORT_PERIOD_S,
@@ -180,10 +193,21 @@ def rhythm_cutoff_hz(period_s: float, cutoff_hz: float = EVENT_CUTOFF_HZ, short_
     previous stride's IC: ``cutoff_hz`` from ``short_period_s`` up (and without a previous IC), rising linearly to
     ``fast_cutoff_hz`` at ``fast_period_s`` and held there below (the filter's span follows the closing gap between the
     terminal-swing deceleration and the impact)."""
-    if not short_stride(period_s, short_period_s):
+    if not short_stride(period_s, short_period_s, max_amp=0.0):
         return float(cutoff_hz)
     share = min(1.0, (short_period_s - period_s) / max(short_period_s - fast_period_s, 1e-9))
     return float(cutoff_hz + share * (max(fast_cutoff_hz, cutoff_hz) - cutoff_hz))
+
+
+def swing_span(m: np.ndarray, fs: float) -> float:
+    """Steps decision 93 / 94: the span (m/s^2) of the magnitude ``m`` (n,) at ``fs`` Hz low-passed as
+    AccelStepDetector's ``amplitude`` (3rd-order Butterworth at :data:`AMP_CUTOFF_HZ`, thesis ch.5.1; causal, started
+    at its steady state on the first sample): the streamed stride's counterpart of the offline swing's span."""
+    from pdrlearn.kernels import dsp
+
+    sos = dsp.butter_sos(3, min(AMP_CUTOFF_HZ, MAX_CUTOFF_FRAC * fs), fs, "low")
+    e = dsp.sosfilt(sos, np.asarray(m, dtype=float), dsp.sosfilt_zi(sos) * float(m[0]))[0]
+    return float(e.max() - e.min())
 
 
 def split_head(peak_t, peak_values, k: int, cluster_s: float, ratio: float = IMPACT_SPLIT_RATIO) -> int:
@@ -231,21 +255,29 @@ def impact_peak(t: np.ndarray, m: np.ndarray, rest: float, peak_frac: float, cut
 def impact_time(t: np.ndarray, acc: np.ndarray, *, rest: float = GRAVITY, peak_frac: float = PEAK_FRAC,
                 cutoff_hz: float = EVENT_CUTOFF_HZ, prominence: float = PEAK_PROMINENCE, prev_ic_s: float = math.nan,
                 short_period_s: float = SHORT_PERIOD_S, fast_period_s: float = FAST_PERIOD_S,
-                fast_cutoff_hz: float = FAST_EVENT_CUTOFF_HZ, cluster_s: float = IMPACT_CLUSTER_S) -> float:
+                fast_cutoff_hz: float = FAST_EVENT_CUTOFF_HZ, cluster_s: float = IMPACT_CLUSTER_S,
+                min_rate_hz: float = SHORT_MIN_RATE_HZ, max_amp: float = SHORT_MAX_AMP) -> float:
     """Decision E49: the IC (s) of one stride from its foot accelerometer samples ``t`` (n,) s, ``acc`` (n, 3)
     m/s^2 (stance to stance): |acc| low-passed by :func:`butter2` (cutoff below 0.45 x the rate), the last bump
     (steps decision 89: local maxima grouped by ``prominence``, :func:`bump_peaks`) reaching ``peak_frac`` of the
     largest rise above ``rest`` (:func:`last_impact`), less the filter's group delay at 1 Hz (:func:`impact_peak`).
     NaN with fewer than 3 samples, no such peak, or an IC before ``t[0]``. Steps decisions 87, 88: re-taken at the
     rhythm's cutoff (:func:`rhythm_cutoff_hz`) when it comes less than ``short_period_s`` after ``prev_ic_s``, the
-    previous stride's contact; steps decision 91: there the head of a split impact (:func:`split_head`)."""
+    previous stride's contact; steps decision 91: there the head of a split impact (:func:`split_head`); steps
+    decision 93: only at a rate of ``min_rate_hz`` and up; steps decision 94: only when the stride's
+    :func:`swing_span` is at most ``max_amp``."""
     t = np.asarray(t, dtype=float)
     if len(t) < 3:
         return math.nan
     acc = np.asarray(acc, dtype=float)
     m = np.sqrt(np.einsum("ij,ij->i", acc, acc))
     ic = impact_peak(t, m, rest, peak_frac, cutoff_hz, SUBSAMPLE, prominence)[0]
+    fs = 1.0 / float(np.median(np.diff(t)))
+    if fs < min_rate_hz:  # steps decision 93: only at the rate the re-take was measured at
+        short_period_s = 0.0
     f = rhythm_cutoff_hz(ic - prev_ic_s, cutoff_hz, short_period_s, fast_period_s, fast_cutoff_hz)
+    if f != cutoff_hz and max_amp > 0:  # steps decision 93: a race walker's swing keeps the 8 Hz impact
+        f = f if short_stride(0.0, 1.0, swing_span(m, fs), max_amp) else cutoff_hz
     if f != cutoff_hz:  # steps decision 88 (no peak at the rhythm's cutoff: the 8 Hz one stays, as offline)
         ic2 = impact_peak(t, m, rest, peak_frac, f, SUBSAMPLE, prominence, cluster_s)[0]
         ic = ic2 if ic2 == ic2 else ic

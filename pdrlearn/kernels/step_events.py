@@ -90,6 +90,7 @@ class BurstParams:
     event_delay_s: float = 0.0
     pre_n: int = 0
     cluster_s: float = 0.0  # steps decision 91: at the rhythm's cutoff the head of a split impact (contact.split_head)
+    max_amp: float = 0.0  # steps decision 93: a swing spanning more than this keeps the 8 Hz impact (0: none)
 
 
 @dataclass
@@ -201,7 +202,7 @@ def burst_kernel(t: np.ndarray, a: np.ndarray, still: np.ndarray, state: BurstSt
             # it from the stride before that one
             merging = s.pending is not None and t_ev - s.pending[0] < p.min_stride_s
             period = t_ev - (s.before_ic if merging else s.last_ic)
-            if short and short_stride(period, p.short_period_s):  # steps decision 88: the rhythm's cutoff
+            if short and short_stride(period, p.short_period_s, span, p.max_amp):  # steps decisions 88, 93
                 f = rhythm_cutoff_hz(period, p.event_cutoff_hz, p.short_period_s, p.fast_period_s, p.fast_cutoff_hz)
                 rt, rm = zip(*s.raw, strict=True)
                 ic, e_f, emx_f = impact_peak(np.array(rt), np.array(rm), p.rest, p.peak_frac, f, p.subsample,
@@ -716,9 +717,11 @@ class AccelProcessor:
             quiet_frac=det.quiet_frac, history=4, window_n=self.w, cap_n=int(round(0.6 * fs)),
             quiet_rank=det.quiet_rank, rests_only=det.rests_only, subsample=subsample_of(det),
             prominence=float(det.peak_prominence),
-            short_period_s=det.short_period_s, fast_period_s=det.fast_period_s,  # steps decisions 87, 88
+            short_period_s=det.short_period_s if fs >= det.short_min_rate_hz else 0.0,  # steps decisions 87, 88, 93
+            fast_period_s=det.fast_period_s,
             fast_cutoff_hz=det.fast_event_cutoff_hz, event_cutoff_hz=det.event_cutoff_hz, event_delay_s=self.delay,
-            pre_n=int(round(PRE_SWING_S * fs)), cluster_s=det.impact_cluster_s)  # steps decision 91
+            pre_n=int(round(PRE_SWING_S * fs)), cluster_s=det.impact_cluster_s,  # steps decision 91
+            max_amp=det.short_max_amp)  # steps decision 93
         self.state.need_n = self.params.max_still_n if det.quiet_frac > 0 else self.params.min_still_n
 
     def process(self, t: np.ndarray, v: np.ndarray) -> list:
