@@ -15,11 +15,10 @@ from pathlib import Path
 import numpy as np
 
 from experiments.waist import turn_error_deg
-from experiments.waist_gentle_curves_s48_w543 import REAL, ROUTES, _turn_errors
-from pdrlearn.io import read_session
+from experiments.waist_gentle_curves_s48_w543 import ROUTES, real
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
-from pdrlearn.track.evaluate import evaluate_track, heading_change
+from pdrlearn.track.evaluate import evaluate_track
 from pdrlearn.track.waist import track_waist
 
 FIRST_USER = 16140
@@ -86,27 +85,6 @@ def simulated(n_users: int, first: int) -> None:
             _summary(f"C {start} {b:g} deg/s", rows[f"C {start} {b:g} deg/s"])
 
 
-def real() -> None:
-    te = {False: [], True: []}
-    for folder in sorted(REAL.glob("mobgap_*")):
-        s = read_session(folder)
-        res = {g: track_waist(s, pipeline="waist-pendulum", gentle_rest_bias=g) for g in (False, True)}
-        same = np.array_equal(res[False].steps["length_m"].to_numpy(), res[True].steps["length_m"].to_numpy())
-        changed = int(np.sum(~np.isclose(res[False].steps["heading_rad"], res[True].steps["heading_rad"])))
-        line = f"{folder.name}: {len(res[False].steps)} steps, lengths identical {same}, headings changed {changed}"
-        if "Test5" in folder.name:
-            ch = [abs(np.degrees(heading_change(res[g].steps["heading_rad"].to_numpy(float)[:-1], slice(None, 3),
-                                                slice(-3, None)))) for g in (False, True)]
-            line += f"; |heading change first -> last 3 steps| {ch[0]:.2f} -> {ch[1]:.2f} deg"
-        else:
-            turns = s.extras.get("turns")
-            for g in (False, True):
-                te[g] += _turn_errors(res[g], turns)
-        say(line)
-    say(f"Test11 median ||tracked turn| - |INDIP angle|| over {len(te[False])} turns: {np.median(te[False]):.2f} -> "
-        f"{np.median(te[True]):.2f} deg")
-
-
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--users", type=int, default=20)
@@ -114,7 +92,7 @@ def main() -> None:
     ap.add_argument("--first", type=int, default=FIRST_USER, help="first user (another only to try the script)")
     a = ap.parse_args()
     logging.disable(logging.WARNING)
-    real()
+    real("gentle_rest_bias", say)
     if not a.no_sim:
         simulated(a.users, a.first)
     if a.users == 20 and a.first == FIRST_USER and not a.no_sim:

@@ -85,11 +85,12 @@ def _turn_errors(res, turns) -> list[float]:
     return out
 
 
-def real() -> None:
+def real(option: str = "gentle_curves", say=say) -> None:
+    """The real check on the mobgap lower-back recordings with the boolean ``option`` off -> on (W544 shares it)."""
     te = {False: [], True: []}
     for folder in sorted(REAL.glob("mobgap_*")):
         s = read_session(folder)
-        res = {g: track_waist(s, pipeline="waist-pendulum", gentle_curves=g) for g in (False, True)}
+        res = {g: track_waist(s, pipeline="waist-pendulum", **{option: g}) for g in (False, True)}
         same = np.array_equal(res[False].steps["length_m"].to_numpy(), res[True].steps["length_m"].to_numpy())
         changed = int(np.sum(~np.isclose(res[False].steps["heading_rad"], res[True].steps["heading_rad"])))
         line = f"{folder.name}: {len(res[False].steps)} steps, lengths identical {same}, headings changed {changed}"
