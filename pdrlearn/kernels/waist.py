@@ -2148,8 +2148,9 @@ GENTLE_RPS = 0.026
 #: Decision W543: the gyro heading keeps gentle curves by default (adopted by its rule: users 15580-15619, gentle
 #: curves' mean final error 86.536 -> 7.866 m, sharp turns and straight walks unchanged, a 0.5 deg/s bias +0.103 m)
 GENTLE_CURVES = True
-#: Decision W544: W543's run test reads each stride's mean rate less W105's reading at rest (offline); candidate
-GENTLE_REST_BIAS = False
+#: Decision W544: W543's run test reads each stride's mean rate less W105's reading at rest (offline); adopted by its
+#: rule (users 16140-16159: route C with a 2 deg/s bias 54.379 -> 14.830 m, gentle curves 7.415 -> 7.491 m)
+GENTLE_REST_BIAS = True
 
 
 def gentle_rest_rate(at_rest: tuple[float, float, float] | None, on: bool = True) -> float:
