@@ -8,14 +8,12 @@ Output: experiments/results/waist_gentle_bias_s48_w544.txt (the printed lines).
 """
 from __future__ import annotations
 
-import argparse
-import logging
 from pathlib import Path
 
 import numpy as np
 
 from experiments.waist import turn_error_deg
-from experiments.waist_gentle_curves_s48_w543 import ROUTES, real
+from experiments.waist_gentle_curves_s48_w543 import ROUTES, real, run
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
 from pdrlearn.track.evaluate import evaluate_track
@@ -86,17 +84,7 @@ def simulated(n_users: int, first: int) -> None:
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--users", type=int, default=20)
-    ap.add_argument("--no-sim", action="store_true")
-    ap.add_argument("--first", type=int, default=FIRST_USER, help="first user (another only to try the script)")
-    a = ap.parse_args()
-    logging.disable(logging.WARNING)
-    real("gentle_rest_bias", say)
-    if not a.no_sim:
-        simulated(a.users, a.first)
-    if a.users == 20 and a.first == FIRST_USER and not a.no_sim:
-        OUT.write_text("\n".join(LINES) + "\n")
+    run(20, FIRST_USER, lambda: real("gentle_rest_bias", say), simulated, OUT, LINES)
 
 
 if __name__ == "__main__":
