@@ -85,11 +85,12 @@ def _turn_errors(res, turns) -> list[float]:
     return out
 
 
-def real() -> None:
+def real(option: str = "gentle_curves", say=say) -> None:
+    """The real check on the mobgap lower-back recordings with the boolean ``option`` off -> on (W544 shares it)."""
     te = {False: [], True: []}
     for folder in sorted(REAL.glob("mobgap_*")):
         s = read_session(folder)
-        res = {g: track_waist(s, pipeline="waist-pendulum", gentle_curves=g) for g in (False, True)}
+        res = {g: track_waist(s, pipeline="waist-pendulum", **{option: g}) for g in (False, True)}
         same = np.array_equal(res[False].steps["length_m"].to_numpy(), res[True].steps["length_m"].to_numpy())
         changed = int(np.sum(~np.isclose(res[False].steps["heading_rad"], res[True].steps["heading_rad"])))
         line = f"{folder.name}: {len(res[False].steps)} steps, lengths identical {same}, headings changed {changed}"
@@ -107,18 +108,24 @@ def real() -> None:
         f"{np.median(te[True]):.2f} deg")
 
 
-def main() -> None:
+def run(users: int, first_user: int, run_real, run_sim, out: Path, lines: list[str]) -> None:
+    """The command line of W543's script and W544's: the real check, then ``run_sim(n_users, first)``; the printed
+    lines are written to ``out`` only for the rule's own users."""
     ap = argparse.ArgumentParser()
-    ap.add_argument("--users", type=int, default=40)
+    ap.add_argument("--users", type=int, default=users)
     ap.add_argument("--no-sim", action="store_true")
-    ap.add_argument("--first", type=int, default=FIRST_USER, help="first user (another only to try the script)")
+    ap.add_argument("--first", type=int, default=first_user, help="first user (another only to try the script)")
     a = ap.parse_args()
     logging.disable(logging.WARNING)
-    real()
+    run_real()
     if not a.no_sim:
-        simulated(a.users, a.first)
-    if a.users == 40 and a.first == FIRST_USER and not a.no_sim:
-        OUT.write_text("\n".join(LINES) + "\n")
+        run_sim(a.users, a.first)
+    if a.users == users and a.first == first_user and not a.no_sim:
+        out.write_text("\n".join(lines) + "\n")
+
+
+def main() -> None:
+    run(40, FIRST_USER, real, simulated, OUT, LINES)
 
 
 if __name__ == "__main__":

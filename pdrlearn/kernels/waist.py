@@ -2148,6 +2148,15 @@ GENTLE_RPS = 0.026
 #: Decision W543: the gyro heading keeps gentle curves by default (adopted by its rule: users 15580-15619, gentle
 #: curves' mean final error 86.536 -> 7.866 m, sharp turns and straight walks unchanged, a 0.5 deg/s bias +0.103 m)
 GENTLE_CURVES = True
+#: Decision W544: W543's run test reads each stride's mean rate less W105's reading at rest (offline); adopted by its
+#: rule (users 16140-16159: route C with a 2 deg/s bias 54.379 -> 14.830 m, gentle curves 7.415 -> 7.491 m)
+GENTLE_REST_BIAS = True
+
+
+def gentle_rest_rate(at_rest: tuple[float, float, float] | None, on: bool = True) -> float:
+    """Decision W544: the rate (rad/s) W543's gentle-curve test takes from each stride's MRZ: W105's reading over the
+    first standstill (``still_yaw_rate``'s ``(rate, t0, t1)``, at any level) when ``on``; 0 without one."""
+    return float(at_rest[0]) if on and at_rest is not None and np.isfinite(at_rest[0]) else 0.0
 
 
 def gentle_curve_strides(mrz: np.ndarray, integrated: np.ndarray, *, run: int = GENTLE_RUN,
@@ -2175,7 +2184,8 @@ def gentle_curve_strides(mrz: np.ndarray, integrated: np.ndarray, *, run: int = 
 
 def gyro_headings(t: np.ndarray, w_z: np.ndarray, events: np.ndarray, *, predict,
                   bias_rps: float = 0.0, heading0: float = 0.0, cum: np.ndarray | None = None,
-                  slow_turn_rps: float = 0.0, gentle_curves: bool = False) -> tuple[np.ndarray, np.ndarray]:
+                  slow_turn_rps: float = 0.0, gentle_curves: bool = False,
+                  gentle_bias_rps: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     """Per-step heading from the vertical gyroscope, integrated only over turning strides
     (seed 003 sec. 3.3).
 
@@ -2186,8 +2196,10 @@ def gyro_headings(t: np.ndarray, w_z: np.ndarray, events: np.ndarray, *, predict
     the strides of a gentle curve when ``slow_turn_rps`` > 0 (:func:`slow_turn_strides`, decision W82).
     ``gentle_curves`` (decision W543): the steps of a run of same-sign strides (:func:`gentle_curve_strides`) that
     are not integrated add their stride's mean rate times their duration (the stride mean holds no pelvic swing).
-    ``cum``: :func:`rate_integral` of ``(t, w_z - bias_rps)`` when the
-    caller integrates the same rate over many sequences (one pass over the recording, W43).
+    ``gentle_bias_rps`` (decision W544): a rate at rest (W105's reading) taken from MRZ before that run test and
+    that sum only (seed 003's integration keeps ``w_z - bias_rps``). ``cum``: :func:`rate_integral` of
+    ``(t, w_z - bias_rps)`` when the caller integrates the same rate over many sequences (one pass over the
+    recording, W43).
 
     Returns
     -------
@@ -2204,10 +2216,11 @@ def gyro_headings(t: np.ndarray, w_z: np.ndarray, events: np.ndarray, *, predict
     integrate = turning.astype(bool).copy()
     integrate[1:] |= turning[:-1].astype(bool)
     integrate[:-1] |= turning[1:].astype(bool)
-    gentle = gentle_curve_strides(mrz, integrate) if gentle_curves else np.zeros(n, dtype=bool)  # W543
+    mrz_g = mrz - gentle_bias_rps  # W544: W543's curves judged on the rate less the reading at rest
+    gentle = gentle_curve_strides(mrz_g, integrate) if gentle_curves else np.zeros(n, dtype=bool)  # W543
     integrate |= slow_turn_strides(mrz, slow_turn_rps)  # W82, off by default
     dpsi = integrate_rate(t, w, ev[:-1], ev[1:], cum=cum)
-    gentle_dpsi = np.nan_to_num(mrz) * np.diff(ev)  # W543: the stride's mean rate over the step
+    gentle_dpsi = np.nan_to_num(mrz_g) * np.diff(ev)  # W543: the stride's mean rate over the step
     heading = np.empty(n)
     h = heading0
     for k in range(n):

@@ -323,6 +323,7 @@ def get_pipeline(name: str) -> Pipeline:
       ``stairs_length`` (decision W91, off; ``"climbs"``: W108's climbs only, W156), ``stairs_climb`` (decision
       W108, off: stairs only inside a climb above the barometer's still noise, z only on stairs), ``slow_turn_rps``
       (decision W82, off), ``gentle_curves`` (decision W543: runs of same-sign strides kept),
+      ``gentle_rest_bias`` (decision W544: W543's test less W105's rate at rest, offline),
       ``pelvic_rhythm_veto`` (decision W440, off; ``"slow"``: only below 70 steps/min -- a
       contact sooner than 0.6 of the pelvic gyroscope's local step period is dropped),
       ``max_tilt_deg`` (decision W102, off: a trunk-tilt gate on the contacts), ``sit_veto`` (decision W104:

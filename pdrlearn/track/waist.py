@@ -39,7 +39,13 @@ from pdrlearn.kernels.freeze import inside_episodes
 from pdrlearn.kernels.lying_heading import long_axis_yaw_rate, stop_pieces  # decision W269
 from pdrlearn.kernels.rest_heading import rest_rotation  # decision L296
 from pdrlearn.kernels.step_events import EDGE_LOCK_VALUES  # decision W358
-from pdrlearn.kernels.waist import GENTLE_CURVES, TURN_BRIDGE_SIDE, pll_slow_band  # decisions W543, W384, W475
+from pdrlearn.kernels.waist import (  # decisions W543, W544, W384, W475
+    GENTLE_CURVES,
+    GENTLE_REST_BIAS,
+    TURN_BRIDGE_SIDE,
+    gentle_rest_rate,
+    pll_slow_band,
+)
 from pdrlearn.runtime.detector_line import OWN_DETECTOR  # decision W479 (W483: shared with the runtime)
 from pdrlearn.settings import Rule, broken, broken_line
 from pdrlearn.steps import PLLStepDetector
@@ -482,7 +488,7 @@ def _step_lengths(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, model: Ste
 
 def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: str, *,
                    resolve_signs: bool, integrate_stops: bool = False, slow_turn_rps: float = 0.0,
-                   gentle_curves: bool = False,
+                   gentle_curves: bool = False, gentle_bias_rps: float = 0.0,
                    integrate_end: bool = False, rest_bias: bool = False, lying=None,
                    rest_frame: bool = False, still_mask=None) -> pd.DataFrame:
     """Steps table with ``heading_rad`` (navigation frame, before the start rotation), ``turning``
@@ -495,8 +501,10 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
     ``(episodes, long_axis_rate, still)`` - inside a stop, each lying episode's movements add nothing and its lying
     run adds the yaw of the trunk's long axis (:func:`_stop_rotation`); None: the vertical rate throughout.
     ``rest_frame`` (decision W285, harmonic headings): each step's direction less the AHRS frame's turn over the rests
-    over a minute before it (:func:`_rest_frame_drifts`). ``still_mask``: :func:`_still_samples`' zero-argument
-    source of L296's still samples, computed once per track and shared by L296, W269 and W285 (None: computed here)."""
+    over a minute before it (:func:`_rest_frame_drifts`). ``gentle_bias_rps``: W544's rate at rest, taken from
+    W543's gentle-curve test (:func:`pdrlearn.kernels.waist.gyro_headings`). ``still_mask``: :func:`_still_samples`'
+    zero-argument source of L296's still samples, computed once per track and shared by L296, W269 and W285 (None:
+    computed here)."""
     n = len(steps)
     headings = np.full(n, np.nan)
     turning = np.zeros(n, dtype=int)
@@ -530,7 +538,7 @@ def _step_headings(steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, method: s
             if len(seq) > 1:
                 hd, tr = gyro_headings(imu, ev_all[seq], classifier=clf, bias_rps=p.gyro_bias_rps,
                                        heading0=current, cum=cum, slow_turn_rps=slow_turn_rps,
-                                       gentle_curves=gentle_curves)
+                                       gentle_curves=gentle_curves, gentle_bias_rps=gentle_bias_rps)
                 turning[seq[:-1]] = tr
                 current = float(hd[-1])
                 per_seq.append(hd)
@@ -682,6 +690,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "merge_fragments": True, "length_smoothing": "none", "relative_gate": True,
                    "stairs_length": False, "stairs_climb": False, "slow_turn_rps": 0.0, "max_tilt_deg": None,
                    "gentle_curves": GENTLE_CURVES,  # W543
+                   "gentle_rest_bias": GENTLE_REST_BIAS,  # W544: offline only
                    "sit_veto": "opposite", "pause_steps": "standing", "vault_veto": False, "contact_shift": True,
                    "gait_check": False, "pll_check": False, "weak_fill": False,  # pll_check: W186
                    "pll_slow_check": False,  # W289: uncalibrated waist-pll over 1.25 x the pendulum at a slow gait
@@ -870,7 +879,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 merge_fragments: bool | None = None, length_smoothing: str | None = None,
                 relative_gate: bool | None = None, stairs_length: bool | None = None, stairs_climb: bool | None = None,
                 slow_turn_rps: float | None = None, max_tilt_deg: float | None = None,
-                gentle_curves: bool | None = None,
+                gentle_curves: bool | None = None, gentle_rest_bias: bool | None = None,
                 sit_veto: bool | str | None = None, pause_steps: bool | str | None = None,
                 vault_veto: bool | str | None = None, contact_shift: bool | None = None,
                 gait_check: bool | None = None, speed_check: bool | None = None, pll_check: bool | None = None,
@@ -936,6 +945,9 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     gentle_curves : gyro heading: a step in a run of three strides whose mean vertical rate keeps its sign and
         reaches 1.5 deg/s, and that seed 003 leaves out, adds its stride's mean rate over the step (decision W543;
         default True, adopted by its rule; False = seed 003's classifier alone)
+    gentle_rest_bias : offline gyro heading: W543's run test and its gentle steps read each stride's mean rate less
+        W105's reading over the recording's first standstill (a gyroscope bias at rest; decision W544); no
+        standstill, ``realtime`` or live: no change
     max_tilt_deg : a contact made while the trunk is tilted more than this (deg) from the session's walking upright is
         no step, and the step before it ends its sequence (decision W102, :mod:`pdrlearn.waist.posture`; sit-to-stand,
         bending); None (default) = no tilt gate
@@ -1074,7 +1086,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "integrate_stops": integrate_stops, "turn_factor": turn_factor, "rhythm": rhythm,
              "merge_fragments": merge_fragments, "length_smoothing": length_smoothing,
              "relative_gate": relative_gate, "stairs_length": stairs_length, "stairs_climb": stairs_climb,
-             "slow_turn_rps": slow_turn_rps, "gentle_curves": gentle_curves,
+             "slow_turn_rps": slow_turn_rps, "gentle_curves": gentle_curves, "gentle_rest_bias": gentle_rest_bias,
              "max_tilt_deg": max_tilt_deg, "sit_veto": sit_veto, "pause_steps": pause_steps,
              "vault_veto": vault_veto, "contact_shift": contact_shift, "gait_check": gait_check, "pll_check": pll_check,
              "short_step_check": short_step_check,
@@ -1323,9 +1335,12 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
     still_mask = functools.cache(lambda: _still_samples(imu))  # L296's still samples: the IMU's own (W285, W354)
     lying = (_lying_heading(imu, steps, transfers, still_mask) if bool(o["lying_heading"]) and method == "gyro"
              and integrate_stops and not realtime else None)  # decision W269: offline (W222's lying reads ahead)
+    at_rest = still_yaw_rate(imu.t, imu.acc_nav, imu.gyr_nav, imu.fs, p.gyro_bias_rps,
+                             still=imu.still())  # decisions W105, W354 (and W544)
     steps = _step_headings(steps, imu, p, method, resolve_signs=resolve_signs, integrate_stops=integrate_stops,
                            slow_turn_rps=float(o["slow_turn_rps"] or 0.0),
                            gentle_curves=bool(o["gentle_curves"]),  # decision W543
+                           gentle_bias_rps=gentle_rest_rate(at_rest, bool(o["gentle_rest_bias"]) and not realtime),
                            integrate_end=bool(o["integrate_end"]) and not realtime,  # W187: offline only
                            rest_bias=bool(o["rest_bias"]), lying=lying,  # decisions L296, W269
                            rest_frame=bool(o["rest_frame"]), still_mask=still_mask)  # decision W285
@@ -1366,8 +1381,7 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
     elif not steps["has_next"].to_numpy(bool).any() and len(steps):
         warnings.append(f"the {len(steps)} contact(s) counted are isolated, none followed by another within "
                         f"{MAX_STEP_S:g} s: the chair transfers' own movement, no step and no distance (decision W312)")
-    bias_line = still_yaw_rate_message(still_yaw_rate(imu.t, imu.acc_nav, imu.gyr_nav, imu.fs, p.gyro_bias_rps,
-                                                      still=imu.still()))  # decisions W105, W354
+    bias_line = still_yaw_rate_message(at_rest)  # decisions W105, W354
     if bias_line:
         warnings.append(bias_line)
     note = relative_heading_note(start, o["initial_heading"], "wMagneticField" in session, method)

@@ -168,12 +168,14 @@ class TurnClassifier(ClassifierMixin, BaseEstimator):
 
 def gyro_headings(imu: WaistIMU, events: np.ndarray, *, classifier: TurnClassifier | None = None,
                   bias_rps: float = 0.0, heading0: float = 0.0, cum: np.ndarray | None = None,
-                  slow_turn_rps: float = 0.0, gentle_curves: bool = False) -> tuple[np.ndarray, np.ndarray]:
+                  slow_turn_rps: float = 0.0, gentle_curves: bool = False,
+                  gentle_bias_rps: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     """:func:`pdrlearn.kernels.waist.gyro_headings` (seed 003 sec. 3.3) on ``imu``'s vertical rate, the strides
     classified by ``classifier`` (default: the W7 prior)."""
     clf = classifier if classifier is not None else TurnClassifier()
     return K.gyro_headings(imu.t, imu.w_z, events, predict=clf.predict, bias_rps=bias_rps, heading0=heading0,
-                           cum=cum, slow_turn_rps=slow_turn_rps, gentle_curves=gentle_curves)
+                           cum=cum, slow_turn_rps=slow_turn_rps, gentle_curves=gentle_curves,
+                           gentle_bias_rps=gentle_bias_rps)
 
 
 def untracked_turn(imu: WaistIMU, events: np.ndarray, ends: np.ndarray, headings: np.ndarray, *,

@@ -136,6 +136,7 @@ LIVE_UNAPPLIED_OPTIONS = ("stairs_climb", "max_tilt_deg", "sit_veto", "vault_vet
                           "climb_veto",  # L330: W108's climbs read the whole recording (L314's veto, opt-in)
                           "ride_vibration",  # L402 / L403: the live tracker tells no ride's kind (no rides.csv)
                           "lying_heading",  # W269: W222's lying is labelled on the whole recording
+                          "gentle_rest_bias",  # W544: W105's first standstill may come after the step
                           # E146: W231's ride is applied live only where the PARAMS.json gives pause_ride true (E146's
                           # rule was not met for the default); L308 applies rest_bias live (E147: no longer named)
                           "pause_ride",
@@ -145,7 +146,7 @@ LIVE_UNAPPLIED_OPTIONS = ("stairs_climb", "max_tilt_deg", "sit_veto", "vault_vet
 #: decisions W271, E151: options E107's line names only where the PARAMS.json gives them, not at their offline
 #: default: ``lying_heading`` (true offline since W271) would otherwise be named on every live track, most with no
 #: lying; ``foot_rest_veto`` (true offline since W337) acts only with a foot unit, never read live
-NAMED_WHEN_GIVEN = ("lying_heading", "foot_rest_veto")
+NAMED_WHEN_GIVEN = ("lying_heading", "foot_rest_veto", "gentle_rest_bias")  # W544: as lying_heading
 
 
 def unapplied_options_line(p) -> str | None:
@@ -209,8 +210,8 @@ def live_value(option: str, given: dict | None = None):
         return False  # them offline only
     if option == "pause_ride":  # E146: applied live when the PARAMS.json gives it true, else W158's whole pause
         return bool(given["pause_ride"]) if given.get("pause_ride") is not None else False
-    if option in ("lying_heading", "foot_rest_veto"):  # W271, E151, W337: never applied live (named only where
-        return False  # given, NAMED_WHEN_GIVEN)
+    if option in ("lying_heading", "foot_rest_veto", "gentle_rest_bias"):  # W271, E151, W337, W544: never applied
+        return False  # live (named only where given, NAMED_WHEN_GIVEN)
     return OPTION_DEFAULTS[option]
 
 
