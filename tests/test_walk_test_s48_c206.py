@@ -32,3 +32,5 @@ def test_the_t25fw_note_says_where_the_flying_time_goes():
     note = lower_back_note(0.0, T25FW_M, calibrated=True, what="the timed 25-foot walk")
     assert "ten_m_walk_time_s" in note and "ten_m_walk_speed_mps" in note and "not this T25FW" in note
     assert "C206" in note
+    walkway = lower_back_note(0.0, 10.0, calibrated=True)  # a 10 m walk from standing is no flying T25FW
+    assert "C206" not in walkway and "acceleration zone" in walkway

@@ -61,10 +61,13 @@ def lower_back_note(accel: float, timed: float, calibrated: bool = False, what: 
     if calibrated:
         return (f"not given on the calibrated lower back from standing: its first contact comes after the body "
                 f"begins to move, so {what} reads fast (simulated calibrated walkers' timed 25-foot walk from "
-                f"standing: {CALIBRATED_FROM_STANDING}, decision L649); a walkway with an acceleration zone "
-                "is timed on a calibrated lower back (L649): --ten-m-walk 1,7.62,3.38 gives a flying 25-foot walk, "
-                "whose time is ten_m_walk_time_s (changes.csv compares its speed as ten_m_walk_speed_mps), not this "
-                "T25FW from standing, which only a foot unit times (decision C206)")
+                f"standing: {CALIBRATED_FROM_STANDING}, decision L649); " + (
+                    "a walkway with an acceleration zone is timed on a calibrated lower back (L649): --ten-m-walk "
+                    "1,7.62,3.38 gives a flying 25-foot walk, whose time is ten_m_walk_time_s (changes.csv compares "
+                    "its speed as ten_m_walk_speed_mps), not this T25FW from standing, which only a foot unit times "
+                    "(decision C206)" if "25-foot" in what else  # decision C206: the T25FW's own note
+                    "give the walkway an acceleration zone (--ten-m-walk ACCEL,TIMED,DECEL with ACCEL over 0: timed "
+                    "on a calibrated lower back, L649) or time it with a foot unit"))
     return (f"not given on the uncalibrated lower back: its step lengths read slow walkers' short steps long, so "
             f"{marks} passed early (simulated 0.45-1.0 m/s walkers, waist-pendulum without calibration: speed +34 to "
             "+164 %, decision L313); calibrate the wearer (pdrlearn calibrate on a walk of known length, then track "
