@@ -35,10 +35,30 @@ def run(*args: str) -> str:
     return done.stdout
 
 
+def score(steps: pd.DataFrame, turns: pd.DataFrame, corridor: float, counts: list[int]) -> str:
+    """Each of FACTORS x ``corridor`` judged on one track: its words; ``counts`` (right corridors, right ones with a
+    line, wrong ones, wrong ones without a line) counted on."""
+    got = []
+    for f in FACTORS:
+        fired = [w for w in corridor_laps(steps, turns, corridor * f)[2] if warning_code(w) in ("C207", "L518")]
+        got.append(f"x{f:.3f}: {'line' if fired else 'none'}")
+        right = f == 1.0
+        counts[0 if right else 2] += 1
+        counts[1 if right else 3] += bool(fired) if right else not fired
+    return "; ".join(got)
+
+
+def finish(lines: list[str], counts: list[int], name: str) -> None:
+    """The summary line printed and every line written to experiments/results/``name``."""
+    line = (f"right corridors with a line: {counts[1]} of {counts[0]}; wrong (5-7 %) corridors without one: "
+            f"{counts[3]} of {counts[2]}")
+    print(line)
+    (Path(__file__).resolve().parent / "results" / name).write_text("\n".join([*lines, line]) + "\n")
+
+
 def main(work: Path) -> None:
     corridor_mod.CORRIDOR_LAP_MARGIN = CANDIDATE
-    lines = [f"CORRIDOR_LAP_MARGIN {CANDIDATE}"]
-    right_fired = wrong_missed = n_right = n_wrong = 0
+    lines, counts = [f"CORRIDOR_LAP_MARGIN {CANDIDATE}"], [0, 0, 0, 0]
     for users, lap, corridor in ROUTES:
         straight = lap.split(",")[0]
         route = "stand:3, " + ", ".join([lap] * 5) + f", {straight}, stand:3"
@@ -51,59 +71,28 @@ def main(work: Path) -> None:
             s = s.get("summary", s)
             steps, turns = pd.read_csv(p / "res" / "steps.csv"), pd.read_csv(p / "res" / "turns.csv")
             laps, _, _ = corridor_laps(steps, turns, corridor)
-            got = []
-            for f in FACTORS:
-                _, _, warn = corridor_laps(steps, turns, corridor * f)
-                fired = [w for w in warn if warning_code(w) in ("C207", "L518")]
-                got.append(f"x{f:.3f}: {'line' if fired else 'none'}")
-                if f == 1.0:
-                    n_right += 1
-                    right_fired += bool(fired)
-                else:
-                    n_wrong += 1
-                    wrong_missed += not fired
             line = (f"user {u} {speed} corridor {corridor:g} m: n_laps {s['n_laps']}, walk_test_distance_m "
                     f"{s['walk_test_distance_m']:.1f}, laps tracked {' '.join(f'{m:.2f}' for m in laps['tracked_m'])}; "
-                    + "; ".join(got))
+                    + score(steps, turns, corridor, counts))
             print(line, flush=True)
             lines.append(line)
-    line = (f"right corridors with a line: {right_fired} of {n_right}; wrong (5-7 %) corridors without one: "
-            f"{wrong_missed} of {n_wrong}")
-    print(line)
-    lines.append(line)
-    out = Path(__file__).resolve().parent / "results" / "corridor_lap_length_c207.txt"
-    out.write_text("\n".join(lines) + "\n")
+    finish(lines, counts, "corridor_lap_length_c207.txt")
 
 
 def rescore(work: Path, margin: float) -> None:
     """The tracks of :func:`main` under ``work`` scored again at ``margin``; each one's own corridor length."""
-    corridor_mod.CORRIDOR_LAP_MARGIN = margin
-    lines, right_fired, wrong_missed, n_right, n_wrong = [f"CORRIDOR_LAP_MARGIN {margin}"], 0, 0, 0, 0
+    lines, counts = [f"CORRIDOR_LAP_MARGIN {margin}"], [0, 0, 0, 0]
     for users, _, corridor in ROUTES:
         for u in users:
             steps, turns = (pd.read_csv(work / f"u{u}" / "res" / f) for f in ("steps.csv", "turns.csv"))
-            got = []
-            for f in FACTORS:
-                warn = corridor_laps(steps, turns, corridor * f)[2]
-                fired = [w for w in warn if warning_code(w) in ("C207", "L518")]
-                got.append(f"x{f:.3f}: {'line' if fired else 'none'}")
-                n_right += f == 1.0
-                n_wrong += f != 1.0
-                right_fired += f == 1.0 and bool(fired)
-                wrong_missed += f != 1.0 and not fired
             corridor_mod.CORRIDOR_LAP_MARGIN = 0.0  # every track's own length, from the line at margin 0
             own = [w for w in corridor_laps(steps, turns, corridor)[2] if warning_code(w) == "C207"]
             corridor_mod.CORRIDOR_LAP_MARGIN = margin
-            line = f"user {u} corridor {corridor:g} m: {own[0].split('(')[0].split(': ')[1] if own else '-'}; " + (
-                "; ".join(got))
+            line = (f"user {u} corridor {corridor:g} m: {own[0].split('(')[0].split(': ')[1] if own else '-'}; "
+                    + score(steps, turns, corridor, counts))
             print(line, flush=True)
             lines.append(line)
-    line = (f"right corridors with a line: {right_fired} of {n_right}; wrong (5-7 %) corridors without one: "
-            f"{wrong_missed} of {n_wrong}")
-    print(line)
-    lines.append(line)
-    out = Path(__file__).resolve().parent / "results" / "corridor_lap_length_c207_rescore.txt"
-    out.write_text("\n".join(lines) + "\n")
+    finish(lines, counts, "corridor_lap_length_c207_rescore.txt")
 
 
 if __name__ == "__main__":
