@@ -601,7 +601,8 @@ SESSIONS: tuple[Column, ...] = (
                                                "the console and clinical.md say so (L679)"),
     ("t25fw_time_s", "s", "number", "timed 25-foot walk: the time from the first walking bout's start (standing) to "
                                     "where its path passes 7.62 m, straight (L387); empty on a shorter or turning "
-                                    "walk and on the lower back, calibrated or not (L313, L649)"),
+                                    "walk and on the lower back, calibrated or not (L313, L649); a flying 25-foot "
+                                    "walk (track --ten-m-walk 1,7.62,3.38) is ten_m_walk_time_s, not this (C206)"),
     ("t25fw_speed_mps", "m/s", "number", "7.62 m / t25fw_time_s (L387)"),
     ("t25fw_note", _ID, "text", "why there is no t25fw_time_s (L387); empty when there is one"),
     ("n_freezes", "count", "integer", "freeze episodes of the tracked unit (freezes.csv): freeze index over 3 with "

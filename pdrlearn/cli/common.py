@@ -596,19 +596,20 @@ def transfer_line(summary: dict) -> str | None:
     free = free_walking_text(summary)  # decision L679: an automatic walk test is no declared test
     free = f"; {free}" if free else ""
     if summary.get("ten_m_walk_time_s") is not None:  # decision L312: the middle 10 m of the first 14 m bout
-        from pdrlearn.track.walk_test import timed_stretch, trials_text, walkway_zones  # L522, L524, L531
+        from pdrlearn.track.walk_test import timed_stretch, trials_text, walk_test_name, walkway_zones  # L522-L531
 
         more = trials_text(summary)
         more = f"; {more}, ten_m_walk_trials.csv, L524" if more else ""
-        parts.append(f"10 m walk test {summary['ten_m_walk_time_s']:.2f} s, {summary['ten_m_walk_speed_mps']:.2f} m/s "
+        name = walk_test_name(summary)  # decision C206: "7.62 m walk test" for a 7.62 m stretch
+        parts.append(f"{name} test {summary['ten_m_walk_time_s']:.2f} s, {summary['ten_m_walk_speed_mps']:.2f} m/s "
                      f"({timed_stretch(*walkway_zones(summary), 'a {total} m walk')}, L312, L536{more}{free})"
                      + (f" - {summary['ten_m_walk_note']}" if summary.get("ten_m_walk_note") else ""))  # L524
     else:
-        from pdrlearn.track.walk_test import declared_refusal
+        from pdrlearn.track.walk_test import declared_refusal, walk_test_name
 
         refused = declared_refusal(summary)  # decision C194: a declared test says it was not timed
-        if refused:
-            parts.append(f"10 m walk test not timed ({refused[0]}): {refused[1]}")
+        if refused:  # decision C206: the walkway's own name
+            parts.append(f"{walk_test_name(summary)} test not timed ({refused[0]}): {refused[1]}")
     if summary.get("t25fw_time_s") is not None:  # decision L387: the first 7.62 m from standing
         parts.append(f"timed 25-foot walk {summary['t25fw_time_s']:.2f} s, {summary['t25fw_speed_mps']:.2f} m/s "
                      f"(the first 7.62 m from standing, L387{free})")

@@ -263,19 +263,26 @@ def clinical_lines(summary: dict, folder: Path) -> list[str]:
     if tug:
         lines.append(tug)
     if summary.get("ten_m_walk_speed_mps") is not None:  # L531: the walkway's timed metres and every trial (L524)
-        from pdrlearn.track.walk_test import free_walking_text, timed_stretch, trials_text, walkway_zones
+        from pdrlearn.track.walk_test import (
+            free_walking_text,
+            timed_stretch,
+            trials_text,
+            walk_test_name,
+            walkway_zones,
+        )
 
         trials = trials_text(summary)
         free = free_walking_text(summary)  # decision L679: an automatic walk test is no declared test
-        lines.append(f"- 10 m walk: {summary['ten_m_walk_speed_mps']:.2f} m/s ({_s(summary['ten_m_walk_time_s'])} "
+        name = walk_test_name(summary)  # decision C206: the walkway's own timed metres
+        lines.append(f"- {name}: {summary['ten_m_walk_speed_mps']:.2f} m/s ({_s(summary['ten_m_walk_time_s'])} "
                      f"over {timed_stretch(*walkway_zones(summary))}"  # decision L536
                      f"{f'; {trials}' if trials else ''}; {unit}{f'; {free}' if free else ''})")
     else:
-        from pdrlearn.track.walk_test import declared_refusal
+        from pdrlearn.track.walk_test import declared_refusal, walk_test_name
 
         refused = declared_refusal(summary)  # decision C194: a declared test not timed says so, before the speed
-        if refused:
-            lines.append(f"- 10 m walk: not timed ({refused[0]}; {unit}): {refused[1]}")
+        if refused:  # decision C206: the walkway's own name
+            lines.append(f"- {walk_test_name(summary)}: not timed ({refused[0]}; {unit}): {refused[1]}")
     speed = gait_speed_line(summary, unit)
     if speed:
         lines.append(speed)

@@ -36,6 +36,14 @@ CORRIDOR_SPREAD_K = {"foot": 2.0, "lower back": 0.0}
 #: warns (uneven legs, e.g. a 5-10-5 shuttle, or a wrong --corridor); halfway between a turn placed a stride off on a
 #: 10 m corridor (~0.14) and the 0.5 at which L384 changes the lap's count
 LAP_AGREEMENT_TOL = 0.25
+#: decision C207 (not adopted, None = off): a foot track's own corridor length (its median lap less C181's cone-turn
+#: arc) off --corridor by more than this fraction would get one line. The candidates 0.03 (about three times the foot's
+#: worst 6MWT distance error, 0.93 %, L385) and 0.04 failed their rule on fresh users 16160-16179: on laps stepped round
+#: a 0.5 m cone arc C181's arc reads long and the right 30 m corridors measured 28.8-30.0 m (3 and 2 of 20 right
+#: corridors got the line)
+CORRIDOR_LAP_MARGIN: float | None = None
+#: decision C207: at least this many laps ending at cone turns give the track's own corridor length
+CORRIDOR_LAP_MIN_LAPS = 2
 #: decision L383: the per-minute distances' period (s; the 6MWT's minutes, from the first step)
 MINUTE_S = 60.0
 #: decision L383: laps.csv's columns
@@ -160,6 +168,10 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
     line = corridor_agreement(tracked, corridor_m, lower_back=_is_lower_back(st))
     if line:
         warnings.append(line)
+    elif CORRIDOR_LAP_MARGIN is not None and not _is_lower_back(st):  # decision C207 (not adopted: off)
+        line = own_corridor_line(tracked, cone_turn_m(cone, t, d, lap_t0, lap_end), corridor_m, CORRIDOR_LAP_MARGIN)
+        if line:
+            warnings.append(line)
     # decision L384: a stretch ending at a cone turn counts round(tracked / median) corridor lengths; 0 joins the next
     stretches: list[tuple[float, float, float, int]] = []  # (start, end, tracked, corridor laps; -1 = the final one)
     start, acc = lap_t0, 0.0
@@ -375,6 +387,25 @@ def corridor_agreement(tracked: np.ndarray, corridor_m: float, *, lower_back: bo
                  f"--corridor {corridor_m:g} m (more than a {unit} track's {tol:.0%} scale error): capped at one "
                  "corridor length; is the corridor length right, or were the cone turns missed? (decision L518)",
                  "L518")
+
+
+def own_corridor_line(tracked: np.ndarray, arc_m: float, corridor_m: float, margin: float) -> str | None:
+    """Decision C207 (the candidate, not adopted: :data:`CORRIDOR_LAP_MARGIN` is None): one line when a foot track's
+    own corridor length - the median of ``tracked`` (the stretches between cone turns, the last one the final stretch,
+    left out) less ``arc_m`` (the metres walked round a cone, :func:`cone_turn_m`; the ATS rule counts the corridor,
+    not the arc) - differs from ``corridor_m`` by more than ``margin``; None otherwise or with fewer than
+    :data:`CORRIDOR_LAP_MIN_LAPS` laps."""
+    laps = np.asarray(tracked[:-1], float)
+    if len(laps) < CORRIDOR_LAP_MIN_LAPS or not np.median(laps) > 0:
+        return None
+    own = float(np.median(laps)) - float(arc_m)
+    if abs(own / corridor_m - 1.0) <= margin:
+        return None
+    return coded(f"corridor walk test: the foot track's laps measure the corridor {own:.1f} m (median lap "
+                 f"{np.median(laps):.1f} m less {arc_m:.1f} m round the cone) against --corridor {corridor_m:g} m "
+                 f"({own / corridor_m - 1.0:+.1%}, more than the {margin:.0%} a foot track's laps "
+                 f"allow): each lap still counts {corridor_m:g} m, so walk_test_distance_m is off by about as much; "
+                 "is the corridor length right? (decision C207)", "C207")
 
 
 def _short_last_lap(stretches: list[tuple[float, float, float, int]], ref: float) -> int | None:

@@ -61,8 +61,13 @@ def lower_back_note(accel: float, timed: float, calibrated: bool = False, what: 
     if calibrated:
         return (f"not given on the calibrated lower back from standing: its first contact comes after the body "
                 f"begins to move, so {what} reads fast (simulated calibrated walkers' timed 25-foot walk from "
-                f"standing: {CALIBRATED_FROM_STANDING}, decision L649); give the walkway an acceleration zone (e.g. "
-                "--ten-m-walk 1,7.62,3.38: timed on a calibrated lower back, L649) or time it with a foot unit")
+                f"standing: {CALIBRATED_FROM_STANDING}, decision L649); " + (
+                    "a walkway with an acceleration zone is timed on a calibrated lower back (L649): --ten-m-walk "
+                    "1,7.62,3.38 gives a flying 25-foot walk, whose time is ten_m_walk_time_s (changes.csv compares "
+                    "its speed as ten_m_walk_speed_mps), not this T25FW from standing, which only a foot unit times "
+                    "(decision C206)" if "25-foot" in what else  # decision C206: the T25FW's own note
+                    "give the walkway an acceleration zone (--ten-m-walk ACCEL,TIMED,DECEL with ACCEL over 0: timed "
+                    "on a calibrated lower back, L649) or time it with a foot unit"))
     return (f"not given on the uncalibrated lower back: its step lengths read slow walkers' short steps long, so "
             f"{marks} passed early (simulated 0.45-1.0 m/s walkers, waist-pendulum without calibration: speed +34 to "
             "+164 %, decision L313); calibrate the wearer (pdrlearn calibrate on a walk of known length, then track "
@@ -107,6 +112,15 @@ def timed_stretch(accel: float, timed: float, decel: float, whole: str = "a {tot
     if accel == 0:
         return f"the first {timed:g} m of {of}, from standing" + (left if decel > 0 else "")
     return f"the {timed:g} m after the first {accel:g} m of {of}{left}"
+
+
+def walk_test_name(summary: dict) -> str:
+    """Decision C206: the name of a summary's ``ten_m_walk_*`` test: "10 m walk" on L312's walkway and on a 10 m one
+    (``--ten-m-walk 2,6,2``, the clinic's 10 m walk test), else its own timed metres ("7.62 m walk" for trial T4's
+    flying 25-foot walk, ``--ten-m-walk 1,7.62,3.38``: no 10 m was walked or timed)."""
+    accel, timed, decel = walkway_zones(summary)
+    return "10 m walk" if math.isclose(timed, TIMED_M) or math.isclose(accel + timed + decel, 10.0) else (
+        f"{timed:g} m walk")
 
 
 def trials_text(summary: dict) -> str:
