@@ -34,7 +34,7 @@ FAST_EVENT_CUTOFF_HZ = 20.0
 #: steps decision 93: the rhythm's re-take only at a foot rate (Hz) of at least this (0: at every rate): at 50 Hz its
 #: 20 Hz cutoff is capped at 0.45 x the rate only and hardly smooths (trial R2-F1); steps 91 was measured at 100 Hz
 SHORT_MIN_RATE_HZ = 0.0
-#: steps decision 93: a swing whose |acc| low-passed at 3 Hz spans more than this (m/s^2; AccelStepDetector's
+#: steps decision 94: a swing whose |acc| low-passed at 3 Hz spans more than this (m/s^2; AccelStepDetector's
 #: ``amplitude``) keeps decision 3's 8 Hz impact (0: none): development race walkers 16060-16065 (0.9-1.05 m steps
 #: in 0.27-0.33 s, trial R2-F2) spanned 80-147, children 16070-16073 22-52, and their IC-to-IC strides overlap
 #: (0.53-0.69 s against 0.61-0.86 s), so the stride time cannot part them
@@ -183,7 +183,7 @@ def short_stride(period_s: float, short_period_s: float = SHORT_PERIOD_S, amp: f
                  max_amp: float = SHORT_MAX_AMP) -> bool:
     """Steps decision 87: True when a stride whose 8 Hz impact comes ``period_s`` (s) after the previous stride's IC
     takes its impact on the rhythm's cutoff (under ``short_period_s``; NaN, no previous contact: False); steps
-    decision 93: not when its swing's ``amp`` (m/s^2) is over ``max_amp`` > 0 (a race walker's long, quick swing)."""
+    decision 94: not when its swing's ``amp`` (m/s^2) is over ``max_amp`` > 0 (a race walker's long, quick swing)."""
     return bool(period_s < short_period_s) and not (max_amp > 0 and amp > max_amp)
 
 
@@ -276,7 +276,7 @@ def impact_time(t: np.ndarray, acc: np.ndarray, *, rest: float = GRAVITY, peak_f
     if fs < min_rate_hz:  # steps decision 93: only at the rate the re-take was measured at
         short_period_s = 0.0
     f = rhythm_cutoff_hz(ic - prev_ic_s, cutoff_hz, short_period_s, fast_period_s, fast_cutoff_hz)
-    if f != cutoff_hz and max_amp > 0:  # steps decision 93: a race walker's swing keeps the 8 Hz impact
+    if f != cutoff_hz and max_amp > 0:  # steps decision 94: a race walker's swing keeps the 8 Hz impact
         f = f if short_stride(0.0, 1.0, swing_span(m, fs), max_amp) else cutoff_hz
     if f != cutoff_hz:  # steps decision 88 (no peak at the rhythm's cutoff: the 8 Hz one stays, as offline)
         ic2 = impact_peak(t, m, rest, peak_frac, f, SUBSAMPLE, prominence, cluster_s)[0]

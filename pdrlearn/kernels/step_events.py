@@ -90,7 +90,7 @@ class BurstParams:
     event_delay_s: float = 0.0
     pre_n: int = 0
     cluster_s: float = 0.0  # steps decision 91: at the rhythm's cutoff the head of a split impact (contact.split_head)
-    max_amp: float = 0.0  # steps decision 93: a swing spanning more than this keeps the 8 Hz impact (0: none)
+    max_amp: float = 0.0  # steps decision 94: a swing spanning more than this keeps the 8 Hz impact (0: none)
 
 
 @dataclass
@@ -721,7 +721,7 @@ class AccelProcessor:
             fast_period_s=det.fast_period_s,
             fast_cutoff_hz=det.fast_event_cutoff_hz, event_cutoff_hz=det.event_cutoff_hz, event_delay_s=self.delay,
             pre_n=int(round(PRE_SWING_S * fs)), cluster_s=det.impact_cluster_s,  # steps decision 91
-            max_amp=det.short_max_amp)  # steps decision 93
+            max_amp=det.short_max_amp)  # steps decision 94
         self.state.need_n = self.params.max_still_n if det.quiet_frac > 0 else self.params.min_still_n
 
     def process(self, t: np.ndarray, v: np.ndarray) -> list:
