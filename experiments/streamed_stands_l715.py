@@ -1,5 +1,5 @@
 """Decision L715's measurement (rule written before it, docs/decisions/localization.md): the streamed rhythm's series
-cut at a gap in the foot's own samples (new: ``foot_rhythm.STREAMED_FOOT_GAP_CUT`` True; measured, not adopted)
+cut at a gap in the foot's own samples (new: ``StanceSegmenter(foot_gap_cut=True)``; measured, not adopted)
 against L698's cut at any hole in the series (the default) and against no cut (L696 + L697 alone), on limping walks
 with stands (review R1 F1's route).
 ``OMP_NUM_THREADS=1 PYTHONPATH=. python experiments/streamed_stands_l715.py [a b c d]``: (a) the stand route, fresh
@@ -41,17 +41,24 @@ def _nocut(t, w, since=None):
     return _PERIOD(t, w, -np.inf)
 
 
+_INIT = SK.StanceSegmenter.__init__
+
+
 @contextlib.contextmanager
 def reading(name: str):
-    """``new``: L715's candidate (``STREAMED_FOOT_GAP_CUT``); ``l698``: the default (the series cut at any hole);
-    ``nocut``: no cut at all."""
-    keep = FR.STREAMED_FOOT_GAP_CUT
-    FR.STREAMED_FOOT_GAP_CUT = name == "new"
+    """``new``: L715's candidate (``StanceSegmenter(foot_gap_cut=True)`` in every segmenter made meanwhile);
+    ``l698``: the default (the series cut at any hole); ``nocut``: no cut at all."""
+
+    def init(self, **kw):
+        kw.setdefault("foot_gap_cut", name == "new")
+        _INIT(self, **kw)
+
+    SK.StanceSegmenter.__init__ = init
     FR.trailing_period = _nocut if name == "nocut" else _PERIOD
     try:
         yield
     finally:
-        FR.trailing_period, FR.STREAMED_FOOT_GAP_CUT = _PERIOD, keep
+        FR.trailing_period, SK.StanceSegmenter.__init__ = _PERIOD, _INIT
 
 
 class _Logged(SK.StanceSegmenter):
@@ -63,7 +70,7 @@ class _Logged(SK.StanceSegmenter):
 
     def _rhythm_rest(self, min_run: float) -> float:
         t, m = self._rhythm.arrays()
-        since = self.foot_gap_end if FR.STREAMED_FOOT_GAP_CUT else None
+        since = self.foot_gap_end if self.foot_gap_cut else None
         self.log.append((self.stance_start, FR.trailing_period(t, m, since) if len(t) >= 3 else float("nan")))
         return super()._rhythm_rest(min_run)
 
@@ -134,8 +141,8 @@ def main(parts: str) -> int:
             own = FR.foot_period(g.values[before], 1 / float(np.median(np.diff(g.t))))
             logs = {}
             for name in ("new", "l698"):
-                seg = _Logged()
                 with reading(name):
+                    seg = _Logged()
                     seg.update(g.t, g.values)
                 logs[name] = [(s, p) for s, p in seg.log if GAP_AT + GAP_S <= s <= NEXT_STAND]
             same = len(logs["new"]) == len(logs["l698"]) and all(

@@ -12,12 +12,12 @@ from pathlib import Path
 
 import numpy as np
 
-from experiments.waist import turn_error_deg
-from experiments.waist_gentle_curves_s48_w543 import ROUTES, real, run
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
 from pdrlearn.track.evaluate import evaluate_track
 from pdrlearn.track.waist import track_waist
+from waist import turn_error_deg
+from waist_gentle_curves_s48_w543 import ROUTES, real, run
 
 FIRST_USER = 16140
 BIASES_DEG = (0.0, 0.5, 1.0, 2.0, 3.0)

@@ -13,12 +13,12 @@ from pathlib import Path
 
 import numpy as np
 
-from experiments.waist import turn_error_deg
 from pdrlearn.io import read_session
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
 from pdrlearn.track.evaluate import evaluate_track, heading_change
 from pdrlearn.track.waist import track_waist
+from waist import turn_error_deg
 
 ROUTES = {"G1": "straight:10, curve:90:15, straight:10, curve:90:25, straight:10",
           "G2": "straight:10, curve:-60:20, straight:10, curve:-90:35, straight:10",

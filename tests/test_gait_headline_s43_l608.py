@@ -63,4 +63,6 @@ def test_the_real_stairs_down_pair_takes_all_steps_and_names_the_level_counts_l6
     assert w["headline_steps"] == "all" and (w["n_steps_left"], w["n_steps_right"]) == (18, 19)
     assert (s["by_kind"]["level"]["n_steps_left"], s["by_kind"]["level"]["n_steps_right"]) == (1, 1)
     assert "steps left/right 18/19 (all steps: 1/1 level straight steps, under 3 a side; L538, L608)" in printed
-    assert w["n_support_cycles"] == 36 and w["double_support_pct"] == pytest.approx(16.92, abs=0.01)
+    # 16.92 until session 48: steps 91 re-dates the short strides' contacts of the descent (checked: the test passes
+    # at the i2 merge's first parent and fails at the merge); no contact reference on stairs (rest-based segmentation)
+    assert w["n_support_cycles"] == 36 and w["double_support_pct"] == pytest.approx(16.66, abs=0.01)

@@ -1,5 +1,5 @@
 """Decision L715 (session 48, review R1 F1; measured, not adopted - its rule's distance clause failed): the candidate
-``foot_rhythm.STREAMED_FOOT_GAP_CUT`` cuts the streamed rhythm's series at a gap in the foot's own samples, not at the
+``StanceSegmenter(foot_gap_cut=True)`` cuts the streamed rhythm's series at a gap in the foot's own samples, not at the
 hole a stand leaves in it (L696 keeps a stand inside a walk out of the means; L698, the default, reads that hole as a
 foot gap, so after every stand no period is read and a limping walk's lull fragments come back)."""
 
@@ -32,10 +32,9 @@ def walks(tmp_path_factory):
 
 def test_a_stand_inside_a_walk_is_no_foot_gap_l715(walks, monkeypatch):
     g, truth = walks["stands"]
-    assert FR.STREAMED_FOOT_GAP_CUT is False  # not adopted: L698's series cut is the default (R1 F1's split, printed)
+    assert SK.StanceSegmenter().foot_gap_cut is False  # not adopted: L698's series cut is the default (R1 F1's split)
     assert len(SK.stance_strides(g.t, g.values)) == 17
-    monkeypatch.setattr(FR, "STREAMED_FOOT_GAP_CUT", True)
-    seg, holes = SK.StanceSegmenter(), []
+    seg, holes = SK.StanceSegmenter(foot_gap_cut=True), []
     rest = seg._rhythm_rest
 
     def logged(min_run: float) -> float:

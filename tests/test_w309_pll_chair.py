@@ -59,7 +59,11 @@ def test_without_w309_waist_pll_read_it_as_a_tug(readme_sts5, tmp_path, capsys):
         summary, _ = _track(readme_sts5, tmp_path / "off", capsys)
     assert (summary["n_sit_to_stand"], summary["n_stand_to_sit"]) == (1, 1)
     # its one rise and one sit had a TUG time until W340; with no step between them they are a chair stand
-    assert summary["tug_time_s"] is None and "a chair stand, not a TUG" in summary["tug_time_note"]
+    # (session 48: the note now gives W490's chair-to-chair refusal instead, no TUG time either; W555 off does not
+    # bring the old note back - the likely cause is W547: `--units waist` no longer lets the left-out foot's rest veto
+    # drop the emulated pre-W309 contacts between the rise and the sit)
+    note = summary["tug_time_note"]
+    assert summary["tug_time_s"] is None and ("a chair stand, not a TUG" in note or "do not look like a TUG" in note)
 
 
 def test_a_tug_keeps_its_walking_upright_and_time(tmp_path, capsys):

@@ -61,4 +61,4 @@ def test_realtime_and_live_do_not_apply_it(biased):
     assert unapplied_options_line(p) is None or "gentle_rest_bias" not in unapplied_options_line(p)
     p.options = {"gentle_rest_bias": True}
     assert "gentle_rest_bias=true" in unapplied_options_line(p)  # E107: named where the PARAMS.json gives it
-    assert OPTION_DEFAULTS["gentle_rest_bias"] is K.GENTLE_REST_BIAS
+    assert OPTION_DEFAULTS["gentle_rest_bias"] is K.GENTLE_DEFAULTS["gentle_rest_bias"] is True

@@ -97,11 +97,10 @@ class TrailingSeries:
         self._a += int(np.searchsorted(self._t[self._a:self._b], cut, side="right"))
 
 
-#: decision L715 (session 48, review R1 F1; measured, NOT adopted: its rule's distance clause failed, 0.57 % mean
-#: |distance error| for L698's 0.40 %): the streamed segmenter cuts the rhythm's series at a gap in the foot's OWN
-#: samples (``StanceSegmenter.foot_gap_end``) instead of at any hole in the series (L698), which also cuts at the hole a
-#: stand leaves (L696) and brings a limping walk's lull fragments back after every stand; True = the candidate
-STREAMED_FOOT_GAP_CUT = False
+# decision L715 (session 48, review R1 F1; measured, NOT adopted: its rule's distance clause failed, 0.57 % mean
+# |distance error| for L698's 0.40 %): ``StanceSegmenter(foot_gap_cut=True)`` cuts the rhythm's series at a gap in the
+# foot's OWN samples (``StanceSegmenter.foot_gap_end``) instead of at any hole in the series (L698), which also cuts at
+# the hole a stand leaves (L696) and brings a limping walk's lull fragments back after every stand
 
 
 def trailing_period(t: np.ndarray, w: np.ndarray, since: float | None = None) -> float:

@@ -172,8 +172,9 @@ class StanceSegmenter:
                  stance_mean_min_s: float = STANCE_L27_DEFAULTS["stance_mean_min_s"],
                  stance_gap_swing_frac: float = STANCE_L27_DEFAULTS["stance_gap_swing_frac"],
                  stance_gap_max_s: float = STANCE_L27_DEFAULTS["stance_gap_max_s"],
-                 stance_rhythm_frac: float = FR.STREAMED_RHYTHM_FRAC):
+                 stance_rhythm_frac: float = FR.STREAMED_RHYTHM_FRAC, foot_gap_cut: bool = False):
         self.thr = float(stance_gyro_rad_s)
+        self.foot_gap_cut = bool(foot_gap_cut)  # decision L715 (not adopted): the rhythm cut at the foot's own gap
         self.min_stance_s = float(min_stance_s)
         self.half = float(stance_half_s)
         self.min_step_s, self.max_step_s = float(min_step_s), float(max_step_s)
@@ -368,7 +369,7 @@ class StanceSegmenter:
         t, m = self._rhythm.arrays()
         if len(t) < 3:
             return 0.0
-        since = self.foot_gap_end if FR.STREAMED_FOOT_GAP_CUT else None  # L715's candidate: the foot's own gap
+        since = self.foot_gap_end if self.foot_gap_cut else None  # L715's candidate: the foot's own gap
         period = FR.trailing_period(t, m, since)
         return self.rhythm_frac * period if FR.min_rest_s(period, min_run) > 0 else 0.0  # where L597 acts
 

@@ -2147,10 +2147,10 @@ GENTLE_RUN = 3
 GENTLE_RPS = 0.026
 #: Decision W543: the gyro heading keeps gentle curves by default (adopted by its rule: users 15580-15619, gentle
 #: curves' mean final error 86.536 -> 7.866 m, sharp turns and straight walks unchanged, a 0.5 deg/s bias +0.103 m)
-GENTLE_CURVES = True
 #: Decision W544: W543's run test reads each stride's mean rate less W105's reading at rest (offline); adopted by its
-#: rule (users 16140-16159: route C with a 2 deg/s bias 54.379 -> 14.830 m, gentle curves 7.415 -> 7.491 m)
-GENTLE_REST_BIAS = True
+#: rule (users 16140-16159: route C with a 2 deg/s bias 54.379 -> 14.830 m, gentle curves 7.415 -> 7.491 m).
+#: The options' defaults (W413: an adopted rule is the code; its off switch a keyword option, not a module boolean)
+GENTLE_DEFAULTS = {"gentle_curves": True, "gentle_rest_bias": True}
 
 
 def gentle_rest_rate(at_rest: tuple[float, float, float] | None, on: bool = True) -> float:

@@ -655,7 +655,8 @@ class WaistStream(OwnGuard, FixInput):
             hd, tr = K.gyro_headings(win.t, win.w_z, np.asarray(ev), predict=self._clf.predict,
                                      bias_rps=p.gyro_bias_rps, heading0=0.0, cum=self._bc[i0:i1],
                                      slow_turn_rps=float(o["slow_turn_rps"] or 0.0),
-                                     gentle_curves=bool(o.get("gentle_curves", K.GENTLE_CURVES)))  # W543
+                                     gentle_curves=bool(o.get("gentle_curves",  # W543
+                                                              K.GENTLE_DEFAULTS["gentle_curves"])))
             j = k - lw
             turning = int(tr[j])
             if k == s:

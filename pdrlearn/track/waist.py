@@ -40,8 +40,7 @@ from pdrlearn.kernels.lying_heading import long_axis_yaw_rate, stop_pieces  # de
 from pdrlearn.kernels.rest_heading import rest_rotation  # decision L296
 from pdrlearn.kernels.step_events import EDGE_LOCK_VALUES  # decision W358
 from pdrlearn.kernels.waist import (  # decisions W543, W544, W384, W475
-    GENTLE_CURVES,
-    GENTLE_REST_BIAS,
+    GENTLE_DEFAULTS,
     TURN_BRIDGE_SIDE,
     gentle_rest_rate,
     pll_slow_band,
@@ -689,8 +688,8 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "resolve_signs": True, "integrate_stops": True, "turn_factor": True, "rhythm": True,
                    "merge_fragments": True, "length_smoothing": "none", "relative_gate": True,
                    "stairs_length": False, "stairs_climb": False, "slow_turn_rps": 0.0, "max_tilt_deg": None,
-                   "gentle_curves": GENTLE_CURVES,  # W543
-                   "gentle_rest_bias": GENTLE_REST_BIAS,  # W544: offline only
+                   "gentle_curves": GENTLE_DEFAULTS["gentle_curves"],  # W543
+                   "gentle_rest_bias": GENTLE_DEFAULTS["gentle_rest_bias"],  # W544: offline only
                    "sit_veto": "opposite", "pause_steps": "standing", "vault_veto": False, "contact_shift": True,
                    "gait_check": False, "pll_check": False, "weak_fill": False,  # pll_check: W186
                    "pll_slow_check": False,  # W289: uncalibrated waist-pll over 1.25 x the pendulum at a slow gait
