@@ -1,6 +1,7 @@
 """Decision C207 (session 48, trial T4 finding F5): whether a foot track's own corridor length (its median lap less
-the cone turn's arc) tells a --corridor 5-7 % wrong from a right one, at CORRIDOR_LAP_MARGIN (3 %). Fresh users
-16160-16179, the rule in docs/decisions/cohort.md (C207), written before this ran. A check of a margin, no tuning.
+the cone turn's arc) tells a --corridor 5-7 % wrong from a right one, at ``corridor_laps(lap_margin=0.03)``
+(3 %). Fresh users 16160-16179, the rule in docs/decisions/cohort.md (C207), written before this ran. A check
+of a margin, no tuning.
 
 Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/corridor_lap_length_c207.py [WORKDIR]
 Output: experiments/results/corridor_lap_length_c207.txt (the printed lines). The rule's fallback margin (4 %) on the
@@ -15,7 +16,6 @@ from pathlib import Path
 
 import pandas as pd
 
-import pdrlearn.track.corridor as corridor_mod
 from pdrlearn.track.corridor import corridor_laps
 from pdrlearn.warning_lines import warning_code
 
@@ -23,7 +23,7 @@ PDR = [sys.executable, "-m", "pdrlearn"]
 #: (users, one lap's straight and turn, the right corridor, m)
 ROUTES = [(range(16160, 16170), "straight:28, turn:180", 28.0),
           (range(16170, 16180), "straight:30, curve:180:0.5", 30.0)]
-#: decision C207's candidate margin (the module's CORRIDOR_LAP_MARGIN is None: not adopted)
+#: decision C207's candidate margin (``corridor_laps``' ``lap_margin`` is None by default: not adopted)
 CANDIDATE = 0.03
 FACTORS = (1.0, 1.05, 1.07, 1 / 1.05, 1 / 1.07)
 
@@ -35,12 +35,13 @@ def run(*args: str) -> str:
     return done.stdout
 
 
-def score(steps: pd.DataFrame, turns: pd.DataFrame, corridor: float, counts: list[int]) -> str:
+def score(steps: pd.DataFrame, turns: pd.DataFrame, corridor: float, counts: list[int], margin: float) -> str:
     """Each of FACTORS x ``corridor`` judged on one track: its words; ``counts`` (right corridors, right ones with a
     line, wrong ones, wrong ones without a line) counted on."""
     got = []
     for f in FACTORS:
-        fired = [w for w in corridor_laps(steps, turns, corridor * f)[2] if warning_code(w) in ("C207", "L518")]
+        fired = [w for w in corridor_laps(steps, turns, corridor * f, lap_margin=margin)[2]
+                 if warning_code(w) in ("C207", "L518")]
         got.append(f"x{f:.3f}: {'line' if fired else 'none'}")
         right = f == 1.0
         counts[0 if right else 2] += 1
@@ -57,8 +58,7 @@ def finish(lines: list[str], counts: list[int], name: str) -> None:
 
 
 def main(work: Path) -> None:
-    corridor_mod.CORRIDOR_LAP_MARGIN = CANDIDATE
-    lines, counts = [f"CORRIDOR_LAP_MARGIN {CANDIDATE}"], [0, 0, 0, 0]
+    lines, counts = [f"CORRIDOR_LAP_MARGIN {CANDIDATE}"], [0, 0, 0, 0]  # the first run's name for lap_margin
     for users, lap, corridor in ROUTES:
         straight = lap.split(",")[0]
         route = "stand:3, " + ", ".join([lap] * 5) + f", {straight}, stand:3"
@@ -73,7 +73,7 @@ def main(work: Path) -> None:
             laps, _, _ = corridor_laps(steps, turns, corridor)
             line = (f"user {u} {speed} corridor {corridor:g} m: n_laps {s['n_laps']}, walk_test_distance_m "
                     f"{s['walk_test_distance_m']:.1f}, laps tracked {' '.join(f'{m:.2f}' for m in laps['tracked_m'])}; "
-                    + score(steps, turns, corridor, counts))
+                    + score(steps, turns, corridor, counts, CANDIDATE))
             print(line, flush=True)
             lines.append(line)
     finish(lines, counts, "corridor_lap_length_c207.txt")
@@ -85,11 +85,10 @@ def rescore(work: Path, margin: float) -> None:
     for users, _, corridor in ROUTES:
         for u in users:
             steps, turns = (pd.read_csv(work / f"u{u}" / "res" / f) for f in ("steps.csv", "turns.csv"))
-            corridor_mod.CORRIDOR_LAP_MARGIN = 0.0  # every track's own length, from the line at margin 0
-            own = [w for w in corridor_laps(steps, turns, corridor)[2] if warning_code(w) == "C207"]
-            corridor_mod.CORRIDOR_LAP_MARGIN = margin
+            own = [w for w in corridor_laps(steps, turns, corridor, lap_margin=0.0)[2]  # every track's own length
+                   if warning_code(w) == "C207"]
             line = (f"user {u} corridor {corridor:g} m: {own[0].split('(')[0].split(': ')[1] if own else '-'}; "
-                    + score(steps, turns, corridor, counts))
+                    + score(steps, turns, corridor, counts, margin))
             print(line, flush=True)
             lines.append(line)
     finish(lines, counts, "corridor_lap_length_c207_rescore.txt")

@@ -36,12 +36,11 @@ CORRIDOR_SPREAD_K = {"foot": 2.0, "lower back": 0.0}
 #: warns (uneven legs, e.g. a 5-10-5 shuttle, or a wrong --corridor); halfway between a turn placed a stride off on a
 #: 10 m corridor (~0.14) and the 0.5 at which L384 changes the lap's count
 LAP_AGREEMENT_TOL = 0.25
-#: decision C207 (not adopted, None = off): a foot track's own corridor length (its median lap less C181's cone-turn
-#: arc) off --corridor by more than this fraction would get one line. The candidates 0.03 (about three times the foot's
-#: worst 6MWT distance error, 0.93 %, L385) and 0.04 failed their rule on fresh users 16160-16179: on laps stepped round
-#: a 0.5 m cone arc C181's arc reads long and the right 30 m corridors measured 28.8-30.0 m (3 and 2 of 20 right
-#: corridors got the line)
-CORRIDOR_LAP_MARGIN: float | None = None
+# decision C207 (not adopted; W413: a keyword, off by default): ``corridor_laps(..., lap_margin=F)`` gives one line when
+# a foot track's own corridor length (its median lap less C181's cone-turn arc) is off --corridor by more than F. The
+# candidates 0.03 (about three times the foot's worst 6MWT distance error, 0.93 %, L385) and 0.04 failed their rule on
+# fresh users 16160-16179: on laps stepped round a 0.5 m cone arc C181's arc reads long and the right 30 m corridors
+# measured 28.8-30.0 m (3 and 2 of 20 right corridors got the line)
 #: decision C207: at least this many laps ending at cone turns give the track's own corridor length
 CORRIDOR_LAP_MIN_LAPS = 2
 #: decision L383: the per-minute distances' period (s; the 6MWT's minutes, from the first step)
@@ -110,7 +109,8 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
                   bouts: pd.DataFrame | None = None,
                   span: tuple[float, float] | None = None,
                   duration_s: float | None = None, *, start: float | str = "auto",
-                  data_end: float | None = None) -> tuple[pd.DataFrame, dict, list[str]]:
+                  data_end: float | None = None, lap_margin: float | None = None
+                  ) -> tuple[pd.DataFrame, dict, list[str]]:
     """Decisions L383, L384: ``(laps, summary, warnings)`` of a tracked step table walked up and down a corridor of
     ``corridor_m`` metres: laps.csv's rows (:data:`LAP_COLUMNS`), the summary's :data:`KEYS` and the warning lines
     (missed or extra turns, a corridor length far from the tracked laps). ``span``: the test's start and end (s;
@@ -168,8 +168,8 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
     line = corridor_agreement(tracked, corridor_m, lower_back=_is_lower_back(st))
     if line:
         warnings.append(line)
-    elif CORRIDOR_LAP_MARGIN is not None and not _is_lower_back(st):  # decision C207 (not adopted: off)
-        line = own_corridor_line(tracked, cone_turn_m(cone, t, d, lap_t0, lap_end), corridor_m, CORRIDOR_LAP_MARGIN)
+    elif lap_margin is not None and not _is_lower_back(st):  # decision C207 (not adopted: off by default)
+        line = own_corridor_line(tracked, cone_turn_m(cone, t, d, lap_t0, lap_end), corridor_m, lap_margin)
         if line:
             warnings.append(line)
     # decision L384: a stretch ending at a cone turn counts round(tracked / median) corridor lengths; 0 joins the next
@@ -390,11 +390,11 @@ def corridor_agreement(tracked: np.ndarray, corridor_m: float, *, lower_back: bo
 
 
 def own_corridor_line(tracked: np.ndarray, arc_m: float, corridor_m: float, margin: float) -> str | None:
-    """Decision C207 (the candidate, not adopted: :data:`CORRIDOR_LAP_MARGIN` is None): one line when a foot track's
-    own corridor length - the median of ``tracked`` (the stretches between cone turns, the last one the final stretch,
-    left out) less ``arc_m`` (the metres walked round a cone, :func:`cone_turn_m`; the ATS rule counts the corridor,
-    not the arc) - differs from ``corridor_m`` by more than ``margin``; None otherwise or with fewer than
-    :data:`CORRIDOR_LAP_MIN_LAPS` laps."""
+    """Decision C207 (the candidate, not adopted: :func:`corridor_laps`' ``lap_margin`` is None by default): one line
+    when a foot track's own corridor length - the median of ``tracked`` (the stretches between cone turns, the last one
+    the final stretch, left out) less ``arc_m`` (the metres walked round a cone, :func:`cone_turn_m`; the ATS rule
+    counts the corridor, not the arc) - differs from ``corridor_m`` by more than ``margin``; None otherwise or with
+    fewer than :data:`CORRIDOR_LAP_MIN_LAPS` laps."""
     laps = np.asarray(tracked[:-1], float)
     if len(laps) < CORRIDOR_LAP_MIN_LAPS or not np.median(laps) > 0:
         return None
