@@ -288,7 +288,8 @@ def clinical_lines(summary: dict, folder: Path) -> list[str]:
         lines.append(speed)
     own = unit != "lower-back unit" or _calibrated(summary)  # W446, C197: the wearer's step length, not the model's
     walking = walking_line(summary, folder, unit, distance_given=own
-                           or (summary.get("gait_speed_mps") or 0.0) >= VALIDATED_MIN_MPS)  # W515, W446
+                           or (summary.get("gait_speed_mps") or 0.0) >= VALIDATED_MIN_MPS,  # W515, W446
+                           uncalibrated=not own)  # decision C222
     if walking:
         lines.append(walking)
     lines += [x for x in (spatiotemporal_line(summary, unit, stride_given=own),  # decisions C195, C197
@@ -451,12 +452,28 @@ def clinical_markdown(source: str | Path) -> str:
     out = ["# Clinical summary", ""]
     for patient, rows in patients.items():
         out += [f"## Patient {patient}", ""]
+        rows = in_visit_order(rows)  # decision C221: the baseline's sessions first, as the change line pairs them
         for block in walk_blocks(rows):
             out += block + [""]
         changes = change_lines(rows)  # decision C177: the visits' change from baseline
         if changes:
             out += changes + [""]
     return "\n".join(out)
+
+
+def in_visit_order(rows: list) -> list:
+    """Decision C221: one patient's rows (track or gait) with their visits in study order (``visits.visit_order``:
+    ``pre`` before ``post`` whatever the alphabet says, C24), stable within a visit; rows without a visit keep their
+    place after the visits' rows. Before, the rows came in the folders' text order, so a ``P01_post`` folder was listed
+    above ``P01_pre`` while the change line (C177) read pre -> post."""
+    from pdrlearn.visits import visit_order
+
+    def visit(row):
+        v = row[3].get("visit")
+        return None if v in (None, "") else str(v)
+
+    rank = {v: i for i, v in enumerate(visit_order(filter(None, map(visit, rows))))}
+    return sorted(rows, key=lambda r: rank.get(visit(r), len(rank)))
 
 
 def _track_block(folder: Path, rel: str, summary: dict, head: str = "Session") -> list[str]:

@@ -45,11 +45,13 @@ def _ramps(ramps: pd.DataFrame | None, strides: bool) -> str:
     return "; ramps: " + ", ".join(parts) if parts else ""
 
 
-def walking_line(summary: dict, folder: Path, unit: str, *, distance_given: bool = True) -> str | None:
+def walking_line(summary: dict, folder: Path, unit: str, *, distance_given: bool = True,
+                 uncalibrated: bool = False) -> str | None:
     """Decision W515: ``- Walking: 206 steps, 187.5 s walking in 4 bouts (12.0 / 12.6 / 16.1 / 16.3 m), 57.0 m;
     ramps: 1 up (18 strides), 1 down (17 strides) (foot unit)`` for a track ``folder`` with steps; None without.
     ``distance_given`` False (an uncalibrated lower back under the validated speed, W446) leaves the metres out and
-    says why."""
+    says why; ``uncalibrated`` (a lower back without ``calibrate``'s PARAMS) tags the metres given as the gait speed
+    line tags its speed (decision C222: trial T1 F5 read the line's 351.4 m beside a corridor's 341 m untagged)."""
     counts = {k: [summary.get(k)] for k in ("n_steps", "n_steps_both_feet")}
     steps = _both_feet(pd.DataFrame(counts), summary).iloc[0] if summary.get("n_steps") is not None else np.nan
     if pd.isna(steps) or steps <= 0:
@@ -71,4 +73,6 @@ def walking_line(summary: dict, folder: Path, unit: str, *, distance_given: bool
     notes = [unit] + (["steps 2 per stride of the tracked foot"] if approx else [])
     if not distance_given:
         notes.append("distance not given: uncalibrated lower back under the validated speed (W446)")
+    elif uncalibrated:  # decision C222
+        notes.append("uncalibrated: metres from step lengths by body height (W169)")
     return f"{text} ({'; '.join(notes)})"
