@@ -362,7 +362,8 @@ def cycle_table(both: pd.DataFrame) -> pd.DataFrame:
     IC of the other foot between them - a stride either track or label table lacks makes no cycle): ``side``,
     ``bout``, ``start_s``, ``end_s``, ``stride_time_s``, ``stance_time_s`` (decision L327: the foot's IC to its
     toe-off inside the cycle, NaN without one), ``double_support_pct`` and ``single_support_pct`` (module
-    docstring; NaN where a toe-off is missing or the events are out of order), (decision L729) ``flight_time_s``
+    docstring; NaN where a toe-off is missing or the cycle has a flight; decision L736: a hand-over within
+    ``TOUCH_S`` is 0 % double support), (decision L729) ``flight_time_s``
     (:func:`pdrlearn.track.gait_flight.cycle_flights`: the time with neither foot on the ground after a toe-off
     that came before the other foot's contact, 0 in walking order, NaN without both toe-offs in their strides) and
     ``flight_after`` (the foot whose toe-off started it, "both", or None) and (decision L538) ``kind``
@@ -381,10 +382,10 @@ def cycle_table(both: pd.DataFrame) -> pd.DataFrame:
             ic_f, tc_o, ic_o, tc_f, ic_next = t[a], tc[a + 1], t[a + 1], tc[b], t[b]
             if ic_f < tc_f < ic_next:  # decision L327: the foot's own IC to its toe-off, one unit's clock
                 stance = tc_f - ic_f
-            if ic_f < tc_o < ic_o < tc_f < ic_next:  # Perry & Burnfield 2010: the cycle's event order
-                ds = 100.0 * ((tc_o - ic_f) + (tc_f - ic_o)) / T
-                ss = 100.0 * (ic_o - tc_o) / T
             fl = cycle_flights(ic_f, tc_o, ic_o, tc_f, ic_next)  # decision L729: a toe-off before the contact
+            if fl == (0.0, 0.0):  # Perry & Burnfield 2010's event order; L736: a hand-over on one instant is one
+                ds = 100.0 * (max(tc_o - ic_f, 0.0) + max(tc_f - ic_o, 0.0)) / T  # of 0 % double support
+                ss = 100.0 * (ic_o - tc_o) / T
             after = flight_after(s, side[a + 1], *fl) if math.isfinite(fl[0]) else None
             kind = joined_kind(kinds[[b]], kinds[[a + 1]])[0]  # decision L538
             rows.append((s, int(bout[a]), t[a], t[b], T, stance, ds, ss, fl[0] + fl[1], after, kind))
