@@ -596,6 +596,9 @@ SESSIONS: tuple[Column, ...] = (
     ("ten_m_walk_zones_m", "m", "number", "summary.json only (a list): the walkway the 10 m walk keys were timed on, "
                                           "acceleration zone, timed metres, deceleration zone (2, 10, 2; track "
                                           "--ten-m-walk, L522)"),
+    ("ten_m_walk_timed_m", "m", "number", "sessions.csv only: the timed metres of ten_m_walk_zones_m (10 without "
+                                          "it, L312) when there is a ten_m_walk_speed_mps; changes.csv compares that "
+                                          "speed only between visits with the same (C211)"),
     ("ten_m_walk_declared", _ID, "true/false", "true when track --ten-m-walk declared the walkway; false: the 10 m "
                                                "walk and T25FW were found in free walking, no test declared, and "
                                                "the console and clinical.md say so (L679)"),
