@@ -12,6 +12,7 @@ from __future__ import annotations
 import re
 
 from pdrlearn.cohort import GROUP_METRICS, SKIPPED, natural_key, t_interval
+from pdrlearn.decision_refs import decision_ref
 
 #: changes.csv's leading columns (decision C22; C82: the visits as meta.json wrote them; C83: the trials averaged);
 #: ``<measure>_baseline``, ``<measure>_change`` and ``<measure>_change_pct`` (C81) follow per measure
@@ -35,8 +36,8 @@ CHANGE_METRICS = CLINICAL_MEASURES + GROUP_METRICS
 #: decision C211: a measure compared between two visits only when its walkway (this sessions.csv column) is the same
 #: at both: a 10 m walkway's speed is not a flying 7.62 m walk's (review R1 F3)
 SAME_WALKWAY = {"ten_m_walk_speed_mps": "ten_m_walk_timed_m"}
-#: decision C211: changes.csv's reason for a measure left out of a pair ({measure}, {walkways} "10 m / 7.62 m")
-WALKWAY_REASON = "{measure} not compared: walkways differ ({walkways} timed, C211)"
+#: decision C211: changes.csv's reason for a measure left out of a pair ({measure}, {walkways} "10 m / 7.62 m", {ref})
+WALKWAY_REASON = "{measure} not compared: walkways differ ({walkways} timed, {ref})"
 
 
 def measure_columns() -> tuple[str, ...]:
@@ -555,8 +556,9 @@ def change_table(sessions, metrics=CHANGE_METRICS, visit_map: dict[str, str] | N
     in ``reason``. ``metrics``: sessions.csv's number columns compared (default :data:`CHANGE_METRICS`, C177; an
     unknown name is one error line, decision B302); each gets ``<m>_baseline``, ``<m>_change`` and ``<m>_change_pct``
     (:func:`pct_change`, C81); a measure of :data:`SAME_WALKWAY` measured on different walkways at the two visits
-    is left empty and said in ``reason`` (decision C211). ``baseline_visit_as_written`` / ``visit_as_written``: the visits as meta.json wrote
-    them (C82). ``by``: a sessions.csv label column (``"test"``, decision C174: track-all's ``--group-by test``): the
+    is left empty and said in ``reason`` (decision C211). ``baseline_visit_as_written`` / ``visit_as_written``: the
+    visits as meta.json wrote them (C82). ``by``: a sessions.csv label column (``"test"``, decision C174:
+    track-all's ``--group-by test``): the
     visits are paired as without it, but each of the subject's values on its own - its Test5 at the follow-up against
     its Test5 at baseline, never a visit's tests averaged (C172's finding) - one row per subject, value (natural
     order, sessions naming none last with it empty) and later visit, the column after ``visit``; a test the subject
@@ -608,7 +610,8 @@ def change_table(sessions, metrics=CHANGE_METRICS, visit_map: dict[str, str] | N
                 reasons += [f"{p} holds the same recording as {d} (duplicate_of)" for p, d in _copies(b_row, v_row)]
             apart = {m: walkways_differ(mine[mine["visit"] == base], mine[mine["visit"] == visit], m)
                      for m in measures} if status == "ok" else {}  # decision C211: one walkway at both visits
-            reasons += [WALKWAY_REASON.format(measure=m, walkways=w) for m, w in apart.items() if w]
+            reasons += [WALKWAY_REASON.format(measure=m, walkways=w, ref=decision_ref("C211", topic="cohort"))
+                        for m, w in apart.items() if w]
             row = {"subject": subject, "group": everything["group"].astype(str).iloc[0], "baseline_visit": base,
                    "visit": visit, "status": status, "reason": "; ".join(reasons) or None,
                    **{f"{k}visit_as_written": _names(mine.loc[mine["visit"] == w, "visit_as_written"])

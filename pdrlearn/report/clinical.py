@@ -188,7 +188,7 @@ def walkway_reason(reason, measure: str) -> str | None:
     ``measure``; None without one."""
     from pdrlearn.visits import WALKWAY_REASON
 
-    head = WALKWAY_REASON.format(measure=measure, walkways="").split("walkways differ")[0]
+    head = WALKWAY_REASON.format(measure=measure, walkways="", ref="").split("walkways differ")[0]
     part = next((p for p in str(reason or "").split("; ") if p.startswith(head)), None)
     return None if part is None else part[len(head):]
 
