@@ -13,6 +13,7 @@ from pdrlearn.sim.simulate import simulate_path
 from pdrlearn.sim.user import UserProfile
 from pdrlearn.track.bilateral import bilateral_gait, foot_rate_hz
 from pdrlearn.track.support_bias import FORCE_BIAS_MIN_HZ, support_note
+from pdrlearn.track.toeoff import stance_range_warning
 
 RACE = "-11.2 to -9.8 of double support"  # L730's range at a 0.58 s race-walking cycle
 
@@ -39,3 +40,10 @@ def test_gait_passes_the_foot_rate_to_the_caveat():
     route, user = parse_route("stand:1, straight:3, stand:1"), UserProfile.from_seed(16500)
     sessions = [simulate_path(route, user, rate_hz=r, seed=16500) for r in (50.0, 20.0)]
     assert foot_rate_hz(sessions) == pytest.approx(20.0, abs=0.1)  # the slower foot unit
+
+
+def test_track_toe_off_line_states_no_insole_numbers_at_20_hz():
+    walk = {"median_stance_time_s": 0.33, "median_stride_time_s": 0.58, "info": {"stance_source": "force"}}
+    slow = str(stance_range_warning({**walk, "rate_hz": 20.0}))
+    assert "20 Hz foot rate it is not stated" in slow and "ms short" not in slow and "% of this walk's" not in slow
+    assert "29-32 ms short" in str(stance_range_warning({**walk, "rate_hz": 100.0}))

@@ -46,10 +46,18 @@ IMU_EARLY_CYCLE_S = 0.95
 IMU_CHILD_STANCE_MS = (-30.1, -3.8)
 
 
-def stance_bias_ms(setup: str, cycle_s: float | None) -> tuple[float, float] | None:
+def force_unstated(rate_hz: float | None) -> bool:
+    """Decision L737: the insoles' bias is not stated at a known foot rate under :data:`FORCE_BIAS_MIN_HZ`."""
+    return rate_hz is not None and math.isfinite(rate_hz) and rate_hz < FORCE_BIAS_MIN_HZ
+
+
+def stance_bias_ms(setup: str, cycle_s: float | None, rate_hz: float | None = None) -> tuple[float, float] | None:
     """Decision L703: the (most, least) negative stance-time error (ms) of ``setup`` at a gait cycle of ``cycle_s``
-    (s); None when the set-up's bias is a share of the cycle and the cycle is unknown."""
+    (s); None when the set-up's bias is a share of the cycle and the cycle is unknown, or (decision L737) the
+    insoles' at a foot rate ``rate_hz`` under :data:`FORCE_BIAS_MIN_HZ`."""
     (lo, hi), unit = STANCE_BIAS[setup]
+    if setup == "force" and force_unstated(rate_hz):  # decision L737
+        return None
     if unit == "ms":
         return lo, hi
     if cycle_s is None or not math.isfinite(cycle_s) or cycle_s <= 0:
@@ -73,7 +81,7 @@ def force_rate_text(rate_hz: float | None) -> str | None:
 
     if rate_hz is None or not math.isfinite(rate_hz):
         return f"measured at {FORCE_BIAS_MIN_HZ:g}-100 Hz foot rates: {decision_ref('L730', 'L737')}"
-    if rate_hz >= FORCE_BIAS_MIN_HZ:
+    if not force_unstated(rate_hz):
         return None
     return (f"with {BIAS_SOURCE['force']} the bias was measured at 100 Hz and holds at {FORCE_BIAS_MIN_HZ:g} Hz; "
             f"at this walk's {rate_hz:g} Hz foot rate it is not stated: on the coarser sample grid the contact's and "
