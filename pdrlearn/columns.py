@@ -596,6 +596,9 @@ SESSIONS: tuple[Column, ...] = (
     ("ten_m_walk_zones_m", "m", "number", "summary.json only (a list): the walkway the 10 m walk keys were timed on, "
                                           "acceleration zone, timed metres, deceleration zone (2, 10, 2; track "
                                           "--ten-m-walk, L522)"),
+    ("ten_m_walk_timed_m", "m", "number", "sessions.csv only: the timed metres of ten_m_walk_zones_m (10 without "
+                                          "it, L312) when there is a ten_m_walk_speed_mps; changes.csv compares that "
+                                          "speed only between visits with the same (C211)"),
     ("ten_m_walk_declared", _ID, "true/false", "true when track --ten-m-walk declared the walkway; false: the 10 m "
                                                "walk and T25FW were found in free walking, no test declared, and "
                                                "the console and clinical.md say so (L679)"),
@@ -1358,7 +1361,8 @@ GAIT_CYCLES: tuple[Column, ...] = (
     ("double_support_pct", "%", "number", "both double-support periods of the cycle, % of it (L262; reads low from "
                                           "foot units, L285, by gait_summary.json reason's points of this walk's "
                                           "cycle; no known sign for IMU-only contacts under a 0.95 s cycle, L703); "
-                                          "empty when the events are out of order"),
+                                          "0 where a toe-off falls on the other foot's contact (L736); empty "
+                                          "without both toe-offs or with a flight (L729)"),
     ("single_support_pct", "%", "number", "the other foot's swing, % of the cycle (L262)"),
     ("flight_time_s", "s", "number", "the time with neither foot on the ground: a toe-off before the other foot's "
                                      "contact (a loss of contact, or a clock offset between the units; L729); 0 in "
@@ -1395,7 +1399,8 @@ GAIT_BOUTS: tuple[Column, ...] = (
                                                  "largest |d|a|/dt| within 0.1 s of its contacts (L318)"),
     ("impact_sharpness_right", "m/s^3", "number", "gait_summary.json walk only: the same of the right foot; over 3 x "
                                                   "apart, the feet's contacts are not comparable (L318)"),
-    ("n_support_cycles", "count", "integer", "cycles with a double support"),
+    ("n_support_cycles", "count", "integer", "cycles with a double support, 0 % counted (L736); with "
+                                             "n_flight_cycles every cycle with both toe-offs"),
     ("n_flight_cycles", "count", "integer", "cycles with a flight: a toe-off before the other foot's contact (a loss "
                                             "of contact, or a clock offset; no double support; L729)"),
     ("flight_time_s", "s", "number", "the mean flight time of those cycles (L729); empty without one"),

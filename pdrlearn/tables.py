@@ -111,7 +111,8 @@ def summary_row(summary: Mapping) -> dict:
     """One track's summary.json dict as a sessions.csv row (docs/columns.md): its scalar entries as they are,
     ``final_position`` as ``final_x_m``, ``final_y_m``, ``final_z_m``, ``stride_time_cv_withheld``'s ``cause`` as
     ``stride_time_cv_withheld_cause`` (decision L230) and ``method`` from ``info``; other nested entries (``info``,
-    ``bout_definition``, ``tug_phases``: W293's ``tug_*_s`` keys carry its durations) are left out. Shared by
+    ``bout_definition``, ``tug_phases``: W293's ``tug_*_s`` keys carry its durations) are left out; (decision C211)
+    ``ten_m_walk_timed_m``, the 10 m walk's timed metres, beside its speed. Shared by
     track-all's sessions.csv and :func:`summary_frame`."""
     row: dict = {}
     for k, v in summary.items():
@@ -124,6 +125,10 @@ def summary_row(summary: Mapping) -> dict:
         if k == "stride_time_cv_withheld":  # decision L230: the cause, so "lower back" and "too few" differ
             row["stride_time_cv_withheld_cause"] = v.get("cause") if isinstance(v, Mapping) else None
     row["method"] = (summary.get("info") or {}).get("method")
+    if summary.get("ten_m_walk_speed_mps") is not None:  # decision C211: changes.csv pairs a speed on one walkway
+        from pdrlearn.track.walk_test import walkway_timed_m
+
+        row["ten_m_walk_timed_m"] = walkway_timed_m(summary)
     return row
 
 

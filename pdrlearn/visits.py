@@ -12,6 +12,7 @@ from __future__ import annotations
 import re
 
 from pdrlearn.cohort import GROUP_METRICS, SKIPPED, natural_key, t_interval
+from pdrlearn.decision_refs import decision_ref
 
 #: changes.csv's leading columns (decision C22; C82: the visits as meta.json wrote them; C83: the trials averaged);
 #: ``<measure>_baseline``, ``<measure>_change`` and ``<measure>_change_pct`` (C81) follow per measure
@@ -32,6 +33,11 @@ COMMON_MEASURES = ("gait_speed_mps", "median_cadence_spm", "median_stride_time_s
 CLINICAL_MEASURES = ("walk_test_distance_m", "fatigue_index", "tug_time_s", "ten_m_walk_speed_mps", "t25fw_time_s")
 #: decision C177: changes.csv's default measures (those without a value in any session are not compared)
 CHANGE_METRICS = CLINICAL_MEASURES + GROUP_METRICS
+#: decision C211: a measure compared between two visits only when its walkway (this sessions.csv column) is the same
+#: at both: a 10 m walkway's speed is not a flying 7.62 m walk's (review R1 F3)
+SAME_WALKWAY = {"ten_m_walk_speed_mps": "ten_m_walk_timed_m"}
+#: decision C211: changes.csv's reason for a measure left out of a pair ({measure}, {walkways} "10 m / 7.62 m", {ref})
+WALKWAY_REASON = "{measure} not compared: walkways differ ({walkways} timed, {ref})"
 
 
 def measure_columns() -> tuple[str, ...]:
@@ -517,6 +523,22 @@ def _copies(b_row, v_row) -> list[tuple[str, str]]:
     return [(p, d) for p, d in _trials(v_row) if isinstance(d, str) and d in base]
 
 
+def walkways_differ(base_rows, visit_rows, measure: str) -> str | None:
+    """Decision C211: "10 m / 7.62 m" when ``measure``'s walkway (:data:`SAME_WALKWAY`, the baseline's and the later
+    visit's sessions.csv rows) differs between the two visits; None when it agrees, is not known at either, or the
+    measure has none."""
+    import pandas as pd
+
+    col = SAME_WALKWAY.get(measure)
+    if col is None or col not in base_rows or col not in visit_rows:
+        return None
+    b, v = (sorted(set(pd.to_numeric(r.loc[pd.to_numeric(r[measure], errors="coerce").notna(), col],
+                                     errors="coerce").dropna())) for r in (base_rows, visit_rows))
+    if not b or not v or b == v and len(b) == 1:
+        return None
+    return " / ".join("+".join(f"{x:g} m" for x in side) for side in (b, v))
+
+
 def change_table(sessions, metrics=CHANGE_METRICS, visit_map: dict[str, str] | None = None, by: str | None = None):
     """changes.csv from sessions.csv (a DataFrame), or ``None`` when the sessions naming a subject and a visit name
     fewer than two visits (decision C22). Visit names are first made one per visit (:func:`canonical_visits`,
@@ -533,8 +555,10 @@ def change_table(sessions, metrics=CHANGE_METRICS, visit_map: dict[str, str] | N
     the baseline recording at a later visit of the same subject (C20's ``duplicate_of``) stays ``ok`` and is said
     in ``reason``. ``metrics``: sessions.csv's number columns compared (default :data:`CHANGE_METRICS`, C177; an
     unknown name is one error line, decision B302); each gets ``<m>_baseline``, ``<m>_change`` and ``<m>_change_pct``
-    (:func:`pct_change`, C81). ``baseline_visit_as_written`` / ``visit_as_written``: the visits as meta.json wrote
-    them (C82). ``by``: a sessions.csv label column (``"test"``, decision C174: track-all's ``--group-by test``): the
+    (:func:`pct_change`, C81); a measure of :data:`SAME_WALKWAY` measured on different walkways at the two visits
+    is left empty and said in ``reason`` (decision C211). ``baseline_visit_as_written`` / ``visit_as_written``: the
+    visits as meta.json wrote them (C82). ``by``: a sessions.csv label column (``"test"``, decision C174:
+    track-all's ``--group-by test``): the
     visits are paired as without it, but each of the subject's values on its own - its Test5 at the follow-up against
     its Test5 at baseline, never a visit's tests averaged (C172's finding) - one row per subject, value (natural
     order, sessions naming none last with it empty) and later visit, the column after ``visit``; a test the subject
@@ -584,6 +608,10 @@ def change_table(sessions, metrics=CHANGE_METRICS, visit_map: dict[str, str] | N
                 reasons.append(problem[1])
             elif status == "ok":  # decision C20's copy; C84: of each trial averaged
                 reasons += [f"{p} holds the same recording as {d} (duplicate_of)" for p, d in _copies(b_row, v_row)]
+            apart = {m: walkways_differ(mine[mine["visit"] == base], mine[mine["visit"] == visit], m)
+                     for m in measures} if status == "ok" else {}  # decision C211: one walkway at both visits
+            reasons += [WALKWAY_REASON.format(measure=m, walkways=w, ref=decision_ref("C211", topic="cohort"))
+                        for m, w in apart.items() if w]
             row = {"subject": subject, "group": everything["group"].astype(str).iloc[0], "baseline_visit": base,
                    "visit": visit, "status": status, "reason": "; ".join(reasons) or None,
                    **{f"{k}visit_as_written": _names(mine.loc[mine["visit"] == w, "visit_as_written"])
@@ -595,7 +623,7 @@ def change_table(sessions, metrics=CHANGE_METRICS, visit_map: dict[str, str] | N
                    **{f"{k}duplicate_of": None if r is None else "; ".join(twins.get(str(r["path"]), [])) or None
                       for k, r in (("baseline_", b_row), ("", v_row))}}
             for m in measures:
-                both = status == "ok"
+                both = status == "ok" and not apart.get(m)  # decision C211: not across walkways
                 b = pd.to_numeric(b_row[m], errors="coerce") if both else np.nan
                 v = pd.to_numeric(v_row[m], errors="coerce") if both else np.nan
                 row[f"{m}_baseline"] = b

@@ -171,11 +171,35 @@ CHANGE_LINE_MEASURES = {"walk_test_distance_m": ("walk test distance", "m", 0), 
                         "t25fw_time_s": ("T25FW", "s", 1)}
 
 
+def walk_names(tracks: list[dict], row) -> dict[str, str]:
+    """Decision C211: ``{"ten_m_walk_speed_mps": name}`` of a changes row's two visits - the walkway's own name
+    (:func:`pdrlearn.track.walk_test.walk_test_name`: "10 m walk", "7.62 m walk"), both visits' names joined by " /
+    " when they differ; {} without a speed at either visit (``tracks``: the patient's summaries)."""
+    from pdrlearn.track.walk_test import walk_test_name
+
+    written = {v for k in ("baseline_visit_as_written", "visit_as_written") for v in str(row.get(k) or "").split("; ")}
+    names = dict.fromkeys(walk_test_name(s) for s in tracks
+                          if str(s["visit"]) in written and s.get("ten_m_walk_speed_mps") is not None)
+    return {"ten_m_walk_speed_mps": " / ".join(names)} if names else {}
+
+
+def walkway_reason(reason, measure: str) -> str | None:
+    """Decision C211: the "walkways differ (10 m / 7.62 m timed, C211)" part of a changes row's ``reason`` for
+    ``measure``; None without one."""
+    from pdrlearn.visits import WALKWAY_REASON
+
+    head = WALKWAY_REASON.format(measure=measure, walkways="", ref="").split("walkways differ")[0]
+    part = next((p for p in str(reason or "").split("; ") if p.startswith(head)), None)
+    return None if part is None else part[len(head):]
+
+
 def change_lines(rows: list) -> list[str]:
     """Decision C177: one patient's change-from-baseline lines, one per later visit: each clinical test measure
     (:data:`CHANGE_LINE_MEASURES`) both visits have, baseline -> later (change, percent change), paired by
     :func:`pdrlearn.visits.change_table`'s rules (C28 baseline, C83 a visit's trials averaged); none when the
-    patient's tracks name fewer than two visits (summary.json ``visit``)."""
+    patient's tracks name fewer than two visits (summary.json ``visit``). Decision C211: the 10 m walk's speed is
+    named by its walkway (:func:`walk_names`) and not compared across two walkways (said instead)."""
+    from pdrlearn.track.walk_test import walkway_timed_m
     from pdrlearn.visits import change_table
 
     tracks = [r[3] for r in rows if r[0] == "track" and r[3].get("subject") and r[3].get("visit")]
@@ -183,6 +207,7 @@ def change_lines(rows: list) -> list[str]:
         return []
     frame = pd.DataFrame([{"subject": str(r[3]["subject"]), "group": "", "visit": str(r[3]["visit"]), "path": r[2],
                            "status": "ok", "pipeline": r[3].get("pipeline"),
+                           "ten_m_walk_timed_m": walkway_timed_m(r[3]),  # decision C211: the speed's walkway
                            **{m: r[3].get(m) for m in CHANGE_LINE_MEASURES}}
                           for r in rows if r[0] == "track" and r[3].get("subject") and r[3].get("visit")])
     frame[list(CHANGE_LINE_MEASURES)] = frame[list(CHANGE_LINE_MEASURES)].apply(pd.to_numeric, errors="coerce")
@@ -195,9 +220,13 @@ def change_lines(rows: list) -> list[str]:
         parts = []
         for m in measures:
             base, change = row.get(f"{m}_baseline"), row.get(f"{m}_change")
+            apart = walkway_reason(row.get("reason"), m)  # decision C211: a speed on two walkways is not compared
+            if apart:
+                parts.append(f"{walk_names(tracks, row).get(m, CHANGE_LINE_MEASURES[m][0])} not compared: {apart}")
             if pd.isna(base) or pd.isna(change):
                 continue
             name, unit, k = CHANGE_LINE_MEASURES[m]
+            name = walk_names(tracks, row).get(m, name)  # decision C211: the walkway's own name
             u = f" {unit}" if unit else ""
             pct = row.get(f"{m}_change_pct")
             rel = f", {pct:+.0f} %" if pct is not None and not pd.isna(pct) else ""

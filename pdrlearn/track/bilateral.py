@@ -362,7 +362,8 @@ def cycle_table(both: pd.DataFrame) -> pd.DataFrame:
     IC of the other foot between them - a stride either track or label table lacks makes no cycle): ``side``,
     ``bout``, ``start_s``, ``end_s``, ``stride_time_s``, ``stance_time_s`` (decision L327: the foot's IC to its
     toe-off inside the cycle, NaN without one), ``double_support_pct`` and ``single_support_pct`` (module
-    docstring; NaN where a toe-off is missing or the events are out of order), (decision L729) ``flight_time_s``
+    docstring; NaN where a toe-off is missing or the cycle has a flight; decision L736: a hand-over within
+    ``TOUCH_S`` is 0 % double support), (decision L729) ``flight_time_s``
     (:func:`pdrlearn.track.gait_flight.cycle_flights`: the time with neither foot on the ground after a toe-off
     that came before the other foot's contact, 0 in walking order, NaN without both toe-offs in their strides) and
     ``flight_after`` (the foot whose toe-off started it, "both", or None) and (decision L538) ``kind``
@@ -381,10 +382,10 @@ def cycle_table(both: pd.DataFrame) -> pd.DataFrame:
             ic_f, tc_o, ic_o, tc_f, ic_next = t[a], tc[a + 1], t[a + 1], tc[b], t[b]
             if ic_f < tc_f < ic_next:  # decision L327: the foot's own IC to its toe-off, one unit's clock
                 stance = tc_f - ic_f
-            if ic_f < tc_o < ic_o < tc_f < ic_next:  # Perry & Burnfield 2010: the cycle's event order
-                ds = 100.0 * ((tc_o - ic_f) + (tc_f - ic_o)) / T
-                ss = 100.0 * (ic_o - tc_o) / T
             fl = cycle_flights(ic_f, tc_o, ic_o, tc_f, ic_next)  # decision L729: a toe-off before the contact
+            if fl == (0.0, 0.0):  # Perry & Burnfield 2010's event order; L736: a hand-over on one instant is one
+                ds = 100.0 * (max(tc_o - ic_f, 0.0) + max(tc_f - ic_o, 0.0)) / T  # of 0 % double support
+                ss = 100.0 * (ic_o - tc_o) / T
             after = flight_after(s, side[a + 1], *fl) if math.isfinite(fl[0]) else None
             kind = joined_kind(kinds[[b]], kinds[[a + 1]])[0]  # decision L538
             rows.append((s, int(bout[a]), t[a], t[b], T, stance, ds, ss, fl[0] + fl[1], after, kind))
@@ -633,7 +634,8 @@ def kind_measures(both: pd.DataFrame, steps: pd.DataFrame, cycles: pd.DataFrame)
 
 
 def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
-                   step_lengths: pd.DataFrame | None = None, contact_source=None) -> dict:
+                   step_lengths: pd.DataFrame | None = None, contact_source=None,
+                   rate_hz: float | None = None) -> dict:
     """Decisions L259-L262 (Python API): bilateral gait of one walk from the left and the right foot's step
     tables (a foot track's ``steps.csv`` or a label table, :func:`foot_events`) on one clock.
 
@@ -645,7 +647,8 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
     of all its steps (L539); ``warnings`` holds B245's, L284's and L285's lines (each logged). ``step_lengths``
     (decision L540): a label table of both feet's contacts with each step's length (ics.csv), whose lengths the steps
     take (:func:`known_step_lengths`). ``contact_source`` (decision L703: "force" / "imu", or a per-foot dict; None:
-    unknown) picks the set-up whose known support bias ``reason`` states, in this walk's gait cycle. Refuses
+    unknown) picks the set-up whose known support bias ``reason`` states, in this walk's gait cycle, at the foot
+    units' ``rate_hz`` (decision L737; None: unknown). Refuses
     (:class:`DataError`, one line) two tables whose contacts do not overlap in time (L260: not one walk on one
     clock)."""
     left, right = foot_events(left_steps), foot_events(right_steps)
@@ -683,7 +686,7 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
                   "(pdrlearn track --toe-off, decision L73); the step times are given")
     walk = measures_of(both, steps, cycles, masks)
     if toe_off:  # decision L262: a foot track's (event_s) support times carry L73's biases; a label table's do not
-        reason = support_note(setup_of(contact_source), _cycle_s(walk)) if "event_s" in left_steps else None
+        reason = support_note(setup_of(contact_source), _cycle_s(walk), rate_hz) if "event_s" in left_steps else None
     walk["headline_steps"] = basis  # decision L538
     walk.update({f"n_steps_all_{s}": int((steps["side"] == s).sum()) for s in SIDES})
     walk["step_length_scale_pct"] = None if scale is None else 100.0 * scale  # decision L310
@@ -987,6 +990,14 @@ def foot_warnings(session, result) -> tuple[list[str], list[str]]:
     return kept, own
 
 
+def foot_rate_hz(sessions) -> float | None:
+    """Decision L737: the slowest foot unit's native rate (Hz) of a walk's sessions (None without one)."""
+    from pdrlearn.io.plasys import unit_rates
+
+    rates = [r for r in (unit_rates(s)["foot"] for s in sessions) if math.isfinite(r)]
+    return min(rates) if rates else None
+
+
 def pair_sessions(left_dir: Path, right_dir: Path, *, ignore_force: bool = False) -> dict:
     """Decisions L259-L263: read and track (offline plasys with ``toe_off=True``, L73) the left and the right foot's
     session folders of one walk and give :func:`bilateral_gait` of their tracks, plus ``"reference"``: the same
@@ -1032,7 +1043,7 @@ def pair_sessions(left_dir: Path, right_dir: Path, *, ignore_force: bool = False
     from pdrlearn.track.clock import on_export_clock
 
     out = bilateral_gait(*(on_export_clock(t.steps, sh) for t, sh in zip(tracks, shifts, strict=True)),  # L537
-                         contact_source=sources)  # decision L703: the set-up's support bias
+                         contact_source=sources, rate_hz=foot_rate_hz(sessions))  # L703, L737: the bias
     out["clock_alignment"] = alignment
     if alignment["note"] is not None:
         logging.getLogger(__name__).warning(alignment["note"])

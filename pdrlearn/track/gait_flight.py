@@ -46,7 +46,7 @@ def flight_warning(walk: dict, cycles) -> str | None:
         return None
     fl = cycles[cycles["flight_time_s"] > 0]
     by = {f: int((fl["flight_after"] == f).sum()) for f in ("left", "right", "both")}
-    of = n + (walk.get("n_support_cycles") or 0)
+    of = int(cycles["flight_time_s"].notna().sum())  # L736: every cycle with both toe-offs in their strides
     off = walk.get("clock_offset_s")
     off_txt = "" if off is None else f" (clock_offset_s {1000 * off:+.0f} ms)"
     return (f"bilateral gait: {n} of {of} gait cycles have a flight - a foot's toe-off before the other foot's "

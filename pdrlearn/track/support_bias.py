@@ -25,6 +25,10 @@ STANCE_BIAS = {"imu": ((min(TOE_OFF_STANCE_BIAS_MS), max(TOE_OFF_STANCE_BIAS_MS)
 #: L73 - the drop-off is not gait's toe-off, L388 not adopted), lowest and highest per-walk medians over users
 #: 16000-16009 at normal, fast and race pace (0.58-1.18 s cycles; experiments/support_bias_s48_l728.py)
 FORCE_IC_LAG_PCT, FORCE_TOE_OFF_MS = STANCE_BIAS["force"][0]
+#: decision L737: the lowest foot rate (Hz) the insoles' two terms (L730, measured at 100 Hz) are stated at: on fresh
+#: users 16500-16519's 60 walks per rate the tracked - true double support lay within L730's range +-1 point on 60 at
+#: 100 and 50 Hz but 50 at 20 Hz (race pace 11 of 20: the 20 Hz contact reads -4.8 ms, not +15.8 ms, late)
+FORCE_BIAS_MIN_HZ = 50.0
 #: decision L703: where each range was measured (the line names it)
 BIAS_SOURCE = {"imu": "IMU-only contacts (against motion capture on gaitmap's real level walks, lateral shoe mount, "
                       "adults; L73)",
@@ -42,10 +46,18 @@ IMU_EARLY_CYCLE_S = 0.95
 IMU_CHILD_STANCE_MS = (-30.1, -3.8)
 
 
-def stance_bias_ms(setup: str, cycle_s: float | None) -> tuple[float, float] | None:
+def force_unstated(rate_hz: float | None) -> bool:
+    """Decision L737: the insoles' bias is not stated at a known foot rate under :data:`FORCE_BIAS_MIN_HZ`."""
+    return rate_hz is not None and math.isfinite(rate_hz) and rate_hz < FORCE_BIAS_MIN_HZ
+
+
+def stance_bias_ms(setup: str, cycle_s: float | None, rate_hz: float | None = None) -> tuple[float, float] | None:
     """Decision L703: the (most, least) negative stance-time error (ms) of ``setup`` at a gait cycle of ``cycle_s``
-    (s); None when the set-up's bias is a share of the cycle and the cycle is unknown."""
+    (s); None when the set-up's bias is a share of the cycle and the cycle is unknown, or (decision L737) the
+    insoles' at a foot rate ``rate_hz`` under :data:`FORCE_BIAS_MIN_HZ`."""
     (lo, hi), unit = STANCE_BIAS[setup]
+    if setup == "force" and force_unstated(rate_hz):  # decision L737
+        return None
     if unit == "ms":
         return lo, hi
     if cycle_s is None or not math.isfinite(cycle_s) or cycle_s <= 0:
@@ -62,17 +74,39 @@ def setup_of(source) -> str | None:
     return kinds.pop() if len(kinds) == 1 else None
 
 
-def bias_terms(setup: str | None, cycle_s: float | None) -> str:
+def force_rate_text(rate_hz: float | None) -> str | None:
+    """Decision L737: the insoles' bias clause at a foot rate under :data:`FORCE_BIAS_MIN_HZ` (its numbers not
+    stated), or the rates they were measured at when ``rate_hz`` is unknown; None at a rate they hold at."""
+    from pdrlearn.decision_refs import decision_ref
+
+    if rate_hz is None or not math.isfinite(rate_hz):
+        return f"measured at {FORCE_BIAS_MIN_HZ:g}-100 Hz foot rates: {decision_ref('L730', 'L737')}"
+    if not force_unstated(rate_hz):
+        return None
+    return (f"with {BIAS_SOURCE['force']} the bias was measured at 100 Hz and holds at {FORCE_BIAS_MIN_HZ:g} Hz; "
+            f"at this walk's {rate_hz:g} Hz foot rate it is not stated: on the coarser sample grid the contact's and "
+            f"the toe-off's errors differ, and the range missed 10 of 60 simulated 20 Hz walks "
+            f"({decision_ref('L730', 'L737')})")
+
+
+def bias_terms(setup: str | None, cycle_s: float | None, rate_hz: float | None = None) -> str:
     """Decision L703: the clause giving the stance bias of ``setup`` (both set-ups' when None) in ms and, with a
-    finite gait cycle ``cycle_s`` (s), in percentage points of that cycle: stance, double support, single support."""
+    finite gait cycle ``cycle_s`` (s), in percentage points of that cycle: stance, double support, single support.
+    ``rate_hz`` (decision L737): the foot units' rate - under :data:`FORCE_BIAS_MIN_HZ` the insoles' numbers are not
+    stated; unknown (None), the clause says the rates they were measured at."""
     setups = [setup] if setup in STANCE_BIAS else list(STANCE_BIAS)
     parts = []
     for s in setups:
+        rate_text = force_rate_text(rate_hz) if s == "force" else None  # decision L737
+        if rate_text is not None and rate_text.startswith("with "):
+            parts.append(rate_text)
+            continue
         ms = stance_bias_ms(s, cycle_s)
         if ms is None:  # decision L730: the insoles' two terms without a cycle to add them in
             (lag_lo, lag_hi), (to_lo, to_hi) = STANCE_BIAS[s][0]
             parts.append(f"with {BIAS_SOURCE[s]} each stance reads {-to_hi:.0f}-{-to_lo:.0f} ms plus "
-                         f"{lag_lo:.1f}-{lag_hi:.1f} % of the gait cycle short")
+                         f"{lag_lo:.1f}-{lag_hi:.1f} % of the gait cycle short" + (f" ({rate_text})" if rate_text
+                                                                                   else ""))
             continue
         text = f"with {BIAS_SOURCE[s]} each stance reads {-ms[1]:.0f}-{-ms[0]:.0f} ms short"
         if cycle_s is not None and math.isfinite(cycle_s) and cycle_s > 0:
@@ -85,14 +119,17 @@ def bias_terms(setup: str | None, cycle_s: float | None) -> str:
                      "stride's rhythm (steps 91; before it some fired 50-80 ms early, steps 87): simulated children's "
                      f"stance read {IMU_CHILD_STANCE_MS[0]:+.0f} to {IMU_CHILD_STANCE_MS[1]:+.0f} ms (steps 92), a "
                      "simulated measure only, so no sign is claimed")
+        if rate_text is not None:  # decision L737: the unknown rate's clause
+            text += f" ({rate_text})"
         parts.append(text)
     return "; ".join(parts)
 
 
-def support_note(setup: str | None, cycle_s: float | None) -> str:
-    """Decisions L262, L285, L703: ``pdrlearn gait``'s caveat on its double and single support from foot tracks."""
+def support_note(setup: str | None, cycle_s: float | None, rate_hz: float | None = None) -> str:
+    """Decisions L262, L285, L703: ``pdrlearn gait``'s caveat on its double and single support from foot tracks
+    (``rate_hz``: the foot units' rate, decision L737)."""
     unsure = setup != "force" and cycle_s is not None and cycle_s < IMU_EARLY_CYCLE_S  # IMU contacts may fire early
     head = ("double and single support from foot units carry a contact bias whose sign is not known at this walk's "
             "short cycle" if unsure else "double support reads low and single support high from foot units")
-    return (head + " (decisions L73, L262, L285, L703): " + bias_terms(setup, cycle_s)
+    return (head + " (decisions L73, L262, L285, L703): " + bias_terms(setup, cycle_s, rate_hz)
             + "; the size depends on the mount and the walker, a measured bias and no bound")

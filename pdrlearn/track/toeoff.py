@@ -49,9 +49,9 @@ def stance_range_warning(summary: dict) -> str | None:
     if stance is None or not np.isfinite(stance) or stance >= TOE_OFF_MIN_CHECKED_STANCE_S:
         return None
     setup = setup_of((summary.get("info") or {}).get("stance_source"))
-    cycle = summary.get("median_stride_time_s")
-    terms = bias_terms(setup, cycle)
-    ms = [r for r in (stance_bias_ms(k, cycle) for k in ([setup] if setup else STANCE_BIAS)) if r is not None]
+    cycle, rate = summary.get("median_stride_time_s"), summary.get("rate_hz")  # decision L737: the foot's rate
+    terms = bias_terms(setup, cycle, rate)
+    ms = [r for r in (stance_bias_ms(k, cycle, rate) for k in ([setup] if setup else STANCE_BIAS)) if r is not None]
     share = (f" ({100 * -max(r[1] for r in ms) / 1000 / stance:.0f}-{100 * -min(r[0] for r in ms) / 1000 / stance:.0f}"
              f" % of this walk's {stance:.3f} s stance)") if ms else ""
     return coded(f"median stance (contact) time {stance:.3f} s is below {TOE_OFF_MIN_CHECKED_STANCE_S:.2f} s, the "

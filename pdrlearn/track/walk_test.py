@@ -100,6 +100,12 @@ def walkway_zones(summary: dict) -> tuple[float, float, float]:
     return float(accel), float(timed), float(decel)
 
 
+def walkway_timed_m(summary: dict) -> float | None:
+    """Decision C211: the timed metres a summary's 10 m walk speed is over (:func:`walkway_zones`), None without a
+    speed - the walkway changes.csv and clinical.md compare the speed on."""
+    return None if summary.get("ten_m_walk_speed_mps") is None else walkway_zones(summary)[1]
+
+
 def timed_stretch(accel: float, timed: float, decel: float, whole: str = "a {total} m walkway") -> str:
     """Decision L536: the words for a walkway's timed stretch from its (acceleration, timed, deceleration) metres:
     "the middle 6 m of a 10 m walkway" only when the zones are equal and not 0; "the first 6 m of a 10 m walkway,
