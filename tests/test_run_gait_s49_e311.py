@@ -3,6 +3,8 @@
 
 from __future__ import annotations
 
+import contextlib
+import io
 import json
 import shutil
 from pathlib import Path
@@ -26,15 +28,16 @@ def pair(tmp_path_factory):
     for foot in ("left", "right"):
         assert main(["simulate", "--route", "stand:2, straight:8, stand:2", "--user-seed", "16238", "--seed", "1",
                      "--rate", "50", "--foot", foot, "--out", str(root / foot[0].upper())]) == 0
-    out = root / "run"
+    out, err = root / "run", io.StringIO()
     # SESSION is the right foot: the sides come from meta.json, not from the order
-    assert main(["run", str(BUNDLE), str(root / "R"), "--gait", str(root / "L"), "--contacts", "--units", "foot",
-                 "--no-plot", "--out", str(out)]) == 0
-    return root, out, pair_sessions(root / "L", root / "R")  # what `pdrlearn gait L R` computes
+    with contextlib.redirect_stderr(err):
+        assert main(["run", str(BUNDLE), str(root / "R"), "--gait", str(root / "L"), "--contacts", "--units", "foot",
+                     "--no-plot", "--out", str(out)]) == 0
+    return root, out, pair_sessions(root / "L", root / "R"), err.getvalue()  # offline: what `gait L R` computes
 
 
 def test_run_gait_writes_gaits_files_and_columns(pair):
-    root, out, offline = pair
+    root, out, offline, _ = pair
     assert folder_kind(out) == "run"  # gait's files in a run folder keep it run's (`run --force` replaces it)
     for name, table in gait_tables(offline).items():
         mine = pd.read_csv(out / name)
@@ -50,7 +53,7 @@ def test_run_gait_writes_gaits_files_and_columns(pair):
 def test_run_gait_steps_are_the_streamed_strides_within_the_measured_difference(pair):
     """The stated difference (E311): the same steps and kinds; contacts, step and stride times within a few ms of
     offline gait's, stance (L73's toe-off on the streamed stride windows) within 10 ms."""
-    root, out, offline = pair
+    root, out, offline, _ = pair
     steps, cycles = pd.read_csv(out / "gait_steps.csv"), pd.read_csv(out / "gait_cycles.csv")
     run_steps = pd.read_csv(out / "steps.csv")  # the right foot's replay: its contacts are gait's right steps'
     right_ic = steps.loc[steps["side"] == "right", "ic_s"].to_numpy(float)
@@ -71,7 +74,7 @@ def _err(capsys) -> str:
 
 
 def test_run_gait_refusals_are_one_line_before_any_replay(pair, tmp_path, capsys):
-    root, _, _ = pair
+    root, _, _, _ = pair
     waist = tmp_path / "wbundle"
     waist.mkdir()
     (waist / "manifest.json").write_text(json.dumps({"schema": "pdrlearn-waist-bundle"}))
@@ -87,3 +90,9 @@ def test_run_gait_refusals_are_one_line_before_any_replay(pair, tmp_path, capsys
     assert main(["run", str(BUNDLE), str(root / "R"), "--gait", str(root / "R")]) == 2
     assert "hold the same recording" in _err(capsys)
     assert not (tmp_path / "o").exists()
+
+
+def test_the_feet_replays_do_not_repeat_runs_warnings(pair):
+    """Each foot's replay says the bundle's rate lines again; run says them once (E311's said_once)."""
+    err = pair[3]
+    assert err.count("not the bundle's 20 Hz") == 1 and err.count("step classifiers were trained at") == 1, err

@@ -730,7 +730,7 @@ def run(
         if gait_other is not None:  # decision E311: gait's result of the two feet's streamed strides
             from pdrlearn.cli.run_gait import run_gait
 
-            gait = run_gait(bundle, pair, chunk_s=chunk_s, methods=methods, rules=rules,
+            gait = run_gait(bundle, pair, chunk_s=chunk_s, said=logged, methods=methods, rules=rules,
                             min_confidence=min_confidence, resample=resample_mode(resample, no_resample),
                             drop_neighbour=drop_neighbour, cycling=not no_cycling, length_reference=length_reference)
         if out is not None:  # decision E157: the push times in run.json, not summary.json

@@ -6,7 +6,9 @@ for ``pdrlearn gait`` (its checks, :func:`~pdrlearn.track.bilateral.bilateral_ga
 
 from __future__ import annotations
 
+import logging
 import math
+from contextlib import contextmanager
 from pathlib import Path
 
 #: decision E311: the force files whose streaming makes the runtime's contact the force onset (E49)
@@ -69,11 +71,41 @@ def gait_pair(session_dir: Path, other_dir: Path) -> tuple[Path, Path, tuple]:
     return left, right, read_pair(left, right, streamed=True)
 
 
-def run_gait(bundle, pair: tuple[Path, Path, tuple], *, chunk_s: float, **tracker_options) -> dict:
+@contextmanager
+def said_once(said: list[str]):
+    """Decision E311: inside the body, a WARNING of a ``pdrlearn`` logger whose message ``said`` holds (run's own
+    replay said it: the bundle's rate line, ...) or that the body said already (each foot's replay says the bundle's
+    lines again) is not logged; every other record passes."""
+    seen: set[str] = set()
+
+    def once(record: logging.LogRecord) -> bool:
+        if record.levelno < logging.WARNING:
+            return True
+        msg = record.getMessage()
+        if msg in seen or any(line.startswith(msg) for line in said):
+            return False
+        seen.add(msg)
+        return True
+
+    loggers = [logging.getLogger(n) for n in list(logging.Logger.manager.loggerDict)
+               if n == "pdrlearn" or n.startswith("pdrlearn.")]
+    for lg in loggers:
+        lg.addFilter(once)
+    try:
+        yield
+    finally:
+        for lg in loggers:
+            lg.removeFilter(once)
+
+
+def run_gait(bundle, pair: tuple[Path, Path, tuple], *, chunk_s: float, said: list[str] = (),
+             **tracker_options) -> dict:
     """Decision E311: ``gait``'s result (:func:`pdrlearn.track.bilateral.pair_sessions`) of :func:`gait_pair`'s
-    ``pair``, both feet replayed by :func:`streamed_foot_track`."""
+    ``pair``, both feet replayed by :func:`streamed_foot_track`; a warning ``said`` already (run's) or by the other
+    foot's replay is not repeated (:func:`said_once`)."""
     from pdrlearn.track.bilateral import pair_sessions
 
     left, right, read = pair
-    return pair_sessions(left, right, read=read, track_foot=streamed_foot_track(bundle, chunk_s=chunk_s,
-                                                                                 **tracker_options))
+    with said_once(list(said)):
+        return pair_sessions(left, right, read=read, track_foot=streamed_foot_track(bundle, chunk_s=chunk_s,
+                                                                                     **tracker_options))
