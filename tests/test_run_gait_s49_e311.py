@@ -6,6 +6,7 @@ from __future__ import annotations
 import contextlib
 import io
 import json
+import os
 import shutil
 from pathlib import Path
 
@@ -28,11 +29,15 @@ def pair(tmp_path_factory):
     for foot in ("left", "right"):
         assert main(["simulate", "--route", "stand:2, straight:8, stand:2", "--user-seed", "16238", "--seed", "1",
                      "--rate", "50", "--foot", foot, "--out", str(root / foot[0].upper())]) == 0
-    out, err = root / "run", io.StringIO()
-    # SESSION is the right foot: the sides come from meta.json, not from the order
-    with contextlib.redirect_stderr(err):
-        assert main(["run", str(BUNDLE), str(root / "R"), "--gait", str(root / "L"), "--contacts", "--units", "foot",
-                     "--no-plot", "--out", str(out)]) == 0
+    out, err, here = root / "run", io.StringIO(), os.getcwd()
+    # SESSION is the right foot: the sides come from meta.json, not from the order; folders typed bare (E176)
+    os.chdir(root)
+    try:
+        with contextlib.redirect_stderr(err):
+            assert main(["run", str(BUNDLE), "R", "--gait", "L", "--contacts", "--units", "foot", "--no-plot",
+                         "--redact-paths", "--out", "run"]) == 0
+    finally:
+        os.chdir(here)
     return root, out, pair_sessions(root / "L", root / "R"), err.getvalue()  # offline: what `gait L R` computes
 
 
@@ -45,8 +50,10 @@ def test_run_gait_writes_gaits_files_and_columns(pair):
         assert len(mine) == len(table), name
     summary = json.loads((out / "gait_summary.json").read_text())
     assert set(summary) == set(summary_json(offline)) and set(summary["walk"]) == set(offline["walk"])
-    assert summary["sessions"]["left"]["session"] == str(root / "L") and summary["contact_source"] == {
-        "left": "force", "right": "force"}
+    assert summary["contact_source"] == {"left": "force", "right": "force"}
+    # --redact-paths: the two sessions as typed are redacted in gait_summary.json and run.json (E176)
+    assert {s["session"] for s in summary["sessions"].values()} == {"<redacted>"}
+    assert json.loads((out / "run.json").read_text())["options"]["gait_other"] == "<redacted>"
     assert set(GAIT_FILES) <= {p.name for p in out.iterdir()}
 
 

@@ -738,8 +738,13 @@ def run(
                    data_latency_ms=data_lat.report(None if protocol is not None else chunk_s)),  # decision E288
                    bouts=table, with_ele=start_ele, redact=redact, plot=plot, gait=gait)  # decision L533
         if as_json:
-            shown = summary if gait is None else {**summary, "gait": _gait_summary(gait)}  # E311: not in summary.json
-            print_json(redacted(json_safe(shown), redact))
+            shown = redacted(json_safe(summary), redact)
+            if gait is not None:  # decision E311: gait_summary.json's object, not in summary.json
+                from pdrlearn.redact import GAIT_SUMMARY_FIELDS, redact_json
+
+                shown["gait"] = redact_json(_gait_summary(gait), redact, fields=GAIT_SUMMARY_FIELDS) if redact \
+                    else _gait_summary(gait)
+            print_json(shown)
         else:
             err = summary.get("distance_error_pct")
             from pdrlearn.track.evaluate import floors_phrase  # decisions L64, L127 (numpy: lazily)
