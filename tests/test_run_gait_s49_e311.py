@@ -103,3 +103,13 @@ def test_the_feet_replays_do_not_repeat_runs_warnings(pair):
     """Each foot's replay says the bundle's rate lines again; run says them once (E311's said_once)."""
     err = pair[3]
     assert err.count("not the bundle's 20 Hz") == 1 and err.count("step classifiers were trained at") == 1, err
+
+
+def test_the_lean_command_names_run_gait_in_one_line(pair, tmp_path, capsys):
+    """The lean command has no gait (pandas, scipy): `--gait` is one line naming `pdrlearn run ... --gait`."""
+    from pdrlearn.runtime.__main__ import main as lean_main
+
+    root = pair[0]
+    assert lean_main([str(BUNDLE), str(root / "R"), "--gait", str(root / "L"), "--out", str(tmp_path / "o")]) == 2
+    assert f"`pdrlearn run {BUNDLE} {root / 'R'} --gait {root / 'L'}`" in _err(capsys)
+    assert not (tmp_path / "o").exists()
