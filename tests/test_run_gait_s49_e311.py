@@ -55,6 +55,10 @@ def test_run_gait_writes_gaits_files_and_columns(pair):
     assert {s["session"] for s in summary["sessions"].values()} == {"<redacted>"}
     assert json.loads((out / "run.json").read_text())["options"]["gait_other"] == "<redacted>"
     assert set(GAIT_FILES) <= {p.name for p in out.iterdir()}
+    # each foot's own trust lines as gait's (L461; its numbers the streamed ones), e.g. L414's stance line
+    for side in ("left", "right"):
+        mine, theirs = (x["sessions"][side]["warnings"] for x in (summary, offline))
+        assert [w[:29] for w in mine] == [w[:29] for w in theirs] and any("stance" in w for w in mine), side
 
 
 def test_run_gait_steps_are_the_streamed_strides_within_the_measured_difference(pair):

@@ -28,6 +28,7 @@ def streamed_foot_track(bundle, *, chunk_s: float = 1.0, **tracker_options):
         from pdrlearn.orient.filters import unit_data
         from pdrlearn.runtime.replay import replay_chunks
         from pdrlearn.runtime.tracker import Tracker
+        from pdrlearn.track.gait import streamed_gait_columns
         from pdrlearn.track.gait_contacts import FORCE_STANCE
         from pdrlearn.track.toeoff import toe_off_times
 
@@ -47,10 +48,10 @@ def streamed_foot_track(bundle, *, chunk_s: float = 1.0, **tracker_options):
         steps += tracker.flush()
         result = _result(steps)
         table = result.steps
-        foot = unit_data(session, "foot", purpose="the toe-off (decision L73)")
-        table["tc_s"] = (toe_off_times(foot.t, foot.gyr, table["start_s"].to_numpy(float),  # decision L73, as offline
-                                       table["end_s"].to_numpy(float), table["event_s"].to_numpy(float))
-                         if len(table) else [])
+        if len(table):  # decision L73, as offline --toe-off: the toe-off and the stance / swing columns
+            foot = unit_data(session, "foot", purpose="the toe-off (decision L73)")
+            result.steps = streamed_gait_columns(table, tc_s=toe_off_times(
+                foot.t, foot.gyr, *(table[c].to_numpy(float) for c in ("start_s", "end_s", "event_s"))))
         # steps decision 72: the detector that timed the contacts (E49: the force onset when both insoles stream)
         result.info["stance_source"] = FORCE_STANCE if all(n in streams for n in FORCE_FILES) else "inertial"
         return result
