@@ -1979,7 +1979,9 @@ NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row pe
                            "keys for the whole walk (its level straight steps', L538), `by_kind` the same keys "
                            "for each step kind, `clock_alignment` how the two feet were put on one clock (L537), "
                            "its `warnings` the B245 / L284 / L285 lines. `pdrlearn gait-all ROOT --out DIR` (C110) "
-                           "stacks every visit folder's pair, each row led by `path`."}
+                           "stacks every visit folder's pair, each row led by `path`; `pdrlearn run BUNDLE "
+                           "SESSION --gait OTHER_FOOT --out DIR` writes the same files of the two feet's streamed "
+                           "strides (E311)."}
 
 
 def expanded(table: str) -> dict[str, Column]:

@@ -72,7 +72,8 @@ def folder_kind(folder: Path) -> str | None:
         return "track-all"
     if (folder / "gait_pairs.csv").is_file() and (folder / "gait_steps.csv").is_file():
         return "gait-all"  # decision W437: before gait's, a gait-all output of ROOT's own pair (PATH ".") has both
-    if (folder / "gait_summary.json").is_file() and (folder / "gait_steps.csv").is_file():
+    if (folder / "gait_summary.json").is_file() and (folder / "gait_steps.csv").is_file() and not all(
+            (folder / n).is_file() for n in _TRACK_FILES):  # decision E311: `run --gait` writes gait's files too
         return "gait"
     if (folder / "split.json").is_file() and (folder / "part_000").is_dir():  # decision B379
         return "split"

@@ -29,7 +29,10 @@ _BELOW = r"(?:/[^\s\"',;:|<>]*)?"
 PATH_FIELDS = frozenset({"input_dir", "cwd", "argv", "root", "session_dir", "bundle_dir", "fit"})
 #: run.json's fields that hold a path as given: the session as typed and the options' files (E176 amended)
 RUN_FIELDS = PATH_FIELDS | {"session", "out", "model", "bundle", "params", "params_dir", "gnss", "fixes",
-                            "corridor", "contacts", "subject_map", "visit_map", "path"}
+                            "corridor", "contacts", "subject_map", "visit_map", "path",
+                            "gait_other"}  # decision E311: run --gait's other foot
+#: decision E311: gait_summary.json's fields that hold a path as given (``sessions``' ``session``: ``run --gait``)
+GAIT_SUMMARY_FIELDS = PATH_FIELDS | {"session"}
 
 
 def path_forms(paths: Iterable[str | Path | None], cwd: str | Path | None = None) -> tuple[str, ...]:
@@ -110,7 +113,7 @@ def redact_folder(folder: Path, forms: tuple[str, ...], recursive: bool = True) 
     def rewrite(text: str, p: Path) -> str:
         if p.suffix.lower() != ".json":
             return text_pattern.sub(REDACTED, text)
-        fields = RUN_FIELDS if p.name == "run.json" else PATH_FIELDS
+        fields = {"run.json": RUN_FIELDS, "gait_summary.json": GAIT_SUMMARY_FIELDS}.get(p.name, PATH_FIELDS)
         return rewrite_json_text(text, lambda obj: redact_json(obj, forms, fields=fields))
 
     return rewrite_folder(folder, rewrite, recursive)

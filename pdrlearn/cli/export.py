@@ -361,6 +361,12 @@ def run(
                                          "length against 0.8 / 1.2 x the median of the session's such strides so "
                                          "far, after 10 (thesis ch.6.3's per-pedestrian classes; decision C117, not "
                                          "the default: C118); the distance is unchanged."),
+    gait_other: Path = typer.Option(None, "--gait", metavar="OTHER_FOOT_SESSION",
+                                    help="The other foot's session of the same walk: also `pdrlearn gait`'s tables "
+                                    "and summary (gait_summary.json, gait_steps.csv, gait_cycles.csv, "
+                                    "gait_bouts.csv with --out) of the two feet's streamed strides, each foot "
+                                    "replayed foot-only with contacts and L73's toe-off (decision E311); the sides "
+                                    "from meta.json's foot, else SESSION_DIR is the left."),
     heading_source: str = typer.Option("auto", "--heading-source", metavar="auto|foot|waist-gyro",
                                        help="What turns the streamed heading (the Tracker's heading_source, decision "
                                        "E6): auto = the waist gyroscope when the waist unit streams, else the foot; "
@@ -468,7 +474,8 @@ def run(
                                                          ("--stair-rise", stair_rise is not None),
                                                          ("--length-reference", length_reference != "model"),
                                                          ("--heading-source", heading_source != "auto"),  # E285
-                                                         ("--stair-grade", stair_grade is not None))
+                                                         ("--stair-grade", stair_grade is not None),
+                                                         ("--gait", gait_other is not None))  # decision E311
                                           if v]
             if given:
                 raise DataError(f"run: {', '.join(given)} is for a foot-unit bundle; {bundle_dir} is a waist-only "
@@ -493,6 +500,10 @@ def run(
         from pdrlearn.runtime.latency import DataLatency
 
         data_lat = DataLatency()  # decision E288: the steps' data latency (a capture's pushes: not measured)
+        if gait_other is not None and session_dir is None:  # decision E311: gait pairs two session folders
+            raise DataError(f"run: --gait {gait_other} pairs SESSION_DIR with the other foot's session; "
+                            + ("a --protocol capture is no session folder: " if protocol is not None else "")
+                            + "give the two feet's session folders (pdrlearn run BUNDLE LEFT --gait RIGHT)")
         if protocol is not None and common_span:  # decision B230: a capture has one unit's streams, on one clock
             raise DataError(f"run: --common-span cuts a session's files to the time all of them cover; the --protocol "
                             f"capture {protocol} has no files: drop --common-span")
@@ -573,6 +584,10 @@ def run(
             from pdrlearn.errors import shell_quote
             from pdrlearn.io import read_session
 
+            if gait_other is not None:  # decision E311: the two feet's pair checked before any replay
+                from pdrlearn.cli.run_gait import gait_pair
+
+                pair = gait_pair(session_dir, gait_other)
             run_command = f"pdrlearn run {shell_quote(bundle_dir)} {shell_quote(session_dir)}"  # B274, B279
             # decision L77: its drops warning; B230: --common-span as track's (B81 / B83's cut)
             session = read_session(session_dir, streamed=True, spans="common" if common_span else "refuse",
@@ -711,12 +726,25 @@ def run(
         if protocol_stats is not None:  # the README's "corrupted measurements are skipped and counted"
             summary["protocol"] = protocol_stats
         keep_warnings(summary, logged, session)  # decision E154
+        gait = None
+        if gait_other is not None:  # decision E311: gait's result of the two feet's streamed strides
+            from pdrlearn.cli.run_gait import run_gait
+
+            gait = run_gait(bundle, pair, chunk_s=chunk_s, said=logged, methods=methods, rules=rules,
+                            min_confidence=min_confidence, resample=resample_mode(resample, no_resample),
+                            drop_neighbour=drop_neighbour, cycling=not no_cycling, length_reference=length_reference)
         if out is not None:  # decision E157: the push times in run.json, not summary.json
             _write(out, result, summary, session, source, dpi=dpi, record=record(latency_ms_per_step=_latency(lat),
                    data_latency_ms=data_lat.report(None if protocol is not None else chunk_s)),  # decision E288
-                   bouts=table, with_ele=start_ele, redact=redact, plot=plot)  # decision L533
+                   bouts=table, with_ele=start_ele, redact=redact, plot=plot, gait=gait)  # decision L533
         if as_json:
-            print_json(redacted(json_safe(summary), redact))
+            shown = redacted(json_safe(summary), redact)
+            if gait is not None:  # decision E311: gait_summary.json's object, not in summary.json
+                from pdrlearn.redact import GAIT_SUMMARY_FIELDS, redact_json
+
+                shown["gait"] = redact_json(_gait_summary(gait), redact, fields=GAIT_SUMMARY_FIELDS) if redact \
+                    else _gait_summary(gait)
+            print_json(shown)
         else:
             err = summary.get("distance_error_pct")
             from pdrlearn.track.evaluate import floors_phrase  # decisions L64, L127 (numpy: lazily)
@@ -736,6 +764,18 @@ def run(
             ramps = _track.written_ramps_line(summary, out)  # decision L571: as track's line
             if ramps:
                 typer.echo(ramps)
+            if gait is not None:  # decision E311: gait's lines of the streamed strides
+                from pdrlearn.cli.gait import result_lines
+
+                for line in result_lines(gait, "replayed"):
+                    typer.echo(line)
+
+
+def _gait_summary(gait: dict) -> dict:
+    """Decision E311: gait_summary.json's object of ``run --gait``'s pair (``gait``'s own, json-safe)."""
+    from pdrlearn.cli.gait import summary_json
+
+    return json_safe(summary_json(gait))
 
 
 def _foot_checks(session) -> None:
@@ -1144,7 +1184,7 @@ def as_written(result) -> None:
 
 def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: int | None = None,
            record: dict, bouts, with_ele: bool = False, redact: tuple[str, ...] | None = None,
-           plot: bool = True) -> None:
+           plot: bool = True, gait: dict | None = None) -> None:
     """steps.csv, trajectory.csv, bouts.csv (L124), turns.csv (L200), path.png (not with ``plot`` false: ``--no-plot``,
     decision L533), summary.json and run.json
     (``record``, decision L122) as ``track`` writes them (same names, columns, number format, ``track``'s figure),
@@ -1193,6 +1233,10 @@ def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: i
                         pipeline=summary.get("pipeline"), distance_m=summary.get("distance_m"), start=start,
                         with_ele=with_ele, features=route_features(tables))  # decision L570: ramps, flights
         write_run_json(tmp, record)
+        if gait is not None:  # decision E311: gait's four files of the streamed strides, in the same folder
+            from pdrlearn.cli.gait import write_gait_files
+
+            write_gait_files(tmp, gait, _gait_summary(gait))
         if redact:  # decision E176
             from pdrlearn.redact import redact_folder
 

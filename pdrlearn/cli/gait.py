@@ -123,6 +123,42 @@ def summary_json(res: dict) -> dict:
     return out
 
 
+def write_gait_files(folder: Path, res: dict, summary: dict | None = None) -> None:
+    """Decisions L260, C109: ``gait --out``'s four files of :func:`pdrlearn.track.bilateral.pair_sessions`'s ``res``
+    into ``folder`` (gait_summary.json: ``summary``, default :func:`summary_json` of ``res``); ``run --gait`` writes
+    the same (decision E311)."""
+    from pdrlearn.io.plasys import json_safe
+    from pdrlearn.table_csv import write_table_csv
+    from pdrlearn.track.gait_tables import gait_tables
+
+    summary = json_safe(summary_json(res)) if summary is None else summary
+    (folder / "gait_summary.json").write_text(json.dumps(summary, indent=2, allow_nan=False) + "\n")
+    for name, table in gait_tables(res).items():  # decision C109: ids in front, foot beside side
+        write_table_csv(table, folder / name)  # decision C103: as gait-all writes them (review R4)
+
+
+def result_lines(res: dict, how: str) -> list[str]:
+    """The printed lines of one pair's ``res`` (``gait``'s; ``run --gait``'s with ``how`` = "replayed", E311): the
+    sessions' strides and bouts, the clock alignment (L537), the headline measures, one line per kind of step (L538),
+    the stair flights (L561) and the reason support measures are missing or biased."""
+    s = res["sessions"]
+    lines = [f"{s['left']['session']} + {s['right']['session']}: {s['left']['n_strides']} left and "
+             f"{s['right']['n_strides']} right strides {how}, {len(res['bouts'])} walking bout(s)"]
+    from pdrlearn.track.bilateral import alignment_line
+
+    aligned = alignment_line(res["clock_alignment"])  # decision L537
+    if aligned is not None:
+        lines.append(aligned)
+    lines += gait_lines(res["walk"], res["by_kind"])
+    if len(res["by_kind"]) > 1:  # decision L538: a walk of one kind has its rows in the headline
+        lines.append(f"by kind of step ({decision_ref('L538')}):")  # decision D49
+        lines += ["  " + line for line in kind_lines(res["by_kind"])]
+    lines += stair_lines(res["stairs"])  # decision L561
+    if res["reason"]:
+        lines.append(res["reason"])
+    return lines
+
+
 def register(app: typer.Typer) -> None:
     register_all(app)
 
@@ -177,7 +213,6 @@ def register(app: typer.Typer) -> None:
         from pdrlearn.atomic import atomic_directory
         from pdrlearn.cli.common import existed, out_folder, print_json, refused_output, replaced
         from pdrlearn.io.plasys import json_safe
-        from pdrlearn.table_csv import write_table_csv
         from pdrlearn.track.bilateral import pair_sessions
 
         if out is not None:
@@ -186,35 +221,15 @@ def register(app: typer.Typer) -> None:
         res = pair_sessions(left_dir, right_dir, ignore_force=ignore_force)
         summary = json_safe(summary_json(res))
         if out is not None:
-            from pdrlearn.track.gait_tables import gait_tables
-
             was = existed(out)
             with refused_output(out), atomic_directory(out) as tmp:  # all four files or none (B151)
-                (tmp / "gait_summary.json").write_text(json.dumps(summary, indent=2, allow_nan=False) + "\n")
-                for name, table in gait_tables(res).items():  # decision C109: ids in front, foot beside side
-                    write_table_csv(table, tmp / name)  # decision C103: as gait-all writes them (review R4)
+                write_gait_files(tmp, res, summary)
             replaced(out, was)
         if as_json:
             print_json(summary)
             return
-        s = res["sessions"]
-        typer.echo(f"{s['left']['session']} + {s['right']['session']}: {s['left']['n_strides']} left and "
-                   f"{s['right']['n_strides']} right strides tracked, {len(res['bouts'])} walking bout(s)")
-        from pdrlearn.track.bilateral import alignment_line
-
-        aligned = alignment_line(res["clock_alignment"])  # decision L537
-        if aligned is not None:
-            typer.echo(aligned)
-        for line in gait_lines(res["walk"], res["by_kind"]):
+        for line in result_lines(res, "tracked"):
             typer.echo(line)
-        if len(res["by_kind"]) > 1:  # decision L538: a walk of one kind has its rows in the headline
-            typer.echo(f"by kind of step ({decision_ref('L538')}):")  # decision D49
-            for line in kind_lines(res["by_kind"]):
-                typer.echo("  " + line)
-        for line in stair_lines(res["stairs"]):  # decision L561
-            typer.echo(line)
-        if res["reason"]:
-            typer.echo(res["reason"])
         ref = res.get("reference")
         if ref is not None:
             typer.echo("reference (the sessions' labelled contacts):")

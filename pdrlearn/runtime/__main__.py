@@ -37,6 +37,9 @@ def _parser() -> argparse.ArgumentParser:
                    "alone when the session has no waist unit)")
     p.add_argument("--method", metavar="[TASK=]METHOD[/UNIT],...", help="another exported model than the "
                    "bundle's chosen one (as pdrlearn run --method, decision E52)")
+    p.add_argument("--gait", metavar="OTHER_FOOT_SESSION", type=Path, help="not in the lean install: gait's tables "
+                   "need pandas and scipy; refused in one line naming `pdrlearn run BUNDLE SESSION --gait "
+                   "OTHER_FOOT_SESSION` (decision E311)")
     p.add_argument("--json", action="store_true", help="print one JSON summary object")
     p.add_argument("--force", action="store_true", help="replace the --out folder of an earlier replay by this "
                    "command (nothing else: a session or another command's output is refused; decision E276)")
@@ -159,6 +162,13 @@ def _replay_and_write(args) -> dict:
     from pdrlearn.atomic import atomic_directory
     from pdrlearn.outfolder import out_folder
 
+    if args.gait is not None:  # decision E311: gait's functions are the full install's (pandas, scipy)
+        from pdrlearn.decision_refs import decision_ref
+        from pdrlearn.errors import DataError
+
+        raise DataError(f"--gait {args.gait}: gait's tables of two feet need the full install (pandas, scipy); "
+                        f"replay both feet with `pdrlearn run {args.bundle} {args.session} --gait {args.gait}` "
+                        f"({decision_ref('E311')})")
     if args.out is not None:
         out_folder(args.out, "lean", force=args.force, inputs=(args.bundle, args.session))
     tracker, steps = replay(args.bundle, args.session, chunk_s=args.chunk_s, units=args.units, method=args.method)

@@ -998,28 +998,49 @@ def foot_rate_hz(sessions) -> float | None:
     return min(rates) if rates else None
 
 
-def pair_sessions(left_dir: Path, right_dir: Path, *, ignore_force: bool = False) -> dict:
-    """Decisions L259-L263: read and track (offline plasys with ``toe_off=True``, L73) the left and the right foot's
-    session folders of one walk and give :func:`bilateral_gait` of their tracks, plus ``"reference"``: the same
-    measures of their labelled events when both sessions have them (L263), and ``"sessions"``: each track's
-    summary line data (``n_strides``, ``distance_m``). Steps decision 72: both feet are timed by one detector - the
-    IMU's when only one foot has force sensors or the two tracks' contacts came from different detectors (one
-    warning line), or always with ``ignore_force`` (L366, ``gait --ignore-force``); ``"contact_source"`` gives each
-    foot's."""
-    from pdrlearn.io import read_session
-    from pdrlearn.track.gait_tables import pair_ids
+def offline_foot_track(session, ignore_force: bool):
+    """Decision L259: how ``gait`` tracks one foot session: offline plasys with L73's toe-off, no model (E153), no
+    TUG transfer read (W439). The default ``track_foot`` of :func:`pair_sessions`."""
     from pdrlearn.track.plasys import track_plasys
 
-    sessions = [read_session(d) for d in (left_dir, right_dir)]
+    return track_plasys(session, toe_off=True, ignore_force=ignore_force, transfers=False)
+
+
+def read_pair(left_dir: Path, right_dir: Path, *, streamed: bool = False) -> tuple[list, dict, str | None]:
+    """Decisions L260, L283, L537, B321, B322: read the left and the right foot's session folders (``streamed``: as
+    ``run`` reads them, E311) and refuse, in one line each, a pair that is not two foot units of one walk on one
+    clock. Returns ``(sessions, clock alignment, side warning or None)``; nothing is logged."""
+    from pdrlearn.io import read_session
+
+    sessions = [read_session(d, streamed=streamed) for d in (left_dir, right_dir)]
     check_pair(left_dir, right_dir, sessions[0].meta, sessions[1].meta, *(s.content_id() for s in sessions))
     for d, s in zip((left_dir, right_dir), sessions, strict=True):
         if not s.has("fAccelerometer", "fGyroscope"):
             raise DataError(f"gait: {d} has no foot unit (fAccelerometer.csv, fGyroscope.csv); give a foot session")
     check_one_walk(left_dir, right_dir, sessions[0].meta, sessions[1].meta)
     alignment = clock_alignment(left_dir, right_dir, sessions[0].meta, sessions[1].meta)  # decision L537
+    check_pair_streams(left_dir, right_dir, sessions,
+                       (alignment["shift_left_s"], alignment["shift_right_s"]))  # decision B322
+    return sessions, alignment, side_warning(left_dir, right_dir, [s.meta for s in sessions])
+
+
+def pair_sessions(left_dir: Path, right_dir: Path, *, ignore_force: bool = False, track_foot=None,
+                  streamed: bool = False, read: tuple | None = None) -> dict:
+    """Decisions L259-L263: read and track (offline plasys with ``toe_off=True``, L73) the left and the right foot's
+    session folders of one walk and give :func:`bilateral_gait` of their tracks, plus ``"reference"``: the same
+    measures of their labelled events when both sessions have them (L263), and ``"sessions"``: each track's
+    summary line data (``n_strides``, ``distance_m``). Steps decision 72: both feet are timed by one detector - the
+    IMU's when only one foot has force sensors or the two tracks' contacts came from different detectors (one
+    warning line), or always with ``ignore_force`` (L366, ``gait --ignore-force``); ``"contact_source"`` gives each
+    foot's. ``track_foot(session, ignore_force)`` tracks one foot (a :class:`~pdrlearn.track.base.TrackResult` whose
+    steps have ``event_s`` and ``tc_s``; default :func:`offline_foot_track`; decision E311: ``pdrlearn run --gait``
+    passes the runtime's streamed replay, with ``streamed`` = the sessions read as ``run`` reads them; ``read``: the
+    pair :func:`read_pair` read and checked already)."""
+    from pdrlearn.track.gait_tables import pair_ids
+
+    track_foot = offline_foot_track if track_foot is None else track_foot
+    sessions, alignment, side = read_pair(left_dir, right_dir, streamed=streamed) if read is None else read
     shifts = (alignment["shift_left_s"], alignment["shift_right_s"])
-    check_pair_streams(left_dir, right_dir, sessions, shifts)  # decision B322
-    side = side_warning(left_dir, right_dir, [s.meta for s in sessions])
     if side is not None:
         logging.getLogger(__name__).warning(side)
     from pdrlearn.track.gait_contacts import contact_source, has_force, mixed_line
@@ -1030,12 +1051,11 @@ def pair_sessions(left_dir: Path, right_dir: Path, *, ignore_force: bool = False
         ignore_force = True
         mixed.append(mixed_line(forced, before=True))
     with no_model_as_info(GAIT_NO_MODEL_INFO):  # decision E153: gait takes no model; one info line, no warning
-        tracks = [track_plasys(s, toe_off=True, ignore_force=ignore_force, transfers=False)  # W439: no TUG read
-                  for s in sessions]
+        tracks = [track_foot(s, ignore_force) for s in sessions]  # decision E311: offline or streamed
         sources = dict(zip(SIDES, map(contact_source, tracks), strict=True))
         if len(set(sources.values())) > 1:  # steps decision 72: e.g. one foot's insole check fell back (L365)
             mixed.append(mixed_line(sources, before=False))
-            tracks = [t if sources[side] == "imu" else track_plasys(s, toe_off=True, ignore_force=True, transfers=False)
+            tracks = [t if sources[side] == "imu" else track_foot(s, True)
                       for side, s, t in zip(SIDES, sessions, tracks, strict=True)]
             sources = dict(zip(SIDES, map(contact_source, tracks), strict=True))
     for line in mixed:

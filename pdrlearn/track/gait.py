@@ -161,14 +161,15 @@ def add_gait_columns(table: pd.DataFrame, *, turn_rad=None, valid=None, tc_s=Non
     return table
 
 
-def streamed_gait_columns(table: pd.DataFrame) -> pd.DataFrame:
+def streamed_gait_columns(table: pd.DataFrame, tc_s=None) -> pd.DataFrame:
     """Decision E51: the :data:`GAIT_COLUMNS` of a streamed foot table (``track --streaming``, ``pdrlearn run``:
     ``event_s`` the runtime's initial contact, E49, NaN on a gap row; ``turn_angle_rad`` the stride's own turn;
     ``gap_s``) by :func:`add_gait_columns` (a gap row, ``gap_s`` > 0, is no stride, L67), placed as offline's
-    steps.csv places them (before ``gap_s`` and ``unit``). In place; returned."""
+    steps.csv places them (before ``gap_s`` and ``unit``). ``tc_s`` (decision E311: ``run --gait``'s L73 toe-offs):
+    the :data:`TOE_OFF_COLUMNS` too, as offline ``--toe-off``. In place; returned."""
     valid = stride_rows(table) if "gap_s" in table or "impossible" in table else None  # L67, L97
     turn = table["turn_angle_rad"].to_numpy(float) if "turn_angle_rad" in table else None
-    add_gait_columns(table, turn_rad=turn, valid=valid, turn_valid=turn_rows(table))  # L109: a zeroed stride's turn
+    add_gait_columns(table, turn_rad=turn, valid=valid, turn_valid=turn_rows(table), tc_s=tc_s)  # L109
     tail = [c for c in ("impossible", "gap_s", "unit") if c in table]
     gait = [c for c in GAIT_COLUMNS if c in table]
     order = [c for c in table.columns if c not in gait and c not in tail] + gait + tail
