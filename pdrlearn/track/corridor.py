@@ -65,6 +65,12 @@ SHORT_LAP_MIN_LAPS = 2
 #: before the first full lap can be the wait for "go" (ours: longer than a slow walker's stepless cone turn, 3-4.9 s
 #: in trial T1)
 GO_WAIT_MIN_S = 5.0
+#: decision L739: on a lower-back table an auto "go" is its first contact less this many step times (the median of
+#: the next :data:`LB_GO_CONTACTS` contacts' step times): gait initiation's weight shift and first swing come before the
+#: first heel strike (trial s49t1's 12 sessions: 1.08-1.64 step times after the simulator's first step, median 1.4)
+LB_GO_STEPS = 1.4
+#: decision L739: the contacts whose step times date the lower back's "go"
+LB_GO_CONTACTS = 12
 #: decision L643: a lap time whose corridor length is faster than this (m/s) is no walk (a 900 m 6MWT; ours)
 MAX_LAP_SPEED_MPS = 2.5
 #: decision L643: ... when the median lap also tracks less than this fraction of the corridor (L384's lower bound)
@@ -298,34 +304,47 @@ def go_time(st: pd.DataFrame, t: np.ndarray, d: np.ndarray, mids: np.ndarray,
                             "test's 'go' in seconds of the session's clock, inside the walk (decision L642)")
         return float(start), None
     if start != "auto" or len(st) < 2:
-        return first, None
+        return (first if start != "auto" else onset(st, 0)), None
     inner = mids[(mids > first) & (mids < float(st["end_s"].max()))]
     if len(inner) < 2:
-        return first, None
+        return onset(st, 0), None
     at = np.interp(inner, t, d)
     ref = float(np.median(np.diff(at)))
     if ref < NOT_CORRIDOR_FRAC * corridor_m:  # decision L642 amended: a track that lost steps has false standstills
-        return first, None
+        return onset(st, 0), None
     full = (1.0 - LAP_AGREEMENT_TOL) * ref
     ends = np.concatenate([[d[0]], at])
     first_full = next((float(m) for m, a, b in zip(inner, ends[:-1], ends[1:], strict=True) if b - a >= full),
                       float("inf"))
     stop, go = st["end_s"].to_numpy(float)[:-1], st["start_s"].to_numpy(float)[1:]
     best = None
-    for a, b in zip(stop, go, strict=True):
+    for i, (a, b) in enumerate(zip(stop, go, strict=True), start=1):
         nxt = inner[inner > b]
         if b - a < GO_WAIT_MIN_S or b >= first_full or not len(nxt):
             continue
         if float(np.interp(nxt[0], t, d) - np.interp(b, t, d)) >= full:
-            best = (a, b)
+            best = (a, b, i)
     if best is None:
-        return first, None
+        return onset(st, 0), None
     before = float(np.interp(best[0], t, d) - d[0])
-    return best[1], coded(f"corridor walk test: started at {best[1]:.1f} s, the first step after a "
+    go_s = onset(st, best[2])
+    return go_s, coded(f"corridor walk test: started at {go_s:.1f} s, the first step after a "
                           f"{best[1] - best[0]:.1f} s standstill before the first full lap (the walk to the start "
                           f"line and the wait for 'go'?); the {before:.1f} m walked before it are not scored; "
                           "give --walk-test-start SECONDS (or first-step, or meta.json walk_test_start_s) to set "
                           "it (decision L642)", "L642")
+
+
+def onset(st: pd.DataFrame, i: int) -> float:
+    """Decision L739: the walk's start at row ``i`` of the sorted step table ``st``: its ``start_s`` on a foot table;
+    on a lower-back table (a row per contact) the contact less :data:`LB_GO_STEPS` x the median step time of the next
+    :data:`LB_GO_CONTACTS` contacts, not before the previous row's end (or 0 s)."""
+    starts = st["start_s"].to_numpy(float)
+    if not _is_lower_back(st) or len(starts) < i + 2:
+        return float(starts[i])
+    step_s = float(np.median(np.diff(starts[i:i + LB_GO_CONTACTS + 1])))
+    floor = float(st["end_s"].iloc[i - 1]) if i > 0 else 0.0
+    return float(max(starts[i] - LB_GO_STEPS * step_s, floor, 0.0))
 
 
 def go_inside(t0: float, start: float | str, span: tuple[float, float] | None, end: float | None) -> None:
