@@ -11,6 +11,7 @@ auto go on these walks: no standstill before the laps) against `"auto"` (the can
 Run: OMP_NUM_THREADS=1 PYTHONPATH=$PWD .venv/bin/python experiments/corridor_lower_back_c213.py WORKDIR [TRIAL_DIR]
 Output: experiments/results/corridor_lower_back_c213.txt (the printed lines).
 """
+import importlib.util
 import json
 import math
 import subprocess
@@ -26,6 +27,31 @@ from pdrlearn.track import corridor
 TUNE, TEST = range(16520, 16540), range(16540, 16560)
 HALLS = (20.0, 25.0, 30.0, 40.0)
 PDR = [sys.executable, "-m", "pdrlearn"]
+BASE = "6f726b22"  # the branch's start: corridor.py before L739 / L740
+FRACS = (0.955, 0.97, 0.985, 0.995)  # L740: the test ends this far into lap 3
+
+
+def base_module(work: Path):
+    """corridor.py at :data:`BASE` (its imports resolve in this checkout's package)."""
+    src = work / "corridor_base.py"
+    src.write_text(subprocess.run(["git", "show", f"{BASE}:pdrlearn/track/corridor.py"], check=True,
+                                  capture_output=True, text=True).stdout)
+    spec = importlib.util.spec_from_file_location("corridor_base", src)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def along(ses: Path, hall: float) -> tuple[np.ndarray, np.ndarray, float]:
+    """The simulator's pelvis times (s) and distance along the corridor (m; the cone turns' arcs left out, as
+    trial s49t1's truth.py), and its first step's start (s)."""
+    tr = pd.read_csv(ses / "trajectory.csv")
+    t, xy = tr["timestamp"].to_numpy(float) / 1000.0, tr[["x", "y"]].to_numpy(float)
+    go = float(pd.read_csv(ses / "steps.csv")["start_ms"].iloc[0]) / 1000.0
+    p0 = xy[np.searchsorted(t, go)]
+    axis = xy[np.searchsorted(t, go + 8.0)] - p0
+    proj = np.clip((xy - p0) @ (axis / np.linalg.norm(axis)), 0.0, hall)
+    return t, np.concatenate([[0.0], np.cumsum(np.abs(np.diff(proj)))]), go
 
 
 def walk_of(u: int) -> dict:
@@ -120,14 +146,16 @@ def main(work: Path, trial: Path | None) -> None:
     right, far_hit, far_n = results[f"C213 ({tol:.2f})"]
     say(f"C213 rule: (a) right corridors with a line {right} (must be 0): {'holds' if right == 0 else 'FAILS'}; "
         f"(b) far wrong ones caught {far_hit}/{far_n} (>= 90 %): {'holds' if far_hit >= 0.9 * far_n else 'FAILS'}")
-    # L739: go error before (first-step) / after (auto, the candidate)
-    errs = {"first-step": [], "auto": []}
+    # L739: go error before (the branch's start, auto) / after (this checkout, auto: the candidate)
+    base = base_module(work)
+    mods = {"before": base, "after": corridor}
+    errs = {"before": [], "after": []}
     for u in [*TUNE, *TEST]:
         st, tu, bo = tables(outs[u])
-        truth_go = float(pd.read_csv(work / f"u{u}" / "steps.csv")["start_ms"].iloc[0]) / 1000.0
+        truth_go = along(work / f"u{u}", walk_of(u)["hall"])[2]
         row = []
         for mode in errs:
-            _, s, _ = corridor.corridor_laps(st, tu, walk_of(u)["hall"], bo, duration_s=60.0, start=mode)
+            _, s, _ = mods[mode].corridor_laps(st, tu, walk_of(u)["hall"], bo, duration_s=60.0)
             errs[mode].append(s["walk_test_start_s"] - truth_go)
             row.append(f"{mode} {s['walk_test_start_s'] - truth_go:+.3f} s")
         say(f"L739 u{u} step {walk_of(u)['step_s']} s: go error " + ", ".join(row))
@@ -135,10 +163,53 @@ def main(work: Path, trial: Path | None) -> None:
         a = np.abs(e)
         say(f"L739 {mode}: go error median {np.median(e):+.3f} s, median |error| {np.median(a):.3f} s, max |error| "
             f"{a.max():.3f} s, range {min(e):+.3f}..{max(e):+.3f} s")
-    b, a = np.abs(errs["first-step"]), np.abs(errs["auto"])
+    b, a = np.abs(errs["before"]), np.abs(errs["after"])
     say(f"L739 rule: median |error| {np.median(b):.3f} -> {np.median(a):.3f} s (halves: "
         f"{'holds' if np.median(a) <= 0.5 * np.median(b) else 'FAILS'}); max {b.max():.3f} -> {a.max():.3f} s "
         f"(does not grow: {'holds' if a.max() <= b.max() else 'FAILS'})")
+    # L740: timed tests ending inside lap 3 (truth 2 laps + f) and at the third cone (truth 3 laps); go given
+    inside = {"before": [], "after": []}
+    cone = {"before": [], "after": []}
+    for u in TEST:
+        hall = walk_of(u)["hall"]
+        st, tu, bo = tables(outs[u])
+        t, d, go = along(work / f"u{u}", hall)
+        for f in (*FRACS, 1.0):
+            end = float(t[np.searchsorted(d, (2.0 + f) * hall - 1e-6)])
+            truth_laps, truth_m = (3, 3 * hall) if f == 1.0 else (2, (2.0 + f) * hall)
+            row = []
+            for mode, mod in mods.items():
+                _, s, _ = mod.corridor_laps(st, tu, hall, bo, duration_s=end - go, start=go)
+                err = 100.0 * (s["walk_test_distance_m"] - truth_m) / truth_m
+                (cone if f == 1.0 else inside)[mode].append((s["n_laps"] == truth_laps, abs(err)))
+                row.append(f"{mode} {s['n_laps']} laps {err:+.2f} %")
+            say(f"L740 u{u} hall {hall:g} end at {f:.3f} of lap 3 (truth {truth_laps} laps {truth_m:.1f} m): "
+                + ", ".join(row))
+    for name, res_ in (("inside lap 3", inside), ("at the third cone", cone)):
+        for mode, v in res_.items():
+            say(f"L740 {name} {mode}: n_laps right {sum(ok for ok, _ in v)} of {len(v)}, mean |distance error| "
+                f"{np.mean([e for _, e in v]):.3f} %")
+    ok_b = sum(ok for ok, _ in inside["after"])
+    eb, ea = (np.mean([e for _, e in inside[m]]) for m in ("before", "after"))
+    say(f"L740 rule: (a) n_laps right {ok_b} of {len(inside['after'])} (>= 95 %): "
+        f"{'holds' if ok_b >= 0.95 * len(inside['after']) else 'FAILS'}; (b) mean |distance error| {eb:.3f} -> "
+        f"{ea:.3f} % (does not grow: {'holds' if ea <= eb + 1e-12 else 'FAILS'})")
+    if trial is not None:  # check only: the trial's 6MWTs (its own tracks; truth from its truth.py)
+        sys.path.insert(0, str(trial))
+        from truth import truth  # noqa: PLC0415
+
+        for res_dir, given in (("all_w", None), ("all_fw", None), ("all_fw", 5.0)):
+            for p in sorted((trial / "res" / res_dir).glob("P0*")):
+                T = truth(str(trial / "sim" / p.name))
+                st, tu, bo = tables(p)
+                row = []
+                for mode, mod in mods.items():
+                    _, s, _ = mod.corridor_laps(st, tu, 30.0, bo, duration_s=360.0,
+                                                start="auto" if given is None else given)
+                    row.append(f"{mode} {s['n_laps']} laps {s['walk_test_distance_m']:.1f} m "
+                               f"({100 * (s['walk_test_distance_m'] - T['dist']) / T['dist']:+.2f} %)")
+                say(f"trial {res_dir} {p.name} go {'auto' if given is None else given} (truth {T['laps']} laps "
+                    f"{T['dist']:.2f} m): " + ", ".join(row))
     res = Path(__file__).parent / "results" / "corridor_lower_back_c213.txt"
     res.write_text("\n".join(lines) + "\n")
     print(json.dumps({"written": str(res)}))

@@ -39,3 +39,15 @@ def test_the_foot_and_a_go_right_after_a_row_are_unchanged_l739():
     t, cones = laps_after(0.5, 9)
     lb = strides(t, unit="waist")
     assert corridor_laps(lb, turns_at(cones), 30.0, duration_s=270.0)[1]["walk_test_start_s"] == 0.0
+
+
+def test_a_timed_tests_last_partial_lap_is_not_snapped_to_the_cone_l740():
+    """Decision L740: 8 laps and 29.5 of the 9th 30 m lap when the timer ends (trial s49t1's P06_post: 11 laps +
+    29.56 m read 12 laps): a timed test's final stretch is a partial lap (main: 9 laps, 270 m); with a --window
+    ending there (L645's own case) it still counts as a lap."""
+    t, cones = laps_after(0.0, 9)
+    steps, turns = strides(t), turns_at(cones[:8])
+    laps, s, _ = corridor_laps(steps, turns, 30.0, duration_s=269.5, start=0.0)
+    assert s["n_laps"] == 8 and s["walk_test_distance_m"] == pytest.approx(269.5)
+    assert laps["corridor_laps"].iloc[-1] == 0 and laps["distance_source"].iloc[-1] == "tracked x scale"
+    assert corridor_laps(steps, turns, 30.0, span=(0.0, 269.5))[1]["n_laps"] == 9

@@ -26,11 +26,12 @@ CONE_TURN_MIN_DEG = 135.0
 MISSED_TURN_RATIO = 1.5
 #: decision L518 (amends L384's 0.5-2 x on the foot): the relative scale error a track's laps may carry against the
 #: true corridor, by unit: foot 15 % (measured: the simulated 6MWT's tracked distance -0.93..+0.78 %, L385; the real
-#: foot's stride length 3.44 % MAE, README); the lower back keeps L384's 0.5-2 x (tolerance 100 %): L518's 50 % fired
-#: on 7 of 20 true corridors (uncalibrated waist-pendulum laps up to +87 % at 0.35 m steps), not adopted
-CORRIDOR_SCALE_TOL = {"foot": 0.15, "lower back": 1.0}
+#: foot's stride length 3.44 % MAE, README). The lower back: decision C213 (amends L518's not-adopted 50 % and L384's
+#: 0.5-2 x): 35 %, 1.25 x the largest uncalibrated lap scale error of tuning users 16520-16539 (|ln| 0.2354: +26.5 % at
+#: 0.35 m steps with S74's population bounce), rounded up to 5 %; 0 of 20 right corridors of held-out users fired
+CORRIDOR_SCALE_TOL = {"foot": 0.15, "lower back": 0.35}
 #: decision L518: the laps' robust relative spread (1.4826 x MAD / median) counts this many times on top (the foot;
-#: the lower back keeps L384's fixed range)
+#: the lower back's band is fixed, C213)
 CORRIDOR_SPREAD_K = {"foot": 2.0, "lower back": 0.0}
 #: decision L407: a lap whose tracked metres are off its corridor lengths x the median lap by more than this fraction
 #: warns (uneven legs, e.g. a 5-10-5 shuttle, or a wrong --corridor); halfway between a turn placed a stride off on a
@@ -222,8 +223,9 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
     rows, known = [], [(lap_t0, 0.0)]  # known: (time, corridor distance) at each stretch's end
     a, b, m, _ = stretches[-1]
     # decision L645: the final lap reached the cone; L660: not after an L517 short lap (the walk back to the chair);
-    # C181: with the half cone turn it did not walk (a lap between two turns' middles holds two halves)
-    if short is None and (m + 0.5 * cone_turn_m(cone, t, d, lap_t0, lap_end)) * scale >= (
+    # C181: with the half cone turn it did not walk (a lap between two turns' middles holds two halves); L740: not in
+    # a timed test (it ends at the timer, wherever the walker is: a partial lap, capped at the corridor)
+    if duration_s is None and short is None and (m + 0.5 * cone_turn_m(cone, t, d, lap_t0, lap_end)) * scale >= (
             LAST_LAP_REACHED_FRAC * corridor_m):
         stretches[-1] = (a, b, m, 1)
     for i, (a, b, m, c) in enumerate(stretches, start=1):
@@ -383,7 +385,7 @@ def corridor_agreement(tracked: np.ndarray, corridor_m: float, *, lower_back: bo
     """Decision L518: one line when ``--corridor`` disagrees with the track's own laps (``tracked``: the stretches'
     tracked metres, the last one the final stretch after the last cone turn) by more than the unit's scale error
     (:data:`CORRIDOR_SCALE_TOL`) + :data:`CORRIDOR_SPREAD_K` x the laps' robust relative spread (the lower back:
-    L384's 0.5-2 x); a walk without a lap
+    C213's 0.74-1.35 x); a walk without a lap
     when its final stretch tracks more than that over one corridor length (capped at it); None otherwise."""
     unit = "lower back" if lower_back else "foot"
     tol = CORRIDOR_SCALE_TOL[unit]
@@ -398,7 +400,8 @@ def corridor_agreement(tracked: np.ndarray, corridor_m: float, *, lower_back: bo
         return coded(f"corridor walk test: the median lap tracked {ref:.1f} m (laps {np.min(laps):.1f}-"
                      f"{np.max(laps):.1f} m) against --corridor {corridor_m:g} m ({ref / corridor_m:.2f} x), outside "
                      f"the {1 / (1 + tol):.2f}-{1 + tol:.2f} x a {unit} track's scale error allows: is the corridor "
-                     f"length right?{lost} the laps count {corridor_m:g} m each (decisions L518, L646)", "L518")
+                     f"length right?{lost} the laps count {corridor_m:g} m each (decisions L518, L646"
+                     f"{', C213' if lower_back else ''})", "L518")
     last = float(np.sum(tracked)) if len(tracked) else 0.0
     if last <= (1.0 + tol) * corridor_m:
         return None
