@@ -294,7 +294,8 @@ def go_time(st: pd.DataFrame, t: np.ndarray, d: np.ndarray, mids: np.ndarray,
     :data:`GO_WAIT_MIN_S` (one row's end to the next row's start) that lies before the first full lap's end and is
     followed by a full lap to the next cone turn (a full lap: at least (1 - :data:`LAP_AGREEMENT_TOL`) x the median
     stretch between cone turns); none on a track whose median stretch is under :data:`NOT_CORRIDOR_FRAC` of the
-    corridor (L646: it lost steps, so its gaps are not known to be standstills)."""
+    corridor (L646: it lost steps, so its gaps are not known to be standstills). L739: an auto "go" on a lower-back
+    table is that first contact dated back by :func:`onset`."""
     first = float(t[0])
     if not isinstance(start, str):
         last = float(st["end_s"].max())
@@ -330,7 +331,8 @@ def go_time(st: pd.DataFrame, t: np.ndarray, d: np.ndarray, mids: np.ndarray,
         return onset(st, 0), None
     before = float(np.interp(best[0], t, d) - d[0])
     go_s = onset(st, best[2])
-    return go_s, coded(f"corridor walk test: started at {go_s:.1f} s, the first step after a "
+    dated = f" (its first contact {best[1]:.1f} s less {LB_GO_STEPS:g} step times, L739)" if go_s < best[1] else ""
+    return go_s, coded(f"corridor walk test: started at {go_s:.1f} s{dated}, the first step after a "
                           f"{best[1] - best[0]:.1f} s standstill before the first full lap (the walk to the start "
                           f"line and the wait for 'go'?); the {before:.1f} m walked before it are not scored; "
                           "give --walk-test-start SECONDS (or first-step, or meta.json walk_test_start_s) to set "
