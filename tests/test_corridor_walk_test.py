@@ -35,7 +35,7 @@ def test_laps_and_distance_of_a_hand_made_corridor_walk():
     laps, s, warnings = corridor_laps(_walk(), _turns([30, 60, 90, 120]), 30.0)
     # L518: a foot track's laps 20 % short of --corridor is more than its scale error: one line, the count unchanged
     assert len(warnings) == 1 and "L518" in warnings[0]
-    assert corridor_laps(_walk().assign(unit="waist"), _turns([30, 60, 90, 120]), 30.0)[2] == []  # lower back: 0.5-2 x
+    assert corridor_laps(_walk().assign(unit="waist"), _turns([30, 60, 90, 120]), 30.0)[2] == []  # lower back: C213
     assert s["n_laps"] == 4 and len(laps) == 5
     # L383: 4 laps x 30 m + the final 12 tracked metres x (30 / 24, the last lap's scale) = 15 m
     assert s["walk_test_distance_m"] == pytest.approx(135.0)

@@ -25,7 +25,8 @@ def test_the_test_starts_after_the_wait_for_go_l642():
     steps, turns = _walk_to_start_and_wait()
     laps, s, warnings = corridor_laps(steps, turns, 30.0, duration_s=270.0)
     assert s["walk_test_start_s"] == pytest.approx(30.0)
-    assert s["n_laps"] == 9 and s["walk_test_distance_m"] == pytest.approx(270.0)
+    # L740: the 9th lap ends at the timer (no cone turn inside the test): 8 laps + a 30 m partial lap
+    assert s["n_laps"] == 8 and s["walk_test_distance_m"] == pytest.approx(270.0)
     assert s["walk_test_distance_per_minute_m"] == pytest.approx([60.0] * 4)
     line = [w for w in warnings if "L642" in w]
     assert len(line) == 1 and "started at 30.0 s" in line[0] and "26.0 s standstill" in line[0]
@@ -36,7 +37,7 @@ def test_the_test_starts_after_the_wait_for_go_l642():
                                                                                           if "L642" in w]
     # a time given is taken as given
     _, given, _ = corridor_laps(steps, turns, 30.0, duration_s=270.0, start=29.5)
-    assert given["walk_test_start_s"] == 29.5 and given["n_laps"] == 9
+    assert given["walk_test_start_s"] == 29.5 and given["n_laps"] == 8  # L740: 8 laps + 29.5 m
 
 
 def test_a_rest_inside_the_first_lap_is_no_go_l642():

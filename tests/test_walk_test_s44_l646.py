@@ -16,12 +16,12 @@ def test_laps_tracked_far_short_withhold_the_minutes_l646():
     t, cones = laps_after(0.0, 6)
     steps = strides(t, step_m=0.15, unit="waist")
     laps, s, warnings = corridor_laps(steps, turns_at(cones), 30.0, duration_s=180.0)
-    assert s["n_laps"] == 6 and s["walk_test_distance_m"] == pytest.approx(180.0)
+    assert s["n_laps"] == 5 and s["walk_test_distance_m"] == pytest.approx(180.0)  # L740: lap 6 ends at the timer
     assert s["walk_test_distance_per_minute_m"] is None and s["fatigue_index"] is None
     assert "withheld" in s["walk_test_note"] and "lost steps" in s["walk_test_note"]
     assert [w for w in warnings if "L646" in w and "withheld" in w]
     l518 = [w for w in warnings if "L518" in w]
-    assert len(l518) == 1 and "(0.15 x), outside the 0.50-2.00 x" in l518[0] and "lose steps" in l518[0]
+    assert len(l518) == 1 and "(0.15 x), outside the 0.74-1.35 x" in l518[0] and "lose steps" in l518[0]
     assert "per minute" not in corridor_line(s) and "withheld" in corridor_line(s)
     # a foot track 20 % short (a uniform scale error) keeps its minutes
     _, s_foot, _ = corridor_laps(strides(t, step_m=0.8), turns_at(cones), 30.0, duration_s=180.0)

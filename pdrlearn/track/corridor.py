@@ -26,11 +26,12 @@ CONE_TURN_MIN_DEG = 135.0
 MISSED_TURN_RATIO = 1.5
 #: decision L518 (amends L384's 0.5-2 x on the foot): the relative scale error a track's laps may carry against the
 #: true corridor, by unit: foot 15 % (measured: the simulated 6MWT's tracked distance -0.93..+0.78 %, L385; the real
-#: foot's stride length 3.44 % MAE, README); the lower back keeps L384's 0.5-2 x (tolerance 100 %): L518's 50 % fired
-#: on 7 of 20 true corridors (uncalibrated waist-pendulum laps up to +87 % at 0.35 m steps), not adopted
-CORRIDOR_SCALE_TOL = {"foot": 0.15, "lower back": 1.0}
+#: foot's stride length 3.44 % MAE, README). The lower back: decision C213 (amends L518's not-adopted 50 % and L384's
+#: 0.5-2 x): 35 %, 1.25 x the largest uncalibrated lap scale error of tuning users 16520-16539 (|ln| 0.2354: +26.5 % at
+#: 0.35 m steps with S74's population bounce), rounded up to 5 %; 0 of 20 right corridors of held-out users fired
+CORRIDOR_SCALE_TOL = {"foot": 0.15, "lower back": 0.35}
 #: decision L518: the laps' robust relative spread (1.4826 x MAD / median) counts this many times on top (the foot;
-#: the lower back keeps L384's fixed range)
+#: the lower back's band is fixed, C213)
 CORRIDOR_SPREAD_K = {"foot": 2.0, "lower back": 0.0}
 #: decision L407: a lap whose tracked metres are off its corridor lengths x the median lap by more than this fraction
 #: warns (uneven legs, e.g. a 5-10-5 shuttle, or a wrong --corridor); halfway between a turn placed a stride off on a
@@ -65,6 +66,12 @@ SHORT_LAP_MIN_LAPS = 2
 #: before the first full lap can be the wait for "go" (ours: longer than a slow walker's stepless cone turn, 3-4.9 s
 #: in trial T1)
 GO_WAIT_MIN_S = 5.0
+#: decision L739: on a lower-back table an auto "go" is its first contact less this many step times (the median of
+#: the next :data:`LB_GO_CONTACTS` contacts' step times): gait initiation's weight shift and first swing come before the
+#: first heel strike (trial s49t1's 12 sessions: 1.08-1.64 step times after the simulator's first step, median 1.4)
+LB_GO_STEPS = 1.4
+#: decision L739: the contacts whose step times date the lower back's "go"
+LB_GO_CONTACTS = 12
 #: decision L643: a lap time whose corridor length is faster than this (m/s) is no walk (a 900 m 6MWT; ours)
 MAX_LAP_SPEED_MPS = 2.5
 #: decision L643: ... when the median lap also tracks less than this fraction of the corridor (L384's lower bound)
@@ -216,8 +223,9 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
     rows, known = [], [(lap_t0, 0.0)]  # known: (time, corridor distance) at each stretch's end
     a, b, m, _ = stretches[-1]
     # decision L645: the final lap reached the cone; L660: not after an L517 short lap (the walk back to the chair);
-    # C181: with the half cone turn it did not walk (a lap between two turns' middles holds two halves)
-    if short is None and (m + 0.5 * cone_turn_m(cone, t, d, lap_t0, lap_end)) * scale >= (
+    # C181: with the half cone turn it did not walk (a lap between two turns' middles holds two halves); L740: not in
+    # a timed test (it ends at the timer, wherever the walker is: a partial lap, capped at the corridor)
+    if duration_s is None and short is None and (m + 0.5 * cone_turn_m(cone, t, d, lap_t0, lap_end)) * scale >= (
             LAST_LAP_REACHED_FRAC * corridor_m):
         stretches[-1] = (a, b, m, 1)
     for i, (a, b, m, c) in enumerate(stretches, start=1):
@@ -286,7 +294,8 @@ def go_time(st: pd.DataFrame, t: np.ndarray, d: np.ndarray, mids: np.ndarray,
     :data:`GO_WAIT_MIN_S` (one row's end to the next row's start) that lies before the first full lap's end and is
     followed by a full lap to the next cone turn (a full lap: at least (1 - :data:`LAP_AGREEMENT_TOL`) x the median
     stretch between cone turns); none on a track whose median stretch is under :data:`NOT_CORRIDOR_FRAC` of the
-    corridor (L646: it lost steps, so its gaps are not known to be standstills)."""
+    corridor (L646: it lost steps, so its gaps are not known to be standstills). L739: an auto "go" on a lower-back
+    table is that first contact dated back by :func:`onset`."""
     first = float(t[0])
     if not isinstance(start, str):
         last = float(st["end_s"].max())
@@ -298,34 +307,48 @@ def go_time(st: pd.DataFrame, t: np.ndarray, d: np.ndarray, mids: np.ndarray,
                             "test's 'go' in seconds of the session's clock, inside the walk (decision L642)")
         return float(start), None
     if start != "auto" or len(st) < 2:
-        return first, None
+        return (first if start != "auto" else onset(st, 0)), None
     inner = mids[(mids > first) & (mids < float(st["end_s"].max()))]
     if len(inner) < 2:
-        return first, None
+        return onset(st, 0), None
     at = np.interp(inner, t, d)
     ref = float(np.median(np.diff(at)))
     if ref < NOT_CORRIDOR_FRAC * corridor_m:  # decision L642 amended: a track that lost steps has false standstills
-        return first, None
+        return onset(st, 0), None
     full = (1.0 - LAP_AGREEMENT_TOL) * ref
     ends = np.concatenate([[d[0]], at])
     first_full = next((float(m) for m, a, b in zip(inner, ends[:-1], ends[1:], strict=True) if b - a >= full),
                       float("inf"))
     stop, go = st["end_s"].to_numpy(float)[:-1], st["start_s"].to_numpy(float)[1:]
     best = None
-    for a, b in zip(stop, go, strict=True):
+    for i, (a, b) in enumerate(zip(stop, go, strict=True), start=1):
         nxt = inner[inner > b]
         if b - a < GO_WAIT_MIN_S or b >= first_full or not len(nxt):
             continue
         if float(np.interp(nxt[0], t, d) - np.interp(b, t, d)) >= full:
-            best = (a, b)
+            best = (a, b, i)
     if best is None:
-        return first, None
+        return onset(st, 0), None
     before = float(np.interp(best[0], t, d) - d[0])
-    return best[1], coded(f"corridor walk test: started at {best[1]:.1f} s, the first step after a "
+    go_s = onset(st, best[2])
+    dated = f" (its first contact {best[1]:.1f} s less {LB_GO_STEPS:g} step times, L739)" if go_s < best[1] else ""
+    return go_s, coded(f"corridor walk test: started at {go_s:.1f} s{dated}, the first step after a "
                           f"{best[1] - best[0]:.1f} s standstill before the first full lap (the walk to the start "
                           f"line and the wait for 'go'?); the {before:.1f} m walked before it are not scored; "
                           "give --walk-test-start SECONDS (or first-step, or meta.json walk_test_start_s) to set "
                           "it (decision L642)", "L642")
+
+
+def onset(st: pd.DataFrame, i: int) -> float:
+    """Decision L739: the walk's start at row ``i`` of the sorted step table ``st``: its ``start_s`` on a foot table;
+    on a lower-back table (a row per contact) the contact less :data:`LB_GO_STEPS` x the median step time of the next
+    :data:`LB_GO_CONTACTS` contacts, not before the previous row's end (or 0 s)."""
+    starts = st["start_s"].to_numpy(float)
+    if not _is_lower_back(st) or len(starts) < i + 2:
+        return float(starts[i])
+    step_s = float(np.median(np.diff(starts[i:i + LB_GO_CONTACTS + 1])))
+    floor = float(st["end_s"].iloc[i - 1]) if i > 0 else 0.0
+    return float(max(starts[i] - LB_GO_STEPS * step_s, floor, 0.0))
 
 
 def go_inside(t0: float, start: float | str, span: tuple[float, float] | None, end: float | None) -> None:
@@ -364,7 +387,7 @@ def corridor_agreement(tracked: np.ndarray, corridor_m: float, *, lower_back: bo
     """Decision L518: one line when ``--corridor`` disagrees with the track's own laps (``tracked``: the stretches'
     tracked metres, the last one the final stretch after the last cone turn) by more than the unit's scale error
     (:data:`CORRIDOR_SCALE_TOL`) + :data:`CORRIDOR_SPREAD_K` x the laps' robust relative spread (the lower back:
-    L384's 0.5-2 x); a walk without a lap
+    C213's 0.74-1.35 x); a walk without a lap
     when its final stretch tracks more than that over one corridor length (capped at it); None otherwise."""
     unit = "lower back" if lower_back else "foot"
     tol = CORRIDOR_SCALE_TOL[unit]
@@ -379,7 +402,8 @@ def corridor_agreement(tracked: np.ndarray, corridor_m: float, *, lower_back: bo
         return coded(f"corridor walk test: the median lap tracked {ref:.1f} m (laps {np.min(laps):.1f}-"
                      f"{np.max(laps):.1f} m) against --corridor {corridor_m:g} m ({ref / corridor_m:.2f} x), outside "
                      f"the {1 / (1 + tol):.2f}-{1 + tol:.2f} x a {unit} track's scale error allows: is the corridor "
-                     f"length right?{lost} the laps count {corridor_m:g} m each (decisions L518, L646)", "L518")
+                     f"length right?{lost} the laps count {corridor_m:g} m each (decisions L518, L646"
+                     f"{', C213' if lower_back else ''})", "L518")
     last = float(np.sum(tracked)) if len(tracked) else 0.0
     if last <= (1.0 + tol) * corridor_m:
         return None
