@@ -211,14 +211,18 @@ def change_lines(rows: list) -> list[str]:
 
 
 def warnings_line(summary: dict) -> str | None:
-    """Decision W446: a pointer to the track's warnings (clinical.md leaves their text to report.md)."""
+    """Decision W446: the track's warnings at the end of its block; decision C209 (trial T2 finding F4 of session 48:
+    codes alone said nothing to a clinic): each warning below the count, indented, with its code and its text as the
+    track gave it (what it means and what to do), one line per distinct warning."""
     info = summary.get("info") or {}
     warnings, codes = info.get("warnings") or [], info.get("warning_codes") or []
     if not warnings:
         return None
     named = f" ({', '.join(dict.fromkeys(c for c in codes if c))})" if any(codes) else ""
-    return (f"- Track warnings: {len(warnings)}{named}; read them in report.md or summary.json info.warnings before "
-            "using these numbers")
+    pairs = zip(warnings, list(codes) + [None] * (len(warnings) - len(codes)), strict=False)
+    items = [f"  - {f'{c}: ' if c else ''}{' '.join(str(w).split())}" for w, c in dict.fromkeys(pairs)]
+    return "\n".join([f"- Track warnings: {len(warnings)}{named}, what each means and what to do (C209; also in "
+                       "report.md and summary.json info.warnings):", *items])
 
 
 def _unit(source: str) -> str:
