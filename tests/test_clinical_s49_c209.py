@@ -16,6 +16,7 @@ def test_each_warning_is_given_with_its_meaning_c209():
     assert lines[1] == ("  - W169: no per-user calibration: step length from meta.json defaults (run 'pdrlearn "
                         "calibrate' on walks of known length: decision W169)")
     assert lines[2] == "  - a line without a code"  # one line per distinct warning
-    assert lines[3] == "  - W5: waist heading relative to the start; give the start direction with --initial-heading DEG"
+    assert lines[3] == ("  - W5: waist heading relative to the start; give the start direction with "
+                        "--initial-heading DEG")
     assert len(lines) == 4
     assert warnings_line({"info": {}}) is None

@@ -554,10 +554,10 @@ def unanchored_warning(walk: dict, steps: pd.DataFrame, reach: float = 0.0) -> s
     if walk.get("step_length_scale_pct") is not None or not len(steps):
         return None
     if reach > CLOSURE_LATERAL_MAX_M:
-        return (f"{UNANCHORED_NOTE}. This walk left its axis (the line from its start to its end) by {reach:.1f} m (a bend or a corner; the closing "
-                f"step anchors only a walk within {CLOSURE_LATERAL_MAX_M:g} m of it, decision C208: the two foot "
-                "tracks' heading difference after a bend moves their positions along the walk, a 400 m track's bend "
-                "read a 9 % step-length asymmetry as 173 %)")
+        return (f"{UNANCHORED_NOTE}. This walk left its axis (the line from its start to its end) by {reach:.1f} m "
+                f"(a bend or a corner; the closing step anchors only a walk within {CLOSURE_LATERAL_MAX_M:g} m of "
+                "it, decision C208: the two foot tracks' heading difference after a bend moves their positions "
+                "along the walk, a 400 m track's bend read a 9 % step-length asymmetry as 173 %)")
     return UNANCHORED_NOTE
 
 
