@@ -35,6 +35,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from pdrlearn.decision_refs import decision_ref
 from pdrlearn.errors import DataError
 from pdrlearn.kernels.nearest import nearest_index
 from pdrlearn.kernels.turn_length import STRAIGHT_MAX_RAD
@@ -556,8 +557,8 @@ def unanchored_warning(walk: dict, steps: pd.DataFrame, reach: float = 0.0) -> s
     if reach > CLOSURE_LATERAL_MAX_M:
         return (f"{UNANCHORED_NOTE}. This walk left its axis (the line from its start to its end) by {reach:.1f} m "
                 f"(a bend or a corner; the closing step anchors only a walk within {CLOSURE_LATERAL_MAX_M:g} m of "
-                "it, decision C208: the two foot tracks' heading difference after a bend moves their positions "
-                "along the walk, a 400 m track's bend read a 9 % step-length asymmetry as 173 %)")
+                "it: the two foot tracks' heading difference after a bend moves their positions along the walk, a "
+                f"400 m track's bend read a 9 % step-length asymmetry as 173 %; {decision_ref('C208', topic='cohort')})")
     return UNANCHORED_NOTE
 
 
