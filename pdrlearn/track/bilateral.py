@@ -558,7 +558,8 @@ def unanchored_warning(walk: dict, steps: pd.DataFrame, reach: float = 0.0) -> s
         return (f"{UNANCHORED_NOTE}. This walk left its axis (the line from its start to its end) by {reach:.1f} m "
                 f"(a bend or a corner; the closing step anchors only a walk within {CLOSURE_LATERAL_MAX_M:g} m of "
                 "it: the two foot tracks' heading difference after a bend moves their positions along the walk, a "
-                f"400 m track's bend read a 9 % step-length asymmetry as 173 %; {decision_ref('C208', topic='cohort')})")
+                "400 m track's bend read a 9 % step-length asymmetry as 173 %; "
+                f"{decision_ref('C208', topic='cohort')})")
     return UNANCHORED_NOTE
 
 
