@@ -561,8 +561,12 @@ def _cv_phrase(summary: dict, cv: float | None, needed: int) -> str:
                 + ("backward " if summary.get("stride_time_cv_direction") == "backward" else "")  # decision L444
                 + "strides)")
     w = summary.get("stride_time_cv_withheld") or {}
-    if w.get("cause") == "lower_back":  # decision L214
-        return ", no stride-time CV on the lower back (its contact timing scatters too much; decision L104)"
+    if w.get("cause") == "lower_back":  # decisions L214, W559: the measured inflation (W557)
+        from pdrlearn.decision_refs import decision_ref
+        from pdrlearn.track.clinical import LOWER_BACK_CV_INFLATION
+
+        return (f", no stride-time CV on the lower back ({LOWER_BACK_CV_INFLATION}; "
+                f"{decision_ref('L104', 'W557')}; a foot unit gives it)")
     if w.get("cause") == "contact_scatter" or "contact_scatter_s" in w:
         return ", stride-time CV withheld (contact timing unreliable, see the warning)"
     if not summary.get("n_stride_times"):

@@ -111,11 +111,14 @@ CLINICAL_KEYS = ("n_pauses", "pause_time_s", "longest_pause_s", "n_walking_bouts
 #: decision L214: ``stride_time_cv_withheld["cause"]`` - the lower back (L104: never a CV), too few steady strides
 #: (:data:`CV_MIN_STRIDES`), or the contacts' timing scatter (L113, an option)
 CV_WITHHELD_CAUSES = ("lower_back", "too_few_strides", "contact_scatter")
-#: decision L214: L104's reason the lower back gives no stride-time CV (its simulated straight walks, true CV
-#: 1.7-2.1 %, read 6.2-9.7 %: the contacts' timing scatter, not the walker's rhythm)
-LOWER_BACK_CV_REASON = ("not given on the lower back: its initial contacts scatter too much in time for a "
-                        "stride-time CV (simulated walks of true CV 1.7-2.1 % read 6.2-9.7 %, decision L104); a "
-                        "unit on the foot gives it")
+#: decision W557 (measured, session 49): what the lower back's contacts make of the stride-time CV: steps.csv's
+#: contacts of fresh simulated straight 60 m walks (users 16300-16311, 100 Hz) read 1.7-3.3 x the walker's
+LOWER_BACK_CV_INFLATION = ("its contacts' timing reads the stride-time CV 1.7-3.3 x the walker's (simulated walks of "
+                           "true CV 1.5-2.2 % read 3.6-5.8 %, the step-time CV 2.3-3.1 % read 6.4-11.9 %)")
+#: decision L214: L104's reason the lower back gives no stride-time CV (decision W559: with W557's numbers, and not
+#: to be taken from steps.csv's contacts either)
+LOWER_BACK_CV_REASON = (f"not given on the lower back: {LOWER_BACK_CV_INFLATION}, so do not compute it from "
+                        "steps.csv's contacts either (decisions L104, W557); a unit on the foot gives it")
 #: decision L215: the withheld line names the level criterion (L188's |dz_m| < 0.10 m) when it removed more than
 #: this share of the straight strides (the trial's MS walk: 49 of 74 strides over 0.10 m by attitude drift)
 NOT_LEVEL_SHARE = 0.5
