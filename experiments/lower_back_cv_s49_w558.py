@@ -2,7 +2,8 @@
 jitter taken out (Var(S) + 2 Cov(S_k, S_k+2)), against ics.csv's truth, on fresh users 16330-16349 (new walks of
 C208's persons): 16330-16339 a 60 m straight walk, 16340-16349 150 m; ``--variability`` 1 / 2.5 alternately; 100 Hz.
 
-Run: PYTHONPATH=. nice python experiments/lower_back_cv_s49_w558.py OUTDIR
+Run: PYTHONPATH=. nice python experiments/lower_back_cv_s49_w558.py OUTDIR [--rerun]
+(``--rerun``: read the kept walks and tracks again, e.g. to print the library's ``lower_back_cv`` beside them.)
 """
 
 from __future__ import annotations
@@ -15,6 +16,7 @@ import numpy as np
 import pandas as pd
 
 from experiments.gait_variability_s49_w557 import _run, cv
+from pdrlearn.track.clinical import jitter_free_cv, lower_back_cv
 
 
 def bout_contacts(track: Path) -> list[np.ndarray]:
@@ -28,39 +30,30 @@ def bout_contacts(track: Path) -> list[np.ndarray]:
     return out
 
 
-def jitter_free_cv(bouts: list[np.ndarray]) -> tuple[float, float, int]:
-    """W558's candidate: (raw CV %, corrected CV %, strides) of the strides t[k+2] - t[k] of each bout (first and
-    last two out): Var(true S) ~ Var(S) + 2 x the lag-2 autocovariance about the pooled mean."""
-    strides = [(t[2:] - t[:-2])[2:-2] for t in bouts]
-    s = np.concatenate(strides) if strides else np.zeros(0)
-    if len(s) < 5:
-        return float("nan"), float("nan"), len(s)
-    m, v = s.mean(), s.var(ddof=1)
-    lag = [(x[2:] - m) * (x[:-2] - m) for x in strides if len(x) > 2]
-    g2 = float(np.concatenate(lag).mean())
-    return 100 * np.sqrt(v) / m, 100 * np.sqrt(max(v + 2 * g2, 0.0)) / m, len(s)
-
-
 def true_stride_cv(session: Path) -> float:
     ics = pd.read_csv(session / "ics.csv")
     t = ics[ics["kind"] == "walk"]["ic_ms"].to_numpy(float) / 1000.0
     return cv((t[2:] - t[:-2])[1:-1])
 
 
-def main(out: Path) -> None:
+def main(out: Path, rerun: bool = False) -> None:
+    """``rerun``: the walks and tracks already in ``out`` are read again (no simulate / track)."""
     out.mkdir(parents=True, exist_ok=True)
     rows = []
     for uid in range(16330, 16350):
         length = 60 if uid < 16340 else 150
         var = "1" if uid % 2 == 0 else "2.5"
         ses, tr = out / f"u{uid}", out / f"w{uid}"
-        _run("simulate", "--route", f"stand:3, straight:{length}, stand:3", "--rate", "100", "--user-seed", str(uid),
-             "--variability", var, "--out", str(ses), "--force")
-        _run("track", str(ses), "--units", "waist", "--out", str(tr), "--force")
+        if not rerun:
+            _run("simulate", "--route", f"stand:3, straight:{length}, stand:3", "--rate", "100", "--user-seed",
+                 str(uid), "--variability", var, "--out", str(ses), "--force")
+            _run("track", str(ses), "--units", "waist", "--out", str(tr), "--force")
         raw, corr, n = jitter_free_cv(bout_contacts(tr))
+        lib = lower_back_cv(pd.read_csv(tr / "steps.csv"))  # the track's own bouts (bout_rows), as summary.json
         true = true_stride_cv(ses)
         rows.append({"user": uid, "length_m": length, "variability": float(var), "n_strides": n, "true_cv": true,
-                     "raw_cv": raw, "corrected_cv": corr, "raw_err": raw - true, "corrected_err": corr - true})
+                     "raw_cv": raw, "corrected_cv": corr, "raw_err": raw - true, "corrected_err": corr - true,
+                     "summary_cv": lib["jitter_free_cv_pct"], "summary_n": lib["n_jitter_free_strides"]})
         print(json.dumps(rows[-1]), flush=True)
     t = pd.DataFrame(rows)
     t.to_csv(out / "w558.csv", index=False)
@@ -74,4 +67,4 @@ def main(out: Path) -> None:
 
 
 if __name__ == "__main__":
-    main(Path(sys.argv[1]))
+    main(Path(sys.argv[1]), rerun="--rerun" in sys.argv[2:])
