@@ -273,17 +273,18 @@ def lateral_reach(both: pd.DataFrame) -> float:
     return float(np.max(np.abs(x[ok] * ey - y[ok] * ex)) / norm)
 
 
-def closure_scale(both: pd.DataFrame, steps: pd.DataFrame) -> float | None:
+def closure_scale(both: pd.DataFrame, steps: pd.DataFrame, *, max_reach: float = CLOSURE_LATERAL_MAX_M
+                  ) -> float | None:
     """Decision L310: the relative scale error of the left track against the right one (left lengths read 1 + e
     times the right's) that the walk's closing step implies: at a standing end the two feet rest side by side, so
     the closing step's measured length is the along-walk error of the left foot's position relative to the right's,
     which a scale error e makes e x (the mean final position . the walking direction). None without a closing step
     (:data:`CLOSING_STRIDE_SHARE`), when the walk ends within :data:`CLOSURE_MIN_M` of its start, or (decision C208)
-    when it leaves its axis by more than :data:`CLOSURE_LATERAL_MAX_M` (:func:`lateral_reach`)."""
+    when it leaves its axis by more than ``max_reach`` (m; :data:`CLOSURE_LATERAL_MAX_M`, :func:`lateral_reach`)."""
     length = steps["step_length_m"].to_numpy(float)
     if not opening_step(both) or not closing_step(both, steps) or not np.isfinite(length[-1]):
         return None
-    if lateral_reach(both) > CLOSURE_LATERAL_MAX_M:  # decision C208: a bend's heading difference is no scale
+    if lateral_reach(both) > max_reach:  # decision C208: a bend's heading difference is no scale
         return None
     x, y, d = (both[c].to_numpy(float) for c in ("x_m", "y_m", "dir_rad"))
     u = np.array([np.cos(d[-1]) + np.cos(d[-2]), np.sin(d[-1]) + np.sin(d[-2])])
@@ -551,7 +552,8 @@ UNANCHORED_NOTE = ("bilateral gait: no step length: the walk is not anchored at 
 def unanchored_warning(walk: dict, steps: pd.DataFrame, reach: float = 0.0) -> str | None:
     """Decision L311: :data:`UNANCHORED_NOTE` for a pair of tracks (rows with positions) whose walk was not anchored
     (:func:`closure_scale` None), so L310 gives no step length; None otherwise. Decision C208: with ``reach``
-    (:func:`lateral_reach`, m) over :data:`CLOSURE_LATERAL_MAX_M` the line says the walk left its axis by that much."""
+    (:func:`lateral_reach`, m; given when the reach alone refused the walk's anchors) over
+    :data:`CLOSURE_LATERAL_MAX_M` the line says the walk left its axis by that much."""
     if walk.get("step_length_scale_pct") is not None or not len(steps):
         return None
     if reach > CLOSURE_LATERAL_MAX_M:
@@ -692,6 +694,8 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
     warnings = [alternation_warning(both)]
     steps, cycles = step_table(both), cycle_table(both)
     scale = closure_scale(both, steps)  # decision L310: the closing step anchors the two tracks' relative scale
+    # decision C208: the line names the walk's reach only when the reach alone refused the anchors
+    bend = lateral_reach(both) if scale is None and closure_scale(both, steps, max_reach=math.inf) is not None else 0.0
     if scale is not None:
         both = rescaled(both, scale)
         steps = step_table(both)
@@ -720,7 +724,7 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
     log = logging.getLogger(__name__)
     for line in (clock_offset_warning(walk), flight_warning(walk, cycles[masks[2]]),  # L729: the headline's
                  stance_warning(walk) if "event_s" in left_steps else None,
-                 unanchored_warning(walk, steps, lateral_reach(both)) if np.isfinite(both["x_m"]).any() else None):
+                 unanchored_warning(walk, steps, bend) if np.isfinite(both["x_m"]).any() else None):
         if line is not None:  # L285 judges a track's toe-off, not a label table's
             log.warning(line)
             warnings.append(line)
