@@ -10,6 +10,7 @@ import math
 import numpy as np
 import pandas as pd
 
+from pdrlearn.report.clinical import asymmetry_lines
 from pdrlearn.track.bilateral import CLOSURE_LATERAL_MAX_M, bilateral_gait, lateral_reach
 
 
@@ -51,6 +52,10 @@ def test_a_bend_is_no_anchor_c208(caplog):
     assert res["steps"]["step_length_m"].isna().all()
     line = [x for x in res["warnings"] if "C208" in x]
     assert len(line) == 1 and "left its axis" in line[0], res["warnings"]
+    first = asymmetry_lines(w)[0]  # clinical.md's walk block says why the step length is missing
+    assert first.startswith("- Asymmetry") and first.endswith("step length not given (the walk is not one straight "
+                                                              "length from standing to standing, L311 / C208: see "
+                                                              "gait_summary.json warnings)"), first
 
 
 def test_lateral_reach_and_a_straight_walk_keeps_its_anchor_c208():

@@ -339,6 +339,10 @@ def asymmetry_lines(walk: dict, stairs=None, leg_m: float | None = None) -> list
         side = "equal" if left == right else f"{'left' if left > right else 'right'} longer"
         parts.append(f"{name} L/R {left:.3f} / {right:.3f} {unit} "
                      + (f"(SI {si:.1f} %, {side})" if si is not None else f"({side}; no symmetry index)"))
+    if parts and _number(walk.get("step_length_m_left")) is None and "step_length_scale_pct" in walk \
+            and walk.get("step_length_scale_pct") is None:  # decisions L311, C208: say why, not just leave it out
+        parts.append("step length not given (the walk is not one straight length from standing to standing, L311 / "
+                     "C208: see gait_summary.json warnings)")
     basis = {"level": "level straight steps", "all": "all steps"}.get(str(walk.get("headline_steps")))
     lines = []
     if parts:
