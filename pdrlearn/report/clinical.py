@@ -240,14 +240,18 @@ def change_lines(rows: list) -> list[str]:
 
 
 def warnings_line(summary: dict) -> str | None:
-    """Decision W446: a pointer to the track's warnings (clinical.md leaves their text to report.md)."""
+    """Decision W446: the track's warnings at the end of its block; decision C209 (trial T2 finding F4 of session 48:
+    codes alone said nothing to a clinic): each warning below the count, indented, with its code and its text as the
+    track gave it (what it means and what to do), one line per distinct warning."""
     info = summary.get("info") or {}
     warnings, codes = info.get("warnings") or [], info.get("warning_codes") or []
     if not warnings:
         return None
     named = f" ({', '.join(dict.fromkeys(c for c in codes if c))})" if any(codes) else ""
-    return (f"- Track warnings: {len(warnings)}{named}; read them in report.md or summary.json info.warnings before "
-            "using these numbers")
+    pairs = zip(warnings, list(codes) + [None] * (len(warnings) - len(codes)), strict=False)
+    items = [f"  - {f'{c}: ' if c else ''}{' '.join(str(w).split())}" for w, c in dict.fromkeys(pairs)]
+    return "\n".join([f"- Track warnings: {len(warnings)}{named}, what each means and what to do (C209; also in "
+                       "report.md and summary.json info.warnings):", *items])
 
 
 def _unit(source: str) -> str:
@@ -365,6 +369,10 @@ def asymmetry_lines(walk: dict, stairs=None, leg_m: float | None = None) -> list
         side = "equal" if left == right else f"{'left' if left > right else 'right'} longer"
         parts.append(f"{name} L/R {left:.3f} / {right:.3f} {unit} "
                      + (f"(SI {si:.1f} %, {side})" if si is not None else f"({side}; no symmetry index)"))
+    if parts and _number(walk.get("step_length_m_left")) is None and "step_length_scale_pct" in walk \
+            and walk.get("step_length_scale_pct") is None:  # decisions L311, C208: say why, not just leave it out
+        parts.append("step length not given (the walk is not one straight length from standing to standing, L311 / "
+                     "C208: see gait_summary.json warnings)")
     basis = {"level": "level straight steps", "all": "all steps"}.get(str(walk.get("headline_steps")))
     lines = []
     if parts:

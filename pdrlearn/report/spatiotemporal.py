@@ -28,6 +28,16 @@ def _cv_text(summary: dict) -> str | None:
         return f"stride-time CV {cv:.1f} %" + (f" ({n} strides)" if isinstance(n, int) and n else "")
     withheld = summary.get("stride_time_cv_withheld")
     cause = withheld.get("cause") if isinstance(withheld, dict) else None
+    if cause == "lower_back":  # decision W559: why, in numbers (W557), and what gives it
+        from pdrlearn.track.clinical import JITTER_FREE_MIN_STRIDES, LOWER_BACK_CV_INFLATION
+
+        jf = _number(withheld.get("jitter_free_cv_pct"))
+        if jf is not None:  # decision W558: a long walk's CV with the contacts' timing jitter taken out
+            return (f"stride-time CV {jf:.1f} % (lower back, its contacts' timing jitter taken out, "
+                    f"{withheld.get('n_jitter_free_strides')} strides; W558)")
+        return (f"stride-time CV not given: on the lower back {LOWER_BACK_CV_INFLATION} (W557); a foot unit "
+                f"gives it, a walk of {JITTER_FREE_MIN_STRIDES} strides or more (~150 m) one with the jitter taken "
+                "out (W558)")
     return f"stride-time CV not given ({str(cause).replace('_', ' ')})" if cause else None
 
 
@@ -48,7 +58,9 @@ def spatiotemporal_line(summary: dict, unit: str, stride_given: bool = True) -> 
         parts.append(f"stance {stance:.1f} % / swing {100.0 - stance:.1f} % of the stride")
     measured = bool(parts)
     cv = _cv_text(summary)
-    if cv and (measured or _number(summary.get("stride_time_cv_pct")) is not None):
+    withheld = summary.get("stride_time_cv_withheld")
+    lower_back = isinstance(withheld, dict) and withheld.get("cause") == "lower_back" and bool(summary.get("n_steps"))
+    if cv and (measured or lower_back or _number(summary.get("stride_time_cv_pct")) is not None):  # W559
         parts.append(cv)
     if not parts:
         return None

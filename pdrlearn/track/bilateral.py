@@ -35,6 +35,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from pdrlearn.decision_refs import decision_ref
 from pdrlearn.errors import DataError
 from pdrlearn.kernels.nearest import nearest_index
 from pdrlearn.kernels.turn_length import STRAIGHT_MAX_RAD
@@ -228,6 +229,10 @@ CLOSING_STRIDE_SHARE = 0.75
 #: least this far (m, along its last direction) from where it started: nearer (a return walk) a scale error has
 #: not shown and nothing is corrected
 CLOSURE_MIN_M = 5.0
+#: decision C208 (no document gives one: a corridor's width): the closing step anchors only a walk whose contacts
+#: all lie within this distance (m) of its axis, the line from its start to its end (:func:`lateral_reach`); a bend or
+#: corner beyond it (a track's 36.5 m bend) puts the two tracks' heading difference into their along-walk offset
+CLOSURE_LATERAL_MAX_M = 2.0
 
 
 def _short_stride(both: pd.DataFrame, side: str, at: int) -> bool:
@@ -253,14 +258,33 @@ def closing_step(both: pd.DataFrame, steps: pd.DataFrame) -> bool:
     return _short_stride(both, both["side"].iloc[-1], -1)
 
 
-def closure_scale(both: pd.DataFrame, steps: pd.DataFrame) -> float | None:
+def lateral_reach(both: pd.DataFrame) -> float:
+    """Decision C208: the farthest (m) any contact's rest position (one frame, :func:`common_frame`) lies from the
+    walk's axis, the line from the origin (the standing start) to its final position (the mean of its last two
+    contacts' positions); 0 without positions or with a final position at the origin."""
+    x, y = both["x_m"].to_numpy(float), both["y_m"].to_numpy(float)
+    ok = np.isfinite(x) & np.isfinite(y)
+    if ok.sum() < 2:
+        return 0.0
+    ex, ey = x[ok][-2:].mean(), y[ok][-2:].mean()
+    norm = math.hypot(ex, ey)
+    if not norm > 0.0:
+        return 0.0
+    return float(np.max(np.abs(x[ok] * ey - y[ok] * ex)) / norm)
+
+
+def closure_scale(both: pd.DataFrame, steps: pd.DataFrame, *, max_reach: float = CLOSURE_LATERAL_MAX_M
+                  ) -> float | None:
     """Decision L310: the relative scale error of the left track against the right one (left lengths read 1 + e
     times the right's) that the walk's closing step implies: at a standing end the two feet rest side by side, so
     the closing step's measured length is the along-walk error of the left foot's position relative to the right's,
     which a scale error e makes e x (the mean final position . the walking direction). None without a closing step
-    (:data:`CLOSING_STRIDE_SHARE`), or when the walk ends within :data:`CLOSURE_MIN_M` of its start."""
+    (:data:`CLOSING_STRIDE_SHARE`), when the walk ends within :data:`CLOSURE_MIN_M` of its start, or (decision C208)
+    when it leaves its axis by more than ``max_reach`` (m; :data:`CLOSURE_LATERAL_MAX_M`, :func:`lateral_reach`)."""
     length = steps["step_length_m"].to_numpy(float)
     if not opening_step(both) or not closing_step(both, steps) or not np.isfinite(length[-1]):
+        return None
+    if lateral_reach(both) > max_reach:  # decision C208: a bend's heading difference is no scale
         return None
     x, y, d = (both[c].to_numpy(float) for c in ("x_m", "y_m", "dir_rad"))
     u = np.array([np.cos(d[-1]) + np.cos(d[-2]), np.sin(d[-1]) + np.sin(d[-2])])
@@ -526,11 +550,19 @@ UNANCHORED_NOTE = ("bilateral gait: no step length: the walk is not anchored at 
                    "to standing for a step-length asymmetry")
 
 
-def unanchored_warning(walk: dict, steps: pd.DataFrame) -> str | None:
+def unanchored_warning(walk: dict, steps: pd.DataFrame, reach: float = 0.0) -> str | None:
     """Decision L311: :data:`UNANCHORED_NOTE` for a pair of tracks (rows with positions) whose walk was not anchored
-    (:func:`closure_scale` None), so L310 gives no step length; None otherwise."""
+    (:func:`closure_scale` None), so L310 gives no step length; None otherwise. Decision C208: with ``reach``
+    (:func:`lateral_reach`, m; given when the reach alone refused the walk's anchors) over
+    :data:`CLOSURE_LATERAL_MAX_M` the line says the walk left its axis by that much."""
     if walk.get("step_length_scale_pct") is not None or not len(steps):
         return None
+    if reach > CLOSURE_LATERAL_MAX_M:
+        return (f"{UNANCHORED_NOTE}. This walk left its axis (the line from its start to its end) by {reach:.1f} m "
+                f"(a bend or a corner; the closing step anchors only a walk within {CLOSURE_LATERAL_MAX_M:g} m of "
+                "it: the two foot tracks' heading difference after a bend moves their positions along the walk, a "
+                "400 m track's bend read a 9 % step-length asymmetry as 173 %; "
+                f"{decision_ref('C208', topic='cohort')})")
     return UNANCHORED_NOTE
 
 
@@ -665,6 +697,8 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
     warnings = [alternation_warning(both)]
     steps, cycles = step_table(both), cycle_table(both)
     scale = closure_scale(both, steps)  # decision L310: the closing step anchors the two tracks' relative scale
+    # decision C208: the line names the walk's reach only when the reach alone refused the anchors
+    bend = lateral_reach(both) if scale is None and closure_scale(both, steps, max_reach=math.inf) is not None else 0.0
     if scale is not None:
         both = rescaled(both, scale)
         steps = step_table(both)
@@ -693,7 +727,7 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
     log = logging.getLogger(__name__)
     for line in (clock_offset_warning(walk), flight_warning(walk, cycles[masks[2]]),  # L729: the headline's
                  stance_warning(walk) if "event_s" in left_steps else None,
-                 unanchored_warning(walk, steps) if np.isfinite(both["x_m"]).any() else None):
+                 unanchored_warning(walk, steps, bend) if np.isfinite(both["x_m"]).any() else None):
         if line is not None:  # L285 judges a track's toe-off, not a label table's
             log.warning(line)
             warnings.append(line)

@@ -111,11 +111,19 @@ CLINICAL_KEYS = ("n_pauses", "pause_time_s", "longest_pause_s", "n_walking_bouts
 #: decision L214: ``stride_time_cv_withheld["cause"]`` - the lower back (L104: never a CV), too few steady strides
 #: (:data:`CV_MIN_STRIDES`), or the contacts' timing scatter (L113, an option)
 CV_WITHHELD_CAUSES = ("lower_back", "too_few_strides", "contact_scatter")
-#: decision L214: L104's reason the lower back gives no stride-time CV (its simulated straight walks, true CV
-#: 1.7-2.1 %, read 6.2-9.7 %: the contacts' timing scatter, not the walker's rhythm)
-LOWER_BACK_CV_REASON = ("not given on the lower back: its initial contacts scatter too much in time for a "
-                        "stride-time CV (simulated walks of true CV 1.7-2.1 % read 6.2-9.7 %, decision L104); a "
-                        "unit on the foot gives it")
+#: decision W557 (measured, session 49): what the lower back's contacts make of the stride-time CV: steps.csv's
+#: contacts of fresh simulated straight 60 m walks (users 16300-16311, 100 Hz) read 1.7-3.3 x the walker's
+LOWER_BACK_CV_INFLATION = ("its contacts' timing reads the stride-time CV 1.7-3.3 x the walker's (simulated walks of "
+                           "true CV 1.5-2.2 % read 3.6-5.8 %, the step-time CV 2.3-3.1 % read 6.4-11.9 %)")
+#: decision L214: L104's reason the lower back gives no stride-time CV (decision W559: with W557's numbers, and not
+#: to be taken from steps.csv's contacts either)
+LOWER_BACK_CV_REASON = (f"not given on the lower back: {LOWER_BACK_CV_INFLATION}, so do not compute it from "
+                        "steps.csv's contacts either (decisions L104, W557); a unit on the foot gives it")
+#: decision W558: the lower back's jitter-corrected stride-time CV (:func:`jitter_free_cv`) is given from this many
+#: strides on (the fewest of the 150 m walks it was adopted on; on 60 m walks, 67-86 strides, it failed its rule)
+JITTER_FREE_MIN_STRIDES = 181
+#: decision W558: a walking bout's contacts count from this many (W557's measurement: bouts of 8 contacts or more)
+JITTER_FREE_MIN_CONTACTS = 8
 #: decision L215: the withheld line names the level criterion (L188's |dz_m| < 0.10 m) when it removed more than
 #: this share of the straight strides (the trial's MS walk: 49 of 74 strides over 0.10 m by attitude drift)
 NOT_LEVEL_SHARE = 0.5
@@ -1015,6 +1023,34 @@ def _straight_stride_times(st: pd.DataFrame, steady: np.ndarray) -> tuple[np.nda
     return st["stride_time_s"].to_numpy(float)[steady], onset[steady]
 
 
+def jitter_free_cv(bouts: list[np.ndarray]) -> tuple[float, float, int]:
+    """Decision W558: ``(raw CV %, corrected CV %, strides)`` of the lower back's strides t[k+2] - t[k] of each
+    bout's contact times ``bouts`` (s; each bout's first and last two strides left out): each contact's timing jitter
+    e_k adds 2 Var(e) to Var(S) and makes two strides sharing a contact (S_k, S_k+2) covary by -Var(e), so
+    Var(true S) ~ Var(S) + 2 x their lag-2 autocovariance about the pooled mean (a moment estimate; no document).
+    NaN with fewer than 5 strides."""
+    strides = [(t[2:] - t[:-2])[2:-2] for t in bouts]
+    s = np.concatenate(strides) if strides else np.zeros(0)
+    if len(s) < 5:
+        return math.nan, math.nan, int(len(s))
+    m, v = float(s.mean()), float(s.var(ddof=1))
+    lag = [(x[2:] - m) * (x[:-2] - m) for x in strides if len(x) > 2]
+    g2 = float(np.concatenate(lag).mean()) if lag else 0.0
+    return 100 * math.sqrt(v) / m, 100 * math.sqrt(max(v + 2 * g2, 0.0)) / m, int(len(s))
+
+
+def lower_back_cv(steps: pd.DataFrame, *, turn_gaps=None) -> dict:
+    """Decision W558: the lower back's stride-time CV with its contacts' jitter taken out (:func:`jitter_free_cv`
+    over the contacts of each walking bout of :data:`JITTER_FREE_MIN_CONTACTS` or more, :func:`bout_rows`):
+    ``{"jitter_free_cv_pct": CV or None under JITTER_FREE_MIN_STRIDES strides, "n_jitter_free_strides": n}``."""
+    st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
+    t = st["start_s"].to_numpy(float)
+    bouts = [t[a:b] for a, b in bout_rows(st, turn_gaps=turn_gaps) if b - a >= JITTER_FREE_MIN_CONTACTS]
+    _, cv, n = jitter_free_cv(bouts)
+    return {"jitter_free_cv_pct": cv if n >= JITTER_FREE_MIN_STRIDES and math.isfinite(cv) else None,
+            "n_jitter_free_strides": n}
+
+
 def cv_pct(x: np.ndarray) -> float:
     """100 x SD / mean (SD with n - 1) of ``x``; NaN with fewer than 2 values or a mean not above 0 (L104's CV)."""
     x = np.asarray(x, dtype=float)
@@ -1339,7 +1375,8 @@ def clinical_summary(steps: pd.DataFrame, *, contact_scatter_max_s: float | None
     out["n_walking_bouts"] = len(bout_rows(steps, turn_gaps=turn_gaps))
     out["turn_count"] = int((np.abs(turns(steps)) >= TURN_COUNT_MIN_DEG).sum())
     if _is_lower_back(steps):  # decision L214: L104 gives no CV on the lower back; the summary says why
-        out["stride_time_cv_withheld"] = {"cause": "lower_back", "reason": LOWER_BACK_CV_REASON}
+        out["stride_time_cv_withheld"] = {"cause": "lower_back", "reason": LOWER_BACK_CV_REASON,
+                                          **lower_back_cv(steps, turn_gaps=turn_gaps)}  # decision W558
         return out
     st, steady = rows = steady_rows(steps)  # taken once: every CV below is over these strides
     s, onset = _straight_stride_times(st, steady)
