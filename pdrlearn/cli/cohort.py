@@ -1047,10 +1047,11 @@ def track_all(
     visit is changes.csv's, meta.json's in visit_as_written (C82). OUT/run.json records the pdrlearn version, the
     options and each session's time (decision C18). Sessions holding identical sensor data are warned
     (duplicate_of, C20). --params-dir DIR gives each session DIR/<subject>/<visit>.json, else DIR/<subject>.json, the
-    subject and visit its meta.json names (every session needs one, checked first; decisions C26, C223). A session that cannot be tracked is reported as
-    failed (exit 1). Progress: one line per session on stderr; each warning is said once per batch, with the sessions it
-    concerns. --resume reuses the sessions an interrupted (killed, Ctrl-C) or earlier run tracked from the same input
-    files, options, model and code, tracks the rest, and writes the tables an uninterrupted run writes (decision C41).
+    subject and visit its meta.json names (every session needs one, checked first; decisions C26, C223). A session that
+    cannot be tracked is reported as failed (exit 1). Progress: one line per session on stderr; each warning is said
+    once per batch, with the sessions it concerns. --resume reuses the sessions an interrupted (killed, Ctrl-C) or
+    earlier run tracked from the same input files, options, model and code, tracks the rest, and writes the tables an
+    uninterrupted run writes (decision C41).
 
     Exit code 0 when every session was tracked, 1 when some failed (listed in sessions.csv), 2 on bad input,
     when every session failed, or when the disk fills or OUT cannot be written (the batch stops at once, B151):
@@ -1069,7 +1070,7 @@ def track_all(
 
         pdrlearn track-all study/ --out results/2mwt --window 0,120 --streaming --initial-heading 90
 
-        pdrlearn track-all study/ --out results/cal --pipeline waist-pendulum --params-dir calib/   # calib/S01.json or calib/S01/pre.json
+        pdrlearn track-all study/ --out results/cal --pipeline waist-pendulum --params-dir calib/   # calib/S01/pre.json
 
         pdrlearn track-all study/ --out dtc --visit-map conditions.json --metrics gait_speed_mps,stride_time_cv_pct
 
@@ -1116,9 +1117,8 @@ def track_all(
     label_by = group_by if group_by in LABEL_GROUP_BY else None  # decision C202: visit splits groups.csv only
     per_session = [settings] * len(found)
     if params_dir is not None:  # decision C26: each subject's file, all checked and read before any tracking
-        from pdrlearn.cli.track import read_params
-
         from pdrlearn.cli.params_dir import session_params
+        from pdrlearn.cli.track import read_params
 
         files = session_params(params_dir, rels, labels, vmap)  # decision C223: a visit's own file first
         parsed = {f: read_params(f) for f, _ in files}
