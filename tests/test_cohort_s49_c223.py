@@ -13,7 +13,7 @@ import pandas as pd
 import pytest
 
 from pdrlearn.cli import main
-from pdrlearn.cli.params_dir import session_params
+from pdrlearn.cli.params_dir import pseudonym_label, session_params
 from pdrlearn.errors import DataError
 
 RELS = ["B01/pre", "B01/post", "B02/BL", "B02/post"]
@@ -40,6 +40,12 @@ def test_a_visits_own_file_comes_before_the_subjects(tmp_path):
     # a session naming no visit takes the subject's file; a batch of one visit leaves the other visit's file unused
     assert session_params(d, ["B01/x"], [("B01", None)]) == [(d / "B01.json", "B01.json")]
     assert session_params(d2, ["B01/post"], [("B01", "post")]) == [(d2 / "B01" / "post.json", "B01/post.json")]
+
+
+def test_a_label_takes_the_pseudonym():
+    assert pseudonym_label("B01/post.json", {"B01": "P01"}) == "P01/post.json"
+    assert pseudonym_label("B01.json", {"B01": "P01"}) == "P01.json"
+    assert pseudonym_label("B03.json", {"B01": "P01"}) == "B03.json"
 
 
 def test_problems_are_one_line_before_tracking(tmp_path, caplog):
@@ -78,8 +84,8 @@ def study(tmp_path_factory) -> Path:
 
 def test_track_all_tracks_each_visit_with_its_own_file(study, tmp_path):
     """One track-all: B01's post visit with B01/post.json (K 0.9), its pre visit with B01.json (K 0.5): the same
-    walk 1.8 x as long; sessions.csv's params_file and summary.json's info.params_file name the file; changes.csv is
-    written (the trial needed two runs, and had none)."""
+    walk 1.8 x as long; sessions.csv's params_file and summary.json's info.params_file name the file (under the
+    --subject-map pseudonyms, C86); changes.csv is written (the trial needed two runs, and had none)."""
     from pdrlearn.waist.params import WaistParams
 
     cal = tmp_path / "cal"
@@ -87,14 +93,15 @@ def test_track_all_tracks_each_visit_with_its_own_file(study, tmp_path):
         (cal / name).parent.mkdir(parents=True, exist_ok=True)
         WaistParams(k=k, source="calibrated", pipeline="waist-pendulum").save(cal / name)
     out = tmp_path / "out"
+    (tmp_path / "names.csv").write_text("real,pseudonym\nB01,P01\nB02,P02\n")  # C86: params_file renamed too
     assert main(["track-all", "--no-plot", str(study), "--out", str(out), "--pipeline", "waist-pendulum",
-                 "--params-dir", str(cal)]) == 0
+                 "--params-dir", str(cal), "--subject-map", str(tmp_path / "names.csv")]) == 0
     table = pd.read_csv(out / "sessions.csv").set_index("path")
-    assert table["params_file"].to_dict() == {"B01/post": "B01/post.json", "B01/pre": "B01.json",
-                                              "B02/post": "B02.json", "B02/pre": "B02.json"}
-    info = json.loads((out / "B01" / "post" / "summary.json").read_text())["info"]
-    assert info["params_file"] == "B01/post.json"
-    assert table.loc["B01/post", "distance_m"] / table.loc["B01/pre", "distance_m"] == pytest.approx(1.8, rel=1e-3)
+    assert table["params_file"].to_dict() == {"P01/post": "P01/post.json", "P01/pre": "P01.json",
+                                              "P02/post": "P02.json", "P02/pre": "P02.json"}
+    info = json.loads((out / "P01" / "post" / "summary.json").read_text())["info"]
+    assert info["params_file"] == "P01/post.json"
+    assert table.loc["P01/post", "distance_m"] / table.loc["P01/pre", "distance_m"] == pytest.approx(1.8, rel=1e-3)
     assert (out / "changes.csv").is_file()
     shutil.copy(cal / "B01.json", cal / "B01" / "followup.json")  # a visit B01 has no session of: refused first
     assert main(["track-all", "--no-plot", str(study), "--out", str(tmp_path / "bad"), "--pipeline",

@@ -1127,6 +1127,10 @@ def track_all(
         rels = pseudonym_paths(rels, names, subject_map)
         labels = [(names.get(sub, sub) if isinstance(sub, str) else sub, visit) for sub, visit in labels]
         per_session = [{**st, "names": names} for st in per_session]
+        if params_dir is not None:  # decision C223: params_file's subject too (C26's "S01.json" kept the real name)
+            from pdrlearn.cli.params_dir import pseudonym_label
+
+            per_session = [{**st, "params_file": pseudonym_label(st["params_file"], names)} for st in per_session]
     from pdrlearn.cli.provenance import input_hashes, model_record
     from pdrlearn.cli.resume import recomputed, session_keys
 

@@ -109,3 +109,14 @@ def session_params(params_dir: Path, rels: list[str], labels: list[tuple], visit
             "%s", f"--params-dir {params_dir}: folder(s) {_few(strays)} name no subject of these sessions' meta.json; "
             "their files are not used (decision C223)")
     return out
+
+
+def pseudonym_label(label: str, names: dict[str, str]) -> str:
+    """Decision C223 (with C86's ``--subject-map``): a ``params_file`` label (``S01/post.json``, ``S01.json``) with
+    its subject under the pseudonym; the visit's file name is kept (a visit names no one). C86's whole-name renaming
+    leaves ``S01.json`` as it is (the name runs on into ``.json``), so the label is renamed here."""
+    subject, sep, rest = label.partition("/")
+    if sep:
+        return f"{names.get(subject, subject)}/{rest}"
+    stem = label.removesuffix(".json")
+    return f"{names.get(stem, stem)}.json"
