@@ -534,6 +534,8 @@ def _track_job(args: dict) -> dict:
     with captured_warnings() as warned:
         try:
             tracked = track_session(Path(args["session_dir"]), args["settings"])
+            if args["settings"].get("params_file"):  # decision C223: summary.json says which --params-dir file
+                tracked["summary"].setdefault("info", {})["params_file"] = args["settings"]["params_file"]
             emptied = emptied_track(tracked["result"].info, len(tracked["result"].steps))  # decision C198
             if emptied:  # a data outcome, as a foot track without a stride (B318's exit code; B389's skip of a part)
                 raise NoStridesError(emptied)
@@ -826,41 +828,12 @@ def _reused(rel: str, src: Path, value: dict, dest: Path) -> JobResult:
 
 PARAMS_DIR_HELP = ("Folder of per-subject calibration files, one SUBJECT.json per subject (as `pdrlearn calibrate "
                    "... --out DIR/SUBJECT.json` writes them); each session uses the file of the subject its meta.json "
-                   "names (\"subject\" or \"user\"). Every session must have one, checked before any tracking "
-                   "(decision C26). Instead of --params.")
+                   "names (\"subject\" or \"user\"), or DIR/SUBJECT/VISIT.json, its visit's own, when there is one "
+                   "(C223). Every session must have one, checked before any tracking (decision C26). Instead of "
+                   "--params.")
 
 
 _few = few_names  # shared with cli.common (decision E160's line)
-
-
-def subject_params(params_dir: Path, rels: list[str], subjects: list[str | None]) -> list[Path]:
-    """Decision C26: each session's calibration file under ``--params-dir``, ``DIR/<subject>.json`` with the subject
-    its meta.json names (cohort C22's rule, :func:`pdrlearn.cohort.session_labels`). A session naming no subject, a
-    subject that cannot be a file name, or a subject without its file is an error before any tracking, one line
-    naming them all: a silent fall back to the population defaults would mix calibrated and uncalibrated distances
-    in one table."""
-    if not params_dir.is_dir():
-        raise DataError(f"--params-dir {params_dir}: no such folder; give the folder holding one SUBJECT.json per "
-                        "subject (`pdrlearn calibrate WALK --out DIR/SUBJECT.json`), or one file with --params FILE")
-    unnamed = [rel for rel, s in zip(rels, subjects, strict=True) if s is None]
-    bad = sorted({s for s in subjects if s is not None and (Path(s).name != s or s.startswith("."))})
-    missing: dict[str, list[str]] = {}
-    for rel, s in zip(rels, subjects, strict=True):
-        if s is not None and s not in bad and not (params_dir / f"{s}.json").is_file():
-            missing.setdefault(s, []).append(rel)
-    problems = []
-    if missing:
-        problems.append(f"no calibration file for subject {_few([repr(s) for s in missing])} (expected "
-                        f"{_few([f'{s}.json' for s in missing])}; sessions {_few(sum(missing.values(), []))})")
-    if unnamed:
-        problems.append(f"{_few(unnamed)}: meta.json names no subject (add \"subject\": \"ID\")")
-    if bad:
-        problems.append(f"subject {_few([repr(s) for s in bad])} cannot name a file")
-    if problems:
-        raise DataError(f"--params-dir {params_dir}: " + "; ".join(problems) + "; write each file with `pdrlearn "
-                        "calibrate WALK --out DIR/SUBJECT.json`, or track those sessions in a track-all of their own "
-                        "(decision C26)")
-    return [params_dir / f"{s}.json" for s in subjects]
 
 
 #: decision L165: track-all's OUT/bouts.csv - every tracked session's bouts.csv, keyed by sessions.csv's path (C82:
@@ -1073,11 +1046,12 @@ def track_all(
     --metrics A,B names the measures compared, each with its percent change (C81), and sessions.csv's and bouts.csv's
     visit is changes.csv's, meta.json's in visit_as_written (C82). OUT/run.json records the pdrlearn version, the
     options and each session's time (decision C18). Sessions holding identical sensor data are warned
-    (duplicate_of, C20). --params-dir DIR gives each session DIR/<subject>.json, the subject its meta.json names
-    (every session needs one, checked first; decision C26). A session that cannot be tracked is reported as
-    failed (exit 1). Progress: one line per session on stderr; each warning is said once per batch, with the sessions it
-    concerns. --resume reuses the sessions an interrupted (killed, Ctrl-C) or earlier run tracked from the same input
-    files, options, model and code, tracks the rest, and writes the tables an uninterrupted run writes (decision C41).
+    (duplicate_of, C20). --params-dir DIR gives each session DIR/<subject>/<visit>.json, else DIR/<subject>.json, the
+    subject and visit its meta.json names (every session needs one, checked first; decisions C26, C223). A session that
+    cannot be tracked is reported as failed (exit 1). Progress: one line per session on stderr; each warning is said
+    once per batch, with the sessions it concerns. --resume reuses the sessions an interrupted (killed, Ctrl-C) or
+    earlier run tracked from the same input files, options, model and code, tracks the rest, and writes the tables an
+    uninterrupted run writes (decision C41).
 
     Exit code 0 when every session was tracked, 1 when some failed (listed in sessions.csv), 2 on bad input,
     when every session failed, or when the disk fills or OUT cannot be written (the batch stops at once, B151):
@@ -1096,7 +1070,7 @@ def track_all(
 
         pdrlearn track-all study/ --out results/2mwt --window 0,120 --streaming --initial-heading 90
 
-        pdrlearn track-all study/ --out results/cal --pipeline waist-pendulum --params-dir calib/   # calib/S01.json ...
+        pdrlearn track-all study/ --out results/cal --pipeline waist-pendulum --params-dir calib/   # calib/S01/pre.json
 
         pdrlearn track-all study/ --out dtc --visit-map conditions.json --metrics gait_speed_mps,stride_time_cv_pct
 
@@ -1143,15 +1117,20 @@ def track_all(
     label_by = group_by if group_by in LABEL_GROUP_BY else None  # decision C202: visit splits groups.csv only
     per_session = [settings] * len(found)
     if params_dir is not None:  # decision C26: each subject's file, all checked and read before any tracking
+        from pdrlearn.cli.params_dir import session_params
         from pdrlearn.cli.track import read_params
 
-        files = subject_params(params_dir, rels, [s for s, _ in labels])
-        parsed = {f: read_params(f) for f in dict.fromkeys(files)}
-        per_session = [{**settings, "params": f, "par": parsed[f]} for f in files]
+        files = session_params(params_dir, rels, labels, vmap)  # decision C223: a visit's own file first
+        parsed = {f: read_params(f) for f, _ in files}
+        per_session = [{**settings, "params": f, "par": parsed[f], "params_file": label} for f, label in files]
     if names:  # decision C86: the tree, the tables' names and each session's own files under the pseudonyms
         rels = pseudonym_paths(rels, names, subject_map)
         labels = [(names.get(sub, sub) if isinstance(sub, str) else sub, visit) for sub, visit in labels]
         per_session = [{**st, "names": names} for st in per_session]
+        if params_dir is not None:  # decision C223: params_file's subject too (C26's "S01.json" kept the real name)
+            from pdrlearn.cli.params_dir import pseudonym_label
+
+            per_session = [{**st, "params_file": pseudonym_label(st["params_file"], names)} for st in per_session]
     from pdrlearn.cli.provenance import input_hashes, model_record
     from pdrlearn.cli.resume import recomputed, session_keys
 
@@ -1205,8 +1184,8 @@ def track_all(
             row["duplicate_of"] = dup.get(row["path"])
             row["same_sensor_data_as"] = same.get(row["path"])  # decision L137
             row["subject"], row["visit"] = label  # decision C22: meta.json's subject and visit
-            if params_dir is not None:  # decision C26: the subject's file (its name: the same for a copy, C18)
-                row["params_file"] = Path(st["params"]).name
+            if params_dir is not None:  # decisions C26, C223: the file's path under DIR (the same for a copy, C18)
+                row["params_file"] = st["params_file"]
         _paired_visits(rows, vmap)  # decision C82: sessions.csv's and bouts.csv's visit is changes.csv's
         sessions = _sessions_table(rows)
         groups = group_table(sessions, by=group_by)  # decision C202: per visit with --group-by visit

@@ -68,7 +68,8 @@ def session_keys(options: dict, sessions: list[Path], settings: list[dict], mode
     for folder, st in zip(sessions, settings, strict=True):
         params = st.get("params")
         par = None if params is None else hashlib.sha256(_params_bytes(params)).hexdigest()
-        keys.append(_digest({**base, "params_sha256": par, "session": str(Path(folder).resolve())}))
+        named = {"params_file": st["params_file"]} if st.get("params_file") else {}  # C223: summary.json has it
+        keys.append(_digest({**base, "params_sha256": par, **named, "session": str(Path(folder).resolve())}))
     return keys
 
 
