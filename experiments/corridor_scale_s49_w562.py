@@ -3,7 +3,7 @@ back's gait speed and per-minute distances, and the rests inside a 6MWT, on fres
 
 Each user walks a 6MWT on a 30 m corridor (16560-16579 stepping round cones, ``curve:180:0.5``; 16580-16599 turning
 on the spot, ``turn:180``; every third user rests 15-30 s in one lap), tracked on the lower back (waist-pendulum)
-uncalibrated and - the first 10 of each half - calibrated (``pdrlearn calibrate`` on a separate 30 m straight walk of
+uncalibrated and - the first 5 of each half - calibrated (``pdrlearn calibrate`` on a separate 30 m straight walk of
 the same user and pace). Truth: the simulator's step lengths (``distance_ref_m``) and pelvis path per minute, its
 heel strikes' gaps over 3 s inside the test (rests). Run: ``python experiments/corridor_scale_s49_w562.py [WORK]``
 (with PYTHONPATH at the tree's root); ``--jobs 2`` runs two users at once.
@@ -21,7 +21,7 @@ import numpy as np
 import pandas as pd
 
 USERS = range(16560, 16600)
-CALIBRATED = set(range(16560, 16570)) | set(range(16580, 16590))
+CALIBRATED = set(range(16560, 16565)) | set(range(16580, 16585))
 PY = [sys.executable, "-m", "pdrlearn"]
 
 

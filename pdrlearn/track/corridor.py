@@ -299,21 +299,21 @@ def rests_text(summary: dict) -> str | None:
 
 def fatigue_rest_text(summary: dict) -> str | None:
     """Decision C218: when a C217 rest overlaps the first or the last full minute of the test, the words that it,
-    not slowing, drives the fatigue index (last / first full minute): "a 31 s rest in minute 6 drives it, not
-    slowing (C218)"; None otherwise."""
+    not slowing, drives the fatigue index (last / first full minute): "a 31 s rest at 5:10 (minute 6) drives it,
+    not slowing (C218)"; None otherwise."""
     per, found = summary.get("walk_test_distance_per_minute_m") or [], summary.get("walk_test_rests") or []
     if summary.get("fatigue_index") is None or len(per) < 2 or not found:
         return None
+    last = len(per) - 1
     named = []
-    for k in dict.fromkeys((0, len(per) - 1)):
-        a, b = MINUTE_S * k, MINUTE_S * (k + 1)
-        for start, dur in found:
-            inside = min(start + dur, b) - max(start, a)
-            if inside > 0:
-                named.append(f"a {dur:.0f} s rest in minute {k + 1}")
+    for start, dur in found:  # the rest's overlap with the first and with the last full minute
+        hit = [k for k in (0, last) if min(start + dur, MINUTE_S * (k + 1)) - max(start, MINUTE_S * k) > 0]
+        if hit:
+            named.append(f"a {dur:.0f} s rest at {clock_text(start)} (minute "
+                         + " and ".join(str(k + 1) for k in dict.fromkeys(hit)) + ")")
     if not named:
         return None
-    return f"{' and '.join(dict.fromkeys(named))} drive{'s' if len(named) == 1 else ''} it, not slowing (C218)"
+    return f"{' and '.join(named)} drive{'s' if len(named) == 1 else ''} it, not slowing (C218)"
 
 
 def cone_turn_m(cone: pd.DataFrame, t: np.ndarray, d: np.ndarray, t0: float, t1: float) -> float:
