@@ -44,7 +44,9 @@ def route(uid: int, sl: float, st: float, total_s: float = 400.0) -> tuple[str, 
 
 
 def run(cmd: list[str]) -> None:
-    subprocess.run(["nice", *cmd], check=True, capture_output=True, text=True)
+    got = subprocess.run(["nice", *cmd], capture_output=True, text=True)
+    if got.returncode:
+        raise RuntimeError(f"{' '.join(cmd[3:5])}: {got.stderr.strip()[-300:]}")
 
 
 def truth(ses: Path, start: float, dur: float = 360.0) -> dict:
@@ -75,14 +77,14 @@ def one(uid: int, work: Path) -> list[dict]:
         ic = np.sort(pd.read_csv(cal / "ics.csv").ic_ms.to_numpy() / 1000)
         x = np.interp(ic[[0, -1]], tr.timestamp.to_numpy() / 1000, tr.x.to_numpy())
         params = work / f"p{uid}.json"
-        run([*PY, "calibrate", str(cal), "-p", "waist-pendulum", "-d", f"{abs(x[1] - x[0]):.3f}", "--out",
+        run([*PY, "calibrate", str(cal), "-p", "waist-pendulum", "-d", f"{abs(x[1] - x[0]):.3f}", "--force", "--out",
              str(params)])
         variants.append(("cal", ["--params", str(params)]))
     rows = []
     for name, extra in variants:
         out = work / f"t{uid}_{name}"
         run([*PY, "track", str(ses), "--units", "waist", "--pipeline", "waist-pendulum", "--corridor", "30",
-             "--walk-test-duration", "360", "--per", "1min", "--no-plot", "--out", str(out), *extra])
+             "--walk-test-duration", "360", "--per", "1min", "--no-plot", "--force", "--out", str(out), *extra])
         s = json.loads((out / "summary.json").read_text())
         laps = pd.read_csv(out / "laps.csv")
         single = laps.iloc[:-1]
@@ -109,13 +111,21 @@ def one(uid: int, work: Path) -> list[dict]:
     return rows
 
 
+def safe(uid: int, work: Path) -> list[dict]:
+    try:
+        return one(uid, work)
+    except RuntimeError as err:  # one user's failure is printed, not the run's end
+        print(uid, "failed:", err, flush=True)
+        return []
+
+
 def main() -> None:
     args = [a for a in sys.argv[1:] if not a.startswith("--jobs")]
     jobs = 2 if "--jobs" in " ".join(sys.argv) else 1
     work = Path(args[0] if args else "/tmp/corridor_scale_w562")
     work.mkdir(parents=True, exist_ok=True)
     with ThreadPoolExecutor(jobs) as ex:
-        rows = [r for got in ex.map(lambda u: one(u, work), USERS) for r in got]
+        rows = [r for got in ex.map(lambda u: safe(u, work), USERS) for r in got]
     df = pd.DataFrame(rows)
     pd.set_option("display.width", 250)
     print(df.round(2).to_string())

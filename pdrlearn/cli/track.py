@@ -1291,7 +1291,7 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
                                           start=session_go(o.get("walk_test_start", "auto"), session),  # L642
                                           data_end=session_span(session, unit)[1])  # L644
         summary.update(keys)
-        if keys.get("walk_test_scale") is not None:  # decision W562: the lower back's gait speed on the corridor's scale
+        if keys.get("walk_test_scale") is not None:  # decision W562: the lower back's gait speed, corridor's scale
             from pdrlearn.track.corridor import corridor_gait_speed
 
             summary["gait_speed_corridor_mps"] = corridor_gait_speed(summary)

@@ -294,7 +294,8 @@ def rests_text(summary: dict) -> str | None:
     if not found:
         return "Rests during the test: none (C217)"
     listed = ", ".join(f"{r:.0f} s at {clock_text(a)}" for a, r in found)
-    return f"Rests during the test: {len(found)} ({listed}; {summary.get('walk_test_rest_time_s') or 0.0:.0f} s in all, C217)"
+    total = summary.get("walk_test_rest_time_s") or 0.0
+    return f"Rests during the test: {len(found)} ({listed}; {total:.0f} s in all, C217)"
 
 
 def fatigue_rest_text(summary: dict) -> str | None:
