@@ -9,6 +9,7 @@ import pandas as pd
 import pytest
 
 from pdrlearn.report.clinical import gait_speed_line, walk_test_pace_line, walk_test_rests_line
+from pdrlearn.report.time_course import time_course_section
 from pdrlearn.track.corridor import corridor_gait_speed, corridor_laps, fatigue_rest_text, lap_scale, rests_text
 from pdrlearn.track.periods import with_corridor_scale
 from pdrlearn.track.rests import window_rests
@@ -83,7 +84,7 @@ def test_the_fatigue_index_names_a_rest_in_its_minutes():
     assert walk_test_rests_line(s) == "  - Rests during the test: 1 (20 s at 0:45; 20 s in all, C217)"
 
 
-def test_gait_speed_line_and_periods_on_the_corridors_scale():
+def test_gait_speed_line_and_periods_on_the_corridors_scale(tmp_path):
     """W562: clinical.md's gait speed is the corridor-scaled one, the step lengths' beside it; W563: periods.csv's
     corridor columns."""
     summary = {"gait_speed_mps": 0.85, "median_cadence_spm": 100.0, "walk_test_distance_m": 340.0,
@@ -96,3 +97,9 @@ def test_gait_speed_line_and_periods_on_the_corridors_scale():
     out = with_corridor_scale(periods, 1.15)
     assert list(out["distance_corridor_m"]) == pytest.approx([57.5, 23.0])
     assert out["speed_corridor_mps"].iloc[0] == pytest.approx(57.5 / 60.0) and np.isnan(out["speed_corridor_mps"][1])
+    folder = tmp_path / "track"
+    folder.mkdir()
+    out.assign(period=[1, 2], start_s=[0.0, 60.0], end_s=[60.0, 120.0], duration_s=60.0).to_csv(
+        folder / "periods.csv", index=False)
+    section = time_course_section(folder, "track")  # W563: the report's Time course table shows them
+    assert {"distance_corridor_m", "speed_corridor_mps"} <= set(section.tables[0][1].columns)
