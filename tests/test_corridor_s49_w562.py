@@ -8,7 +8,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from pdrlearn.report.clinical import gait_speed_line, walk_test_pace_line, walk_test_rests_line
+from pdrlearn.report.clinical import change_lines, gait_speed_line, walk_test_pace_line, walk_test_rests_line
 from pdrlearn.report.time_course import time_course_section
 from pdrlearn.track.corridor import corridor_gait_speed, corridor_laps, fatigue_rest_text, lap_scale, rests_text
 from pdrlearn.track.periods import with_corridor_scale
@@ -103,3 +103,12 @@ def test_gait_speed_line_and_periods_on_the_corridors_scale(tmp_path):
         folder / "periods.csv", index=False)
     section = time_course_section(folder, "track")  # W563: the report's Time course table shows them
     assert {"distance_corridor_m", "speed_corridor_mps"} <= set(section.tables[0][1].columns)
+
+
+def test_change_from_baseline_compares_the_corridor_scaled_gait_speed():
+    """W562: clinical.md's change line compares gait_speed_corridor_mps between visits."""
+    rows = [("track", None, f"P01_{v}", {"subject": "P01", "visit": v, "pipeline": "waist-pendulum",
+                                         "walk_test_distance_m": d, "gait_speed_corridor_mps": g})
+            for v, d, g in (("pre", 288.0, 0.85), ("post", 340.0, 1.01))]
+    line = change_lines(rows)[0]
+    assert "gait speed (corridor's scale, W562) 0.85 -> 1.01 m/s (+0.16 m/s" in line

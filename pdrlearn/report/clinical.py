@@ -185,7 +185,9 @@ def walk_test_rests_line(summary: dict) -> str | None:
 #: decision C177: clinical.md's change-from-baseline measures (visits.CLINICAL_MEASURES): (name, unit, digits)
 CHANGE_LINE_MEASURES = {"walk_test_distance_m": ("walk test distance", "m", 0), "fatigue_index": ("fatigue index", "",
                         2), "tug_time_s": ("TUG", "s", 1), "ten_m_walk_speed_mps": ("10 m walk", "m/s", 2),
-                        "t25fw_time_s": ("T25FW", "s", 1)}
+                        "t25fw_time_s": ("T25FW", "s", 1),
+                        # decision W562: the lower back's gait speed on the corridor's scale (trial s49t1 F2)
+                        "gait_speed_corridor_mps": ("gait speed (corridor's scale, W562)", "m/s", 2)}
 
 
 def change_lines(rows: list) -> list[str]:
