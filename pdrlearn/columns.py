@@ -407,6 +407,21 @@ SESSIONS: tuple[Column, ...] = (
     ("walk_test_stopped_s", "s", "number", "--walk-test-duration only: the last step's end after walk_test_start_s "
                                            "when the walking ended over 10 s before the test's end (stopped early, "
                                            "L644); empty otherwise"),
+    ("walk_test_n_rests", "count", "integer", "--walk-test-duration only: the rests inside the test's window "
+                                              "(L647's rests: gaps between walking bouts less turns, cut to the "
+                                              "window, at least 1 s inside it; C217); the recording's own are "
+                                              "n_pauses"),
+    ("walk_test_rest_time_s", "s", "number", "--walk-test-duration only: those rests' seconds inside the window "
+                                             "(C217)"),
+    ("walk_test_rests", "s", "number", "--walk-test-duration only, summary.json only (a list): [start from "
+                                       "walk_test_start_s, seconds] of each of those rests (C217)"),
+    ("walk_test_scale", "ratio", "number", "--corridor on the lower back only: corridor_m / (the median tracked "
+                                           "lap between two cone turns less C181's cone arc): the corridor's scale "
+                                           "of the step lengths (W562); empty with under 2 such laps or the "
+                                           "minutes withheld (L646)"),
+    ("gait_speed_corridor_mps", "m/s", "number", "--corridor on the lower back only: gait_speed_mps x "
+                                                 "walk_test_scale, the recording's gait speed on the corridor's "
+                                                 "scale (W562)"),
     ("walk_test_note", _ID, "text", "--corridor only: why no walk test was scored (not a corridor, L643) or why the "
                                     "per-minute distances and fatigue index are withheld (L646); empty otherwise"),
     ("splits_m", "m", "number", "--splits only, summary.json only (a list): the distance marks given (L411); "
@@ -968,6 +983,12 @@ PERIODS: tuple[Column, ...] = (
                                           "reads 360, L690; L691); 0 without a turn"),
     ("median_stance_pct", "%", "number", "--toe-off only: the period's median stance share of the stride, the "
                                          "summary's rule (L73; L725); empty without toe-off columns"),
+    ("distance_corridor_m", "m", "number", "--corridor on the lower back only: distance_m x the summary's "
+                                           "walk_test_scale, the step lengths put on the corridor's scale (W563); "
+                                           "the walked path, cone arcs included, so a little over the corridor's "
+                                           "own per-minute distances"),
+    ("speed_corridor_mps", "m/s", "number", "--corridor on the lower back only: distance_corridor_m / "
+                                           "time_walking_s (W563); empty without walking"),
     *_clocks("start_s", "end_s"),
 )
 

@@ -1291,6 +1291,10 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
                                           start=session_go(o.get("walk_test_start", "auto"), session),  # L642
                                           data_end=session_span(session, unit)[1])  # L644
         summary.update(keys)
+        if keys.get("walk_test_scale") is not None:  # decision W562: the lower back's gait speed, corridor's scale
+            from pdrlearn.track.corridor import corridor_gait_speed
+
+            summary["gait_speed_corridor_mps"] = corridor_gait_speed(summary)
         if lines:
             import logging
 
@@ -1322,6 +1326,10 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
         periods = period_table(whole, session, o["per_s"], unit=unit, bouts=bouts,
                                turns=clinical_tables(whole, bouts)["turns.csv"],
                                storey_height_m=o.get("storey_height_m", 3.0), clock=clock, span=span)
+        if summary.get("walk_test_scale") is not None:  # decision W563: the periods on the corridor's scale too
+            from pdrlearn.track.periods import with_corridor_scale
+
+            periods = with_corridor_scale(periods, summary["walk_test_scale"])
         summary["per_s"] = float(o["per_s"])
         summary["per_start_s"] = float(span[0])
         if first_step:

@@ -142,6 +142,11 @@ def gait_speed_line(summary: dict, unit: str) -> str | None:
         flags.append("all the recording's walking, from step lengths; the walk test's own speed is its line's (L650)")
     if speed < VALIDATED_MIN_MPS or slow_cad:
         flags.append(f"slower than the validated {VALIDATED_MIN_MPS:g} m/s / {VALIDATED_MIN_SPM:g} steps/min (L95)")
+    scaled = summary.get("gait_speed_corridor_mps")
+    if scaled is not None:  # decision W562: the corridor's laps give the step lengths' scale
+        return (f"- Gait speed {scaled:.2f} m/s on the corridor's scale (the step lengths x "
+                f"{summary['walk_test_scale']:.3f}, the corridor / its median lap less the cone arc; W562; from "
+                f"the step lengths alone {speed:.2f} m/s){cadence} ({'; '.join(flags)})")
     return f"- Gait speed {speed:.2f} m/s{cadence} ({'; '.join(flags)})"
 
 
@@ -161,14 +166,28 @@ def walk_test_pace_line(summary: dict) -> str | None:
         parts.append("per minute " + " / ".join(f"{m:.0f}" for m in minutes) + " m")
     fatigue = summary.get("fatigue_index")
     if fatigue is not None:
-        parts.append(f"fatigue index {fatigue:.2f} (last / first full minute)")
+        from pdrlearn.track.corridor import fatigue_rest_text
+
+        rest = fatigue_rest_text(summary)  # decision C218: a rest, not slowing, drives it
+        parts.append(f"fatigue index {fatigue:.2f} (last / first full minute)" + (f": {rest}" if rest else ""))
     return "  - " + "; ".join(parts)
+
+
+def walk_test_rests_line(summary: dict) -> str | None:
+    """Decision C217: clinical.md's "Rests during the test: N (durations, start times)" under a timed corridor
+    walk test; None without a timed test."""
+    from pdrlearn.track.corridor import rests_text
+
+    text = rests_text(summary) if summary.get("walk_test_distance_m") is not None else None
+    return f"  - {text}" if text else None
 
 
 #: decision C177: clinical.md's change-from-baseline measures (visits.CLINICAL_MEASURES): (name, unit, digits)
 CHANGE_LINE_MEASURES = {"walk_test_distance_m": ("walk test distance", "m", 0), "fatigue_index": ("fatigue index", "",
                         2), "tug_time_s": ("TUG", "s", 1), "ten_m_walk_speed_mps": ("10 m walk", "m/s", 2),
-                        "t25fw_time_s": ("T25FW", "s", 1)}
+                        "t25fw_time_s": ("T25FW", "s", 1),
+                        # decision W562: the lower back's gait speed on the corridor's scale (trial s49t1 F2)
+                        "gait_speed_corridor_mps": ("gait speed (corridor's scale, W562)", "m/s", 2)}
 
 
 def walk_names(tracks: list[dict], row) -> dict[str, str]:
@@ -292,6 +311,9 @@ def clinical_lines(summary: dict, folder: Path) -> list[str]:
         pace = walk_test_pace_line(summary)  # decisions C177, L650: its minutes, fatigue index and own speed
         if pace:
             lines.append(pace)
+        rests = walk_test_rests_line(summary)  # decision C217: the test's own rests
+        if rests:
+            lines.append(rests)
     tug = tug_line(summary, folder)
     if tug:
         lines.append(tug)

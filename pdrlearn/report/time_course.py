@@ -13,6 +13,7 @@ from pdrlearn.io.plasys import read_table
 
 #: decision L386: periods.csv's columns the report shows (those the file has)
 PERIOD_COLUMNS = ("period", "start_s", "end_s", "duration_s", "partial", "distance_m", "speed_mps",
+                  "distance_corridor_m", "speed_corridor_mps",  # decision W563: the corridor's scale, beside
                   "median_cadence_spm", "median_speed_mps", "time_walking_s", "n_steps", "n_steps_counts")
 #: decision L386: laps.csv's columns the report shows
 LAP_COLUMNS = ("lap", "start_s", "end_s", "duration_s", "corridor_laps", "distance_m", "distance_source", "speed_mps",

@@ -15,7 +15,7 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.track.clinical import _is_lower_back, data_gap_lengths, walked_turns
-from pdrlearn.track.rests import rest_seconds
+from pdrlearn.track.rests import rest_seconds, window_rests
 from pdrlearn.track.walk_test import _path
 from pdrlearn.warning_lines import coded
 
@@ -90,6 +90,12 @@ TEST_LABELS = {120.0: "2MWT", 360.0: "6MWT"}
 KEYS = ("corridor_m", "n_laps", "walk_test_distance_m", "walk_test_duration_s", "walk_test_distance_per_minute_m",
         "fatigue_index",  # L462: walk_test_duration_s in the no-steps path and the report's walk-test table too
         "walk_test_start_s", "walk_test_protocol_s", "walk_test_stopped_s", "walk_test_note")  # L642-L646
+#: decision C217: the summary keys of the rests inside a timed test's window (``walk_test_rests``: [start from the
+#: go, seconds] each; summary.json only)
+REST_KEYS = ("walk_test_n_rests", "walk_test_rest_time_s", "walk_test_rests")
+#: decision W562: the summary keys of the corridor's scale on a lower-back track (``gait_speed_corridor_mps`` is set
+#: by :func:`corridor_gait_speed` from the summary's ``gait_speed_mps``)
+SCALE_KEYS = ("walk_test_scale", "gait_speed_corridor_mps")
 
 
 def _distance_in_time(steps: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:
@@ -240,6 +246,10 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
     laps = pd.DataFrame(rows, columns=list(LAP_COLUMNS))
     out["n_laps"] = int(laps["corridor_laps"].sum())
     out["walk_test_distance_m"] = float(laps["distance_m"].sum())
+    if duration_s is not None:  # decision C217: the rests inside the timed test's window (L647's rests)
+        found = window_rests(bouts, turns, t0, t_end)
+        out.update(walk_test_n_rests=len(found), walk_test_rest_time_s=float(sum(r[1] for r in found)),
+                   walk_test_rests=[[a - t0, r] for a, r in found])
     walked_end = t_end
     last_step = float(st.loc[st["start_s"] < t_end, "end_s"].max()) if (st["start_s"] < t_end).any() else t0
     if duration_s is not None and t_end - last_step > STOP_MIN_S:  # decision L644: the walking stopped early
@@ -256,10 +266,63 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
                                  "count and distance come from the cone turns (decision L646)")
         warnings.append(coded(f"corridor walk test: {out['walk_test_note']}", "L646"))
         return laps, out, warnings
+    if _is_lower_back(st):  # decision W562: the corridor's scale of the lower back's step lengths
+        out["walk_test_scale"] = lap_scale([m for _, _, m, c in stretches[:-1] if c == 1],
+                                           cone_turn_m(cone, t, d, lap_t0, lap_end), corridor_m)
     per_minute = _per_minute(t, d, stretches, laps["distance_m"].to_numpy(float), t0, walked_end)
     out["walk_test_distance_per_minute_m"] = per_minute
     out["fatigue_index"] = per_minute[-1] / per_minute[0] if len(per_minute) >= 2 and per_minute[0] > 0 else None
     return laps, out, warnings
+
+
+def lap_scale(single_laps: list[float], arc_m: float, corridor_m: float) -> float | None:
+    """Decision W562: the factor that puts a track's metres on the corridor's: ``corridor_m`` / (the median of
+    ``single_laps``, the tracked metres of the laps between two cone turns, less ``arc_m``, C181's metres walked round
+    a cone, which the walker walks but no corridor length counts); None with fewer than
+    :data:`CORRIDOR_LAP_MIN_LAPS` laps or no length left."""
+    if len(single_laps) < CORRIDOR_LAP_MIN_LAPS:
+        return None
+    own = float(np.median(single_laps)) - float(arc_m)
+    return float(corridor_m) / own if own > 0 else None
+
+
+def corridor_gait_speed(summary: dict) -> float | None:
+    """Decision W562: ``gait_speed_mps`` (the recording's walking, from the step lengths) x ``walk_test_scale`` (the
+    corridor's scale, :func:`lap_scale`); None without either."""
+    speed, scale = summary.get("gait_speed_mps"), summary.get("walk_test_scale")
+    return float(speed) * float(scale) if speed is not None and scale is not None else None
+
+
+def rests_text(summary: dict) -> str | None:
+    """Decision C217: "Rests during the test: N (15 s at 1:52, 31 s at 4:57)" of a summary's test-window rests
+    (``walk_test_rests``); "none" when the test had none; None without the keys (no timed test)."""
+    found = summary.get("walk_test_rests")
+    if found is None:
+        return None
+    if not found:
+        return "Rests during the test: none (C217)"
+    listed = ", ".join(f"{r:.0f} s at {clock_text(a)}" for a, r in found)
+    total = summary.get("walk_test_rest_time_s") or 0.0
+    return f"Rests during the test: {len(found)} ({listed}; {total:.0f} s in all, C217)"
+
+
+def fatigue_rest_text(summary: dict) -> str | None:
+    """Decision C218: when a C217 rest overlaps the first or the last full minute of the test, the words that it,
+    not slowing, drives the fatigue index (last / first full minute): "a 31 s rest at 5:10 (minute 6) drives it,
+    not slowing (C218)"; None otherwise."""
+    per, found = summary.get("walk_test_distance_per_minute_m") or [], summary.get("walk_test_rests") or []
+    if summary.get("fatigue_index") is None or len(per) < 2 or not found:
+        return None
+    last = len(per) - 1
+    named = []
+    for start, dur in found:  # the rest's overlap with the first and with the last full minute
+        hit = [k for k in (0, last) if min(start + dur, MINUTE_S * (k + 1)) - max(start, MINUTE_S * k) > 0]
+        if hit:
+            named.append(f"a {dur:.0f} s rest at {clock_text(start)} (minute "
+                         + " and ".join(str(k + 1) for k in dict.fromkeys(hit)) + ")")
+    if not named:
+        return None
+    return f"{' and '.join(named)} drive{'s' if len(named) == 1 else ''} it, not slowing (C218)"
 
 
 def cone_turn_m(cone: pd.DataFrame, t: np.ndarray, d: np.ndarray, t0: float, t1: float) -> float:
@@ -577,6 +640,8 @@ def corridor_line(summary: dict) -> str:
             f"partial lap, laps.csv; L383){timing}"
             + (f"; per minute from the test's start {' / '.join(f'{v:.1f}' for v in per)} m" if per else "")
             + (f"; fatigue index {fatigue:.2f} (last / first full minute)" if fatigue is not None else "")
+            + (f": {fatigue_rest_text(summary)}" if fatigue_rest_text(summary) else "")  # decision C218
+            + (f"; {rests_text(summary)[0].lower()}{rests_text(summary)[1:]}" if rests_text(summary) else "")  # C217
             + (f"; {summary['walk_test_note']}" if summary.get("walk_test_note") else "")
             + walk_test_speed_text(summary))
 

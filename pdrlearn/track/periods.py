@@ -548,3 +548,19 @@ def period_table(result, session, per_s: float, *, unit: str | None, bouts: pd.D
         row["period"] = k + 1
         row["partial"] = bool(row["duration_s"] < per_s - 1e-9)
     return pd.DataFrame(rows, columns=list(PERIOD_COLUMNS))
+
+
+#: decision W563: periods.csv's columns on the corridor's scale (a lower-back track with a scored corridor walk test)
+CORRIDOR_COLUMNS = ("distance_corridor_m", "speed_corridor_mps")
+
+
+def with_corridor_scale(periods: pd.DataFrame, scale: float) -> pd.DataFrame:
+    """Decision W563: periods.csv with :data:`CORRIDOR_COLUMNS`: ``distance_m`` x ``scale`` (W562's
+    ``walk_test_scale``, the corridor's scale of the lower back's step lengths) and that over ``time_walking_s``
+    (empty without walking); the step lengths' own ``distance_m`` stays."""
+    out = periods.copy()
+    dist = pd.to_numeric(out["distance_m"], errors="coerce") * float(scale)
+    walking = pd.to_numeric(out["time_walking_s"], errors="coerce") if "time_walking_s" in out else None
+    out["distance_corridor_m"] = dist
+    out["speed_corridor_mps"] = dist / walking.where(walking > 0) if walking is not None else np.nan
+    return out

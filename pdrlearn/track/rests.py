@@ -83,3 +83,19 @@ def rest_seconds(start: float, end: float, bouts: pd.DataFrame | None, turns: pd
     for gap in rests(bouts, turns, start, end):
         total += sum(max(min(e, end) - max(s, start), 0.0) for s, e in gap)
     return float(total)
+
+
+def window_rests(bouts: pd.DataFrame | None, turns: pd.DataFrame | None, start: float, end: float
+                 ) -> list[tuple[float, float]]:
+    """Decision C217: the rests inside ``[start, end]`` (a timed walk test's window) as ``(first instant, rest
+    seconds)``: each L647 rest (:func:`rests`) cut to the window, kept when at least :data:`REST_MIN_S` of it lies
+    inside (standing after the test's end, or the wait before its go, is no rest of the test)."""
+    if bouts is None or not len(bouts) or not end > start:
+        return []
+    out = []
+    for gap in rests(bouts, turns, start, end):
+        inside = [(max(s, start), min(e, end)) for s, e in gap if min(e, end) > max(s, start)]
+        total = sum(e - s for s, e in inside)
+        if inside and total >= REST_MIN_S:
+            out.append((float(inside[0][0]), float(total)))
+    return out
