@@ -89,7 +89,7 @@ def pace_line(w: dict) -> str:
 
 #: decision L538: the printed name of each step kind's row
 KIND_NAMES = {"level": "level", "stairs_up": "stairs up", "stairs_down": "stairs down", "turn": "turn",
-              "start_stop": "start / stop"}
+              "start_stop": "start / stop", "backward": "backward"}  # decision L746
 
 
 def kind_lines(by_kind: dict) -> list[str]:
