@@ -73,7 +73,7 @@ def _feet(back_from: int, back_to: int, flight_back: bool, n: int = 14, cycle: f
     """Label tables of both feet of one bout: strides ``back_from``..``back_to`` (each foot's) travel backward;
     with ``flight_back`` their toe-offs come 0.1 s before the other foot's contact (a flight)."""
     out = []
-    for k, start in enumerate((0.0, 0.5 * cycle)):
+    for start in (0.0, 0.5 * cycle):
         ic = 1.0 + start + cycle * np.arange(n)
         back = (np.arange(n) >= back_from) & (np.arange(n) < back_to)
         stance = np.where(back & flight_back, 0.5 * cycle - 0.1, 0.62 * cycle)

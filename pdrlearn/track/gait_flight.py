@@ -55,7 +55,7 @@ def flight_warning(walk: dict, cycles) -> str | None:
     fl = cycles[cycles["flight_time_s"] > 0]
     back = (fl["kind"] == "backward").to_numpy(bool) if "kind" in fl else np.zeros(len(fl), bool)  # L746
     of = int(cycles["flight_time_s"].notna().sum())  # L736: every cycle with both toe-offs in their strides
-    ref = decision_ref("L729", "L284", *(("L746",) if back.any() else ()))
+    ref = decision_ref("L729", "L284", "L746") if back.any() else decision_ref("L729", "L284")
     if back.all():  # decision L746: only backward walking's cycles
         return (f"bilateral gait: {len(fl)} of {of} gait cycles have a toe-off before the other foot's contact "
                 f"({1000 * float(fl['flight_time_s'].mean()):.0f} ms on average), all of them in {BACKWARD_FLIGHT} "
