@@ -1365,9 +1365,10 @@ GAIT_STEPS: tuple[Column, ...] = (
                                     "(accel-force), imu (the accelerometer detector) or force+imu (a stitched track, "
                                     "L405); both feet imu when only one had force sensors or with --ignore-force; "
                                     "also gait_summary.json's contact_source {left, right}"),
-    ("kind", _ID, "text", "level, stairs_up, stairs_down, turn or start_stop: the kind of the two strides into "
-                          "start_s and ic_s (a stair stride, |dz| >= 0.10 m, over a turn of 15 deg or more over a "
-                          "bout's first or last contact; L538); the walk's headline is its level steps' "
+    ("kind", _ID, "text", "level, stairs_up, stairs_down, turn, start_stop or backward: the kind of the two strides "
+                          "into start_s and ic_s (a stair stride, |dz| >= 0.10 m, over a turn of 15 deg or more over a "
+                          "bout's first or last contact over a stride travelling backward, L203 / L746; L538); the "
+                          "walk's headline is its level steps' "
                           "(gait_summary.json walk headline_steps), each kind's in by_kind"),
 )
 #: ``pdrlearn gait``'s gait_cycles.csv (decisions L262, L287): one row per gait cycle of either foot

@@ -70,7 +70,7 @@ def _basis(w: dict, by_kind: dict | None = None) -> str:
     straight steps each side had (``by_kind["level"]``, none without)."""
     if w.get("headline_steps") == "level":
         return (f" (level straight steps, of {w['n_steps_all_left']}/{w['n_steps_all_right']}: no stairs, turns, "
-                "starts or stops; L538)")
+                "starts, stops or backward strides; L538, L746)")
     if w.get("headline_steps") == "all":
         from pdrlearn.track.bilateral import HEADLINE_MIN_LEVEL_STEPS
 
@@ -89,7 +89,7 @@ def pace_line(w: dict) -> str:
 
 #: decision L538: the printed name of each step kind's row
 KIND_NAMES = {"level": "level", "stairs_up": "stairs up", "stairs_down": "stairs down", "turn": "turn",
-              "start_stop": "start / stop"}
+              "start_stop": "start / stop", "backward": "backward"}  # decision L746
 
 
 def kind_lines(by_kind: dict) -> list[str]:
@@ -181,9 +181,10 @@ def register(app: typer.Typer) -> None:
         double and single support (% of the gait cycle, from the toe-off of track --toe-off), per walk and per
         walking bout. Each folder is tracked offline with --toe-off; with labelled IC / TC events in both folders
         (gaitmap's mocap) the same measures of the labels are given as the reference (with ics.csv's step lengths,
-        L540). The headline measures are the level straight steps' (no stairs, turns, starts or stops; all steps
-        with none on a side), with a row per kind of step and gait_steps.csv / gait_cycles.csv's kind
-        (L538), and the walk's gait speed, cadence and distance (L539). The two recordings must share one clock:
+        L540). The headline measures are the level straight steps' (no stairs, turns, starts, stops or backward
+        strides, L746; all steps with none on a side), with a row per kind of step and gait_steps.csv /
+        gait_cycles.csv's kind (L538), and the walk's gait speed, cadence and distance (L539). The two recordings
+        must share one clock:
         two sessions imported from absolute (epoch or date-time) timestamps are aligned on their meta.json
         imported.time.origin_s (the later one moved by the difference, one line, gait_summary.json's
         clock_alignment; L537); any other pair must share t = 0 (as gaitmap's left / right folders). gait

@@ -49,7 +49,7 @@ from pdrlearn.track.support_bias import setup_of, support_note
 #: the columns :func:`foot_events` gives: one row per initial contact of one foot; ``x_m`` / ``y_m`` (the foot's
 #: rest position after the stride, its own track's frame) and ``dir_rad`` (the stride's direction) need a tracked
 #: table's ``heading_rad`` (decision L310), else NaN
-EVENT_COLUMNS = ("ic_s", "tc_s", "length_m", "x_m", "y_m", "dir_rad", "terrain", "turn_deg", "stride_s")
+EVENT_COLUMNS = ("ic_s", "tc_s", "length_m", "x_m", "y_m", "dir_rad", "terrain", "turn_deg", "stride_s", "backward")
 #: decision L260: a foot's ``meta.json`` key naming which foot the unit is on (gaitmap's ``foot``, the simulator's
 #: ``instrumented_foot``)
 FOOT_META_KEYS = ("foot", "instrumented_foot")
@@ -103,8 +103,23 @@ def foot_events(steps: pd.DataFrame) -> pd.DataFrame:
     out = pd.DataFrame({"ic_s": st[ic_col].to_numpy(float),
                         "tc_s": st["tc_s"].to_numpy(float) if "tc_s" in st else np.full(len(st), np.nan),
                         "length_m": length, "x_m": x, "y_m": y, "z_m": z, "dir_rad": d, "terrain": terrain,
-                        "turn_deg": turn, "stride_s": span})
+                        "turn_deg": turn, "stride_s": span, "backward": stride_backward(steps)[ok]})  # L746
     return out.sort_values("ic_s", kind="stable").reset_index(drop=True)
+
+
+def stride_backward(steps: pd.DataFrame) -> np.ndarray:
+    """Decision L746: (rows,) bool, each row's stride travels backward: a foot track's L203 ``backward_travel``
+    (:func:`pdrlearn.track.evaluate.backward_travel`, steps.csv's column of that name: L654's measured travel; no
+    model's ``direction`` class, which a turn's pivot stride can take, L224), else a label table's ``direction`` ==
+    ``backward`` (the simulator's steps.csv); all False for a table with neither."""
+    from pdrlearn.track.evaluate import backward_travel
+
+    back = backward_travel(steps)
+    if back is not None:
+        return np.asarray(back, dtype=bool)
+    if "direction" in steps:
+        return (steps["direction"].astype(str).str.strip().str.lower() == "backward").to_numpy(bool)
+    return np.zeros(len(steps), bool)
 
 
 def stride_terrain(steps: pd.DataFrame) -> np.ndarray:
@@ -320,11 +335,13 @@ def merged_contacts(left: pd.DataFrame, right: pd.DataFrame) -> pd.DataFrame:
 #: decision L538: the kinds of a step (gait_steps.csv ``kind``) and of a gait cycle (gait_cycles.csv ``kind``): on
 #: level ground and straight; on a stair going up or down (the stride's L179 rule, |dz| >= 0.10 m); in a turn (the
 #: stride turns L79's 15 deg or more); a walking bout's first or last step (L317's half strides: gait initiation and
-#: the closing step). The walk's headline measures are its level steps' (:func:`headline_masks`)
-STEP_KINDS = ("level", "stairs_up", "stairs_down", "turn", "start_stop")
+#: the closing step); decision L746: travelling backward (L203). The walk's headline measures are its level steps'
+#: (:func:`headline_masks`)
+STEP_KINDS = ("level", "stairs_up", "stairs_down", "turn", "start_stop", "backward")
 #: decision L538: which kind a step (or cycle) takes when its two contacts' strides differ: the lower rank; on a tie
-#: the landing contact's
-_KIND_RANK = {"stairs_up": 0, "stairs_down": 0, "turn": 1, "start_stop": 2, "level": 3}
+#: the landing contact's. Decision L746: backward under a start / stop (a backward bout's ends are its start_stop, as
+#: a level bout's) and over level (a step from a forward into a backward stride is no level step)
+_KIND_RANK = {"stairs_up": 0, "stairs_down": 0, "turn": 1, "start_stop": 2, "backward": 3, "level": 4}
 
 
 def contact_kinds(both: pd.DataFrame) -> np.ndarray:
@@ -332,10 +349,14 @@ def contact_kinds(both: pd.DataFrame) -> np.ndarray:
     ``stairs_down`` by its ``terrain``, else ``turn`` when it turns at least L79's ``STRAIGHT_MAX_RAD`` (a missing
     turn is straight, as L79's), else ``start_stop`` for a bout's first or last contact (``partial``, L317) or a
     closing step inside a bout (a level stride under L310's :data:`CLOSING_STRIDE_SHARE` of the foot's median level
-    stride: the feet brought side by side, e.g. before a stair), else ``level``."""
+    stride: the feet brought side by side, e.g. before a stair), else (decision L746) ``backward`` for a stride
+    travelling backward (``backward``, :func:`stride_backward`; neither a closing-step candidate nor in the foot's
+    median: a backward stride is short), else ``level``."""
     kind = np.full(len(both), "level", dtype=object)
     if "partial" in both:
         kind[both["partial"].to_numpy(bool)] = "start_stop"
+    back = both["backward"].to_numpy(bool) if "backward" in both else np.zeros(len(both), bool)  # decision L746
+    kind[back & (kind == "level")] = "backward"
     if "length_m" in both:  # L310's closing-step rule on the foot's own strides, inside a bout
         length, side = np.abs(both["length_m"].to_numpy(float)), both["side"].to_numpy()
         plain = kind == "level"
@@ -469,7 +490,9 @@ def gait_measures(both: pd.DataFrame, steps: pd.DataFrame, cycles: pd.DataFrame)
     out.update(_pair("step_time_s", *(_mean(steps.loc[steps["side"] == s, "step_time_s"]) for s in SIDES)))
     out.update(_pair("stride_time_s", *(_mean(cycles.loc[cycles["side"] == s, "stride_time_s"]) for s in SIDES)))
     full = ~both["partial"] if "partial" in both else True  # decision L317: no initiation / termination half stride
-    out.update(_pair("stride_length_m", *(_mean(both.loc[full & (both["side"] == s), "length_m"]) for s in SIDES)))
+    # decision L746: the stride's length whichever way it travels (L654's sign is the travel; the kind says which)
+    out.update(_pair("stride_length_m", *(_mean(both.loc[full & (both["side"] == s), "length_m"].abs())
+                                          for s in SIDES)))
     out.update(_pair("swing_time_s", *(_mean(steps.loc[steps["side"] == s, "swing_time_s"]) for s in SIDES)))
     out.update(_pair("stance_time_s", *(_mean(cycles.loc[cycles["side"] == s, "stance_time_s"]) for s in SIDES)))
     if "step_length_m" in steps:  # decision L310

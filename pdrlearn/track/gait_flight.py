@@ -13,6 +13,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from pdrlearn.decision_refs import decision_ref
 from pdrlearn.kernels.contact import TOUCH_S
 
@@ -37,23 +39,37 @@ def flight_after(side: str, other: str, after_other: float, after_own: float) ->
     return None if not feet else feet[0] if len(feet) == 1 else "both"
 
 
+#: decision L746: what the flight line says of backward cycles' flights (backward walking lands toe first; L329)
+BACKWARD_FLIGHT = ("backward walking, which lands toe first and whose contact and toe-off detection no measurement "
+                   "covers (L329): no loss of contact or clock offset is read from them")
+
+
 def flight_warning(walk: dict, cycles) -> str | None:
     """Decision L729: one line when the walk's cycles (``cycles``: gait_cycles.csv's rows with ``flight_time_s``
     and ``flight_after``) have a flight, naming both causes (a loss of contact; a clock offset, L284); None
-    without one."""
-    n = walk.get("n_flight_cycles") or 0
-    if not n:
+    without one. Decision L746: flights in cycles of ``kind`` backward are counted apart and named as backward
+    walking's (:data:`BACKWARD_FLIGHT`), not blamed on race walking or a clock; the line's count, mean and feet are
+    the other cycles'."""
+    if not (walk.get("n_flight_cycles") or 0):
         return None
     fl = cycles[cycles["flight_time_s"] > 0]
-    by = {f: int((fl["flight_after"] == f).sum()) for f in ("left", "right", "both")}
+    back = (fl["kind"] == "backward").to_numpy(bool) if "kind" in fl else np.zeros(len(fl), bool)  # L746
     of = int(cycles["flight_time_s"].notna().sum())  # L736: every cycle with both toe-offs in their strides
+    ref = decision_ref("L729", "L284", "L746") if back.any() else decision_ref("L729", "L284")
+    if back.all():  # decision L746: only backward walking's cycles
+        return (f"bilateral gait: {len(fl)} of {of} gait cycles have a toe-off before the other foot's contact "
+                f"({1000 * float(fl['flight_time_s'].mean()):.0f} ms on average), all of them in {BACKWARD_FLIGHT} "
+                f"({ref})")
+    fl, n_back = fl[~back], int(back.sum())
+    by = {f: int((fl["flight_after"] == f).sum()) for f in ("left", "right", "both")}
     off = walk.get("clock_offset_s")
     off_txt = "" if off is None else f" (clock_offset_s {1000 * off:+.0f} ms)"
-    return (f"bilateral gait: {n} of {of} gait cycles have a flight - a foot's toe-off before the other foot's "
-            f"contact, {1000 * walk['flight_time_s']:.0f} ms on average with neither foot on the ground (after the "
-            f"left foot's toe-off in {by['left']}, the right's in {by['right']}, both in {by['both']}): a loss of "
-            "contact (race walking's fault, running) or a clock offset between the two units, which shortens the "
-            "double support after one foot's toe-off and lengthens it after the other's - flights after one foot's "
-            f"toe-off only point to the clock{off_txt}. These cycles give no double or single support "
-            "(n_support_cycles counts the others); gait_cycles.csv's flight_time_s and flight_after give each ("
-            f"{decision_ref('L729', 'L284')})")
+    back_txt = "" if not n_back else f"; {n_back} more in {BACKWARD_FLIGHT}"
+    return (f"bilateral gait: {len(fl)} of {of} gait cycles have a flight - a foot's toe-off before the other foot's "
+            f"contact, {1000 * float(fl['flight_time_s'].mean()):.0f} ms on average with neither foot on the ground "
+            f"(after the left foot's toe-off in {by['left']}, the right's in {by['right']}, both in {by['both']}): a "
+            "loss of contact (race walking's fault, running) or a clock offset between the two units, which shortens "
+            "the double support after one foot's toe-off and lengthens it after the other's - flights after one "
+            f"foot's toe-off only point to the clock{off_txt}{back_txt}. These cycles give no double or single "
+            "support (n_support_cycles counts the others); gait_cycles.csv's flight_time_s and flight_after give "
+            f"each ({ref})")
