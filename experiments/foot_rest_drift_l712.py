@@ -42,9 +42,11 @@ def heading_errors(result, session) -> np.ndarray:
     return np.degrees((h - h[0]) - (ht - ht[0]))
 
 
-def track(session, on: bool, **kw):
-    return track_plasys(session, method=kw.pop("method", "M3"), model=kw.pop("model", "oracle"),
-                        params={"rest_drift": on}, **kw)
+def track(session, on: bool, extra: dict | None = None, **kw):
+    """The plasys track with ``rest_drift`` ``on``; ``extra``: more foot settings with it on (L731's
+    ``rest_drift_by``)."""
+    params = {"rest_drift": on, **(extra or {} if on else {})}
+    return track_plasys(session, method=kw.pop("method", "M3"), model=kw.pop("model", "oracle"), params=params, **kw)
 
 
 def strides_change(a, b) -> float:
@@ -55,18 +57,19 @@ def strides_change(a, b) -> float:
                for c in ("length_m", "heading_rad"))
 
 
-def measure(user: int, rate_hz: float = 20.0):
+def measure(user: int, rate_hz: float = 20.0, extra: dict | None = None):
     """One user's row ``(user, h0, h1, p0, p1, f0, f1, c)`` (false -> true: foot-only final heading error, deg, and
     final position error, m; the fused track's final position error; (c)'s largest short-walk stride change) and the
-    fused tracks (false, true), the long route and the short walk simulated at ``rate_hz``."""
+    fused tracks (false, true), the long route and the short walk simulated at ``rate_hz``; ``extra``: as
+    :func:`track`."""
     s = simulate_path(parse_route(long_route(user)), UserProfile.from_seed(user), seed=0, rate_hz=rate_hz)
-    off, on = track(s, False, heading="foot"), track(s, True, heading="foot")
+    off, on = track(s, False, heading="foot"), track(s, True, extra, heading="foot")
     h0, h1 = heading_errors(off, s)[-1], heading_errors(on, s)[-1]
     p0, p1 = (float(track_summary(r, s)["final_position_error_m"]) for r in (off, on))
-    fused = (track(s, False), track(s, True))
+    fused = (track(s, False), track(s, True, extra))
     f0, f1 = (float(track_summary(r, s)["final_position_error_m"]) for r in fused)
     short = simulate_path(parse_route(SHORT), UserProfile.from_seed(user), seed=0, rate_hz=rate_hz)
-    c = strides_change(track(short, False, heading="foot"), track(short, True, heading="foot"))
+    c = strides_change(track(short, False, heading="foot"), track(short, True, extra, heading="foot"))
     return (user, h0, h1, p0, p1, f0, f1, c), fused
 
 
@@ -77,14 +80,16 @@ def heading_growth(r: np.ndarray):
     return np.mean(np.abs(r[:, 1])), np.mean(np.abs(r[:, 2])), grow, int(np.argmax(grow))
 
 
-def real_and_demo_checks() -> None:
-    """(d) the real gaitmap foot recordings, (e) the demo table's scenario D: every stride with false and true."""
+def real_and_demo_checks(extra: dict | None = None) -> None:
+    """(d) the real gaitmap foot recordings, (e) the demo table's scenario D: every stride with false and true
+    (``extra``: :func:`track`'s)."""
     for p in sorted(DATA.glob("gaitmap_*")):
         s = read_session(p)
-        print(f"(d) {p.name}: largest stride change {strides_change(track(s, False), track(s, True)):.3g}", flush=True)
+        print(f"(d) {p.name}: largest stride change {strides_change(track(s, False), track(s, True, extra)):.3g}",
+              flush=True)
     d = simulate("D", user_seed=1)
     for m in ("M1", "M2", "M3"):
-        a, b = track(d, False, method=m), track(d, True, method=m)
+        a, b = track(d, False, method=m), track(d, True, extra, method=m)
         da, db = (float(track_summary(x, d)["distance_error_pct"]) for x in (a, b))
         print(f"(e) scenario D {m}: distance error {da:.3f} -> {db:.3f} %, largest stride change "
               f"{strides_change(a, b):.3g}", flush=True)

@@ -25,11 +25,13 @@ def fused_path(result) -> str:
     return "fallback" if (result.info.get("compass_check") or {}).get("gyro_fallback") else "fusion"
 
 
-def main() -> None:
-    rate = float(sys.argv[1])
+def report(rate: float, users, extra: dict | None = None, checks: bool = True) -> np.ndarray:
+    """L723's clauses at ``rate`` Hz on ``users``: every session's line, (a) / (b) / (c) / (f1) / (f2), the switched
+    fused paths, and (d) / (e) when ``checks``; ``extra``: more foot settings with ``rest_drift`` on (L731). Returns
+    :func:`measure`'s rows."""
     rows, paths = [], []
-    for user in USERS:
-        row, (fo, fn) = measure(user, rate)
+    for user in users:
+        row, (fo, fn) = measure(user, rate, extra)
         rows.append(row)
         paths.append((fused_path(fo), fused_path(fn)))
         _, h0, h1, p0, p1, f0, f1, c = row
@@ -58,8 +60,13 @@ def main() -> None:
     for i in np.flatnonzero(~same):
         print(f"{rate:g} Hz (f) path switched u{int(r[i, 0])}: {paths[i][0]} -> {paths[i][1]}, final position "
               f"{r[i, 5]:.2f} -> {r[i, 6]:.2f} m ({fg[i]:+.2f})", flush=True)
-    if "--no-checks" not in sys.argv:
-        real_and_demo_checks()
+    if checks:
+        real_and_demo_checks(extra)
+    return r
+
+
+def main() -> None:
+    report(float(sys.argv[1]), USERS, checks="--no-checks" not in sys.argv)
 
 
 if __name__ == "__main__":

@@ -207,6 +207,10 @@ REFERENCE_POINTS = ("sensor", "heel")
 #: decision L712: a rest (lead-in, gap between strides, tail) longer than this (s) gives the foot's bias reads of
 #: ``rest_drift`` (L711: a 45 s stop's 30 s block reads within 0.031 deg/s; shorter stands are common inside a walk)
 FOOT_REST_DRIFT_MIN_S = 30.0
+#: decision L731: the rests ``rest_drift`` reads: ``"gap"`` (L712) the rests between the strides over
+#: :data:`FOOT_REST_DRIFT_MIN_S`, ``"stand"`` the foot's own still runs (the set-up standstill's detector) of that
+#: long or more
+REST_DRIFT_BY = ("gap", "stand")
 
 #: decision L628: below this foot rate (Hz) the strides are integrated on L24's x5 histospline by default (L24 took
 #: it below 50 Hz, the 20 Hz firmware means); at 100 Hz L626's coning term leaves +0.0020 deg per stride of a
@@ -331,6 +335,11 @@ class FootDisplacement:
         read and those (the nearest read held outside them): offline both ends of a walking bout are known, so the
         bias's walk during the bout is followed, not lagged (L711). Walks without such a rest are unchanged bit for
         bit
+    rest_drift_by : decision L731: which rests ``rest_drift`` reads. ``"gap"`` (default, L712): the lead-in, the
+        gaps between strides and the tail over :data:`FOOT_REST_DRIFT_MIN_S`. ``"stand"``: every run of the foot's
+        still samples (``standstill_mask``, the set-up standstill's detector) whose own length, first still sample
+        to last, is :data:`FOOT_REST_DRIFT_MIN_S` or more - a 30 s stand leaves a stride gap under 30 s (each stride
+        takes up to ``max_rest_s`` of it) but a still run over 30 s
 
     Attributes
     ----------
@@ -356,7 +365,7 @@ class FootDisplacement:
                  zaru_gyro_rad_s: float = 0.4, yaw: str = "twist", tilt_dedrift: bool = False,
                  tilt_clock: str = "rotation", timestamps: bool = False,
                  upsample_runs: bool = False, rest_bias: bool = False, clip_noise: bool = False,
-                 rest_drift: bool = False):
+                 rest_drift: bool = False, rest_drift_by: str = "gap"):
         check_settings({k: v for k, v in locals().items() if k != "self"}, "FootDisplacement")  # decision B206
         if tilt_clock not in ("time", "rotation"):
             raise DataError(f"FootDisplacement: tilt_clock '{tilt_clock}' is not 'time' or 'rotation'")
@@ -365,6 +374,10 @@ class FootDisplacement:
         self.upsample_runs = bool(upsample_runs)
         self.rest_bias = bool(rest_bias)
         self.rest_drift = bool(rest_drift)
+        if rest_drift_by not in REST_DRIFT_BY:
+            raise DataError(f"FootDisplacement: rest_drift_by '{rest_drift_by}' is not one of "
+                            f"{', '.join(REST_DRIFT_BY)}")
+        self.rest_drift_by = rest_drift_by
         self.clip_noise = bool(clip_noise)
         if yaw not in ("twist", "x-axis"):
             raise DataError(f"FootDisplacement: yaw '{yaw}' is not 'twist' or 'x-axis'")
@@ -618,13 +631,8 @@ class FootDisplacement:
         from pdrlearn.kernels.rest_heading import block_bias
 
         t = unit.t
-        edges = [(float(t[0]), float(self.start_s_[0]))]
-        edges += [(float(a), float(b)) for a, b in zip(self.end_s_[:-1], self.start_s_[1:], strict=True)]
-        edges.append((float(self.end_s_[-1]), float(t[-1])))
         times, reads = [], []
-        for t0, t1 in edges:
-            if t1 - t0 <= FOOT_REST_DRIFT_MIN_S:
-                continue
+        for t0, t1 in self._drift_rests(t, still):
             a, b = int(np.searchsorted(t, t0, side="left")), int(np.searchsorted(t, t1, side="right"))
             blocks = block_bias(t[a:b], unit.gyr[a:b], still[a:b])
             if blocks is None:
@@ -639,6 +647,20 @@ class FootDisplacement:
         order = np.argsort(times, kind="stable")
         mid = 0.5 * (self.start_s_ + self.end_s_)
         return np.column_stack([np.interp(mid, times[order], reads[order, j]) for j in range(reads.shape[1])])
+
+    def _drift_rests(self, t: np.ndarray, still: np.ndarray) -> list[tuple[float, float]]:
+        """The rests ``(t0, t1)`` (s) :meth:`_drift_biases` reads: ``rest_drift_by="gap"`` (decision L712) the lead-in,
+        the gaps between strides and the tail longer than :data:`FOOT_REST_DRIFT_MIN_S`; ``"stand"`` (decision L731)
+        every run of ``still`` samples (the set-up standstill's detector, thesis ch.7.2.1) whose own length, first
+        still sample to last, is that long or more: a stride takes up to ``max_rest_s`` of a stand at both ends, so a
+        30 s stand leaves a gap of 29.9 s and a still run of 30.3 s (L731's scratch)."""
+        if self.rest_drift_by == "stand":
+            return [(float(t[a]), float(t[b - 1])) for a, b in runs(still)
+                    if t[b - 1] - t[a] >= FOOT_REST_DRIFT_MIN_S]
+        edges = [(float(t[0]), float(self.start_s_[0]))]
+        edges += [(float(a), float(b)) for a, b in zip(self.end_s_[:-1], self.start_s_[1:], strict=True)]
+        edges.append((float(self.end_s_[-1]), float(t[-1])))
+        return [(t0, t1) for t0, t1 in edges if t1 - t0 > FOOT_REST_DRIFT_MIN_S]
 
     def _standstill_bias(self, gyr: np.ndarray, fs: float, still: np.ndarray,
                          min_s: float = 1.0) -> np.ndarray:

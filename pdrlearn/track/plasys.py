@@ -1809,7 +1809,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             "settings": {k: getattr(fd, k)
                          for k in ("integrator", "zupt_end", "gyro_bias", "attitude", "sw", "r",
                                    "accel_scale_error", "reference_point", "yaw", "rest_bias",
-                                   "rest_drift")},  # L476, L712
+                                   "rest_drift", "rest_drift_by")},  # L476, L712, L731
             # decision L22: heel contact - sensor (body frame, m) when the heel is the reference point
             "lever_arm_m": None if fd.lever_arm_ is None else [round(float(v), 4) for v in fd.lever_arm_],
             "altitude_check": altitude_check, "terrain_dz_check": terrain_check,  # decisions L69, C28
