@@ -31,17 +31,17 @@ def _range(v):
 
 @pytest.fixture(scope="module")
 def walks():
-    return {"own": _walk(), "low": _walk(with_swing_and_sway(USER, 0.04, None)),
+    return {"own": _walk(), "low": _walk(with_swing_and_sway(USER, 0.06, None)),
             "sway": _walk(with_swing_and_sway(USER, None, 0.10))}
 
 
 def test_swing_height_lowers_the_foot_unit_and_meta_records_it_s115(walks):
     low = walks["low"]
-    assert low.meta["user"]["swing_height_m"] == 0.04
+    assert low.meta["user"]["swing_height_m"] == 0.06
     pitch = low.meta["user"]["toe_off_pitch_deg"]
-    assert pitch == toe_off_pitch_for_apex(USER, 0.04) > -8.0  # a nearly flat toe-off (the user's: -50 to -58)
+    assert pitch == toe_off_pitch_for_apex(USER, 0.06) > -15.0  # a nearly flat toe-off (the user's: -50 to -58)
     # S23's heel height at the toe-off knot: toe clearance + toe tip x sin(plantarflexion) = the apex asked for
-    assert USER.toe_clearance_m + toe_tip_m(USER) * np.sin(np.radians(-pitch)) == pytest.approx(0.04, abs=1e-4)
+    assert USER.toe_clearance_m + toe_tip_m(USER) * np.sin(np.radians(-pitch)) == pytest.approx(0.06, abs=1e-4)
     own, lo = (_range(walks[k].extras["foot_trajectory"]["z"]) for k in ("own", "low"))
     assert own > 0.12 and lo < 0.6 * own, (own, lo)  # the swing_height_m field alone left it unchanged (S115)
     np.testing.assert_array_equal(low.steps["length_m"], walks["own"].steps["length_m"])  # the same footprints
@@ -55,7 +55,7 @@ def test_pelvis_sway_moves_the_waist_unit_sideways_s116(walks):
 
 @pytest.mark.parametrize("args, match", [
     ((0.5, None), "--swing-height 0.5: give the heel's highest point"),
-    ((0.01, None), "0.03 to 0.3"),
+    ((0.05, None), "0.06 to 0.3"),  # decision S118
     ((None, -0.1), "--pelvis-sway -0.1: give the pelvis's side-to-side sway amplitude in metres, 0 to 0.15"),
     ((None, float("nan")), "--pelvis-sway nan"),
 ])

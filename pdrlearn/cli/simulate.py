@@ -48,9 +48,10 @@ STANCE_TIME_ASYMMETRY_MAX = 0.2
 #: before the settled stance the body model begins with (an assumption: no seed gives a shortest standstill);
 #: up to an hour
 STAND_RANGE_S = (0.5, 3600.0)
-#: decision S115: `simulate --swing-height` (m): the heel's swing apex on a level step at normal speed; from a
-#: shuffler's 3 cm (over a toe clearance of at most 2.2 cm) to 0.30 m, past the drawn users' ~0.2-0.25 m (ours)
-SWING_HEIGHT_RANGE_M = (0.03, 0.30)
+#: decision S115: `simulate --swing-height` (m): the heel's swing apex on a level step at normal speed, up to 0.30 m
+#: (past the drawn users' own, ours); decision S118: from 0.06 m - below it the unit's apex is set by the contact's
+#: dorsiflexion and stopped falling (users 16700-16703), so a lower value would promise a lower foot than simulated
+SWING_HEIGHT_RANGE_M = (0.06, 0.30)
 #: decision S116: `simulate --pelvis-sway` (m, the amplitude of the pelvis's side-to-side sway): 0 (none) to
 #: 0.15 m, past the widest walking sway we know of (ours; the users draw 0.025-0.04)
 PELVIS_SWAY_RANGE_M = (0.0, 0.15)
@@ -220,7 +221,7 @@ def simulate_cmd(
     swing_height: float | None = typer.Option(
         None, "--swing-height", metavar="METRES", help="The heel's highest point in a level step's swing (m, "
         f"{SWING_HEIGHT_RANGE_M[0]:g}-{SWING_HEIGHT_RANGE_M[1]:g}; default the user's own, from the toe-off pitch): "
-        "0.03 for a shuffler; sets the user's swing_height_m and toe_off_pitch_deg (meta.json user; decision S115)."),
+        "0.06 for a shuffler; sets the user's swing_height_m and toe_off_pitch_deg (meta.json user; decision S115)."),
     pelvis_sway: float | None = typer.Option(
         None, "--pelvis-sway", metavar="METRES", help="The pelvis's side-to-side sway amplitude (m, "
         f"{PELVIS_SWAY_RANGE_M[0]:g}-{PELVIS_SWAY_RANGE_M[1]:g}; default the user's own, 0.025-0.04); meta.json "
