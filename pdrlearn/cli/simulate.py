@@ -221,7 +221,8 @@ def simulate_cmd(
     swing_height: float | None = typer.Option(
         None, "--swing-height", metavar="METRES", help="The heel's highest point in a level step's swing (m, "
         f"{SWING_HEIGHT_RANGE_M[0]:g}-{SWING_HEIGHT_RANGE_M[1]:g}; default the user's own, from the toe-off pitch): "
-        "0.06 for a shuffler; sets the user's swing_height_m and toe_off_pitch_deg (meta.json user; decision S115)."),
+        "0.06 for a shuffler; sets the user's swing_height_m and toe_off_pitch_deg (meta.json user; decisions S115, "
+        "S118)."),
     pelvis_sway: float | None = typer.Option(
         None, "--pelvis-sway", metavar="METRES", help="The pelvis's side-to-side sway amplitude (m, "
         f"{PELVIS_SWAY_RANGE_M[0]:g}-{PELVIS_SWAY_RANGE_M[1]:g}; default the user's own, 0.025-0.04); meta.json "
