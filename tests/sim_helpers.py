@@ -86,3 +86,25 @@ def evaluate_per_method(models, cohort, out, main):
 
     assert main(["evaluate-all", str(models), str(cohort), "--out", str(out), "--serial", "--per-method"]) == 0
     return pd.read_csv(out / "cohort_methods.csv")
+
+
+def session_digest(s) -> str:
+    """SHA-256 of a session's streams, ground truth and meta (values rounded to 1e-9; decision S27's pinned
+    default sessions, tests/test_sim.py)."""
+    import hashlib
+    import json
+
+    h = hashlib.sha256()
+    for name in sorted(s.streams):
+        st = s.streams[name]
+        h.update(name.encode())
+        h.update(np.round(st.t, 9).tobytes())
+        h.update(np.round(st.values, 9).tobytes())
+    for df in (s.trajectory, s.steps, s.extras["ics"], s.extras["foot_trajectory"]):
+        for c in df.columns:
+            v = df[c].to_numpy()
+            h.update(str(c).encode())
+            num = v.dtype.kind in "fiub"
+            h.update(np.round(v.astype(float), 9).tobytes() if num else "|".join(map(str, v)).encode())
+    h.update(json.dumps(s.meta, sort_keys=True, default=str).encode())
+    return h.hexdigest()

@@ -369,6 +369,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("simulate", "scenario"): _one_of(SCENARIOS),
         ("simulate", "route"): parse_route,
         ("simulate", "waist_mount"): parse_mount,  # AXIS:DEG[,AXIS:DEG] (decision S34)
+        ("simulate", "waist_mount_drift"): parse_mount,  # the end mount, AXIS:DEG[,AXIS:DEG] (decision S117)
         ("simulate", "transfer_time"): parse_transfer_time,  # LO:HI seconds (decision S95)
         ("simulate", "gyro_bias_model"): parse_gyro_bias_model,  # walk or gm:TAU (decision S110)
         ("simulate", "trunk_jerk_size"): parse_jerk_size,  # DEG_LO:DEG_HI:CM_LO:CM_HI (decision S114)

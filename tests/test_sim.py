@@ -27,6 +27,7 @@ from pdrlearn.sim import (
     simulate_path,
 )
 from pdrlearn.sim.kernels import STANDARD_GRAVITY
+from tests.sim_helpers import session_digest as _digest  # shared with the S115-S117 tests
 
 G = STANDARD_GRAVITY
 
@@ -673,26 +674,6 @@ def test_accelerometer_and_gyroscope_of_one_rigid_body(exact_a, sign):
 
 
 # -- decision S27: the opt-in realistic pelvis ---------------------------------------------------------
-def _digest(s) -> str:
-    """SHA-256 of a session's streams, ground truth and meta (values rounded to 1e-9)."""
-    import hashlib
-
-    h = hashlib.sha256()
-    for name in sorted(s.streams):
-        st = s.streams[name]
-        h.update(name.encode())
-        h.update(np.round(st.t, 9).tobytes())
-        h.update(np.round(st.values, 9).tobytes())
-    for df in (s.trajectory, s.steps, s.extras["ics"], s.extras["foot_trajectory"]):
-        for c in df.columns:
-            v = df[c].to_numpy()
-            h.update(str(c).encode())
-            num = v.dtype.kind in "fiub"
-            h.update(np.round(v.astype(float), 9).tobytes() if num else "|".join(map(str, v)).encode())
-    h.update(json.dumps(s.meta, sort_keys=True, default=str).encode())
-    return h.hexdigest()
-
-
 # computed with the simulator before the pelvis option existed (commit a324768)
 DEFAULT_DIGESTS = {
     ("walk", 2, "normal", 100.0, 3): "1cc0769699eee84046c30eedd9fb9482d172d0c79c51172d0130b563987c4ea7",

@@ -48,6 +48,13 @@ STANCE_TIME_ASYMMETRY_MAX = 0.2
 #: before the settled stance the body model begins with (an assumption: no seed gives a shortest standstill);
 #: up to an hour
 STAND_RANGE_S = (0.5, 3600.0)
+#: decision S115: `simulate --swing-height` (m): the heel's swing apex on a level step at normal speed, up to 0.30 m
+#: (past the drawn users' own, ours); decision S118: from 0.06 m - below it the unit's apex is set by the contact's
+#: dorsiflexion and stopped falling (users 16700-16703), so a lower value would promise a lower foot than simulated
+SWING_HEIGHT_RANGE_M = (0.06, 0.30)
+#: decision S116: `simulate --pelvis-sway` (m, the amplitude of the pelvis's side-to-side sway): 0 (none) to
+#: 0.15 m, past the widest walking sway we know of (ours; the users draw 0.025-0.04)
+PELVIS_SWAY_RANGE_M = (0.0, 0.15)
 
 
 
@@ -207,6 +214,19 @@ def simulate_cmd(
         "(left) or z (up), e.g. 'z:90' or 'z:90,x:180' (applied right to left as rotations of the unit); "
         "meta.json keeps the belt frame, so the tracker's frame inference and its warnings are what this "
         "exercises (decision S34)."),
+    waist_mount_drift: str | None = typer.Option(
+        None, "--waist-mount-drift", metavar="AXIS:DEG", help="A waist unit that turns on the belt during the "
+        "session: the mount at the end of the recording, in --waist-mount's syntax (e.g. 'y:20'); the unit turns at "
+        "a constant rate from --waist-mount (default none) at the first sample to it at the last (decision S117)."),
+    swing_height: float | None = typer.Option(
+        None, "--swing-height", metavar="METRES", help="The heel's highest point in a level step's swing (m, "
+        f"{SWING_HEIGHT_RANGE_M[0]:g}-{SWING_HEIGHT_RANGE_M[1]:g}; default the user's own, from the toe-off pitch): "
+        "0.06 for a shuffler; sets the user's swing_height_m and toe_off_pitch_deg (meta.json user; decisions S115, "
+        "S118)."),
+    pelvis_sway: float | None = typer.Option(
+        None, "--pelvis-sway", metavar="METRES", help="The pelvis's side-to-side sway amplitude (m, "
+        f"{PELVIS_SWAY_RANGE_M[0]:g}-{PELVIS_SWAY_RANGE_M[1]:g}; default the user's own, 0.025-0.04); meta.json "
+        "user.pelvis_sway_m; not with --pelvis realistic, whose sway is its own draw (decision S116)."),
     step_time_asymmetry: float = typer.Option(
         0.0, "--step-time-asymmetry", help="Hemiparetic gait: each step onto the left foot (--paretic-side) lasts "
         "1 + this times the step onto the other (symmetry ratio - 1, Patterson et al. 2010), e.g. 0.39; the "
@@ -405,6 +425,8 @@ def simulate_cmd(
             raise DataError(f"{name} {v:g}: give the seated time in seconds, 0 (none) to {SIT_MAX_S:g}")
     user = with_step_width(scaled_user(UserProfile.from_seed(user_seed), height, leg_length), step_width)  # S38, S97
     user = with_length_bounds(user, length_bounds)  # decision S98
+    user = with_swing_and_sway(user, swing_height, pelvis_sway, pelvis)  # decisions S115, S116
+    mount_end = None if waist_mount_drift is None else parse_mount(waist_mount_drift, "--waist-mount-drift")  # S117
     custom = _custom_gait(user, speed, step_length, step_time, route)  # decision S30
     replace = check_sim_out(out, force)  # decision B292: --force replaces a session simulate wrote
     knobs = dict(
@@ -430,6 +452,7 @@ def simulate_cmd(
         mag_disturbance_ut=mag_disturbance,
         baro_drift_hpa_per_h=baro_drift,  # decision S85
         waist_mount_deg=mount,
+        **({} if mount_end is None else {"waist_mount_end_deg": mount_end}),  # decision S117
         step_time_asymmetry=step_time_asymmetry,
         step_length_asymmetry=step_length_asymmetry,
         stance_time_asymmetry=stance_time_asymmetry,  # decision S94
@@ -516,6 +539,39 @@ def with_length_bounds(user, length_bounds: str | None):
     return dataclasses.replace(user, length_bounds_m=[float(b) for b in bounds])
 
 
+def _metres(option: str, value: float, bounds: tuple[float, float], what: str) -> float:
+    """Decisions S115, S116: ``value`` in ``bounds`` (m); one error line naming ``option`` and ``what`` otherwise."""
+    lo, hi = bounds
+    if not (math.isfinite(value) and lo <= value <= hi):
+        raise DataError(f"simulate: {option} {value:g}: give {what} in metres, {lo:g} to {hi:g}")
+    return float(value)
+
+
+def with_swing_and_sway(user, swing_height: float | None, pelvis_sway: float | None, pelvis: str = "model"):
+    """Decisions S115, S116: ``user`` with ``--swing-height`` (its ``swing_height_m`` and the toe-off pitch that
+    lifts the heel to it on a level step, :func:`pdrlearn.sim.body.toe_off_pitch_for_apex`) and ``--pelvis-sway``
+    (its ``pelvis_sway_m``); ``user`` itself without them; one error line for a value out of range or a sway with
+    ``--pelvis realistic`` (S27 draws its own sway)."""
+    changes = {}
+    if swing_height is not None:
+        from pdrlearn.sim.body import toe_off_pitch_for_apex
+
+        apex = _metres("--swing-height", swing_height, SWING_HEIGHT_RANGE_M,
+                       "the heel's highest point in a level step's swing")
+        changes.update(swing_height_m=apex, toe_off_pitch_deg=toe_off_pitch_for_apex(user, apex))
+    if pelvis_sway is not None:
+        if pelvis == "realistic":
+            raise DataError("simulate: --pelvis-sway sets the model pelvis's sway; --pelvis realistic draws its own "
+                            "(decision S27) - leave out one of them")
+        changes["pelvis_sway_m"] = _metres("--pelvis-sway", pelvis_sway, PELVIS_SWAY_RANGE_M,
+                                           "the pelvis's side-to-side sway amplitude")
+    if not changes:
+        return user
+    import dataclasses
+
+    return dataclasses.replace(user, **changes)
+
+
 def with_step_width(user, step_width: float | None):
     """Decision S97: ``user`` walking with ``--step-width`` between the feet's centre lines (``user`` itself without
     it); one error line for a value that is not finite or outside :data:`STEP_WIDTH_RANGE_M`."""
@@ -549,10 +605,10 @@ def scaled_user(user, height: float | None, leg_length: float | None):
     return user.scaled(height, leg_length)
 
 
-def parse_mount(spec: str | None) -> tuple[float, float, float]:
+def parse_mount(spec: str | None, option: str = "--waist-mount") -> tuple[float, float, float]:
     """Decision S34: ``--waist-mount 'z:90,x:180'`` -> the rotation vector (deg) of the unit's turn about the body
     axes (:data:`MOUNT_AXES`), the items applied right to left; None or empty -> no turn. One error line for a
-    malformed item."""
+    malformed item, naming ``option`` (S117: ``--waist-mount-drift`` has the same syntax)."""
     from scipy.spatial.transform import Rotation
 
     if spec is None or not spec.strip():
@@ -565,7 +621,7 @@ def parse_mount(spec: str | None) -> tuple[float, float, float]:
         except ValueError:
             angle = math.nan
         if axis.strip().lower() not in MOUNT_AXES or not math.isfinite(angle) or not -360 <= angle <= 360:
-            raise DataError(f"--waist-mount {spec!r}: '{item.strip()}' is not AXIS:DEG; give x, y or z (forward, "
+            raise DataError(f"{option} {spec!r}: '{item.strip()}' is not AXIS:DEG; give x, y or z (forward, "
                             "left, up) and -360 to 360 degrees, e.g. 'z:90' or 'z:90,x:180'")
         vec = [0.0, 0.0, 0.0]
         vec[MOUNT_AXES[axis.strip().lower()]] = math.radians(angle)

@@ -12,6 +12,7 @@ transient.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -283,6 +284,15 @@ def toe_tip_m(user: UserProfile) -> float:
     length) plus the shoe's length beyond the toes: the foot rolls over the front of the shoe's sole (decisions
     S25)."""
     return TOE_TIP_FRACTION * user.foot_length_m + user.shoe_toe_allowance_m
+
+
+def toe_off_pitch_for_apex(user: UserProfile, apex_m: float) -> float:
+    """Decision S115: the toe-off pitch (deg, < 0 = plantarflexed) whose heel lift puts the heel's swing apex of a
+    level step at normal speed ``apex_m`` above the floor: the heel path's height over the floor is the toe
+    clearance plus the toe-tip distance x sin(plantarflexion) (decisions S23), highest at the toe-off knot. The
+    ratio is kept to 0.02-0.98 (a foot left almost flat, or almost vertical)."""
+    ratio = min(max((float(apex_m) - user.toe_clearance_m) / toe_tip_m(user), 0.02), 0.98)
+    return round(-math.degrees(math.asin(ratio)), 3)
 
 
 def _toe_lift(pitch_tk, pk, w_ends, t_to: float, swing: float, user: UserProfile) -> np.ndarray:

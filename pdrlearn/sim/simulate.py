@@ -98,6 +98,9 @@ KNOBS: dict[str, object] = {
     # the waist unit turned on the belt: a rotation vector (deg) about the body's forward, left and up axes, on top
     # of the user's few-degree misalignment; meta.json's frame stays the belt's (decision S34)
     "waist_mount_deg": (0.0, 0.0, 0.0),
+    # decision S117: the mount at the last sample (a rotation vector, deg, as waist_mount_deg): the unit turns at a
+    # constant rate from waist_mount_deg at the first sample; None: a fixed mount
+    "waist_mount_end_deg": None,
     "device_errors": True,  # accelerometer scale factors per unit (the user's own), not per session (S22)
     "pelvis": "model",  # "realistic": roll toward the stance side and a smaller sway, drawn per user (S27)
     "bounce": "constant",  # "pendulum": the pelvis bounce scales with the step length (S29); "population": S74
@@ -141,8 +144,8 @@ KNOBS: dict[str, object] = {
 #: decision S83: the units a gap may name
 GAP_UNITS = ("foot", "waist", "both")
 #: knobs meta.json records only when set (default sessions' meta.json as before they existed: S27, S29, S31, S34, S35)
-META_ONLY_WHEN_SET = ("pelvis", "bounce", "waist_mount_deg", "rocker", "contact", "foot_sensor_pos",
-                      "foot_sensor_height_m", "foot_mount_roll_deg",
+META_ONLY_WHEN_SET = ("pelvis", "bounce", "waist_mount_deg", "waist_mount_end_deg", "rocker", "contact",
+                      "foot_sensor_pos", "foot_sensor_height_m", "foot_mount_roll_deg",
                       "pelvis_height_m", "bounce_scale", "step_time_asymmetry", "step_length_asymmetry",
                       "stance_time_asymmetry", "sit_start_s", "sit_end_s", "instrumented_foot", "paretic_side", "gaps",
                       "transfer_s", "gyro_bias_tau_s", "trunk_jerk_rate_hz", "trunk_jerk_deg", "trunk_jerk_m")
@@ -269,14 +272,9 @@ def _check_knobs(knobs: dict) -> dict:
             0.0 <= out["bounce_scale"] <= BOUNCE_SCALE_MAX):
         raise DataError(f"simulate: bounce_scale={out['bounce_scale']!r} must be 0 to {BOUNCE_SCALE_MAX:g} (1 = the "
                         "user's own pelvis bounce, 0.5 = half of it)")
-    mount = out["waist_mount_deg"]
-    try:
-        ok = len(mount) == 3 and all(math.isfinite(float(v)) and not isinstance(v, bool) for v in mount)
-    except (TypeError, ValueError):
-        ok = False
-    if not ok:
-        raise DataError(f"simulate: waist_mount_deg={mount!r} must be three finite numbers (a rotation vector, deg)")
-    out["waist_mount_deg"] = tuple(float(v) for v in mount)
+    out["waist_mount_deg"] = _check_rotvec("waist_mount_deg", out["waist_mount_deg"])
+    if out["waist_mount_end_deg"] is not None:  # decision S117
+        out["waist_mount_end_deg"] = _check_rotvec("waist_mount_end_deg", out["waist_mount_end_deg"])
     out["gaps"] = check_gaps(out["gaps"])  # decisions S83, B370
     out["transfer_s"] = check_transfer_s(out["transfer_s"])  # decision S95
     out["trunk_jerk_rate_hz"], out["trunk_jerk_deg"], out["trunk_jerk_m"] = check_jerk_options(  # decision S114
@@ -307,6 +305,17 @@ def _check_knobs(knobs: dict) -> dict:
         raise DataError(f"simulate: step_length_asymmetry={out['step_length_asymmetry']!r} must be >= 0 and < "
                         f"{STEP_LENGTH_ASYMMETRY_MAX:g} (0.1 = the left foot's steps 10 % longer)")
     return out
+
+
+def _check_rotvec(name: str, mount) -> tuple[float, float, float]:
+    """Decisions S34, S117: a mount knob as three finite floats (a rotation vector, deg); one line otherwise."""
+    try:
+        ok = len(mount) == 3 and all(math.isfinite(float(v)) and not isinstance(v, bool) for v in mount)
+    except (TypeError, ValueError):
+        ok = False
+    if not ok:
+        raise DataError(f"simulate: {name}={mount!r} must be three finite numbers (a rotation vector, deg)")
+    return tuple(float(v) for v in mount)
 
 
 #: decision S109: the foot unit's position range, a share of the foot length from the heel: the user draws 0.25-0.50
@@ -406,6 +415,21 @@ def _output_factor(rate_hz: float) -> int:
 
 def _misalignment(deg: list[float]) -> np.ndarray:
     return Rotation.from_rotvec(np.radians(deg)).as_matrix()
+
+
+def drifting_axes(t: np.ndarray, start_deg, end_deg, inner: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Decision S117: a unit whose mount turns at a constant rate from the rotation vector ``start_deg`` (deg, at
+    ``t[0]``) to ``end_deg`` (at ``t[-1]``), both about the body axes as ``waist_mount_deg``, on top of ``inner``
+    (the user's misalignment @ the declared frame). Returns the per-sample axes ``(n, 3, 3)`` (columns: the unit's
+    axes in body coordinates, :func:`_to_sensor`'s ``mis @ frame``) and the turn's own angular rate in the unit's
+    axes (rad/s, constant), which its gyroscope adds to the body's: with ``A = R(t) M`` and
+    ``R(t) = R0 exp(s(t) [w]x)``, ``A^T dA/dt = [M^T w ds/dt]x``."""
+    r0 = Rotation.from_rotvec(np.radians(start_deg))
+    w = (r0.inv() * Rotation.from_rotvec(np.radians(end_deg))).as_rotvec()  # the turn, in the start mount's axes
+    span = float(t[-1] - t[0]) if len(t) > 1 and t[-1] > t[0] else 1.0
+    s = np.clip((np.asarray(t, float) - t[0]) / span, 0.0, 1.0)
+    axes = (r0 * Rotation.from_rotvec(s[:, None] * w[None, :])).as_matrix() @ inner
+    return axes, (w / span) @ inner
 
 
 def _to_sensor(v_body: np.ndarray, frame_matrix: np.ndarray, mis: np.ndarray) -> np.ndarray:
@@ -693,11 +717,21 @@ def simulate_path(
     waist_mis_deg = (user.waist_misalignment_deg if not any(opt["waist_mount_deg"]) else
                      [round(float(v), 9) for v in np.degrees(Rotation.from_matrix(mis_w).as_rotvec())])
     waist_m = THESIS_WAIST_FRAME.matrix()
+    if opt["waist_mount_end_deg"] is None:
+        def to_waist(v: np.ndarray) -> np.ndarray:
+            return _to_sensor(v, waist_m, mis_w)
+        turn_rate = None
+    else:  # decision S117: the unit turns on the belt during the session
+        axes_w, turn_rate = drifting_axes(t100, opt["waist_mount_deg"], opt["waist_mount_end_deg"],
+                                          _misalignment(user.waist_misalignment_deg) @ waist_m)
+
+        def to_waist(v: np.ndarray) -> np.ndarray:
+            return np.einsum("ni,nij->nj", v, axes_w)
     acc_w, e_aw = sn.imu_readout(
-        _to_sensor(fw_body, waist_m, mis_w), sn.WAIST_ACC, s_rng, noise=noise, device_rng=unit("wAccelerometer")
+        to_waist(fw_body), sn.WAIST_ACC, s_rng, noise=noise, device_rng=unit("wAccelerometer")
     )
-    gyr_w, e_gw = sn.imu_readout(_to_sensor(ww_body, waist_m, mis_w), sn.WAIST_GYR, s_rng, noise=noise,
-                                 bias_tau_s=tau)  # decision S110
+    gyr_w, e_gw = sn.imu_readout(to_waist(ww_body) if turn_rate is None else to_waist(ww_body) + turn_rate,
+                                 sn.WAIST_GYR, s_rng, noise=noise, bias_tau_s=tau)  # decisions S110, S117
     acc_w, gyr_w = out(acc_w), out(gyr_w)  # decision S62
     del fw_body, ww_body
     b_enu = earth_field_enu(
@@ -710,7 +744,7 @@ def simulate_path(
         dist = np.column_stack([np.interp(t100, t100[::10], coarse[:, j]) for j in range(3)])
     b_body = np.einsum("nji,nj->ni", R_p100, b_enu[None, :] + dist)
     del R_p100, dist  # decision S62
-    mag_w, e_m = sn.magnetometer_readout(_to_sensor(b_body, waist_m, mis_w), s_rng, noise=noise)
+    mag_w, e_m = sn.magnetometer_readout(to_waist(b_body), s_rng, noise=noise)
     mag_w = out(mag_w)
     del b_body
     p0 = float(env_rng.uniform(*sn.BARO_P0_RANGE)) if noise else STANDARD_P0_HPA
