@@ -85,9 +85,10 @@ def backward_rows(rows: list[dict]) -> list[bool]:
     runtime's steps.csv: the same flags as ``pdrlearn run``'s (:func:`pdrlearn.track.evaluate.backward_travel`),
     a streamed side run read whole (decisions L243, L270)."""
     from pdrlearn.kernels.sideways import side_rows
+    from pdrlearn.kernels.travel import row_values
 
     def num(key):
-        return [math.nan if r.get(key) is None else float(r[key]) for r in rows]
+        return row_values(rows, key)
 
     streamed = any("pivot_rad" in r for r in rows)
     side = side_rows([bool(r.get("sideways") or False) for r in rows], num("gap_s"), streamed=streamed)
