@@ -76,13 +76,15 @@ def travel_rows(rows: list[dict]) -> list[str]:
 
 
 def classed_backward_lines(direction, sideways, measured, travel, turn_angle_rad=None, confidence=None,
-                           trained_side: int | None = None) -> list[str]:
+                           trained_side: int | None = None, unjudged=None) -> list[str]:
     """Decisions C137, L578, L652 (:func:`pdrlearn.track.travel.side_class_warning`'s lines, decision E317: also the
     lean runtime's): one line each when the direction model classed backward side-step strides (``sideways``),
     strides turning on the spot (``turn_angle_rad`` and the ``measured`` chord, L692) or strides travelling forward
     (``travel`` forward, ``measured`` > 0; ``travel`` None: a lower-back table). ``direction`` the model's classes,
     ``confidence`` their confidence (None: not known); ``trained_side`` the side-step strides the model was trained
-    on (C161; None: its manifest does not say)."""
+    on (C161; None: its manifest does not say). ``unjudged``: (n,) bool, the rows no travel was judged for (a
+    stream's first measured stride, L505 / E318: its positive length is no measured forward travel), left out of
+    L652's line."""
     from pdrlearn.kernels.backward import on_the_spot
 
     direction = np.asarray(direction, dtype=object)
@@ -110,6 +112,8 @@ def classed_backward_lines(direction, sideways, measured, travel, turn_angle_rad
     if travel is not None:  # decision L652: a stride measured travelling forward, classed backward
         with np.errstate(invalid="ignore"):
             ahead = (np.asarray(travel, dtype=object) == "forward") & (measured > 0)  # measured ahead
+        if unjudged is not None:
+            ahead &= ~np.asarray(unjudged, dtype=bool)  # decision E318
         lines.append(_classed_backward(direction, conf, ahead, "strides travelling forward (steps.csv travel forward)",
                                        "their measured displacement points forward (raw_length_m positive, no side "
                                        "step, no turn on the spot), against the class - a stride unlike the "

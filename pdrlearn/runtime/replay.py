@@ -286,13 +286,15 @@ def travel_warnings(rows: list[dict], bundle, where: str) -> list[str]:
     if not rows or not all("direction" in r and "turn_angle_rad" in r for r in rows):
         return []
     from pdrlearn.classify.uncovered import trained_side_strides
+    from pdrlearn.kernels.backward import first_unjudged
     from pdrlearn.kernels.travel import classed_backward_lines, row_values
 
     lines = classed_backward_lines([r["direction"] for r in rows], [bool(r.get("sideways")) for r in rows],
                                    row_values(rows, "length_m"), [r.get("travel") for r in rows],
                                    row_values(rows, "turn_angle_rad"),
                                    row_values(rows, "confidence") if all("confidence" in r for r in rows) else None,
-                                   trained_side_strides(bundle))
+                                   trained_side_strides(bundle),
+                                   first_unjudged(len(rows), row_values(rows, "gap_s")))  # decision E318
     for line in lines:
         log.warning("%s: %s", where, line)
     return lines

@@ -2271,6 +2271,7 @@ class Tracker(OwnGuard, FixInput):
                     self._warn(line)
         if self._side_rows is None:
             self._side_rows = _sideways.SideRun()
+        judged = self._side_rows.started  # decisions L505, E318: the stream's first measured stride is not judged
         self._side_rows.stride(dx, dy, length, _sideways.step_frame(lev),  # decision L243: whatever the heading
                                _sideways.foot_turn(lev))  # L400: a turning stride is no side step
         x, y, z = advance_xyz(*self.position.tolist(), direction, length, dz)
@@ -2283,7 +2284,8 @@ class Tracker(OwnGuard, FixInput):
         turn = float(turn)  # decision E51: the stride's own turn (L690: not wrapped, a spin of 180-360 deg is itself)
         chord = float(signed_chord(dx, dy, _sideways.foot_turn(lev),  # decision L692: the measured travel
                                    _sideways.step_frame(lev)))  # against the foot's own mid-stride facing
-        length, direction = travel_sign_one(length, direction, chord,  # L654: the measured travel, after the position
+        length, direction = travel_sign_one(length, direction, chord if judged else abs(chord),  # L654, E318: the
+                                            # measured travel (a first stride's: not backward), after the position
                                             self._side_rows.decided,  # decision C137: a side step is no backward
                                             turn)  # decisions L578, L692: nor a turn on the spot
         if self._session_length is not None and "length" in classes:  # decision C117: the reported class only

@@ -2285,7 +2285,12 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         if not c.startswith("ood_feature_"):
             table[c] = classes[c].to_numpy()
     # decision L654 (as the runtime's Step): length_m's sign is the measured travel; the path is the same
-    rep_length, rep_head = SK.travel_sign(length, head, table["raw_length_m"].to_numpy(float),  # L692
+    measured = table["raw_length_m"].to_numpy(float)  # L692
+    first = np.flatnonzero(~(in_gap | posture))
+    if first.size:  # decisions L505, E318: the stream's first measured stride is not judged backward (the runtime's)
+        measured = measured.copy()
+        measured[first[0]] = abs(measured[first[0]])
+    rep_length, rep_head = SK.travel_sign(length, head, measured,
                                           sideways,  # decision C137
                                           turn)  # decision L578: E51's own turn (L690: not wrapped)
     table.insert(3, "length_m", rep_length)

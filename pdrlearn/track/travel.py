@@ -110,6 +110,7 @@ def side_class_warning(steps: pd.DataFrame, warnings: list[str], trained_side: i
     (:func:`travel_labels`: measured forward, no side step, no turn on the spot) the model classed backward."""
     if "direction" not in steps:
         return
+    from pdrlearn.kernels.backward import first_unjudged
     from pdrlearn.kernels.travel import classed_backward_lines
     from pdrlearn.track.flags import flag_values
 
@@ -122,4 +123,6 @@ def side_class_warning(steps: pd.DataFrame, warnings: list[str], trained_side: i
         travel_labels(steps),
         pd.to_numeric(steps["turn_angle_rad"], errors="coerce").to_numpy(float) if "turn_angle_rad" in steps else None,
         pd.to_numeric(steps["confidence"], errors="coerce").to_numpy(float) if "confidence" in steps else None,
-        trained_side))
+        trained_side,
+        first_unjudged(len(steps), steps["gap_s"].to_numpy(float) if "gap_s" in steps else None,
+                       "pivot_rad" in steps)))  # decision E318: a stream's first stride (L505)
