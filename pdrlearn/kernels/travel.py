@@ -26,12 +26,13 @@ def walked_distance(length_m) -> float:
 
 
 def travel_label_array(length_m, back, side, turn_angle_rad=None, gap_s=None, impossible=None,
-                       given=None) -> np.ndarray:
+                       given=None, lateral_m=None) -> np.ndarray:
     """Decision L412: (n,) object, each foot stride's ``travel`` label: ``backward`` where ``back`` (L203's
     backward travel), a ``side`` row (L228's whole runs) its ``given`` ``left`` / ``right`` else ``side``, ``turn``
     for a turn on the spot (L692), empty for a shuffle under ``SIDE_MIN_STRIDE_M`` (L219), a NaN length, a gap row
     (``gap_s`` > 0, L67) or an ``impossible`` stride (L97), ``forward`` otherwise. ``length_m`` the measured (raw)
-    signed lengths; each other argument (n,) or None (not known)."""
+    signed lengths; each other argument (n,) or None (not known). Decision E319: a side row without a ``given``
+    side is left / right by the sign of its ``lateral_m`` (a streamed table's; > 0 left), ``side`` without one."""
     from pdrlearn.kernels.backward import on_the_spot
     from pdrlearn.kernels.sideways import SIDE_MIN_STRIDE_M
 
@@ -44,6 +45,11 @@ def travel_label_array(length_m, back, side, turn_angle_rad=None, gap_s=None, im
             label[on_the_spot(np.asarray(turn_angle_rad, dtype=float), length)] = "turn"
     side = np.asarray(side, dtype=bool)
     given = np.full(n, None, dtype=object) if given is None else np.asarray(given, dtype=object)
+    if lateral_m is not None:  # decision E319: a streamed side step's side, as offline's side_labels
+        lateral = np.asarray(lateral_m, dtype=float)
+        with np.errstate(invalid="ignore"):
+            by_sign = np.where(lateral > 0, "left", np.where(lateral <= 0, "right", None)).astype(object)
+        given = np.where([g in ("left", "right") for g in given], given, by_sign).astype(object)
     label[side] = [g if g in ("left", "right") else "side" for g in given[side]]
     label[np.asarray(back, dtype=bool)] = "backward"
     drop = np.zeros(n, bool)
@@ -72,7 +78,8 @@ def travel_rows(rows: list[dict]) -> list[str]:
     side = side_rows([bool(r.get("sideways") or False) for r in rows], row_values(rows, "gap_s"), streamed=streamed)
     turn = row_values(rows, "turn_angle_rad") if any("turn_angle_rad" in r for r in rows) else None
     return travel_label_array(row_values(rows, "length_m"), backward_rows(rows), side, turn,
-                              row_values(rows, "gap_s"), [bool(r.get("impossible") or False) for r in rows]).tolist()
+                              row_values(rows, "gap_s"), [bool(r.get("impossible") or False) for r in rows],
+                              lateral_m=row_values(rows, "lateral_m")).tolist()  # decision E319
 
 
 def classed_backward_lines(direction, sideways, measured, travel, turn_angle_rad=None, confidence=None,

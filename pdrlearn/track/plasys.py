@@ -2300,6 +2300,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     table["impossible"] = impossible & ~in_gap  # decision L97: the strides L94 moved 0 m (no gait values)
     table["gap_s"] = np.where(in_gap, longest_gap_in(table["start_s"], table["end_s"], foot_gaps), 0.0)  # E37, L67
     table["sideways"] = sideways  # decision L243 (L228's column, decided stride by stride as the runtime's)
+    # decision E319: each measured stride's displacement to the foot's left, the runtime's Step.lateral_m
+    table["lateral_m"] = np.where(in_gap | posture, np.nan, KSW.foot_frame(disp[:, 0], disp[:, 1], frame)[1])
     table["unit"] = "foot"
     side_class_warning(table, warnings, trained_side_strides(model))  # decisions C137, C161, L652 (a foot table)
     traj = pd.DataFrame({"t": np.concatenate([[table["start_s"].iloc[0]], table["end_s"].to_numpy()]),

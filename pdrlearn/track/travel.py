@@ -52,7 +52,8 @@ def travel_labels(steps: pd.DataFrame) -> np.ndarray | None:
         pd.to_numeric(steps["turn_angle_rad"], errors="coerce").to_numpy(float) if "turn_angle_rad" in steps else None,
         pd.to_numeric(steps["gap_s"], errors="coerce").to_numpy(float) if "gap_s" in steps else None,
         flag_values(steps["impossible"]) if "impossible" in steps else None,
-        steps["travel"].to_numpy(dtype=object) if "travel" in steps else None)
+        steps["travel"].to_numpy(dtype=object) if "travel" in steps else None,
+        pd.to_numeric(steps["lateral_m"], errors="coerce").to_numpy(float) if "lateral_m" in steps else None)  # E319
 
 
 def add_travel(steps: pd.DataFrame) -> None:
