@@ -2,7 +2,8 @@
 distance as ``pdrlearn run`` does (main netted a back-pedal out: -15.9 to -17.3 %), writes run's ``travel`` column
 and keeps run's warning lines in replay.json; a stream's first stride, which L505 does not judge backward, is
 reported with a positive ``length_m`` (main: -0.39 m with ``backward_travel`` False). One short simulated walk that
-starts backward (fresh user 16619, shipped bundle), replayed by both entry points in-process."""
+starts backward and side-steps to the left (fresh user 16619, shipped bundle), replayed by both entry points
+in-process; E319: a streamed side step's ``travel`` is left / right (main: side) by its new ``lateral_m``."""
 
 from __future__ import annotations
 
@@ -16,7 +17,7 @@ import pytest
 from pdrlearn.cli import main as cli_main
 from pdrlearn.io import write_session
 from pdrlearn.kernels.backward import backward_mask, first_unjudged
-from pdrlearn.kernels.travel import classed_backward_lines, travel_rows, walked_distance
+from pdrlearn.kernels.travel import classed_backward_lines, travel_label_array, travel_rows, walked_distance
 from pdrlearn.runtime.__main__ import main as lean_main
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
@@ -24,7 +25,7 @@ from pdrlearn.track.travel import travel_labels
 from tests.lean_helpers import ROOT
 
 BUNDLE = ROOT / "models" / "plasys-sim-default"
-ROUTE = "stand:2, backward:4, stand:2, straight:5, stand:2"
+ROUTE = "stand:2, backward:4, stand:2, straight:5, stand:2, side:3, stand:2"
 
 
 @pytest.fixture(scope="module")
@@ -57,6 +58,7 @@ def test_both_entry_points_walk_the_same_distance(replays):
 def test_the_lean_table_has_runs_travel_and_warnings(replays):
     lean, run = replays["steps"]["lean"], replays["steps"]["run"]
     assert list(lean.columns).index("travel") == list(lean.columns).index("backward_travel") + 1
+    assert "side" not in set(lean["travel"]) and {"left"} <= set(lean["travel"])  # E319: main wrote side
     assert lean["travel"].fillna("").tolist() == run["travel"].fillna("").tolist()  # main: no travel column
     assert "backward" in set(lean["travel"])
     assert lean["backward_travel"].tolist() == run["backward_travel"].tolist()
@@ -80,6 +82,8 @@ def test_the_kernels():
     rows = [{"length_m": v, "gap_s": g, "turn_angle_rad": t, "pivot_rad": 0.0, "sideways": False, "impossible": False}
             for v, g, t in ((-0.5, 0.0, 0.0), (0.05, 0.0, 0.0), (-0.8, 0.0, 0.0), (0.3, 0.0, 1.2), (0.0, 2.0, 0.0),
                             (1.2, 0.0, 0.0))]
+    assert travel_label_array([0.4, 0.4, 0.4], [False] * 3, [True] * 3, lateral_m=[0.3, -0.3, np.nan]).tolist() == [
+        "left", "right", "side"]  # decision E319: a streamed side step's side by its lateral_m, as offline's
     assert travel_rows(rows) == travel_labels(pd.DataFrame(rows).assign(unit="foot")).tolist() == [
         "forward", "", "backward", "turn", "", "forward"]
     lines = classed_backward_lines(["backward", "forward"], [False, False], [0.5, 0.5], ["forward", "forward"],
