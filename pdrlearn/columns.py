@@ -1177,7 +1177,8 @@ FOOT_STEPS: tuple[Column, ...] = (
                                            "L224)"),
     ("travel", _ID, "text", "the stride's travel direction from the foot's facing (L412): forward, backward (as "
                             "backward_travel), left / right (a side-stepping run's stride, sideways; streamed by "
-                            "the sign of lateral_m since E319, side without it), turn (the foot turned 30 deg or more on a chord under 0.6 m: on the spot, "
+                            "the sign of lateral_m since E319, side without it), turn (the foot turned 30 deg or "
+                            "more on a chord under 0.6 m: on the spot, "
                             "L692), empty (a gap, impossible or under "
                             "0.15 m); model-free, unlike direction"),
     ("length_class", _ID, "text", "M3's length class (empty without a model)"),
