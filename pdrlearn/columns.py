@@ -1202,8 +1202,9 @@ FOOT_STEPS: tuple[Column, ...] = (
     ("backward_travel", _ID, "true/false", "the stride travelled backward, as n_backward_strides counts (L203, "
                                            "L224)"),
     ("travel", _ID, "text", "the stride's travel direction from the foot's facing (L412): forward, backward (as "
-                            "backward_travel), left / right (a side-stepping run's stride, sideways; side when "
-                            "streamed), turn (the foot turned 30 deg or more on a chord under 0.6 m: on the spot, "
+                            "backward_travel), left / right (a side-stepping run's stride, sideways; streamed by "
+                            "the sign of lateral_m since E319, side without it), turn (the foot turned 30 deg or "
+                            "more on a chord under 0.6 m: on the spot, "
                             "L692), empty (a gap, impossible or under "
                             "0.15 m); model-free, unlike direction"),
     ("length_class", _ID, "text", "M3's length class (empty without a model)"),
@@ -1226,6 +1227,9 @@ FOOT_STEPS: tuple[Column, ...] = (
     ("sideways", _ID, "true/false", "a side step of L219's sideways run: no steady or straight stride (L228); a "
                                     "streamed track (track --streaming, run, Tracker) flags a run from its third "
                                     "stride, as decided live (L243)"),
+    ("lateral_m", "m", "number", "streamed (track --streaming, run, the lean runtime, Tracker): the stride's "
+                                 "displacement to the left of the foot's facing at its start, negative to the right "
+                                 "(empty on a gap row); a side step's travel left / right by its sign (E319)"),
     ("steady", _ID, "true/false", "a CV stride: n_cv_strides counts these rows and stride_time_cv_pct / "
                                   "stride_length_cv_pct are the CVs (SD with n - 1) of their stride_time_s / "
                                   "|length_m| (steady straight level forward, L104; --steady-trim's bout ends out, "

@@ -28,6 +28,7 @@ Modules
 - :mod:`~pdrlearn.kernels.strapdown` - the stride strapdown's core: padded batches, quaternion propagation (E72).
 - :mod:`~pdrlearn.kernels.handedness` - D11's mirrored-pair test of a foot unit, offline and live (B129).
 - :mod:`~pdrlearn.kernels.histospline` - L24's block-mean histospline without scipy (the stride kernel's, L141).
+- :mod:`~pdrlearn.kernels.travel` - the walked distance and the foot strides' travel labels and lines (E316, E317).
 - :mod:`~pdrlearn.kernels.geodetic` - thesis eq. 56/57 one step at a time (offline lat/lon and the live trackers, W137).
 - :mod:`~pdrlearn.kernels.sideways` - side-stepping strides: L219's rule, offline and one stride at a time (E124).
 - :mod:`~pdrlearn.kernels.turn_length` - a turning stride's length class from its measured length (C88; C91: track,

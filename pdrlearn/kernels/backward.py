@@ -58,6 +58,18 @@ def signed_chord(dx, dy, turn_rad, frame_rad=0.0) -> np.ndarray:
     return chord * np.where(back, -1.0, 1.0)
 
 
+def first_unjudged(n: int, gap_s=None, streamed: bool = True) -> np.ndarray:
+    """Decisions L505, E318: (n,) bool, a streamed table's first measured row (the first with no ``gap_s`` > 0), which
+    no stream judges backward or side (no facing before it); all False for an offline table (``streamed`` False)."""
+    out = np.zeros(n, bool)
+    if streamed and n:
+        with np.errstate(invalid="ignore"):
+            measured = np.ones(n, bool) if gap_s is None else ~(np.asarray(gap_s, dtype=float) > 0)
+        if measured.any():
+            out[np.argmax(measured)] = True
+    return out
+
+
 def backward_mask(length_m, gap_s=None, impossible=None, turn_angle_rad=None, sideways=None,
                   streamed: bool = False) -> np.ndarray:
     """(n,) bool: the strides of signed lengths ``length_m`` that travel backward (module docstring); ``gap_s``,
@@ -68,8 +80,7 @@ def backward_mask(length_m, gap_s=None, impossible=None, turn_angle_rad=None, si
     keep = np.ones(length.shape, bool)
     if gap_s is not None:
         keep &= ~(np.asarray(gap_s, dtype=float) > 0)
-    if streamed and keep.any():
-        keep[np.argmax(keep)] = False  # decision L505: the stream's first measured stride
+    keep &= ~first_unjudged(len(length), gap_s, streamed)  # decision L505: the stream's first measured stride
     if impossible is not None:
         keep &= ~np.asarray(impossible, dtype=bool)
     if turn_angle_rad is not None:
@@ -85,9 +96,10 @@ def backward_rows(rows: list[dict]) -> list[bool]:
     runtime's steps.csv: the same flags as ``pdrlearn run``'s (:func:`pdrlearn.track.evaluate.backward_travel`),
     a streamed side run read whole (decisions L243, L270)."""
     from pdrlearn.kernels.sideways import side_rows
+    from pdrlearn.kernels.travel import row_values
 
     def num(key):
-        return [math.nan if r.get(key) is None else float(r[key]) for r in rows]
+        return row_values(rows, key)
 
     streamed = any("pivot_rad" in r for r in rows)
     side = side_rows([bool(r.get("sideways") or False) for r in rows], num("gap_s"), streamed=streamed)

@@ -78,6 +78,14 @@ def side_travel_extra(lateral: np.ndarray, length: np.ndarray, turn: np.ndarray 
 SIDE_USUAL_STRIDES = 256
 
 
+def foot_frame(dx, dy, frame=0.0):
+    """The displacement ``(dx, dy)`` (m, the step frame, whose x points ``frame`` rad from the foot's facing at the
+    stride's start) in the foot's frame: ``(forward, left)`` (offline's ``disp``; scalars or arrays). Decision E319:
+    its left part is a streamed table's ``lateral_m``, whose sign says a side step's side (L412's left / right)."""
+    c, s = np.cos(frame), np.sin(frame)
+    return c * dx - s * dy, s * dx + c * dy
+
+
 class SideRun:
     """Decision E124: L219's rule one stride at a time, for a foot tracker whose strides go along the waist gyro's
     heading (the streamed ``track --streaming`` and the runtime ``Tracker``, one implementation). Adopted by E124's
@@ -96,14 +104,15 @@ class SideRun:
         self.pending: list[float] = []  # those of the current run's sideways strides before it is one
         self.count = 0  # consecutive sideways strides up to the last one
         self.started = False  # decision L505: the first stride is not judged (no facing before it)
+        self.lateral = math.nan  # decision E319: the last stride's displacement to the foot's left (m)
 
     def stride(self, dx: float, dy: float, length: float, frame: float = 0.0, turn: float | None = None) -> float:
         """The angle (rad) to add to the direction of the stride with horizontal displacement ``(dx, dy)`` m in its
         step frame, whose x points ``frame`` rad from the foot's facing at the stride's start (the foot's sixth
         levelled value, :func:`pdrlearn.kernels.window.levelled_units`; 0: the foot's own frame), and rules
         ``length`` m; ``turn`` the foot's heading change over it (rad, decision L400; None: not checked)."""
-        c, s = math.cos(frame), math.sin(frame)
-        fx, fy = c * dx - s * dy, s * dx + c * dy  # the displacement in the foot's frame (offline's ``disp``)
+        fx, fy = foot_frame(dx, dy, frame)  # the displacement in the foot's frame (offline's ``disp``)
+        self.lateral = float(fy)  # decision E319: steps.csv lateral_m of a streamed table
         angle = travel_angle(fx, fy)
         if not self.started:  # decision L505: the stream's first stride has no facing before it (a start-up heading
             self.started = True  # fault read a straight walk's first stride as sideways): not judged, not "usual"

@@ -118,13 +118,9 @@ def _rows(steps) -> list[dict]:
 
 def _write(out: Path, steps, start_s: float | None) -> None:
     """steps.csv and trajectory.csv into the folder ``out`` (the temporary folder of the atomic write, E276)."""
-    from pdrlearn.runtime.replay import STEP_COLUMNS
+    from pdrlearn.runtime.replay import STEP_COLUMNS, travel_table
 
-    rows = _rows(steps)
-    if rows and all("turn_angle_rad" in r for r in rows):  # a foot replay: decision L224's column, as pdrlearn run
-        from pdrlearn.kernels.backward import backward_rows
-
-        rows = [{**r, "backward_travel": b} for r, b in zip(rows, backward_rows(rows), strict=True)]
+    rows = travel_table(_rows(steps))  # a foot replay: decisions L224, E317's columns, as pdrlearn run's
     have = list(dict.fromkeys(k for r in rows for k in r))
     cols = [c for c in STEP_COLUMNS if c in have] + [c for c in have if c not in STEP_COLUMNS]
     cols = cols or ["start_s", "end_s", "length_m", "heading_rad"]
@@ -148,12 +144,17 @@ def _num(v: float) -> str:
     return wide_float_text(v) if v == v else "nan"  # decisions E164, C103: the package's own, no exponent
 
 
-def _summary(args, tracker, steps) -> dict:
-    """The ``--json`` object, also ``replay.json`` in ``--out`` (decision E276)."""
-    return {"session": str(args.session), "n_steps": len(steps), "distance_m": float(sum(st.length_m for st in steps)),
+def _summary(args, tracker, steps, warnings=None) -> dict:
+    """The ``--json`` object, also ``replay.json`` in ``--out`` (decision E276); ``distance_m`` walked as
+    ``pdrlearn run``'s (decision E316), ``warnings`` the lines said (E317; default the tracker's)."""
+    from pdrlearn.kernels.travel import walked_distance
+
+    return {"session": str(args.session), "n_steps": len(steps),
+            "distance_m": walked_distance([st.length_m for st in steps]),  # decision E316: not netted
             "final_position": dict(zip("xyz", (float(v) for v in tracker.position), strict=True)),
             "methods": {t: f"{c.method}/{c.unit}" for t, c in tracker.classifiers.items()},
-            "warnings": list(tracker.warnings), "out": None if args.out is None else str(args.out)}
+            "warnings": list(tracker.warnings) if warnings is None else list(warnings),
+            "out": None if args.out is None else str(args.out)}
 
 
 def _replay_and_write(args) -> dict:
@@ -171,8 +172,13 @@ def _replay_and_write(args) -> dict:
                         f"({decision_ref('E311')})")
     if args.out is not None:
         out_folder(args.out, "lean", force=args.force, inputs=(args.bundle, args.session))
-    tracker, steps = replay(args.bundle, args.session, chunk_s=args.chunk_s, units=args.units, method=args.method)
-    summary = _summary(args, tracker, steps)
+    from pdrlearn.runtime.replay import travel_table, travel_warnings
+    from pdrlearn.warning_lines import captured_warnings, merged_warnings
+
+    with captured_warnings(echo=True) as logged:  # decision E317: the lines said, in replay.json as run's (E154)
+        tracker, steps = replay(args.bundle, args.session, chunk_s=args.chunk_s, units=args.units, method=args.method)
+        travel_warnings(travel_table(_rows(steps)), tracker.bundle, str(args.session))  # run's C137 / L578 / L652
+    summary = _summary(args, tracker, steps, merged_warnings(tracker.warnings, logged, str(args.session)))
     if args.out is not None:
         with atomic_directory(args.out) as tmp:
             _write(tmp, steps, steps[0].start_s if steps else None)

@@ -29,7 +29,8 @@ log = logging.getLogger(__name__)
 #: Step table columns in the order of ``pdrlearn track`` (decision B14); the runtime's extra columns follow
 #: (``pdrlearn run`` and ``python -m pdrlearn.runtime`` write them so)
 STEP_COLUMNS = ("start_s", "end_s", "event_s", "length_m", "heading_rad", "dz_m", "terrain", "direction",
-                "backward_travel", "length_class")  # backward_travel: decision L224, right after direction
+                "backward_travel", "travel", "length_class")  # backward_travel: decision L224, right after
+# direction; travel (decisions L412, E317) after it, as run's steps.csv
 
 #: a sample this close to a chunk boundary (in chunk lengths) belongs to the chunk the boundary starts (E28)
 CHUNK_TOLERANCE = 1e-9
@@ -261,3 +262,39 @@ def session_frames(meta: dict, bundle, units, where: str) -> dict:
             log.warning("%s declares no %s frame; using the bundle's %s (the lean reader infers none: declare "
                         "\"frames\" in meta.json)", where, unit, frames[unit])
     return frames
+
+
+def travel_table(rows: list[dict]) -> list[dict]:
+    """Decisions L224, E317: a foot replay's step rows (``Step.to_dict``) with steps.csv's ``backward_travel`` and
+    ``travel`` (:func:`pdrlearn.kernels.travel.travel_rows`), the columns ``pdrlearn run`` writes for the same rows;
+    a table without ``turn_angle_rad`` (no foot replay) unchanged."""
+    if not rows or not all("turn_angle_rad" in r for r in rows):
+        return rows
+    from pdrlearn.kernels.backward import backward_rows
+    from pdrlearn.kernels.travel import travel_rows
+
+    return [{**r, "backward_travel": b, "travel": t}
+            for r, b, t in zip(rows, backward_rows(rows), travel_rows(rows), strict=True)]
+
+
+def travel_warnings(rows: list[dict], bundle, where: str) -> list[str]:
+    """Decision E317: ``pdrlearn run``'s C137 / L578 / L652 lines (the side-step, turn-on-the-spot and
+    forward-travelling strides the direction model classed backward;
+    :func:`pdrlearn.kernels.travel.classed_backward_lines`, the kernel of ``track.travel.side_class_warning``) on
+    a foot replay's ``rows`` (:func:`travel_table`'s), logged as the runtime's warnings (``where: line``) and
+    returned; C161's count of trained side steps from the bundle's manifest."""
+    if not rows or not all("direction" in r and "turn_angle_rad" in r for r in rows):
+        return []
+    from pdrlearn.classify.uncovered import trained_side_strides
+    from pdrlearn.kernels.backward import first_unjudged
+    from pdrlearn.kernels.travel import classed_backward_lines, row_values
+
+    lines = classed_backward_lines([r["direction"] for r in rows], [bool(r.get("sideways")) for r in rows],
+                                   row_values(rows, "length_m"), [r.get("travel") for r in rows],
+                                   row_values(rows, "turn_angle_rad"),
+                                   row_values(rows, "confidence") if all("confidence" in r for r in rows) else None,
+                                   trained_side_strides(bundle),
+                                   first_unjudged(len(rows), row_values(rows, "gap_s")))  # decision E318
+    for line in lines:
+        log.warning("%s: %s", where, line)
+    return lines

@@ -270,6 +270,9 @@ class Step:
     #: sideways stride of L219's rule (60-120 deg from the foot's facing, over 0.15 m), decided when it ends; no
     #: steady forward stride for the CVs and the straight speed (the run's first two strides stay False)
     sideways: bool = False
+    #: decision E319: the stride's displacement to the left of the foot's facing at its start (m; negative to the
+    #: right; NaN on a gap or posture row): a side step's side (steps.csv travel left / right)
+    lateral_m: float = math.nan
 
     def to_dict(self) -> dict:
         """The step as one row of a steps table: the classes under their steps.csv columns (``terrain``,
@@ -294,6 +297,7 @@ class Step:
             "impossible": self.impossible,  # decision L97
             "gap_s": self.gap_s,  # decision E37: pdrlearn run's steps.csv
             "sideways": self.sideways,  # decision L243
+            "lateral_m": self.lateral_m,  # decision E319
         }
 
 
@@ -2271,6 +2275,7 @@ class Tracker(OwnGuard, FixInput):
                     self._warn(line)
         if self._side_rows is None:
             self._side_rows = _sideways.SideRun()
+        judged = self._side_rows.started  # decisions L505, E318: the stream's first measured stride is not judged
         self._side_rows.stride(dx, dy, length, _sideways.step_frame(lev),  # decision L243: whatever the heading
                                _sideways.foot_turn(lev))  # L400: a turning stride is no side step
         x, y, z = advance_xyz(*self.position.tolist(), direction, length, dz)
@@ -2283,7 +2288,8 @@ class Tracker(OwnGuard, FixInput):
         turn = float(turn)  # decision E51: the stride's own turn (L690: not wrapped, a spin of 180-360 deg is itself)
         chord = float(signed_chord(dx, dy, _sideways.foot_turn(lev),  # decision L692: the measured travel
                                    _sideways.step_frame(lev)))  # against the foot's own mid-stride facing
-        length, direction = travel_sign_one(length, direction, chord,  # L654: the measured travel, after the position
+        length, direction = travel_sign_one(length, direction, chord if judged else abs(chord),  # L654, E318: the
+                                            # measured travel (a first stride's: not backward), after the position
                                             self._side_rows.decided,  # decision C137: a side step is no backward
                                             turn)  # decisions L578, L692: nor a turn on the spot
         if self._session_length is not None and "length" in classes:  # decision C117: the reported class only
@@ -2294,7 +2300,8 @@ class Tracker(OwnGuard, FixInput):
         return Step(t0, t1, classes, proba, length, dz, direction, x, y, z, event_s=event_s,
                     turn_angle_rad=turn, impossible=impossible,
                     pivot_rad=float(np.angle(np.exp(1j * (dyaw - turn)))),  # decision L106
-                    sideways=self._side_rows.decided)  # decision L243
+                    sideways=self._side_rows.decided,  # decision L243
+                    lateral_m=self._side_rows.lateral)  # decision E319
 
     def _swing_hole(self, t0: float, t1: float) -> float:
         """Decision L674: the longest hole (s) in the foot accelerometer / gyroscope input times of the stride

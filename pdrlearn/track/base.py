@@ -46,7 +46,10 @@ class TrackResult:
 
     @property
     def distance_m(self) -> float:
-        return float(self.steps["length_m"].abs().sum()) if len(self.steps) else 0.0
+        from pdrlearn.kernels.travel import walked_distance
+
+        # decision E316: the one sum of the walked distance (|length_m|), the lean runtime's too
+        return walked_distance(self.steps["length_m"].to_numpy(float)) if len(self.steps) else 0.0
 
     def turns(self, bouts: pd.DataFrame | None = None) -> pd.DataFrame:
         """Decision W330: this track's turns.csv (:func:`pdrlearn.track.clinical.turn_table`) as ``pdrlearn track``

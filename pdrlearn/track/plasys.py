@@ -2285,7 +2285,12 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         if not c.startswith("ood_feature_"):
             table[c] = classes[c].to_numpy()
     # decision L654 (as the runtime's Step): length_m's sign is the measured travel; the path is the same
-    rep_length, rep_head = SK.travel_sign(length, head, table["raw_length_m"].to_numpy(float),  # L692
+    measured = table["raw_length_m"].to_numpy(float)  # L692
+    first = np.flatnonzero(~(in_gap | posture))
+    if first.size:  # decisions L505, E318: the stream's first measured stride is not judged backward (the runtime's)
+        measured = measured.copy()
+        measured[first[0]] = abs(measured[first[0]])
+    rep_length, rep_head = SK.travel_sign(length, head, measured,
                                           sideways,  # decision C137
                                           turn)  # decision L578: E51's own turn (L690: not wrapped)
     table.insert(3, "length_m", rep_length)
@@ -2295,6 +2300,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     table["impossible"] = impossible & ~in_gap  # decision L97: the strides L94 moved 0 m (no gait values)
     table["gap_s"] = np.where(in_gap, longest_gap_in(table["start_s"], table["end_s"], foot_gaps), 0.0)  # E37, L67
     table["sideways"] = sideways  # decision L243 (L228's column, decided stride by stride as the runtime's)
+    # decision E319: each measured stride's displacement to the foot's left, the runtime's Step.lateral_m
+    table["lateral_m"] = np.where(in_gap | posture, np.nan, KSW.foot_frame(disp[:, 0], disp[:, 1], frame)[1])
     table["unit"] = "foot"
     side_class_warning(table, warnings, trained_side_strides(model))  # decisions C137, C161, L652 (a foot table)
     traj = pd.DataFrame({"t": np.concatenate([[table["start_s"].iloc[0]], table["end_s"].to_numpy()]),

@@ -37,8 +37,7 @@ def side_labels(sideways, lateral_y) -> np.ndarray:
 def travel_labels(steps: pd.DataFrame) -> np.ndarray | None:
     """Decision L412: (n,) object, each foot stride's travel label (module docstring); None for a lower-back table
     (:func:`pdrlearn.track.evaluate.backward_travel` None: no facing per step)."""
-    from pdrlearn.kernels.backward import on_the_spot
-    from pdrlearn.kernels.sideways import SIDE_MIN_STRIDE_M
+    from pdrlearn.kernels.travel import travel_label_array
     from pdrlearn.track.evaluate import backward_travel
     from pdrlearn.track.flags import flag_values
     from pdrlearn.track.gait import sideways_rows
@@ -46,25 +45,15 @@ def travel_labels(steps: pd.DataFrame) -> np.ndarray | None:
     back = backward_travel(steps)
     if back is None:
         return None
-    n = len(steps)
-    label = np.full(n, "forward", dtype=object)
     column = "raw_length_m" if "raw_length_m" in steps else "length_m"
-    length = np.abs(pd.to_numeric(steps[column], errors="coerce").to_numpy(float))
-    with np.errstate(invalid="ignore"):
-        label[~(length >= SIDE_MIN_STRIDE_M)] = ""  # L219's shuffle on the spot (and a NaN length)
-        if "turn_angle_rad" in steps:  # L203 amended, L692: a turn on the spot (a short chord)
-            label[on_the_spot(pd.to_numeric(steps["turn_angle_rad"], errors="coerce"), length)] = "turn"
-    side = sideways_rows(steps)
-    given = steps["travel"].to_numpy(dtype=object) if "travel" in steps else np.full(n, None, dtype=object)
-    label[side] = [g if g in ("left", "right") else "side" for g in given[side]]
-    label[back] = "backward"
-    drop = np.zeros(n, bool)
-    if "gap_s" in steps:
-        drop |= pd.to_numeric(steps["gap_s"], errors="coerce").to_numpy(float) > 0
-    if "impossible" in steps:
-        drop |= flag_values(steps["impossible"])
-    label[drop] = ""
-    return label
+    # decision E317: the kernel the lean runtime's steps.csv labels its rows with
+    return travel_label_array(
+        pd.to_numeric(steps[column], errors="coerce").to_numpy(float), back, sideways_rows(steps),
+        pd.to_numeric(steps["turn_angle_rad"], errors="coerce").to_numpy(float) if "turn_angle_rad" in steps else None,
+        pd.to_numeric(steps["gap_s"], errors="coerce").to_numpy(float) if "gap_s" in steps else None,
+        flag_values(steps["impossible"]) if "impossible" in steps else None,
+        steps["travel"].to_numpy(dtype=object) if "travel" in steps else None,
+        pd.to_numeric(steps["lateral_m"], errors="coerce").to_numpy(float) if "lateral_m" in steps else None)  # E319
 
 
 def add_travel(steps: pd.DataFrame) -> None:
@@ -122,57 +111,19 @@ def side_class_warning(steps: pd.DataFrame, warnings: list[str], trained_side: i
     (:func:`travel_labels`: measured forward, no side step, no turn on the spot) the model classed backward."""
     if "direction" not in steps:
         return
-    from pdrlearn.kernels.backward import on_the_spot
+    from pdrlearn.kernels.backward import first_unjudged
+    from pdrlearn.kernels.travel import classed_backward_lines
     from pdrlearn.track.flags import flag_values
 
-    side = flag_values(steps["sideways"]) if "sideways" in steps else np.zeros(len(steps), bool)
-    if trained_side is None:  # decision C161: a model from before C161 or calibration sessions without kind
-        why = ("the direction classes are forward / backward and its manifest does not say whether its calibration "
-               "held side steps (retrain to record it), so its class does not apply to them")
-    elif trained_side == 0:
-        why = ("its calibration walks had no side steps (add a side-stepping walk to the calibration, its side steps "
-               "labelled forward, for them to read forward), so its direction class does not apply to them")
-    else:
-        why = (f"its calibration walks held {trained_side} side-step strides labelled forward, yet it classed these "
-               "backward, so its direction class does not apply to them")
-    line = _classed_backward(steps, side, "side-step strides (steps.csv sideways)",
-                             why + "; their length_m is counted positive (side travel, not backward), steps.csv "
-                             "direction keeps the model's class and travel says the side", "C137")
-    if line:
-        warnings.append(line)
-    if "turn_angle_rad" in steps:  # decision L578
-        column = next((c for c in ("raw_length_m", "length_m") if c in steps), None)
-        chord = np.nan if column is None else pd.to_numeric(steps[column], errors="coerce")  # NaN: not known
-        spot = on_the_spot(pd.to_numeric(steps["turn_angle_rad"], errors="coerce"), chord) & ~side  # L692
-        line = _classed_backward(steps, spot, "strides turning on the spot (steps.csv travel turn)",
-                                 "a pivot stride's short chord points anywhere, so the class does not say the walker "
-                                 "went backward; their length_m is counted positive, steps.csv direction keeps the "
-                                 "model's class", "L578")
-        if line:
-            warnings.append(line)
-    travel = travel_labels(steps)  # decision L652: a stride measured travelling forward, classed backward
-    if travel is not None:
-        measured = pd.to_numeric(steps["raw_length_m" if "raw_length_m" in steps else "length_m"], errors="coerce")
-        with np.errstate(invalid="ignore"):
-            ahead = (travel == "forward") & (measured.to_numpy(float) > 0)  # measured ahead
-        line = _classed_backward(steps, ahead, "strides travelling forward (steps.csv travel forward)",
-                                 "their measured displacement points forward (raw_length_m positive, no side step, "
-                                 "no turn on the spot), against the class - a stride unlike the calibration's "
-                                 "forward strides (e.g. one long stride from standing to standing) can read backward; "
-                                 "their length_m is positive (its sign is the measured travel, L654), steps.csv "
-                                 "direction keeps the model's class", "L652")
-        if line:
-            warnings.append(line)
-
-
-def _classed_backward(steps: pd.DataFrame, rows: np.ndarray, what: str, why: str, decision: str) -> str | None:
-    """Decisions C137 / L578: the line counting the ``rows`` (a kind of stride the direction classes do not cover)
-    the model classed backward, with their confidence range; None when there is none."""
-    back = rows & (steps["direction"].to_numpy(dtype=object) == "backward")
-    if not back.any():
-        return None
-    conf = (pd.to_numeric(steps["confidence"], errors="coerce").to_numpy(float)[back] if "confidence" in steps
-            else np.full(int(back.sum()), np.nan))
-    seen = f" at confidence {np.nanmin(conf):.2f}-{np.nanmax(conf):.2f}" if np.isfinite(conf).any() else ""
-    return (f"{int(back.sum())} of {int(rows.sum())} {what} were classed backward by the model{seen}: {why} - "
-            f"count backward steps by travel / backward_travel, not direction (decision {decision})")
+    column = next((c for c in ("raw_length_m", "length_m") if c in steps), None)
+    measured = np.full(len(steps), np.nan) if column is None else pd.to_numeric(steps[column], errors="coerce")
+    warnings.extend(classed_backward_lines(  # decision E317: the kernel the lean runtime says them with
+        steps["direction"].to_numpy(dtype=object),
+        flag_values(steps["sideways"]) if "sideways" in steps else np.zeros(len(steps), bool),
+        np.asarray(measured, dtype=float),
+        travel_labels(steps),
+        pd.to_numeric(steps["turn_angle_rad"], errors="coerce").to_numpy(float) if "turn_angle_rad" in steps else None,
+        pd.to_numeric(steps["confidence"], errors="coerce").to_numpy(float) if "confidence" in steps else None,
+        trained_side,
+        first_unjudged(len(steps), steps["gap_s"].to_numpy(float) if "gap_s" in steps else None,
+                       "pivot_rad" in steps)))  # decision E318: a stream's first stride (L505)
