@@ -117,6 +117,11 @@ def resume(tracker, state: dict) -> list:
         tracker._first_walk.stop()
     tracker._prev_end = last_end
     tracker._resume_end = last_end
+    if last_end is not None:  # decisions L505, E318: past the stream's first measured stride, the next one is judged
+        from pdrlearn.kernels import sideways as _sideways
+
+        tracker._side_rows = _sideways.SideRun()
+        tracker._side_rows.started = True
     ls = state["last_step"]
     tracker._kept = None if ls is None else (float(ls[0]), float(ls[1]), tuple(map(float, ls[2])),
                                              tuple(map(float, ls[3])))
