@@ -368,6 +368,7 @@ def evaluate(
         headline,
         write_predictions,
     )
+    from pdrlearn.classify.detected_rules import track_length_line
     from pdrlearn.classify.uncovered import uncovered_line
     from pdrlearn.cli.common import out_file
     from pdrlearn.io.resample import at_model_rate, log_grouped, resample_mode
@@ -439,6 +440,9 @@ def evaluate(
         for line in detected_lines(r.get("detected")):  # decision C76
             c.print(f"  {line}", markup=False)
         line = uncovered_line(task, r.get("uncovered"), r["classes"])  # decision C160
+        if line:
+            c.print(f"  {line}", markup=False)
+        line = track_length_line(r.get("detected"), r.get("detected_track"))  # decision C226
         if line:
             c.print(f"  {line}", markup=False)
         for s in r["skipped"]:

@@ -2372,7 +2372,9 @@ class Tracker(OwnGuard, FixInput):
             return
         from pdrlearn.classify.domain import session_warning_line
 
-        line = session_warning_line(self.domain_report(), what="strides")
+        users = ((self.bundle.manifest.get("training") or {}).get("data") or {}).get("users") or []
+        user = users[0] if len(users) == 1 and isinstance(users[0], str) and users[0].strip() else None  # C227
+        line = session_warning_line(self.domain_report(), what="strides", user=user)
         if line:
             self._domain_said = True
             self._warn(line)

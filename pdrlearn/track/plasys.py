@@ -453,7 +453,9 @@ def domain_check(model, classes: pd.DataFrame, warnings: list[str], warn_at: flo
         log.info(NO_RANGES_NOTE)
         return {"out_of_domain_fraction": None, "note": NO_RANGES_NOTE}
     report = model.domain_report(classes, warn_at=warn_at)
-    line = session_warning_line(report, what="strides")
+    from pdrlearn.classify.training import model_user_key
+
+    line = session_warning_line(report, what="strides", user=model_user_key(model))  # C227: a per-user model's fix
     if line:
         warnings.append(line)
     return report
