@@ -23,8 +23,11 @@ def true_turns(sim: Path) -> list[tuple[float, float, int]]:
 
 
 def score(turns: pd.DataFrame, truth) -> list[dict]:
+    """The two walked turns (their contacts' groups) and the stepless spin after them (S106: no contact, truth 0;
+    any turns.csv row starting after the last group is the spin's)."""
+    truth = list(truth)[:2] + [(truth[-1][1] + 1.5, np.inf, 0)]
     out = []
-    for kind, (a, b, n) in zip(KINDS, truth):
+    for kind, (a, b, n) in zip(KINDS, truth, strict=True):
         hit = turns[(turns["end_s"] >= a - 1) & (turns["start_s"] <= b + 1)]
         est = hit["turn_steps"].iloc[0] if len(hit) else None
         out.append({"kind": kind, "truth": n, "est": None if est is None or pd.isna(est) else int(est),

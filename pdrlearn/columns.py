@@ -880,7 +880,7 @@ TURNS: tuple[Column, ...] = (
                                        "(W398); a foot track with a lower-back unit, that unit's contacts inside "
                                        "the turn widened to the waist's own yaw-rate turn; a foot alone, 2 x the "
                                        "foot's strides whose contact lies in the turn, an estimate (L749)"),
-    ("turn_steps_source", _ID, "waist / foot_x2", "what turn_steps counts (L749): waist (the lower back's "
+    ("turn_steps_source", _ID, "text", "what turn_steps counts (L749): waist (the lower back's "
                                                   "contacts) or foot_x2 (the foot's strides x 2, an estimate: the "
                                                   "other foot assumed to alternate); empty without a count"),
     *_clocks("start_s", "end_s"),

@@ -24,7 +24,8 @@ def test_a_per_user_models_line_sends_the_strides_to_the_calibration():
     assert "P001's own per-user model" in detail and FIX not in detail
 
 
-def test_track_and_run_name_the_models_user():
+def test_track_and_run_name_the_models_user_on_that_users_session():
+    from pdrlearn.classify.training import bundle_own_user
     from pdrlearn.runtime.tracker import Tracker
     from pdrlearn.track.plasys import domain_check
 
@@ -37,13 +38,19 @@ def test_track_and_run_name_the_models_user():
         def domain_report(self, classes, warn_at=None):
             return REPORT
 
+    own = SimpleNamespace(meta={"user": {"seed": 16400}}, folder=None)
+    other = SimpleNamespace(meta={"user": {"seed": 7}}, folder=None)
     lines: list[str] = []
-    domain_check(Model(["user.seed:16400"]), None, lines)
-    domain_check(Model(["user.seed:1", "user.seed:2"]), None, lines)  # pooled: C16's advice
-    assert "user.seed:16400's own per-user model" in lines[0] and "train a per-user model" in lines[1]
+    domain_check(Model(["user.seed:16400"]), None, lines, session=own)
+    domain_check(Model(["user.seed:16400"]), None, lines, session=other)  # another user: train that user's model
+    domain_check(Model(["user.seed:1", "user.seed:2"]), None, lines, session=own)  # pooled: C16's advice
+    assert "user.seed:16400's own per-user model" in lines[0]
+    assert all("train a per-user model" in line for line in lines[1:]) and len(lines) == 3
+    bundle = SimpleNamespace(manifest={"training": {"data": {"users": ["user.seed:16400"]}}})
+    assert bundle_own_user(bundle, own) == "user.seed:16400" and bundle_own_user(bundle, other) is None
     said: list[str] = []
-    for users in (["user.seed:16400"], []):
+    for user in ("user.seed:16400", None):
         fake = SimpleNamespace(_domain=object(), _domain_said=False, domain_report=lambda: REPORT, _warn=said.append,
-                               bundle=SimpleNamespace(manifest={"training": {"data": {"users": users}}}))
+                               domain_user=user)
         Tracker._warn_out_of_domain(fake)
     assert "user.seed:16400's own per-user model" in said[0] and "train a per-user model" in said[1]

@@ -4,6 +4,7 @@ foot's strides inside it, marked ``foot_x2`` - where ``turn_steps`` was empty an
 
 from __future__ import annotations
 
+import numpy as np
 import pandas as pd
 
 #: a foot track's 360-degree turn, timed by its heading (5-95 %), as the trial's: 9.03-12.21 s

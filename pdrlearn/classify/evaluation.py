@@ -121,7 +121,7 @@ def evaluate_model(
 
     check_warn_at(warn_out_of_domain)
     from pdrlearn.classify.detected import DetectedPredictions, detected_score, drop_warning
-    from pdrlearn.classify.training import class_metrics, model_user_key, session_list, session_windows, task_data
+    from pdrlearn.classify.training import class_metrics, own_user, session_list, session_windows, task_data
     from pdrlearn.classify.uncovered import all_uncovered_line, split_rows, uncovered_score
 
     sessions = session_list(sessions, "evaluate_model")  # decision B391: a Session or a path is accepted too
@@ -321,7 +321,7 @@ def evaluate_model(
         rep = domain_report(domain, warn_at=warn_out_of_domain)
         out["out_of_domain_fraction"] = rep["out_of_domain_fraction"]
         out["out_of_domain"] = rep
-        line = warning_line(rep, what="labelled steps", user=model_user_key(model))  # C227: a per-user model's fix
+        line = warning_line(rep, what="labelled steps", user=own_user(model, sessions))  # C227: its own user's
         if line:
             log.warning(line)
     elif not model.has_domain:
