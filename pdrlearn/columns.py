@@ -879,7 +879,8 @@ TURNS: tuple[Column, ...] = (
                                        "n_rows: lower back, its detected contacts (event_s) from start_s to end_s "
                                        "(W398); a foot track with a lower-back unit, that unit's contacts inside "
                                        "the turn widened to the waist's own yaw-rate turn; a foot alone, 2 x the "
-                                       "foot's strides whose contact lies in the turn, an estimate (L749)"),
+                                       "foot's strides whose contact lies in the turn, an estimate (L749); empty "
+                                       "without contact times (pdrlearn run's foot strides)"),
     ("turn_steps_source", _ID, "text", "what turn_steps counts (L749): waist (the lower back's "
                                                   "contacts) or foot_x2 (the foot's strides x 2, an estimate: the "
                                                   "other foot assumed to alternate); empty without a count"),

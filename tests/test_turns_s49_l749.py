@@ -37,6 +37,9 @@ def test_a_foot_alone_estimates_twice_its_strides_and_says_so():
     out = add_turn_steps(TURNS, FOOT, {})
     assert out["turn_steps"].tolist() == [6] and out["turn_steps_source"].tolist() == ["foot_x2"]
     assert out["n_rows"].tolist() == [3]  # n_rows unchanged
+    # pdrlearn run's foot strides carry no contact time: no count rather than a guess
+    run = add_turn_steps(TURNS, FOOT.assign(event_s=float("nan")), {})
+    assert run["turn_steps"].isna().all() and run["turn_steps_source"].tolist() == [""]
 
 
 def test_a_lower_back_track_is_unchanged_and_an_empty_table_keeps_its_columns():

@@ -50,15 +50,15 @@ def waist_spans(turns: pd.DataFrame, yaw_turns) -> np.ndarray:
 def foot_turn_steps(turns: pd.DataFrame, steps: pd.DataFrame, info: dict | None) -> tuple[np.ndarray | None, str]:
     """Decision L749: a foot track's steps per turn and their source - the lower back's contacts
     (``info["trunk_contacts"]``) inside :func:`waist_spans` (``"waist"``), else 2 x the foot's strides whose
-    contact (``event_s``, else ``start_s``) lies inside the turn (``"foot_x2"``, an estimate: the other foot is
-    assumed to alternate); ``(None, "")`` without either."""
+    contact (``event_s``) lies inside the turn (``"foot_x2"``, an estimate: the other foot is assumed to
+    alternate); ``(None, "")`` without either (a foot table without contact times: ``pdrlearn run``'s)."""
     info = info or {}
     trunk = info.get("trunk_contacts")
     if trunk:
         rows = pd.DataFrame(list(trunk))
         col = "event_s" if "event_s" in rows else "start_s"
         return contacts_in(rows[col], waist_spans(turns, info.get("trunk_yaw_turns"))), WAIST
-    col = "event_s" if "event_s" in steps else "start_s"
-    if not FOOT_ESTIMATE or col not in steps:
-        return None, ""
-    return 2 * contacts_in(steps[col], turns[["start_s", "end_s"]].to_numpy(float)), FOOT_X2
+    if not FOOT_ESTIMATE or "event_s" not in steps or (len(steps) and not np.isfinite(
+            steps["event_s"].to_numpy(float)).any()):
+        return None, ""  # no contact times (pdrlearn run's foot strides): no count rather than a guessed one
+    return 2 * contacts_in(steps["event_s"], turns[["start_s", "end_s"]].to_numpy(float)), FOOT_X2
