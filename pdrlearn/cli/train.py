@@ -363,12 +363,12 @@ def evaluate(
         return _evaluate_bundle(model_dir, data_dirs, as_json, given, warn_out_of_domain)
     from pdrlearn.classify import evaluate_model, load_model
     from pdrlearn.classify.detected import detected_lines
+    from pdrlearn.classify.detected_rules import track_length_line
     from pdrlearn.classify.evaluation import (
         evaluation_stages,
         headline,
         write_predictions,
     )
-    from pdrlearn.classify.detected_rules import track_length_line
     from pdrlearn.classify.uncovered import uncovered_line
     from pdrlearn.cli.common import out_file
     from pdrlearn.io.resample import at_model_rate, log_grouped, resample_mode
