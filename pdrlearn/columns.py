@@ -890,9 +890,15 @@ TURNS: tuple[Column, ...] = (
                                       "unit at rest), the seat's or the vehicle's, not the walker's; kept here, left "
                                       "out of turn_count, the turn medians and periods.csv's n_turns (L622); false on "
                                       "a foot track"),
-    ("turn_steps", "count", "integer", "lower back: the detected steps (steps.csv contacts, event_s) inside the "
-                                       "turn, start_s to end_s: the clinical steps per turn, unlike n_rows (W398); "
-                                       "empty on a foot track (its rows are one foot's strides)"),
+    ("turn_steps", "count", "integer", "the steps of both feet inside the turn, the clinical steps per turn, unlike "
+                                       "n_rows: lower back, its detected contacts (event_s) from start_s to end_s "
+                                       "(W398); a foot track with a lower-back unit, that unit's contacts inside "
+                                       "the turn widened to the waist's own yaw-rate turn; a foot alone, 2 x the "
+                                       "foot's strides whose contact lies in the turn, an estimate (L749); empty "
+                                       "without contact times (pdrlearn run's foot strides)"),
+    ("turn_steps_source", _ID, "text", "what turn_steps counts (L749): waist (the lower back's "
+                                                  "contacts) or foot_x2 (the foot's strides x 2, an estimate: the "
+                                                  "other foot assumed to alternate); empty without a count"),
     *_clocks("start_s", "end_s"),
 )
 

@@ -124,7 +124,9 @@ def test_turns_csv_counts_the_steps_inside_each_turn_w398(tmp_path):
                           _steps([0.5, 1.0, 1.5, 2.0, 2.5, 5.5]).assign(unit="waist"))
     assert hand["turn_steps"].tolist() == [3, 1]  # the ends are inside
     foot = _steps([1.0, 1.5]).assign(unit="foot")
-    assert add_turn_steps(pd.DataFrame({"start_s": [1.0], "end_s": [2.0]}), foot)["turn_steps"].isna().all()
+    # decision L749 (amends W398's empty foot column): a foot alone estimates 2 x its strides inside the turn
+    foot_only = add_turn_steps(pd.DataFrame({"start_s": [1.0], "end_s": [2.0]}), foot)
+    assert foot_only["turn_steps"].tolist() == [4] and foot_only["turn_steps_source"].tolist() == ["foot_x2"]
 
 
 def test_hint_and_in_freeze_read_a_step_at_the_same_time_closing_reread():

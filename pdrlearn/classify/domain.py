@@ -47,6 +47,19 @@ DEFAULT_WARN_SHARE = 0.5
 FIX = "train a per-user model on this user's labelled sessions: pdrlearn train SESSION_DIR... --out MODEL_DIR"
 
 
+def fix_text(user: str | None = None) -> str:
+    """The fix a training-range line ends with: :data:`FIX` (train a per-user model) for a pooled model; for a
+    per-user model (``user``: the one user it was fitted on, :func:`~pdrlearn.classify.training.model_user_key`)
+    decision C227's - it already is that user's model, so the strides it never saw go into its calibration."""
+    if user is None:
+        return FIX
+    from pdrlearn.decision_refs import decision_ref
+
+    return (f"this is {user}'s own per-user model, so add strides like these to the calibration: record them in a "
+            "labelled session and retrain with it: pdrlearn train CALIBRATION_DIR... NEW_SESSION_DIR --out "
+            f"MODEL_DIR ({decision_ref('C227', topic='classifiers')})")
+
+
 @dataclass
 class FeatureRange:
     """Per-feature training range of one leaf model's inputs: ``lo``/``hi`` quantiles over ``n_steps``
@@ -380,9 +393,10 @@ def check_warn_at(warn_at: float | None) -> None:
                         f"{FRACTION_THRESHOLD}")
 
 
-def warning_line(report: dict, *, what: str = "steps") -> str | None:
+def warning_line(report: dict, *, what: str = "steps", user: str | None = None) -> str | None:
     """The one warning line for a session whose data lie outside the model's training range, else None:
-    the fraction, the task/unit it concerns (others in brackets), the feature most often off, and the fix."""
+    the fraction, the task/unit it concerns (others in brackets), the feature most often off, and the fix
+    (:func:`fix_text`: C227's for a per-user model of ``user``)."""
     if not report or not report.get("warn"):
         return None
     tasks = {t: s for t, s in report["tasks"].items() if s.get("fraction") is not None}
@@ -393,15 +407,15 @@ def warning_line(report: dict, *, what: str = "steps") -> str | None:
     return (f"{s['n_out']} of {s['n_steps']} {what} ({100 * s['fraction']:.0f} %) lie outside the model's "
             f"training range for the {t} classifier ({s['unit']}{feat}"
             f"{'; also ' + ', '.join(others) if others else ''}): the model was trained on data unlike this "
-            f"session and its classes are unreliable here; {FIX}")
+            f"session and its classes are unreliable here; {fix_text(user)}")
 
 
-def session_warning_line(report: dict | None, *, what: str = "strides") -> str | None:
+def session_warning_line(report: dict | None, *, what: str = "strides", user: str | None = None) -> str | None:
     """Decision C61: the line ``track`` prints for a session's report: C16's detailed line when the opt-in
     ``warn_at`` is reached, else, when more than :data:`DEFAULT_WARN_SHARE` of the checked strides of a task lie
     outside the training range, one short line saying what it means for the classes and naming
-    ``--warn-out-of-domain`` for the detail; else None."""
-    line = warning_line(report, what=what)
+    ``--warn-out-of-domain`` for the detail; else None. ``user``: the per-user model's user (C227, :func:`fix_text`)."""
+    line = warning_line(report, what=what, user=user)
     if line or not report or report.get("out_of_domain_fraction") is None:
         return line
     tasks = {t: s for t, s in report["tasks"].items() if s.get("fraction") is not None}
@@ -411,7 +425,7 @@ def session_warning_line(report: dict | None, *, what: str = "strides") -> str |
     return (f"{s['n_out']} of {s['n_steps']} {what} ({100 * s['fraction']:.0f} %) lie outside the model's training "
             f"range ({t} classifier): the model never saw strides like these, so its terrain / direction / length "
             f"classes (and the heights and lengths they set) are unreliable for this session "
-            f"(--warn-out-of-domain 0.25 details the classifier and the feature most often off); {FIX}")
+            f"(--warn-out-of-domain 0.25 details the classifier and the feature most often off); {fix_text(user)}")
 
 
 NO_RANGES_NOTE = ("the model stores no training ranges (trained before pdrlearn checked them): data unlike its "

@@ -121,7 +121,7 @@ def evaluate_model(
 
     check_warn_at(warn_out_of_domain)
     from pdrlearn.classify.detected import DetectedPredictions, detected_score, drop_warning
-    from pdrlearn.classify.training import class_metrics, session_list, session_windows, task_data
+    from pdrlearn.classify.training import class_metrics, own_user, session_list, session_windows, task_data
     from pdrlearn.classify.uncovered import all_uncovered_line, split_rows, uncovered_score
 
     sessions = session_list(sessions, "evaluate_model")  # decision B391: a Session or a path is accepted too
@@ -291,6 +291,10 @@ def evaluate_model(
         # decision C49: what the user gets - the same model on the strides the runtime / track detect
         res["detected"] = detected_score(task, classes, data, windows, sess_rows, detected)
         res["uncovered"] = uncovered_score(task, classes, data, windows, uncovered, detected)  # decision C160
+        if task == "length" and res["detected"]:  # decision C226: the class track / run report (C88 / C191)
+            from pdrlearn.classify.detected_rules import track_length_score
+
+            res["detected_track"] = track_length_score(model, data, windows, sess_rows, detected)
         if detected_methods or all_methods:  # decision C97: the same strides and matching, classified by each model
             matched: dict[tuple[str, str], list] = {}
             for mm, per in res["methods"].items():
@@ -317,7 +321,7 @@ def evaluate_model(
         rep = domain_report(domain, warn_at=warn_out_of_domain)
         out["out_of_domain_fraction"] = rep["out_of_domain_fraction"]
         out["out_of_domain"] = rep
-        line = warning_line(rep, what="labelled steps")
+        line = warning_line(rep, what="labelled steps", user=own_user(model, sessions))  # C227: its own user's
         if line:
             log.warning(line)
     elif not model.has_domain:

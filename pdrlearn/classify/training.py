@@ -813,6 +813,26 @@ def model_user_key(model) -> str | None:
     return users[0] if len(users) == 1 and isinstance(users[0], str) and users[0].strip() else None
 
 
+def own_user(model, sessions) -> str | None:
+    """Decision C227: the per-user model's user (:func:`model_user_key`) when every one of ``sessions`` (one or a
+    list) names that user in its meta.json (C138 / C152's match, :func:`other_user_line`); None for a pooled model,
+    a session of another user or of no named user (then C16's advice to train a per-user model stands)."""
+    key = model_user_key(model)
+    sessions = sessions if isinstance(sessions, list | tuple) else [sessions]
+    if key is None or not sessions:
+        return None
+    return key if all(key in (session_user(s), _one_user(s)) for s in sessions) else None
+
+
+def bundle_own_user(bundle, session) -> str | None:
+    """Decision C227: :func:`own_user` for a runtime bundle (its manifest's ``training.data``, the model's
+    ``data_summary`` it was exported from) and the replayed ``session``."""
+    from types import SimpleNamespace
+
+    data = ((getattr(bundle, "manifest", None) or {}).get("training") or {}).get("data") or {}
+    return own_user(SimpleNamespace(data_summary=data), session)
+
+
 def _where(session) -> str:
     """How a warning names a session (decision B34): its folder's name, not meta.json's (a copied folder keeps the
     original's "session" name); the name of a session built in memory."""

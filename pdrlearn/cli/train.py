@@ -363,6 +363,7 @@ def evaluate(
         return _evaluate_bundle(model_dir, data_dirs, as_json, given, warn_out_of_domain)
     from pdrlearn.classify import evaluate_model, load_model
     from pdrlearn.classify.detected import detected_lines
+    from pdrlearn.classify.detected_rules import track_length_line
     from pdrlearn.classify.evaluation import (
         evaluation_stages,
         headline,
@@ -439,6 +440,9 @@ def evaluate(
         for line in detected_lines(r.get("detected")):  # decision C76
             c.print(f"  {line}", markup=False)
         line = uncovered_line(task, r.get("uncovered"), r["classes"])  # decision C160
+        if line:
+            c.print(f"  {line}", markup=False)
+        line = track_length_line(r.get("detected"), r.get("detected_track"))  # decision C226
         if line:
             c.print(f"  {line}", markup=False)
         for s in r["skipped"]:

@@ -550,6 +550,9 @@ class Tracker(OwnGuard, FixInput):
     _rate_log: list | tuple = ()  # decision E309: the rate changes found (a bare Tracker.__new__ has none)
     _warn_ood: float | None = None
     _domain_said = False
+    #: decision C227: the bundle's one user when the replayed session is that user's (``pdrlearn run`` sets it); the
+    #: out-of-range line then sends such strides to the calibration instead of advising a per-user model
+    domain_user: str | None = None
     #: decision L134: a resumed tracker's last measured stride end (s; strides found again up to it are dropped)
     _resume_end: float | None = None
     _carry: list | tuple = ()
@@ -2379,7 +2382,7 @@ class Tracker(OwnGuard, FixInput):
             return
         from pdrlearn.classify.domain import session_warning_line
 
-        line = session_warning_line(self.domain_report(), what="strides")
+        line = session_warning_line(self.domain_report(), what="strides", user=self.domain_user)  # decision C227
         if line:
             self._domain_said = True
             self._warn(line)

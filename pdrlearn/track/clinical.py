@@ -1097,17 +1097,27 @@ def below_text(value: float, bound: float) -> str:
     return repr(float(value))
 
 
-def add_turn_steps(turns: pd.DataFrame, steps: pd.DataFrame) -> pd.DataFrame:
+def add_turn_steps(turns: pd.DataFrame, steps: pd.DataFrame, info: dict | None = None) -> pd.DataFrame:
     """Decision W398: turns.csv's ``turn_steps`` on a lower-back track - the detected steps (steps.csv rows) whose
     contact ``event_s`` lies inside the turn (``start_s`` to ``end_s``), the clinical steps-per-turn, unlike
-    ``n_rows`` (the rows whose heading change the turn sums); empty on a foot track (its rows are one foot's
-    strides). Returns a new table."""
-    if not _is_lower_back(steps) or "event_s" not in steps:
-        return turns.assign(turn_steps=pd.array([pd.NA] * len(turns), dtype="Int64"))
-    ev = np.sort(steps["event_s"].to_numpy(float))
-    a, b = turns["start_s"].to_numpy(float), turns["end_s"].to_numpy(float)
-    counts = np.searchsorted(ev, b, side="right") - np.searchsorted(ev, a, side="left")
-    return turns.assign(turn_steps=np.where(np.isfinite(a) & np.isfinite(b), counts, 0).astype(int))
+    ``n_rows`` (the rows whose heading change the turn sums). Decision L749: on a foot track (its rows are one foot's
+    strides) :func:`pdrlearn.track.foot_turn_steps.foot_turn_steps` with the track's ``info`` - the lower back's
+    contacts when the session has that unit, else 2 x the foot's strides; ``turn_steps_source`` names which
+    (``waist`` / ``foot_x2``; empty with no count). Returns a new table."""
+    from pdrlearn.track.foot_turn_steps import WAIST, contacts_in, foot_turn_steps
+
+    spans = turns[["start_s", "end_s"]].to_numpy(float)
+    if _is_lower_back(steps) and "event_s" in steps:
+        counts, source = contacts_in(steps["event_s"], spans), WAIST
+    elif _is_lower_back(steps):
+        counts, source = None, ""
+    else:
+        counts, source = foot_turn_steps(turns, steps, info)
+    if counts is None:
+        return turns.assign(turn_steps=pd.array([pd.NA] * len(turns), dtype="Int64"),
+                            turn_steps_source=pd.Series([""] * len(turns), index=turns.index, dtype=object))
+    return turns.assign(turn_steps=counts, turn_steps_source=pd.Series([source] * len(turns), index=turns.index,
+                                                                       dtype=object))
 
 
 def _is_lower_back(steps: pd.DataFrame) -> bool:

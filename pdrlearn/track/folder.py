@@ -95,7 +95,7 @@ def clinical_tables(result, bouts) -> dict:
 
     out = {"turns.csv": add_turn_steps(turn_table(result.steps, bouts, yaw_turns=result.info.get("yaw_turns"),
                                                   gap_turns=result.info.get("waist_gap_turns")),  # L701
-                                       result.steps)}  # L210; W398: steps per turn
+                                       result.steps, result.info)}  # L210; W398 / L749: steps per turn
     from pdrlearn.track.clinical import _is_lower_back
     from pdrlearn.track.grade import info_stair_grade, track_ramps
     from pdrlearn.track.ramp_audit import ramp_run_table, with_end_positions

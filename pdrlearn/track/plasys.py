@@ -440,7 +440,8 @@ def _model_classes(model, session: Session, steps: pd.DataFrame) -> tuple[pd.Dat
     return pred, bounds
 
 
-def domain_check(model, classes: pd.DataFrame, warnings: list[str], warn_at: float | None = None) -> dict | None:
+def domain_check(model, classes: pd.DataFrame, warnings: list[str], warn_at: float | None = None,
+                 session=None) -> dict | None:
     """Decision C16: how many strides lie outside the trained model's training range (the range of each
     classifier's own inputs); one warning line appended when the fraction reaches ``warn_at`` (opt-in) or, without
     it, when more than half the strides are out (decision C61, :func:`~pdrlearn.classify.domain.session_warning_line`).
@@ -453,7 +454,10 @@ def domain_check(model, classes: pd.DataFrame, warnings: list[str], warn_at: flo
         log.info(NO_RANGES_NOTE)
         return {"out_of_domain_fraction": None, "note": NO_RANGES_NOTE}
     report = model.domain_report(classes, warn_at=warn_at)
-    line = session_warning_line(report, what="strides")
+    from pdrlearn.classify.training import own_user
+
+    # decision C227: the advice for a per-user model on its own user's session (``session``) is its calibration
+    line = session_warning_line(report, what="strides", user=None if session is None else own_user(model, session))
     if line:
         warnings.append(line)
     return report
@@ -1485,7 +1489,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         windows = None if is_oracle else classification_windows(work, strides)
         classes, model_bounds = classes_and_bounds(model, work, strides if windows is None else windows)
         warnings += classes.attrs.get("label_warnings", [])  # decision B209
-        domain = domain_check(model, classes, warnings, warn_out_of_domain)
+        domain = domain_check(model, classes, warnings, warn_out_of_domain, session=session)
         off_rate = rate_check(model, work, classes, warnings)  # decision C18
         if not is_oracle:
             untrained = untrained_tasks(classes)
@@ -2080,7 +2084,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             model = load_model(model)
         classes, model_bounds = classes_and_bounds(model, session, table)
         warnings += classes.attrs.get("label_warnings", [])  # decision B209
-        domain = domain_check(model, classes, warnings, warn_out_of_domain)  # decision C16
+        domain = domain_check(model, classes, warnings, warn_out_of_domain, session=session)  # decision C16
         untrained = [] if isinstance(model, str) and model == "oracle" else untrained_tasks(classes)
         if untrained:  # C17's line, with what the streamed rules do instead (they keep the raw height change)
             warnings.append(untrained_warning(untrained, streaming=True))
