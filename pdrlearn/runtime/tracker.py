@@ -30,6 +30,7 @@ from pdrlearn.kernels import first_walk as _first_walk
 from pdrlearn.kernels import pedal as _pedal
 from pdrlearn.kernels import relative_length as _relative_length
 from pdrlearn.kernels import sideways as _sideways
+from pdrlearn.kernels import spin as _spin
 from pdrlearn.kernels import stop_bias as _stop_bias
 from pdrlearn.kernels import turn_length as _turn_length
 from pdrlearn.kernels.align import MAX_CLOCK_DRIFT
@@ -525,6 +526,7 @@ class Tracker(OwnGuard, FixInput):
     _side: _sideways.SideRun | None = None  # decision E124 (a bare Tracker.__new__ makes one at its first stride)
     _side_rows: _sideways.SideRun | None = None  # decision L243 (the same)
     _drop_warned = False
+    n_turns_in_place = 0  # decision L742: foot windows left out as turns on the spot
     _hole_warned = False  # decision L674's one line
     drop_neighbour = False  # decisions E101, L549 (a bare Tracker.__new__: L167 off)
     gated_level_dz: bool | str = False  # decision L550 (a bare Tracker.__new__: raw heights)
@@ -1695,6 +1697,8 @@ class Tracker(OwnGuard, FixInput):
             if latest < t1 - self._held_s:  # decision E31: a stream's last value held for this step
                 self._note_held(t1, force)
             t0, t1 = self._pending.pop(0)
+            if self._turn_in_place(t0, t1):  # decision L742: no stride; the next one's gap yaw keeps the turn
+                continue
             snap = self._before()  # decision E280: what a restart state holds while the stride is held
             try:
                 rec = self._measure(t0, t1)
@@ -1708,6 +1712,18 @@ class Tracker(OwnGuard, FixInput):
                 raise DataError(self._no_gravity(t0, t1)) from None
             out += self._release(self._loops.add(rec[3], (rec, snap)))
         return out
+
+    def _turn_in_place(self, t0: float, t1: float) -> bool:
+        """Decision L742: whether the foot window ``[t0, t1]`` is a turn on the spot (:func:`~pdrlearn.kernels.spin.
+        turn_in_place`, offline's rule); the first one warns one line."""
+        if not all(n in self._buf for n in ("fAccelerometer", "fGyroscope")):
+            return False
+        if not _spin.turn_in_place(*self._stream("fAccelerometer"), *self._stream("fGyroscope"), t0, t1):
+            return False
+        self.n_turns_in_place += 1
+        if self.n_turns_in_place == 1:
+            self._warn(_spin.spin_line())
+        return True
 
     def _before(self) -> tuple:
         """Decision E280: the measuring state before a stride (the last stride's end, E272's bias): a restart state

@@ -55,6 +55,7 @@ from pdrlearn.io.session import Session
 from pdrlearn.kernels import carried_yaw as KCY
 from pdrlearn.kernels import distance as KD
 from pdrlearn.kernels import sideways as KSW
+from pdrlearn.kernels.spin import spin_line, turns_in_place
 from pdrlearn.kernels import stop_bias as KSB
 from pdrlearn.kernels import stride as SK
 from pdrlearn.kernels import turn_length as KT
@@ -1403,10 +1404,14 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                                   "of 0 m with its gap_s in steps.csv (L67)" + gap_heading_clause(foot_gaps, how),
                                   (heading or cfg["heading"]) if waist_heads else "foot")
     strides = drop_steps_across_gaps(strides, foot_gaps)
+    spins = turns_in_place(foot.t, foot.acc, foot.t, foot.gyr, strides["start_s"], strides["end_s"])  # L742
+    strides = strides[~spins].reset_index(drop=True)
+    warnings += [spin_line(int(spins.sum()))] if spins.any() else []
     if not len(strides):
         # decision B318: the session's folder (as every other error names it), and its own exit code 4
         raise NoStridesError(f"{session.where}: no strides detected; is the foot unit moving?"
-                             f"{_no_strides_hint(session)}")
+                             + (f" ({spin_line(int(spins.sum()))})" if spins.any() else "")
+                             + f"{_no_strides_hint(session)}")
     fd_kw = {k: cfg[k] for k in ("integrator", "zupt_end", "gyro_bias", "attitude")}
     fd_kw.update(check_foot_settings(params, "plasys params"))  # decisions B206 / B207
     if clipped[0]:  # decision L525 (a): the streamed stride's tilt correction and ZUPT clock
@@ -2048,6 +2053,9 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     fine = SK.fine_spec(seg_params, streams.__getitem__, forward, rest_search_s=rest_search_s,  # decision L141
                         heading=step_heading)
     strides = SK.stance_strides(*streams["fGyroscope"], seg_params)
+    spins = (turns_in_place(*streams["fAccelerometer"], *streams["fGyroscope"], strides[:, 0], strides[:, 1])
+             if "fAccelerometer" in streams else np.zeros(len(strides), dtype=bool))  # decision L742, as the runtime
+    strides = strides[~spins]
     if not len(strides):
         raise DataError(f"session '{session.name}': no stance-to-stance stride found on the foot gyroscope")
     table = pd.DataFrame({"start_s": strides[:, 0], "end_s": strides[:, 1]})
@@ -2064,6 +2072,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                                             "moves 0 m, as the runtime, E30)"
                                             + gap_heading_clause(foot_gaps, "bridged" if bridged else "none"),
                                             waist_how)
+    warnings += [spin_line(int(spins.sum()))] if spins.any() else []  # decision L742
     if heading == "auto" and not ("waist" in forward and "waist_gyr" in available):  # as offline M2/M3 say
         warnings.append(no_waist_heading(session))
     elif heading in ("auto", "waist-gyro"):  # decision W125: the waist gyroscope heads the strides, as `run`'s
