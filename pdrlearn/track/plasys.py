@@ -2057,7 +2057,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
              if "fAccelerometer" in streams else np.zeros(len(strides), dtype=bool))  # decision L742, as the runtime
     strides = strides[~spins]
     if not len(strides):
-        raise DataError(f"session '{session.name}': no stance-to-stance stride found on the foot gyroscope")
+        raise DataError(f"session '{session.name}': no stance-to-stance stride found on the foot gyroscope"
+                        + (f" ({spin_line(int(spins.sum()))})" if spins.any() else ""))
     table = pd.DataFrame({"start_s": strides[:, 0], "end_s": strides[:, 1]})
     # decision B11 / E30: as the streaming runtime (parity), a stride across a foot-stream gap over 1 s moves 0 m,
     # turns with the waist gyroscope when it heads the strides (L99; else keeps the heading, L90) and has no classes; a
