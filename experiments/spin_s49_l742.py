@@ -3,10 +3,10 @@ in docs/decisions/localization.md before measuring.
 
 Fresh users: 16620-16625 walk a programme (walk, backward, stepping turn, side steps, a spin:180 of 2-6 s, a walk
 after it, stairs) tracked by ``track`` (offline), ``track --streaming`` and ``run`` (the user's own bundle);
-16626-16649 a spin-only session (180-360 deg in 2-6 s, or 720 deg as two spins), tracked offline and streamed.
+16626-16637 a spin-only session (180-360 deg in 2-6 s, or 720 deg as two spins), tracked offline and streamed.
 Each by main's code (``PYTHONPATH=MAIN``) and this branch's (``PYTHONPATH=BRANCH``). Run
-``python experiments/spin_s49_l742.py MAIN BRANCH`` (sessions, then the table), and ``... MAIN BRANCH real``
-(/work/shared/data, offline and streamed).
+``python experiments/spin_s49_l742.py MAIN BRANCH prog``, ``... spin`` (each writes its rows), ``... report`` (the
+table), and ``... real`` (/work/shared/data, offline and streamed).
 """
 from __future__ import annotations
 
@@ -19,7 +19,7 @@ from pathlib import Path
 import pandas as pd
 
 PROG_USERS = range(16620, 16626)
-SPIN_USERS = range(16626, 16650)
+SPIN_USERS = range(16626, 16638)
 WORK = Path("/tmp/fe_s49_l742")
 REAL = Path("/work/shared/data")
 PY = "/work/main/.venv/bin/python"
@@ -34,8 +34,9 @@ def programme(u: int) -> str:
 
 def cli(code: str, *args: str, check: bool = True) -> subprocess.CompletedProcess:
     env = {**os.environ, "PYTHONPATH": code, "MPLBACKEND": "Agg"}
-    r = subprocess.run(["nice", PY, "-m", "pdrlearn", *args], env=env, capture_output=True, text=True)
-    if check and r.returncode not in (0, 4):
+    WORK.mkdir(parents=True, exist_ok=True)  # not the repository: ``-m`` puts the working folder first on sys.path
+    r = subprocess.run(["nice", PY, "-m", "pdrlearn", *args], env=env, capture_output=True, text=True, cwd=WORK)
+    if check and r.returncode not in (0, 1, 2, 4) or "Traceback" in r.stderr:
         raise RuntimeError(f"{args}: {r.stderr[-400:]}")
     return r
 
@@ -53,7 +54,8 @@ def inside_spins(steps: Path, spins: Path) -> int:
 
 def result(out: Path, sess: Path, r: subprocess.CompletedProcess) -> dict:
     if not (out / "summary.json").exists():
-        return {"strides": 0, "in_spin": 0, "dist": 0.0, "fpe": None, "rc": r.returncode}
+        return {"strides": 0, "in_spin": 0, "dist": 0.0, "fpe": None, "rc": r.returncode,
+                "error": r.stderr.strip().splitlines()[-1][:160] if r.stderr.strip() else ""}
     s = json.loads((out / "summary.json").read_text())
     return {"strides": len(pd.read_csv(out / "steps.csv")), "in_spin": inside_spins(out / "steps.csv",
                                                                                      sess / "spins.csv"),
@@ -81,30 +83,37 @@ def main(main_code: str, branch: str, mode: str = "sim") -> None:
     if mode == "real":
         for d in sorted(p for p in REAL.iterdir() if p.is_dir()):
             rows += track_all(d, codes, None)
-        print(pd.DataFrame(rows).to_string())
+        pd.set_option("display.width", 250)
+        print(pd.DataFrame(rows).drop(columns=["error"], errors="ignore").to_string())
         return
-    for u in PROG_USERS:
-        d = WORK / f"u{u}"
-        if not (d / "bundle").exists():
-            for s in ("terrain", "direction", "length"):
-                cli(main_code, "simulate", "--scenario", s, "--user-seed", str(u), "--rate", "100", "--out",
-                    str(d / "calib" / s))
-            cli(main_code, "train", str(d / "calib"), "--out", str(d / "model"))
-            cli(main_code, "export", str(d / "model"), "--out", str(d / "bundle"))
-        if not (d / "prog").exists():
-            cli(main_code, "simulate", "--route", programme(u), "--user-seed", str(u), "--seed", "3", "--rate",
-                "100", "--out", str(d / "prog"))
-        true = len(pd.read_csv(d / "prog" / "steps.csv"))
-        rows += [{**x, "true": true} for x in track_all(d / "prog", codes, d / "bundle")]
-        print(pd.DataFrame(rows[-6:]).to_string(), flush=True)
-    for k, u in enumerate(SPIN_USERS):
-        d = WORK / f"spin_u{u}"
-        if not d.exists():
-            cli(main_code, "simulate", "--route", f"stand:3, {SPINS[k % len(SPINS)]}, stand:3", "--user-seed",
-                str(u), "--seed", "3", "--rate", "100", "--out", str(d))
-        rows += [{**x, "true": 0, "spin": SPINS[k % len(SPINS)]} for x in track_all(d, codes, None)]
-    df = pd.DataFrame(rows)
-    df.to_csv(WORK / "rows.csv", index=False)
+    if mode == "prog":
+        for u in PROG_USERS:
+            d = WORK / f"u{u}"
+            if not (d / "bundle").exists():
+                for s in ("terrain", "direction", "length"):
+                    cli(main_code, "simulate", "--scenario", s, "--user-seed", str(u), "--rate", "100", "--out",
+                        str(d / "calib" / s))
+                cli(main_code, "train", str(d / "calib"), "--out", str(d / "model"))
+                cli(main_code, "export", str(d / "model"), "--out", str(d / "bundle"))
+            if not (d / "prog").exists():
+                cli(main_code, "simulate", "--route", programme(u), "--user-seed", str(u), "--seed", "3", "--rate",
+                    "100", "--out", str(d / "prog"))
+            true = len(pd.read_csv(d / "prog" / "steps.csv"))
+            rows += [{**x, "true": true} for x in track_all(d / "prog", codes, d / "bundle")]
+            print(pd.DataFrame(rows[-6:]).to_string(), flush=True)
+        pd.DataFrame(rows).to_csv(WORK / "rows_prog.csv", index=False)
+        return
+    if mode == "spin":
+        for k, u in enumerate(SPIN_USERS):
+            d = WORK / f"spin_u{u}"
+            if not d.exists():
+                cli(main_code, "simulate", "--route", f"stand:3, {SPINS[k % len(SPINS)]}, stand:3", "--user-seed",
+                    str(u), "--seed", "3", "--rate", "100", "--out", str(d))
+            rows += [{**x, "true": 0, "spin": SPINS[k % len(SPINS)]} for x in track_all(d, codes, None)]
+            print(pd.DataFrame(rows[-4:]).to_string(), flush=True)
+        pd.DataFrame(rows).to_csv(WORK / "rows_spin.csv", index=False)
+        return
+    df = pd.concat([pd.read_csv(WORK / f"rows_{m}.csv") for m in ("prog", "spin") if (WORK / f"rows_{m}.csv").exists()])
     pd.set_option("display.width", 250)
     print(df.to_string())
     for (code, path), g in df.groupby(["code", "path"]):
@@ -114,7 +123,6 @@ def main(main_code: str, branch: str, mode: str = "sim") -> None:
               f"(sessions with one {int((g['in_spin'] > 0).sum())} of {len(g)}); programmes: strides - true "
               f"{(prog['strides'] - prog['true']).tolist()}, median final position error "
               f"{prog['fpe'].median():.3f} m; spin-only: strides {spin['strides'].tolist()}")
-
 
 if __name__ == "__main__":
     main(*sys.argv[1:])

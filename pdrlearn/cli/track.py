@@ -1422,8 +1422,8 @@ def distance_error_phrase(summary: dict) -> str:
     whole = (f"all {n} tracked strides {summary['distance_m']:.2f} m vs the labelled strides' {ref:.2f} m: "
              if ref is not None else f"all {n} tracked strides: ")
     return (f", distance error {summary['distance_matched_error_pct']:+.2f} % over the {matched} strides matched to "
-            f"labels{spans}; whole track {distance_error_text(err, ref)} ({whole}strides outside the labelled span count against it, "
-            "L419)")
+            f"labels{spans}; whole track {distance_error_text(err, ref)} ({whole}strides outside the labelled span "
+            "count against it, L419)")
 
 
 def position_error_phrase(summary: dict) -> str:

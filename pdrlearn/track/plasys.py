@@ -55,7 +55,6 @@ from pdrlearn.io.session import Session
 from pdrlearn.kernels import carried_yaw as KCY
 from pdrlearn.kernels import distance as KD
 from pdrlearn.kernels import sideways as KSW
-from pdrlearn.kernels.spin import spin_line, turns_in_place
 from pdrlearn.kernels import stop_bias as KSB
 from pdrlearn.kernels import stride as SK
 from pdrlearn.kernels import turn_length as KT
@@ -79,6 +78,7 @@ from pdrlearn.kernels.distance import (
 from pdrlearn.kernels.first_walk import FirstWalk
 from pdrlearn.kernels.foot_rhythm import foot_period
 from pdrlearn.kernels.pedal import closed_loop_strides, pedal_line, ride_strides, seated_strides, unrested_strides
+from pdrlearn.kernels.spin import spin_line, turns_in_place
 from pdrlearn.kernels.window import (
     BRIDGE_GAP_S,
     GAP_TOL_S,
