@@ -62,3 +62,22 @@ def spin_line(n: int | None = None) -> str:
 
     return (f"{'' if n is None else f'{n} '}turn(s) on the spot without a step left out of the strides: the foot "
             f"rotated about the vertical only (no tilt, no acceleration), which is no stride ({decision_ref('L742')})")
+
+
+def spin_turn(stream, t0: float, t1: float) -> float:
+    """Decision L742: the foot's turn (rad, CCW) over a window ``[t0, t1]`` left out as a turn in place: L31's pivot
+    (:func:`pdrlearn.kernels.stride.gap_yaw` of ``fGyroscope`` / ``fAccelerometer`` over the whole window), which
+    the next foot-headed stride adds to its heading change (before L742 the spurious stride carried it).
+    ``stream(name)`` -> ``(t, values)``, as :func:`~pdrlearn.kernels.stride.stride_gap_yaw`'s."""
+    from pdrlearn.kernels.stride import gap_yaw
+
+    return gap_yaw(*stream("fGyroscope"), *stream("fAccelerometer"), float(t0), float(t1),
+                   max_s=float(t1) - float(t0))
+
+
+def foot_gap_start(prev_end: float | None, spun: tuple[float, float] | None) -> float | None:
+    """Decision L742: where the foot's L31 gap yaw before a stride starts: after the last window left out as a turn
+    in place (``spun`` = (its turn, its end)) when one lies after ``prev_end``, else ``prev_end``."""
+    if spun is None or prev_end is None:
+        return prev_end
+    return max(float(prev_end), float(spun[1]))

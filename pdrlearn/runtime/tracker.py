@@ -527,6 +527,7 @@ class Tracker(OwnGuard, FixInput):
     _side_rows: _sideways.SideRun | None = None  # decision L243 (the same)
     _drop_warned = False
     n_turns_in_place = 0  # decision L742: foot windows left out as turns on the spot
+    _spun: tuple[float, float] | None = None  # decision L742: (their foot turn, the last one's end) since a stride
     _hole_warned = False  # decision L674's one line
     drop_neighbour = False  # decisions E101, L549 (a bare Tracker.__new__: L167 off)
     gated_level_dz: bool | str = False  # decision L550 (a bare Tracker.__new__: raw heights)
@@ -1721,6 +1722,8 @@ class Tracker(OwnGuard, FixInput):
         if not _spin.turn_in_place(*self._stream("fAccelerometer"), *self._stream("fGyroscope"), t0, t1):
             return False
         self.n_turns_in_place += 1
+        turn = _spin.spin_turn(self._stream, t0, t1)  # its turn goes to the next foot-headed stride
+        self._spun = (turn + (self._spun[0] if self._spun is not None else 0.0), t1)
         if self.n_turns_in_place == 1:
             self._warn(_spin.spin_line())
         return True
@@ -2194,7 +2197,12 @@ class Tracker(OwnGuard, FixInput):
                 dyaw += stride_gap_yaw(lev, self.heading_source, self._stream, prev, t0, foot=False,
                                        waist=self.waist_gap_yaw)
         else:  # decisions L31 / L61: the heading unit's turn between strides (track --streaming's call)
-            dyaw += stride_gap_yaw(lev, self.heading_source, self._stream, prev, t0, waist=self.waist_gap_yaw)
+            if self._spun is not None and headed_by_foot(lev, self.heading_source):  # decision L742: the foot's
+                dyaw += self._spun[0]  # turn in place before it, and its pivot after that (track --streaming's)
+                dyaw += stride_gap_yaw(lev, self.heading_source, self._stream, _spin.foot_gap_start(prev, self._spun),
+                                       t0)
+            else:
+                dyaw += stride_gap_yaw(lev, self.heading_source, self._stream, prev, t0, waist=self.waist_gap_yaw)
             started = _carried_yaw.carried_turn(self._stream, lev, self.heading_source, prev, t0, t1,
                                                  self.waist_gap_yaw)  # decision E285 (track --streaming's call)
             if started is not None:
@@ -2205,6 +2213,7 @@ class Tracker(OwnGuard, FixInput):
             turn -= self._stop_bias.turn(t0, t1)
             dyaw -= self._stop_bias.turn(lo, t1)
         turn = _sideways.own_turn(lev, self.heading_source, turn)  # decision L699: the foot's own turn, as offline's
+        self._spun = None  # decision L742: taken by this stride (or by the waist's gap, or lost over a foot gap)
         self._prev_end = t1
         if bridged:  # decision E280: a stride across bridged samples (L167's) is in its chain, not judged
             row = _pedal.unjudged_row(t0, t1)

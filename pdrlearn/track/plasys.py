@@ -78,7 +78,7 @@ from pdrlearn.kernels.distance import (
 from pdrlearn.kernels.first_walk import FirstWalk
 from pdrlearn.kernels.foot_rhythm import foot_period
 from pdrlearn.kernels.pedal import closed_loop_strides, pedal_line, ride_strides, seated_strides, unrested_strides
-from pdrlearn.kernels.spin import spin_line, turns_in_place
+from pdrlearn.kernels.spin import foot_gap_start, spin_line, spin_turn, turns_in_place
 from pdrlearn.kernels.window import (
     BRIDGE_GAP_S,
     GAP_TOL_S,
@@ -2055,6 +2055,13 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     strides = SK.stance_strides(*streams["fGyroscope"], seg_params)
     spins = (turns_in_place(*streams["fAccelerometer"], *streams["fGyroscope"], strides[:, 0], strides[:, 1])
              if "fAccelerometer" in streams else np.zeros(len(strides), dtype=bool))  # decision L742, as the runtime
+    # decision L742: each kept stride's (foot turn, end) of the turns in place left out since the stride before it
+    spun = [None] * int((~spins).sum())
+    for k in np.flatnonzero(spins):
+        nxt = int((~spins[:k]).sum())  # the kept stride after it
+        if nxt < len(spun):
+            turn = spin_turn(streams.__getitem__, float(strides[k, 0]), float(strides[k, 1]))
+            spun[nxt] = (turn + (spun[nxt][0] if spun[nxt] is not None else 0.0), float(strides[k, 1]))
     strides = strides[~spins]
     if not len(strides):
         raise DataError(f"session '{session.name}': no stance-to-stance stride found on the foot gyroscope"
@@ -2179,6 +2186,9 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             elif not foot_headed[i]:  # L61's waist look-back is measured, kept
                 dyaw[i] += SK.stride_gap_yaw(lev, heading, streams.__getitem__, prev, float(t0), foot=False,
                                              waist=waist_gap_yaw)
+        elif i and spun[i] is not None and gap_yaw and foot_headed[i]:  # decision L742: the foot's turn in place
+            dyaw[i] += spun[i][0] + SK.stride_gap_yaw(lev, heading, streams.__getitem__,  # before it (the runtime's)
+                                                      foot_gap_start(prev, spun[i]), float(t0))
         elif i:  # decisions L31 / L61: the heading unit's turn between strides (the runtime's call)
             dyaw[i] += SK.stride_gap_yaw(lev, heading, streams.__getitem__, prev, float(t0),
                                          foot=gap_yaw, waist=waist_gap_yaw)
