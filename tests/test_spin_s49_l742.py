@@ -80,3 +80,18 @@ def test_a_distance_error_of_a_short_reference_is_in_metres():
         ", distance error -0.42 m (reference 0.79 m: under 2 m, no percent, L743)")  # main: -53.31 %
     assert distance_error_phrase({"distance_error_pct": 1.5, "distance_ref_m": 20.0}) == ", distance error +1.50 %"
     assert distance_error_phrase({"distance_error_pct": 1.5}) == ", distance error +1.50 %"
+
+
+def test_a_foot_headed_stream_keeps_the_turn_in_place():
+    """Without the lower back, the spin's turn is the foot's: left out as a stride, it goes to the next stride (L742;
+    dropped with it, users 16650-16652's final position error was 5.6-6.3 m instead of main's 0.8-1.2 m)."""
+    from pdrlearn.track.base import get_pipeline
+    from pdrlearn.track.evaluate import track_summary
+
+    s = simulate_path(parse_route("stand:2, straight:4, stand:2, spin:270:3, stand:2, straight:4, stand:2"),
+                      UserProfile.from_seed(16650), rate_hz=50, seed=1, name="foot")
+    for n in ("wAccelerometer", "wGyroscope", "wBarometer", "wMagneticField"):
+        s.streams.pop(n, None)
+    res = get_pipeline("plasys")(s, streaming=True)
+    assert len(res.steps) == len(s.steps)  # main: one stride more, inside the spin
+    assert track_summary(res, s, pipeline="plasys")["final_position_error_m"] < 2.0
