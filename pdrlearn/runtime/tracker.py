@@ -2208,7 +2208,8 @@ class Tracker(OwnGuard, FixInput):
             if started is not None:
                 turn, dyaw = started
         if self._stop_bias is not None and not headed_by_foot(lev, self.heading_source):  # decision E272
-            self._stop_bias.update(self._stream, prev, t0)
+            # decision L742: a stop is still: the one after a turn in place starts at its end (no bias from the turn)
+            self._stop_bias.update(self._stream, _spin.foot_gap_start(prev, self._spun), t0)
             lo = prev if pause_gap and self._bridged() else waist_gap_from(prev, t0, self.waist_gap_yaw)
             turn -= self._stop_bias.turn(t0, t1)
             dyaw -= self._stop_bias.turn(lo, t1)

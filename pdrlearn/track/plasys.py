@@ -2197,7 +2197,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             if started is not None:
                 turn[i], dyaw[i] = started
         if stop is not None and not foot_headed[i]:  # decision E272: the bias read at the last stop, as the runtime
-            stop.update(streams.__getitem__, prev, float(t0))
+            stop.update(streams.__getitem__, foot_gap_start(prev, spun[i]), float(t0))  # L742: after a turn in place
             lo = (prev if i and prev < t0 and bridged and overlaps_any(prev, float(t0), imu_gaps)
                   else SK.waist_gap_from(prev, float(t0), waist_gap_yaw))
             turn[i] -= stop.turn(t0, t1)
