@@ -753,7 +753,9 @@ def run(
             from pdrlearn.track.evaluate import floors_phrase  # decisions L64, L127 (numpy: lazily)
 
             typer.echo(f"{source}: {count_phrase(summary)}, {summary['distance_m']:.2f} m"
-                       + (f", distance error {err:+.2f} %" if err is not None else "") + ", final position "
+                       + _track.distance_error_phrase({"distance_error_pct": err,  # decision L743, as track's
+                                                       "distance_ref_m": summary.get("distance_ref_m")})
+                       + ", final position "
                        f"{[round(summary['final_position'][k], 2) for k in 'xyz']}"
                        + _track.position_error_phrase(summary)  # decision E206: as track's line
                        # L64: the storeys climbed and descended, when the track changed floors
@@ -1011,7 +1013,9 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
         return
     err = summary.get("distance_error_pct")
     typer.echo(f"{summary['source']}: {count_phrase(summary)}, {summary['distance_m']:.2f} m"
-               + (f", distance error {err:+.2f} %" if err is not None else "") + ", final position "
+               + _track.distance_error_phrase({"distance_error_pct": err,  # decision L743, as track's
+                                               "distance_ref_m": summary.get("distance_ref_m")})
+               + ", final position "
                f"{[round(summary['final_position'][k], 2) for k in 'xyz']}"
                + _track.position_error_phrase(summary)  # decision E206: as track's line
                + floors_phrase(summary)  # decisions L64, E106: the storeys the barometer climbed, as track's line

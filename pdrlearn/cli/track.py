@@ -1418,9 +1418,11 @@ def distance_error_phrase(summary: dict) -> str:
     err = summary.get("distance_error_pct")
     if err is None:
         return ""
+    from pdrlearn.track.evaluate import distance_error_text  # decision L743 (numpy: lazily)
+
     matched, n = summary.get("stride_length_matched"), summary.get("n_steps")
     if summary.get("distance_matched_error_pct") is None or matched is None or n is None or matched >= n:
-        return f", distance error {err:+.2f} %"
+        return f", distance error {distance_error_text(err, summary.get('distance_ref_m'))}"
     spans = (f" ({summary['distance_matched_m']:.2f} m tracked vs {summary['distance_matched_ref_m']:.2f} m labelled)"
              if summary.get("distance_matched_m") is not None and summary.get("distance_matched_ref_m") is not None
              else "")
@@ -1428,8 +1430,8 @@ def distance_error_phrase(summary: dict) -> str:
     whole = (f"all {n} tracked strides {summary['distance_m']:.2f} m vs the labelled strides' {ref:.2f} m: "
              if ref is not None else f"all {n} tracked strides: ")
     return (f", distance error {summary['distance_matched_error_pct']:+.2f} % over the {matched} strides matched to "
-            f"labels{spans}; whole track {err:+.2f} % ({whole}strides outside the labelled span count against it, "
-            "L419)")
+            f"labels{spans}; whole track {distance_error_text(err, ref)} ({whole}strides outside the labelled span "
+            "count against it, L419)")
 
 
 def position_error_phrase(summary: dict) -> str:

@@ -30,6 +30,7 @@ from pdrlearn.kernels import first_walk as _first_walk
 from pdrlearn.kernels import pedal as _pedal
 from pdrlearn.kernels import relative_length as _relative_length
 from pdrlearn.kernels import sideways as _sideways
+from pdrlearn.kernels import spin as _spin
 from pdrlearn.kernels import stop_bias as _stop_bias
 from pdrlearn.kernels import turn_length as _turn_length
 from pdrlearn.kernels.align import MAX_CLOCK_DRIFT
@@ -529,6 +530,8 @@ class Tracker(OwnGuard, FixInput):
     _side: _sideways.SideRun | None = None  # decision E124 (a bare Tracker.__new__ makes one at its first stride)
     _side_rows: _sideways.SideRun | None = None  # decision L243 (the same)
     _drop_warned = False
+    n_turns_in_place = 0  # decision L742: foot windows left out as turns on the spot
+    _spun: tuple[float, float] | None = None  # decision L742: (their foot turn, the last one's end) since a stride
     _hole_warned = False  # decision L674's one line
     drop_neighbour = False  # decisions E101, L549 (a bare Tracker.__new__: L167 off)
     gated_level_dz: bool | str = False  # decision L550 (a bare Tracker.__new__: raw heights)
@@ -1702,6 +1705,8 @@ class Tracker(OwnGuard, FixInput):
             if latest < t1 - self._held_s:  # decision E31: a stream's last value held for this step
                 self._note_held(t1, force)
             t0, t1 = self._pending.pop(0)
+            if self._turn_in_place(t0, t1):  # decision L742: no stride; the next one's gap yaw keeps the turn
+                continue
             snap = self._before()  # decision E280: what a restart state holds while the stride is held
             try:
                 rec = self._measure(t0, t1)
@@ -1715,6 +1720,20 @@ class Tracker(OwnGuard, FixInput):
                 raise DataError(self._no_gravity(t0, t1)) from None
             out += self._release(self._loops.add(rec[3], (rec, snap)))
         return out
+
+    def _turn_in_place(self, t0: float, t1: float) -> bool:
+        """Decision L742: whether the foot window ``[t0, t1]`` is a turn on the spot (:func:`~pdrlearn.kernels.spin.
+        turn_in_place`, offline's rule); the first one warns one line."""
+        if not all(n in self._buf for n in ("fAccelerometer", "fGyroscope")):
+            return False
+        if not _spin.turn_in_place(*self._stream("fAccelerometer"), *self._stream("fGyroscope"), t0, t1):
+            return False
+        self.n_turns_in_place += 1
+        turn = _spin.spin_turn(self._stream, t0, t1)  # its turn goes to the next foot-headed stride
+        self._spun = (turn + (self._spun[0] if self._spun is not None else 0.0), t1)
+        if self.n_turns_in_place == 1:
+            self._warn(_spin.spin_line())
+        return True
 
     def _before(self) -> tuple:
         """Decision E280: the measuring state before a stride (the last stride's end, E272's bias): a restart state
@@ -2185,17 +2204,24 @@ class Tracker(OwnGuard, FixInput):
                 dyaw += stride_gap_yaw(lev, self.heading_source, self._stream, prev, t0, foot=False,
                                        waist=self.waist_gap_yaw)
         else:  # decisions L31 / L61: the heading unit's turn between strides (track --streaming's call)
-            dyaw += stride_gap_yaw(lev, self.heading_source, self._stream, prev, t0, waist=self.waist_gap_yaw)
+            if self._spun is not None and headed_by_foot(lev, self.heading_source):  # decision L742: the foot's
+                dyaw += self._spun[0]  # turn in place before it, and its pivot after that (track --streaming's)
+                dyaw += stride_gap_yaw(lev, self.heading_source, self._stream, _spin.foot_gap_start(prev, self._spun),
+                                       t0)
+            else:
+                dyaw += stride_gap_yaw(lev, self.heading_source, self._stream, prev, t0, waist=self.waist_gap_yaw)
             started = _carried_yaw.carried_turn(self._stream, lev, self.heading_source, prev, t0, t1,
                                                  self.waist_gap_yaw)  # decision E285 (track --streaming's call)
             if started is not None:
                 turn, dyaw = started
         if self._stop_bias is not None and not headed_by_foot(lev, self.heading_source):  # decision E272
-            self._stop_bias.update(self._stream, prev, t0)
+            # decision L742: a stop is still: the one after a turn in place starts at its end (no bias from the turn)
+            self._stop_bias.update(self._stream, _spin.foot_gap_start(prev, self._spun), t0)
             lo = prev if pause_gap and self._bridged() else waist_gap_from(prev, t0, self.waist_gap_yaw)
             turn -= self._stop_bias.turn(t0, t1)
             dyaw -= self._stop_bias.turn(lo, t1)
         turn = _sideways.own_turn(lev, self.heading_source, turn)  # decision L699: the foot's own turn, as offline's
+        self._spun = None  # decision L742: taken by this stride (or by the waist's gap, or lost over a foot gap)
         self._prev_end = t1
         if bridged:  # decision E280: a stride across bridged samples (L167's) is in its chain, not judged
             row = _pedal.unjudged_row(t0, t1)

@@ -473,6 +473,20 @@ def _climb_dz(steps: pd.DataFrame):
     return dz, CLIMB_BRIDGE_STRIDES * STEPS_PER_STRIDE[next(iter(units))]
 
 
+#: decision L743: a distance error against a reference shorter than this (m) is printed in metres, not in percent
+#: (under about one and a half adult strides of 1.3-1.4 m: one stride more or less is 50-100 % of it)
+DISTANCE_PCT_MIN_REF_M = 2.0
+
+
+def distance_error_text(err_pct: float, ref_m: float | None) -> str:
+    """Decision L743: the summary line's distance error, "+1.23 %", or in metres (the compared distance minus the
+    reference, ``err_pct`` x ``ref_m`` / 100) when the reference ``ref_m`` is under :data:`DISTANCE_PCT_MIN_REF_M`."""
+    if ref_m is None or not ref_m < DISTANCE_PCT_MIN_REF_M:
+        return f"{err_pct:+.2f} %"
+    return (f"{err_pct * ref_m / 100:+.2f} m (reference {ref_m:.2f} m: under {DISTANCE_PCT_MIN_REF_M:g} m, no "
+            "percent, L743)")
+
+
 def floors_phrase(summary: dict) -> str:
     """The one-line summaries' floor part (``track`` and ``run``, decisions L64, L127): ", floors up U / down D"
     when the track changed floors, and once whether a barometer file lay unused (``barometer_unused``); then (decision

@@ -78,6 +78,7 @@ from pdrlearn.kernels.distance import (
 from pdrlearn.kernels.first_walk import FirstWalk
 from pdrlearn.kernels.foot_rhythm import foot_period
 from pdrlearn.kernels.pedal import closed_loop_strides, pedal_line, ride_strides, seated_strides, unrested_strides
+from pdrlearn.kernels.spin import foot_gap_start, spin_line, spin_turn, turns_in_place
 from pdrlearn.kernels.window import (
     BRIDGE_GAP_S,
     GAP_TOL_S,
@@ -1407,10 +1408,14 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                                   "of 0 m with its gap_s in steps.csv (L67)" + gap_heading_clause(foot_gaps, how),
                                   (heading or cfg["heading"]) if waist_heads else "foot")
     strides = drop_steps_across_gaps(strides, foot_gaps)
+    spins = turns_in_place(foot.t, foot.acc, foot.t, foot.gyr, strides["start_s"], strides["end_s"])  # L742
+    strides = strides[~spins].reset_index(drop=True)
+    warnings += [spin_line(int(spins.sum()))] if spins.any() else []
     if not len(strides):
         # decision B318: the session's folder (as every other error names it), and its own exit code 4
         raise NoStridesError(f"{session.where}: no strides detected; is the foot unit moving?"
-                             f"{_no_strides_hint(session)}")
+                             + (f" ({spin_line(int(spins.sum()))})" if spins.any() else "")
+                             + f"{_no_strides_hint(session)}")
     fd_kw = {k: cfg[k] for k in ("integrator", "zupt_end", "gyro_bias", "attitude")}
     fd_kw.update(check_foot_settings(params, "plasys params"))  # decisions B206 / B207
     if clipped[0]:  # decision L525 (a): the streamed stride's tilt correction and ZUPT clock
@@ -2052,8 +2057,19 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     fine = SK.fine_spec(seg_params, streams.__getitem__, forward, rest_search_s=rest_search_s,  # decision L141
                         heading=step_heading)
     strides = SK.stance_strides(*streams["fGyroscope"], seg_params)
+    spins = (turns_in_place(*streams["fAccelerometer"], *streams["fGyroscope"], strides[:, 0], strides[:, 1])
+             if "fAccelerometer" in streams else np.zeros(len(strides), dtype=bool))  # decision L742, as the runtime
+    # decision L742: each kept stride's (foot turn, end) of the turns in place left out since the stride before it
+    spun = [None] * int((~spins).sum())
+    for k in np.flatnonzero(spins):
+        nxt = int((~spins[:k]).sum())  # the kept stride after it
+        if nxt < len(spun):
+            turn = spin_turn(streams.__getitem__, float(strides[k, 0]), float(strides[k, 1]))
+            spun[nxt] = (turn + (spun[nxt][0] if spun[nxt] is not None else 0.0), float(strides[k, 1]))
+    strides = strides[~spins]
     if not len(strides):
-        raise DataError(f"session '{session.name}': no stance-to-stance stride found on the foot gyroscope")
+        raise DataError(f"session '{session.name}': no stance-to-stance stride found on the foot gyroscope"
+                        + (f" ({spin_line(int(spins.sum()))})" if spins.any() else ""))
     table = pd.DataFrame({"start_s": strides[:, 0], "end_s": strides[:, 1]})
     # decision B11 / E30: as the streaming runtime (parity), a stride across a foot-stream gap over 1 s moves 0 m,
     # turns with the waist gyroscope when it heads the strides (L99; else keeps the heading, L90) and has no classes; a
@@ -2068,6 +2084,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                                             "moves 0 m, as the runtime, E30)"
                                             + gap_heading_clause(foot_gaps, "bridged" if bridged else "none"),
                                             waist_how)
+    warnings += [spin_line(int(spins.sum()))] if spins.any() else []  # decision L742
     if heading == "auto" and not ("waist" in forward and "waist_gyr" in available):  # as offline M2/M3 say
         warnings.append(no_waist_heading(session))
     elif heading in ("auto", "waist-gyro"):  # decision W125: the waist gyroscope heads the strides, as `run`'s
@@ -2173,6 +2190,9 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             elif not foot_headed[i]:  # L61's waist look-back is measured, kept
                 dyaw[i] += SK.stride_gap_yaw(lev, heading, streams.__getitem__, prev, float(t0), foot=False,
                                              waist=waist_gap_yaw)
+        elif i and spun[i] is not None and gap_yaw and foot_headed[i]:  # decision L742: the foot's turn in place
+            dyaw[i] += spun[i][0] + SK.stride_gap_yaw(lev, heading, streams.__getitem__,  # before it (the runtime's)
+                                                      foot_gap_start(prev, spun[i]), float(t0))
         elif i:  # decisions L31 / L61: the heading unit's turn between strides (the runtime's call)
             dyaw[i] += SK.stride_gap_yaw(lev, heading, streams.__getitem__, prev, float(t0),
                                          foot=gap_yaw, waist=waist_gap_yaw)
@@ -2181,7 +2201,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             if started is not None:
                 turn[i], dyaw[i] = started
         if stop is not None and not foot_headed[i]:  # decision E272: the bias read at the last stop, as the runtime
-            stop.update(streams.__getitem__, prev, float(t0))
+            stop.update(streams.__getitem__, foot_gap_start(prev, spun[i]), float(t0))  # L742: after a turn in place
             lo = (prev if i and prev < t0 and bridged and overlaps_any(prev, float(t0), imu_gaps)
                   else SK.waist_gap_from(prev, float(t0), waist_gap_yaw))
             turn[i] -= stop.turn(t0, t1)
