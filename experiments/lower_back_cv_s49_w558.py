@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from experiments.gait_variability_s49_w557 import _run, cv
+from gait_variability_s49_w557 import _run, cv
 from pdrlearn.track.clinical import jitter_free_cv, lower_back_cv
 
 
