@@ -10,8 +10,15 @@ import pytest
 
 from pdrlearn.report.clinical import change_lines, gait_speed_line, walk_test_pace_line, walk_test_rests_line
 from pdrlearn.report.time_course import time_course_section
-from pdrlearn.track.corridor import (corridor_gait_speed, corridor_laps, fatigue_rest_text, lap_metres, lap_scale,
-                                     own_corridor_line, rests_text)
+from pdrlearn.track.corridor import (
+    corridor_gait_speed,
+    corridor_laps,
+    fatigue_rest_text,
+    lap_metres,
+    lap_scale,
+    own_corridor_line,
+    rests_text,
+)
 from pdrlearn.track.periods import with_corridor_scale
 from pdrlearn.track.rests import window_rests
 
