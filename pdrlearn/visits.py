@@ -36,8 +36,9 @@ CHANGE_METRICS = CLINICAL_MEASURES + GROUP_METRICS
 #: decision C211: a measure compared between two visits only when its walkway (this sessions.csv column) is the same
 #: at both: a 10 m walkway's speed is not a flying 7.62 m walk's (review R1 F3)
 SAME_WALKWAY = {"ten_m_walk_speed_mps": "ten_m_walk_timed_m"}
-#: decision C211: changes.csv's reason for a measure left out of a pair ({measure}, {walkways} "10 m / 7.62 m", {ref})
-WALKWAY_REASON = "{measure} not compared: walkways differ ({walkways} timed, {ref})"
+#: decision C211: changes.csv's reason for a measure left out of a pair ({measure}, {why} :func:`walkway_why`'s,
+#: {walkways} "10 m / 7.62 m", {ref})
+WALKWAY_REASON = "{measure} not compared: {why} ({walkways} timed, {ref})"
 
 
 def measure_columns() -> tuple[str, ...]:
@@ -539,6 +540,13 @@ def walkways_differ(base_rows, visit_rows, measure: str) -> str | None:
     return " / ".join("+".join(f"{x:g} m" for x in side) for side in (b, v))
 
 
+def walkway_why(walkways: str) -> str:
+    """Decision C211 (review R2 F5): why :func:`walkways_differ`'s ``walkways`` ("10 m / 7.62 m") are not compared:
+    "walkways differ", or "mixed walkways within a visit" when both visits timed the same two (or more)."""
+    base, later = walkways.split(" / ")
+    return "mixed walkways within a visit" if base == later else "walkways differ"
+
+
 def change_table(sessions, metrics=CHANGE_METRICS, visit_map: dict[str, str] | None = None, by: str | None = None):
     """changes.csv from sessions.csv (a DataFrame), or ``None`` when the sessions naming a subject and a visit name
     fewer than two visits (decision C22). Visit names are first made one per visit (:func:`canonical_visits`,
@@ -610,8 +618,8 @@ def change_table(sessions, metrics=CHANGE_METRICS, visit_map: dict[str, str] | N
                 reasons += [f"{p} holds the same recording as {d} (duplicate_of)" for p, d in _copies(b_row, v_row)]
             apart = {m: walkways_differ(mine[mine["visit"] == base], mine[mine["visit"] == visit], m)
                      for m in measures} if status == "ok" else {}  # decision C211: one walkway at both visits
-            reasons += [WALKWAY_REASON.format(measure=m, walkways=w, ref=decision_ref("C211", topic="cohort"))
-                        for m, w in apart.items() if w]
+            reasons += [WALKWAY_REASON.format(measure=m, why=walkway_why(w), walkways=w,
+                                              ref=decision_ref("C211", topic="cohort")) for m, w in apart.items() if w]
             row = {"subject": subject, "group": everything["group"].astype(str).iloc[0], "baseline_visit": base,
                    "visit": visit, "status": status, "reason": "; ".join(reasons) or None,
                    **{f"{k}visit_as_written": _names(mine.loc[mine["visit"] == w, "visit_as_written"])

@@ -7,9 +7,9 @@ import math
 
 import pandas as pd
 
-from pdrlearn.report.clinical import change_lines
+from pdrlearn.report.clinical import change_lines, walkway_reason
 from pdrlearn.tables import summary_row
-from pdrlearn.visits import change_table
+from pdrlearn.visits import change_table, walkway_why, walkways_differ
 
 TEN, FLYING = [2.0, 10.0, 2.0], [1.0, 7.62, 3.38]
 APART = "not compared: walkways differ (10 m / 7.62 m timed, docs/decisions/cohort.md C211)"
@@ -53,3 +53,14 @@ def test_sessions_row_carries_the_walkway_and_changes_csv_does_not_pair_across_w
     assert f"ten_m_walk_speed_mps {APART}" in apart["reason"]
     same = change_table(sessions(TEN)).iloc[0]
     assert round(same["ten_m_walk_speed_mps_change"], 3) == 0.271 and not same["reason"]
+
+
+def test_two_visits_mixing_the_same_walkways_say_so():
+    """Review R2 F5: both visits timed on the same two walkways are mixed within a visit, not "walkways differ"."""
+    b = pd.DataFrame({"ten_m_walk_speed_mps": [1.1, 1.2], "ten_m_walk_timed_m": [10.0, 7.62]})
+    v = pd.DataFrame({"ten_m_walk_speed_mps": [1.2, 1.3], "ten_m_walk_timed_m": [10.0, 7.62]})
+    mixed = walkways_differ(b, v, "ten_m_walk_speed_mps")
+    assert walkway_why(mixed) == "mixed walkways within a visit"  # main: walkways differ
+    assert walkway_why("10 m / 7.62 m") == walkway_why("10 m / 7.62 m+10 m") == "walkways differ"
+    reason = f"tug_time_s x; ten_m_walk_speed_mps not compared: mixed walkways within a visit ({mixed} timed, C211)"
+    assert walkway_reason(reason, "ten_m_walk_speed_mps") == f"mixed walkways within a visit ({mixed} timed, C211)"

@@ -10,7 +10,15 @@ import pytest
 
 from pdrlearn.report.clinical import change_lines, gait_speed_line, walk_test_pace_line, walk_test_rests_line
 from pdrlearn.report.time_course import time_course_section
-from pdrlearn.track.corridor import corridor_gait_speed, corridor_laps, fatigue_rest_text, lap_scale, rests_text
+from pdrlearn.track.corridor import (
+    corridor_gait_speed,
+    corridor_laps,
+    fatigue_rest_text,
+    lap_metres,
+    lap_scale,
+    own_corridor_line,
+    rests_text,
+)
 from pdrlearn.track.periods import with_corridor_scale
 from pdrlearn.track.rests import window_rests
 
@@ -39,10 +47,22 @@ BOUTS = pd.DataFrame({"start_s": [0.0, REST_AT + REST_S], "end_s": [float(REST_A
 def test_lap_scale_counts_the_cone_arc():
     """W562: corridor / (median lap - the cone arc); under 2 laps or no length left: none."""
     assert lap_scale([24.0, 24.0, 25.0], 0.0, 30.0) == pytest.approx(1.25)
-    assert lap_scale([24.0, 24.0], 0.8, 30.0) == pytest.approx(30.0 / 23.2)
-    assert lap_scale([24.0], 0.0, 30.0) is None and lap_scale([1.0, 1.0], 1.0, 30.0) is None
+    assert lap_scale([24.0, 24.0], 0.8, 30.0, first_stretch=False) == pytest.approx(30.0 / 23.2)
+    assert lap_scale([24.0], 0.0, 30.0) is None and lap_scale([0.5, 1.0], 1.0, 30.0) is None
     assert corridor_gait_speed({"gait_speed_mps": 0.8, "walk_test_scale": 1.25}) == pytest.approx(1.0)
     assert corridor_gait_speed({"gait_speed_mps": 0.8}) is None
+
+
+def test_the_first_stretch_holds_half_an_arc():
+    """Review R2 F1: the stretch from the first step to the first turn's middle holds half a cone arc, the laps
+    between two turns a whole one: with exactly 2 laps of an exact track the scale is 1 (main: 1.0191), and C207's
+    own corridor length (the same metres) is the corridor's."""
+    first, inner = 20.0 + 1.5 / 2, 20.0 + 1.5
+    for laps in ([first, inner], [first, inner, inner]):
+        assert lap_scale(laps, 1.5, 20.0) == pytest.approx(1.0)
+    assert lap_metres([first, inner], 1.5).tolist() == [20.0, 20.0]
+    assert own_corridor_line(np.array([first, inner, 5.0]), 1.5, 20.0, 0.01) is None  # main: -1.9 %, a line
+    assert "C207" in own_corridor_line(np.array([first, inner, 5.0]), 1.5, 19.0, 0.01)
 
 
 def test_corridor_laps_give_the_scale_on_the_lower_back_only():

@@ -48,3 +48,31 @@ def test_a_track_says_a_forward_stride_was_classed_backward(streaming):
     assert back.sum() == 1 and (st["raw_length_m"].to_numpy(float)[back] > 0).all()
     ours = [w for w in res.info["warnings"] if "decision L652" in w]
     assert len(ours) == 1 and ours[0].startswith("1 of ")
+
+
+def test_a_leading_dropped_stride_is_not_the_first_measured_one(monkeypatch):
+    """Review R2 F2: ``track --streaming`` judges L652's line on the rows it writes: a leading stride it drops (B131's
+    posture, L611's pedalling; here the first stride judged pedalling) is not E318's first measured stride, so the
+    real first stride (abs'd, classed backward) is not counted (main: "1 of 3 strides ... classed backward").
+    Fresh user 16900."""
+    import pdrlearn.track.plasys as plasys
+
+    s = simulate_path(parse_route("stand:2, straight:5, stand:2"), UserProfile.from_seed(16900), speed="normal",
+                      rate_hz=50.0, seed=1, scenario="route")
+    s.steps.loc[1, "direction"] = "backward"  # the first stride the track keeps
+    judge = plasys.closed_loop_strides
+
+    def first_pedalling(*a, **k):
+        out = judge(*a, **k).copy()
+        out[0] = True
+        return out
+
+    monkeypatch.setattr(plasys, "closed_loop_strides", first_pedalling)
+    logging.disable(logging.WARNING)
+    try:
+        res = get_pipeline("plasys")(s, model="oracle", streaming=True)
+    finally:
+        logging.disable(logging.NOTSET)
+    assert res.steps["direction"].iloc[0] == "backward" and res.steps["raw_length_m"].iloc[0] > 0
+    assert any("not walking, removed" in w for w in res.info["warnings"])  # the dropped leading stride
+    assert not [w for w in res.info["warnings"] if "decision L652" in w]

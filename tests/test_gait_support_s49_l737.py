@@ -12,7 +12,7 @@ from pdrlearn.sim.route import parse_route
 from pdrlearn.sim.simulate import simulate_path
 from pdrlearn.sim.user import UserProfile
 from pdrlearn.track.bilateral import bilateral_gait, foot_rate_hz
-from pdrlearn.track.support_bias import FORCE_BIAS_MIN_HZ, support_note
+from pdrlearn.track.support_bias import FORCE_BIAS_MIN_HZ, force_unstated, support_note
 from pdrlearn.track.toeoff import stance_range_warning
 
 RACE = "-11.2 to -9.8 of double support"  # L730's range at a 0.58 s race-walking cycle
@@ -30,6 +30,9 @@ def test_the_insole_numbers_are_not_stated_at_20_hz():
     assert RACE in unknown and "measured at 50-100 Hz foot rates" in unknown
     assert "at this walk's 20 Hz" in support_note("force", None, 20.0)  # no cycle: not the two terms either
     assert "37-40 ms short" in support_note("imu", 0.58, 20.0)  # the IMU-only clause is not L737's
+    # review R2 F3: a nominal 50 Hz unit's measured 49.95 Hz is 50 Hz (D7's 1 %, as warn_low_rate); 49 Hz is not
+    assert not force_unstated(49.95) and RACE in support_note("force", 0.58, 49.95)
+    assert force_unstated(49.4) and RACE not in support_note("force", 0.58, 49.4)
 
 
 def test_gait_passes_the_foot_rate_to_the_caveat():

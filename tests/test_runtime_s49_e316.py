@@ -21,7 +21,7 @@ from pdrlearn.kernels.travel import classed_backward_lines, travel_label_array, 
 from pdrlearn.runtime.__main__ import main as lean_main
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
-from pdrlearn.track.travel import travel_labels
+from pdrlearn.track.travel import side_labels, travel_labels
 from tests.lean_helpers import ROOT
 
 BUNDLE = ROOT / "models" / "plasys-sim-default"
@@ -84,6 +84,9 @@ def test_the_kernels():
                             (1.2, 0.0, 0.0))]
     assert travel_label_array([0.4, 0.4, 0.4], [False] * 3, [True] * 3, lateral_m=[0.3, -0.3, np.nan]).tolist() == [
         "left", "right", "side"]  # decision E319: a streamed side step's side by its lateral_m, as offline's
+    # review R2 F6: no lateral part (exactly 0) is no side, streamed and offline (main: right)
+    assert travel_label_array([0.4], [False], [True], lateral_m=[0.0]).tolist() == ["side"]
+    assert side_labels([True, True, False], [0.0, -0.2, 0.3]).tolist() == [None, "right", None]
     assert travel_rows(rows) == travel_labels(pd.DataFrame(rows).assign(unit="foot")).tolist() == [
         "forward", "", "backward", "turn", "", "forward"]
     lines = classed_backward_lines(["backward", "forward"], [False, False], [0.5, 0.5], ["forward", "forward"],

@@ -563,14 +563,14 @@ def _cv_phrase(summary: dict, cv: float | None, needed: int) -> str:
     w = summary.get("stride_time_cv_withheld") or {}
     if w.get("cause") == "lower_back":  # decisions L214, W559: the measured inflation (W557)
         from pdrlearn.decision_refs import decision_ref
-        from pdrlearn.track.clinical import JITTER_FREE_MIN_STRIDES, LOWER_BACK_CV_INFLATION
+        from pdrlearn.track.clinical import JITTER_FREE_WALK, LOWER_BACK_CV_INFLATION
 
         if w.get("jitter_free_cv_pct") is not None:  # decision W558: a long walk's, the contacts' jitter out
             return (f", stride-time CV {w['jitter_free_cv_pct']:.1f} % with the lower back's contact jitter taken out "
-                    f"({w['n_jitter_free_strides']} strides; {decision_ref('W558')})")
+                    f"({w['n_jitter_free_strides']} stride intervals; {decision_ref('W558')})")
         return (f", no stride-time CV on the lower back ({LOWER_BACK_CV_INFLATION}; "
-                f"{decision_ref('L104', 'W557')}; a foot unit gives it, a walk of {JITTER_FREE_MIN_STRIDES} strides "
-                f"or more one with the jitter taken out, {decision_ref('W558')})")
+                f"{decision_ref('L104', 'W557')}; a foot unit gives it, {JITTER_FREE_WALK} one with the jitter "
+                f"taken out, {decision_ref('W558')})")
     if w.get("cause") == "contact_scatter" or "contact_scatter_s" in w:
         return ", stride-time CV withheld (contact timing unreliable, see the warning)"
     if not summary.get("n_stride_times"):

@@ -25,6 +25,14 @@ def walked_distance(length_m) -> float:
     return float(np.nansum(length)) if length.size else 0.0
 
 
+def side_of(lateral_m) -> np.ndarray:
+    """Decisions L412, E319 (review R2 F6): (n,) object, ``left`` where the displacement's left component
+    ``lateral_m`` (m, the foot's frame: y left) is > 0, ``right`` where < 0, None where it is 0 or NaN (no side)."""
+    lateral = np.asarray(lateral_m, dtype=float)
+    with np.errstate(invalid="ignore"):
+        return np.where(lateral > 0, "left", np.where(lateral < 0, "right", None)).astype(object)
+
+
 def travel_label_array(length_m, back, side, turn_angle_rad=None, gap_s=None, impossible=None,
                        given=None, lateral_m=None) -> np.ndarray:
     """Decision L412: (n,) object, each foot stride's ``travel`` label: ``backward`` where ``back`` (L203's
@@ -46,10 +54,7 @@ def travel_label_array(length_m, back, side, turn_angle_rad=None, gap_s=None, im
     side = np.asarray(side, dtype=bool)
     given = np.full(n, None, dtype=object) if given is None else np.asarray(given, dtype=object)
     if lateral_m is not None:  # decision E319: a streamed side step's side, as offline's side_labels
-        lateral = np.asarray(lateral_m, dtype=float)
-        with np.errstate(invalid="ignore"):
-            by_sign = np.where(lateral > 0, "left", np.where(lateral <= 0, "right", None)).astype(object)
-        given = np.where([g in ("left", "right") for g in given], given, by_sign).astype(object)
+        given = np.where([g in ("left", "right") for g in given], given, side_of(lateral_m)).astype(object)
     label[side] = [g if g in ("left", "right") else "side" for g in given[side]]
     label[np.asarray(back, dtype=bool)] = "backward"
     drop = np.zeros(n, bool)

@@ -204,10 +204,10 @@ def walk_names(tracks: list[dict], row) -> dict[str, str]:
 
 def walkway_reason(reason, measure: str) -> str | None:
     """Decision C211: the "walkways differ (10 m / 7.62 m timed, C211)" part of a changes row's ``reason`` for
-    ``measure``; None without one."""
+    ``measure`` (or "mixed walkways within a visit (...)", review R2 F5); None without one."""
     from pdrlearn.visits import WALKWAY_REASON
 
-    head = WALKWAY_REASON.format(measure=measure, walkways="", ref="").split("walkways differ")[0]
+    head = WALKWAY_REASON.split("{why}")[0].format(measure=measure)
     part = next((p for p in str(reason or "").split("; ") if p.startswith(head)), None)
     return None if part is None else part[len(head):]
 

@@ -29,15 +29,14 @@ def _cv_text(summary: dict) -> str | None:
     withheld = summary.get("stride_time_cv_withheld")
     cause = withheld.get("cause") if isinstance(withheld, dict) else None
     if cause == "lower_back":  # decision W559: why, in numbers (W557), and what gives it
-        from pdrlearn.track.clinical import JITTER_FREE_MIN_STRIDES, LOWER_BACK_CV_INFLATION
+        from pdrlearn.track.clinical import JITTER_FREE_WALK, LOWER_BACK_CV_INFLATION
 
         jf = _number(withheld.get("jitter_free_cv_pct"))
         if jf is not None:  # decision W558: a long walk's CV with the contacts' timing jitter taken out
             return (f"stride-time CV {jf:.1f} % (lower back, its contacts' timing jitter taken out, "
-                    f"{withheld.get('n_jitter_free_strides')} strides; W558)")
+                    f"{withheld.get('n_jitter_free_strides')} stride intervals; W558)")
         return (f"stride-time CV not given: on the lower back {LOWER_BACK_CV_INFLATION} (W557); a foot unit "
-                f"gives it, a walk of {JITTER_FREE_MIN_STRIDES} strides or more (~150 m) one with the jitter taken "
-                "out (W558)")
+                f"gives it, {JITTER_FREE_WALK} one with the jitter taken out (W558)")
     return f"stride-time CV not given ({str(cause).replace('_', ' ')})" if cause else None
 
 

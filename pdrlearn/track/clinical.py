@@ -124,6 +124,11 @@ LOWER_BACK_CV_REASON = (f"not given on the lower back: {LOWER_BACK_CV_INFLATION}
 JITTER_FREE_MIN_STRIDES = 181
 #: decision W558: a walking bout's contacts count from this many (W557's measurement: bouts of 8 contacts or more)
 JITTER_FREE_MIN_CONTACTS = 8
+#: decision W558 (review R2 F4): what JITTER_FREE_MIN_STRIDES counts: the stride intervals t[k+2] - t[k] of each bout
+#: (a bout of n contacts gives n - 6, :func:`jitter_free_cv`), not one foot's strides
+JITTER_FREE_WALK = (f"a walk of {JITTER_FREE_MIN_STRIDES} stride intervals or more (about "
+                    f"{JITTER_FREE_MIN_STRIDES + 6} steps in one bout; each bout of {JITTER_FREE_MIN_CONTACTS} steps "
+                    "or more gives its steps less 6)")
 #: decision L215: the withheld line names the level criterion (L188's |dz_m| < 0.10 m) when it removed more than
 #: this share of the straight strides (the trial's MS walk: 49 of 74 strides over 0.10 m by attitude drift)
 NOT_LEVEL_SHARE = 0.5
@@ -1042,7 +1047,8 @@ def jitter_free_cv(bouts: list[np.ndarray]) -> tuple[float, float, int]:
 def lower_back_cv(steps: pd.DataFrame, *, turn_gaps=None) -> dict:
     """Decision W558: the lower back's stride-time CV with its contacts' jitter taken out (:func:`jitter_free_cv`
     over the contacts of each walking bout of :data:`JITTER_FREE_MIN_CONTACTS` or more, :func:`bout_rows`):
-    ``{"jitter_free_cv_pct": CV or None under JITTER_FREE_MIN_STRIDES strides, "n_jitter_free_strides": n}``."""
+    ``{"jitter_free_cv_pct": CV or None under JITTER_FREE_MIN_STRIDES stride intervals, "n_jitter_free_strides": n}``
+    (n: the stride intervals, :data:`JITTER_FREE_WALK`)."""
     st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
     t = st["start_s"].to_numpy(float)
     bouts = [t[a:b] for a, b in bout_rows(st, turn_gaps=turn_gaps) if b - a >= JITTER_FREE_MIN_CONTACTS]

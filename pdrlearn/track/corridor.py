@@ -268,21 +268,34 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
         return laps, out, warnings
     if _is_lower_back(st):  # decision W562: the corridor's scale of the lower back's step lengths
         out["walk_test_scale"] = lap_scale([m for _, _, m, c in stretches[:-1] if c == 1],
-                                           cone_turn_m(cone, t, d, lap_t0, lap_end), corridor_m)
+                                           cone_turn_m(cone, t, d, lap_t0, lap_end), corridor_m,
+                                           first_stretch=stretches[0][3] == 1)  # review R2: its half arc
     per_minute = _per_minute(t, d, stretches, laps["distance_m"].to_numpy(float), t0, walked_end)
     out["walk_test_distance_per_minute_m"] = per_minute
     out["fatigue_index"] = per_minute[-1] / per_minute[0] if len(per_minute) >= 2 and per_minute[0] > 0 else None
     return laps, out, warnings
 
 
-def lap_scale(single_laps: list[float], arc_m: float, corridor_m: float) -> float | None:
-    """Decision W562: the factor that puts a track's metres on the corridor's: ``corridor_m`` / (the median of
-    ``single_laps``, the tracked metres of the laps between two cone turns, less ``arc_m``, C181's metres walked round
-    a cone, which the walker walks but no corridor length counts); None with fewer than
+def lap_metres(laps, arc_m: float, *, first_stretch: bool = True) -> np.ndarray:
+    """Decisions C181, W562, C207 (review R2 F1): the corridor metres of the tracked ``laps`` ending at a cone turn:
+    each less the metres walked round a cone (``arc_m``, :func:`cone_turn_m`; the ATS rule counts the corridor, not
+    the arc). A lap between two turns' middles holds two half arcs, one arc; the first stretch (from the first step to
+    the first turn's middle; ``first_stretch``: ``laps[0]`` is it) holds one half only."""
+    own = np.asarray(laps, float) - float(arc_m)
+    if first_stretch and len(own):
+        own[0] += 0.5 * float(arc_m)
+    return own
+
+
+def lap_scale(single_laps: list[float], arc_m: float, corridor_m: float, *, first_stretch: bool = True
+              ) -> float | None:
+    """Decision W562: the factor that puts a track's metres on the corridor's: ``corridor_m`` / the median of
+    ``single_laps`` (the tracked metres of the laps between two cone turns; ``first_stretch``: the first of them is
+    the stretch from the first step) less the cone's arc, :func:`lap_metres`; None with fewer than
     :data:`CORRIDOR_LAP_MIN_LAPS` laps or no length left."""
     if len(single_laps) < CORRIDOR_LAP_MIN_LAPS:
         return None
-    own = float(np.median(single_laps)) - float(arc_m)
+    own = float(np.median(lap_metres(single_laps, arc_m, first_stretch=first_stretch)))
     return float(corridor_m) / own if own > 0 else None
 
 
@@ -485,11 +498,11 @@ def own_corridor_line(tracked: np.ndarray, arc_m: float, corridor_m: float, marg
     laps = np.asarray(tracked[:-1], float)
     if len(laps) < CORRIDOR_LAP_MIN_LAPS or not np.median(laps) > 0:
         return None
-    own = float(np.median(laps)) - float(arc_m)
+    own = float(np.median(lap_metres(laps, arc_m)))  # review R2 F1: the first stretch holds half an arc
     if abs(own / corridor_m - 1.0) <= margin:
         return None
-    return coded(f"corridor walk test: the foot track's laps measure the corridor {own:.1f} m (median lap "
-                 f"{np.median(laps):.1f} m less {arc_m:.1f} m round the cone) against --corridor {corridor_m:g} m "
+    return coded(f"corridor walk test: the foot track's laps measure the corridor {own:.1f} m (the median lap less "
+                 f"{arc_m:.1f} m round the cone, half that on the first) against --corridor {corridor_m:g} m "
                  f"({own / corridor_m - 1.0:+.1%}, more than the {margin:.0%} a foot track's laps "
                  f"allow): each lap still counts {corridor_m:g} m, so walk_test_distance_m is off by about as much; "
                  "is the corridor length right? (decision C207)", "C207")

@@ -2327,7 +2327,6 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     # decision E319: each measured stride's displacement to the foot's left, the runtime's Step.lateral_m
     table["lateral_m"] = np.where(in_gap | posture, np.nan, KSW.foot_frame(disp[:, 0], disp[:, 1], frame)[1])
     table["unit"] = "foot"
-    side_class_warning(table, warnings, trained_side_strides(model))  # decisions C137, C161, L652 (a foot table)
     traj = pd.DataFrame({"t": np.concatenate([[table["start_s"].iloc[0]], table["end_s"].to_numpy()]),
                          "x": xyz[:, 0], "y": xyz[:, 1], "z": xyz[:, 2] + start_alt})  # L157: z from alt
     if start is not None:
@@ -2336,6 +2335,9 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     if posture.any():  # decision B131: no row for them, as the runtime emits none (they moved 0 m)
         table, traj, in_gap = (table[~posture].reset_index(drop=True),
                                traj[np.r_[True, ~posture]].reset_index(drop=True), in_gap[~posture])
+    # decisions C137, C161, L652 (a foot table); review R2 F2: after B131's posture rows are dropped, so that E318's
+    # first measured stride is the runtime's (a leading posture row is none)
+    side_class_warning(table, warnings, trained_side_strides(model))
     if any(len(g) for g in foot_gaps.values()):  # decision E46: one 0 m row per stretch with a foot gap (L67)
         table, traj = _one_row_per_gap(table, traj, in_gap, foot_gaps)
     table = streamed_gait_columns(table)  # decision E51

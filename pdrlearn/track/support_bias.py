@@ -47,8 +47,9 @@ IMU_CHILD_STANCE_MS = (-30.1, -3.8)
 
 
 def force_unstated(rate_hz: float | None) -> bool:
-    """Decision L737: the insoles' bias is not stated at a known foot rate under :data:`FORCE_BIAS_MIN_HZ`."""
-    return rate_hz is not None and math.isfinite(rate_hz) and rate_hz < FORCE_BIAS_MIN_HZ
+    """Decision L737: the insoles' bias is not stated at a known foot rate under :data:`FORCE_BIAS_MIN_HZ` (review
+    R2 F3: by more than 1 %, the measured rate of a nominal 50 Hz unit, as D7's ``warn_low_rate``)."""
+    return rate_hz is not None and math.isfinite(rate_hz) and rate_hz < FORCE_BIAS_MIN_HZ * 0.99  # D7's 1 %
 
 
 def stance_bias_ms(setup: str, cycle_s: float | None, rate_hz: float | None = None) -> tuple[float, float] | None:

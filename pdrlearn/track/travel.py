@@ -29,9 +29,11 @@ CHANGE_COLUMNS = ("change", "start_s", "from_travel", "to_travel", "row")
 
 def side_labels(sideways, lateral_y) -> np.ndarray:
     """Decision L412: (n,) object, ``left`` / ``right`` for the ``sideways`` strides (L228) by the sign of their
-    displacement's left component ``lateral_y`` (m, the foot's frame: y left), None elsewhere."""
-    side = np.asarray(sideways, bool)
-    return np.where(side, np.where(np.asarray(lateral_y, float) > 0, "left", "right"), None).astype(object)
+    displacement's left component ``lateral_y`` (m, the foot's frame: y left; :func:`side_of`, review R2 F6: 0 or NaN
+    none), None elsewhere."""
+    from pdrlearn.kernels.travel import side_of
+
+    return np.where(np.asarray(sideways, bool), side_of(lateral_y), None).astype(object)
 
 
 def travel_labels(steps: pd.DataFrame) -> np.ndarray | None:
