@@ -27,7 +27,23 @@ def _gain(s: np.ndarray, h: np.ndarray, leg: float) -> np.ndarray:
     return np.where(g > 0, s / np.maximum(g, 1e-9), np.nan)
 
 
-def sim_rows(users: range, speed: str, bounce: str, rate_hz: float) -> dict:
+def trial_user(u: int, wide: bool):
+    """Decision W569: user ``u`` as trial s49t3 drew its bariatric walkers (height 1.60-1.80 m, 0.70-0.90 m/s at
+    90-100 steps/min, feet 0.25-0.35 m apart; ``scripts/sweep.py``) with ``wide``, else the same stature at its own
+    normal gait and step width (``simulate --height H [--step-length --step-time --step-width]``)."""
+    from pdrlearn.cli.simulate import _custom_gait, scaled_user, with_step_width
+    from pdrlearn.sim.user import UserProfile
+
+    rng = np.random.default_rng(u)
+    h, sp, cad, sw = rng.uniform(1.60, 1.80), rng.uniform(0.70, 0.90), rng.uniform(90, 100), rng.uniform(0.25, 0.35)
+    user = scaled_user(UserProfile.from_seed(u), round(h, 2), None)
+    if not wide:
+        return user
+    st = 60.0 / cad
+    return _custom_gait(with_step_width(user, round(sw, 2)), "normal", round(sp * st, 3), round(st, 3), "route")
+
+
+def sim_rows(users: range, speed: str, bounce: str, rate_hz: float, user_fn=None) -> dict:
     from pdrlearn.sim.path import Stand, Straight
     from pdrlearn.sim.simulate import simulate_path
     from pdrlearn.sim.user import UserProfile
@@ -36,7 +52,7 @@ def sim_rows(users: range, speed: str, bounce: str, rate_hz: float) -> dict:
 
     s_all, ht_all, hp_all, gt_all, gp_all, ratio = [], [], [], [], [], []
     for u in users:
-        user = UserProfile.from_seed(u)
+        user = UserProfile.from_seed(u) if user_fn is None else user_fn(u)
         ses = simulate_path([Stand(3), Straight(40), Stand(3)], user, speed=speed, seed=0, rate_hz=rate_hz,
                             bounce=bounce)
         tr = ses.trajectory
@@ -96,6 +112,8 @@ def main() -> None:
     ap.add_argument("--bounce", default="constant,pendulum")
     ap.add_argument("--rate", type=float, default=100.0, help="simulated rate (Hz); the real walks are 100 Hz")
     ap.add_argument("--no-real", action="store_true", help="the simulated rows only")
+    ap.add_argument("--trial-w569", action="store_true", help="decision W569: trial s49t3's slow wide walkers "
+                    "against the same statures at their own normal gait, instead of slow / normal / fast")
     a = ap.parse_args()
     logging.getLogger("pdrlearn").setLevel(logging.ERROR)  # the no-calibration and heading lines of every session
     lo, hi = (int(v) for v in a.users.split("-"))
@@ -103,9 +121,12 @@ def main() -> None:
     print(f"{'group':34s} {'s m':>6s} {'h truth cm':>10s} {'h pipe cm':>9s} {'gain truth':>10s} {'gain pipe':>9s} "
           f"{'ratio (min-max)':>22s}")
     for bounce in a.bounce.split(","):
-        for speed in ("slow", "normal", "fast"):
-            r = sim_rows(range(lo, hi + 1), speed, bounce, a.rate)
-            print(f"{f'sim {bounce} {speed} {a.rate:g}Hz u{lo}-{hi}':34s} {r['s']:6.3f} {100 * r['h_truth']:10.2f} "
+        groups = ([("wide-slow", "normal", lambda u: trial_user(u, True)),
+                   ("own-normal", "normal", lambda u: trial_user(u, False))] if a.trial_w569 else
+                  [(speed, speed, None) for speed in ("slow", "normal", "fast")])
+        for label, speed, fn in groups:
+            r = sim_rows(range(lo, hi + 1), speed, bounce, a.rate, fn)
+            print(f"{f'sim {bounce} {label} {a.rate:g}Hz u{lo}-{hi}':34s} {r['s']:6.3f} {100 * r['h_truth']:10.2f} "
                   f"{100 * r['h_pipe']:9.2f} {r['gain_truth']:10.3f} {r['gain_pipe']:9.3f} "
                   f"{r['ratio']:8.3f} ({r['ratio_min']:.3f}-{r['ratio_max']:.3f})", flush=True)
     for name, r in ([] if a.no_real else real_rows(Path(a.external))):
