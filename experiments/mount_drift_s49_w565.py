@@ -75,6 +75,19 @@ def errors(found: list[dict], true_rows) -> tuple[int, int]:
     return len(true_rows) - hit, len(found) - len(used)
 
 
+def _label(t: dict) -> str:
+    return f"{t['kind']}@{t['peak_s']:.1f}{'*' if t['flag'] else ''}"  # * flagged (W278)
+
+
+def real() -> None:
+    for folder in [*REAL, *sorted(TRIAL.glob("HA001_*"))]:
+        for correct in (False, True):
+            tr, sit, stand, warned = run(folder, correct)
+            print(f"REAL {folder.name} per_bout={correct!s:5s} transfers {len(tr)} "
+                  f"({', '.join(_label(t) for t in tr)}) "
+                  f"sitting {sit:.2f} standing {stand:.2f} warned {warned}", flush=True)
+
+
 def main(n: int) -> None:
     logging.getLogger("pdrlearn").setLevel(logging.ERROR)
     users = list(USERS)[:n]
@@ -98,13 +111,12 @@ def main(n: int) -> None:
                   f"max {max(e for _, _, e, *_ in v):.2f} s warned {sum(w for *_, w, _, _, _ in v)}")
     same = all(res[("none", u, False)][4:] == res[("none", u, True)][4:] for u in users)
     print(f"SUMMARY undrifted identical off/on: {same}")
-    for folder in [*REAL, *sorted(TRIAL.glob("HA001_*"))]:
-        for correct in (False, True):
-            tr, sit, stand, warned = run(folder, correct)
-            print(f"REAL {folder.name} per_bout={correct!s:5s} transfers {len(tr)} "
-                  f"({', '.join(t['kind'] + '@' + format(t['peak_s'], '.1f') + ('*' if t['flag'] else '') for t in tr)}) "
-                  f"sitting {sit:.2f} standing {stand:.2f} warned {warned}", flush=True)
+    real()
 
 
 if __name__ == "__main__":
-    main(int(sys.argv[1]) if len(sys.argv) > 1 else len(USERS))
+    if sys.argv[1:] == ["real"]:  # the real check alone
+        logging.getLogger("pdrlearn").setLevel(logging.ERROR)
+        real()
+    else:
+        main(int(sys.argv[1]) if len(sys.argv) > 1 else len(USERS))

@@ -19,6 +19,7 @@ import dataclasses
 
 import numpy as np
 
+from pdrlearn.decision_refs import decision_ref
 from pdrlearn.signal import runs
 from pdrlearn.waist.posture import contact_directions, walking_upright
 from pdrlearn.waist.upright import MIN_WALKING_CONTACTS
@@ -26,8 +27,8 @@ from pdrlearn.waist.upright import MIN_WALKING_CONTACTS
 #: decision W565: a mount drifting more than this (deg) between the first and the last walking bout is said: half of
 #: W222's 15 deg sitting tilt (a drift that large eats half the margin between standing and sitting); our choice
 MOUNT_DRIFT_DEG = 7.5
-#: decision W566: the posture code reads each walking bout's upright when W565's line is said (see W566 for the
-#: measurement that set it)
+#: decision W566 (adopted): the posture code reads each walking bout's upright when W565's line is said (fresh users
+#: 16790-16819 with a drifting mount: misses + false transfers 6 -> 0)
 PER_BOUT_UPRIGHT = True
 
 
@@ -62,11 +63,12 @@ def drift_deg(bouts: list[tuple[float, np.ndarray]]) -> float:
 
 def drift_message(deg: float, bouts: list[tuple[float, np.ndarray]], corrected: bool) -> str:
     """Decisions W565 / W566: the one line of a drifting mount."""
-    then = ("the posture and the chair transfers read each walking bout's upright (decision W566)" if corrected else
+    then = (f"the posture and the chair transfers read each walking bout's upright ({decision_ref('W566')})"
+            if corrected else
             "the posture times and chair transfers, read from one upright, may be wrong late in the recording")
     return (f"the lower-back unit turned on the belt: the walking trunk's upright moved {deg:.1f} deg in the unit "
             f"between the first walking bout (at {bouts[0][0]:.1f} s) and the last (at {bouts[-1][0]:.1f} s); "
-            f"{then}; fasten the unit so that it cannot slide (decision W565)")
+            f"{then}; fasten the unit so that it cannot slide ({decision_ref('W565')})")
 
 
 def turned_up(t: np.ndarray, up_body: np.ndarray, bouts: list[tuple[float, np.ndarray]],
