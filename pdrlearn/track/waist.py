@@ -102,6 +102,7 @@ from pdrlearn.waist.lengths import (
     walking_sequences,
 )
 from pdrlearn.waist.lying import postures_and_transfers, session_lying
+from pdrlearn.waist.mount_drift import drift_imu
 from pdrlearn.waist.params import NO_CALIBRATION, NO_SENSOR_HEIGHT, WaistParams, resolve_params, subject_height
 from pdrlearn.waist.pelvic_rhythm import (
     RHYTHM_SLOW,
@@ -1223,11 +1224,15 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
         if o["trunk_rhythm_veto"]:
             steps = drop_contacts(steps, rhythmic, "n_arrhythmic")
     n_tilted = 0
+    pimu = imu  # decisions W565 / W566: the IMU the posture code reads (a drifting mount's turned up direction)
+    if not realtime and len(steps) and "has_next" in steps:
+        pimu, line = drift_imu(imu, steps["event_s"].to_numpy(float), steps["has_next"].to_numpy(bool))
+        warnings += [line] if line else []
     if o["max_tilt_deg"] is not None:  # W102: a contact made with the trunk far from its walking upright is no step
-        steps = tilt_gate(steps, imu, float(o["max_tilt_deg"]))
+        steps = tilt_gate(steps, pimu, float(o["max_tilt_deg"]))
         n_tilted = steps.attrs["n_tilted"]
     # decision W182: each sit-to-stand / stand-to-sit (W104's events); W277: without walking, from the still standing
-    transfers, upright, upright_source = chair_transfers_upright(imu, steps)
+    transfers, upright, upright_source = chair_transfers_upright(pimu, steps)
     fixed_up = upright if upright_source == "still" else None  # W277: the veto and the postures read it too
     if upright_source != "walking":
         warnings.append(upright_message(upright_source, len(transfers)))
@@ -1235,7 +1240,7 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
     if bool(o["sit_veto"]):  # W104: no step around a sit-to-stand's trunk-flexion peak; W109: step pairs kept;
         # W180: and an undecided contact inside an alternating sequence; W184: or inside a left/right pair
         veto = causal_transfer_veto if causal_veto else transfer_veto  # W200: realtime_sit_veto, the causal form
-        steps = veto(steps, imu, **sit_veto_keywords(o["sit_veto"]),
+        steps = veto(steps, pimu, **sit_veto_keywords(o["sit_veto"]),
                      **({} if causal_veto or fixed_up is None else {"upright": fixed_up}))
         n_vetoed = steps.attrs["n_vetoed"]
         if not causal_veto and len(steps):  # decision W487: and every contact of a seated span (nobody walks seated)
@@ -1244,7 +1249,7 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
             n_vetoed += steps.attrs["n_seated"]
     else:  # W146: the contacts W104's veto would drop (a TUG's chair rises), named below (W343: if still counted)
         ev_sit = steps["event_s"].to_numpy(float)
-        sit_hint_s = ev_sit[~np.isin(ev_sit, transfer_veto(steps, imu)["event_s"].to_numpy(float))]
+        sit_hint_s = ev_sit[~np.isin(ev_sit, transfer_veto(steps, pimu)["event_s"].to_numpy(float))]
     n_unvaulted = 0
     if o["vault_veto"] and pipeline == "waist-pendulum" and not realtime:  # W119: no vault, no step
         steps = drop_unvaulted(steps, imu, spare_turns=o["vault_veto"] == "turns", gyro_bias_rps=p.gyro_bias_rps)
@@ -1306,7 +1311,7 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
     warnings.extend(gap_warnings(gaps))
     steps = cut_steps_at_gaps(steps, gaps)
     if trunk_only:  # decision W428: what W418's TUG reads; the rest of the track (lengths, headings, altitude) is not
-        transfers = _postures_transfers(imu, steps, transfers, upright_source, fixed_up, o, warnings)[1]
+        transfers = _postures_transfers(pimu, steps, transfers, upright_source, fixed_up, o, warnings)[1]
         return TrackResult(steps=steps[["start_s", "end_s", "event_s"]].copy(), trajectory=pd.DataFrame(),
                            info={"transfers": None if transfers is None else transfers.to_dict("records"),
                                  "yaw_turns": mark_carried(yaw, carried)})  # decisions L210, W488, as below
@@ -1469,7 +1474,7 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
     n = len(steps)
     # decision W462: the model with the settings the user set (info["methods"]["length"] keeps its name)
     length_model = model_spec(model, None if isinstance(spec, StepLengthModel) else spec, gain_source == "params")
-    postures, transfers = _postures_transfers(imu, steps, transfers, upright_source, fixed_up, o, warnings)
+    postures, transfers = _postures_transfers(pimu, steps, transfers, upright_source, fixed_up, o, warnings)
     steps = _with_still_before(steps, imu, still_mask())  # decision L372: the pauses' still time
     info = {
         "pipeline": pipeline,

@@ -1,0 +1,108 @@
+"""A lower-back unit that turns on the belt during a recording (decisions W565, W566, docs/decisions/waist.md).
+
+W102's upright is one direction for the whole recording: the median trunk direction at the walking contacts. A unit
+that slides on the belt moves the walking trunk's direction in the unit frame, and every tilt read from that one
+upright (W104's flexion events, W182's transfers, W222's postures) drifts with it. This module's pure kernels:
+
+* :func:`bout_uprights`: each walking bout's own upright (W102's median over its contacts), at the bout's mid-time;
+* :func:`drift_deg`: the angle between the first and the last bout's uprights (W565's warning above
+  :data:`MOUNT_DRIFT_DEG`);
+* :func:`turned_up`: the up direction turned, per sample, by the smallest rotation that takes the instant's upright
+  (the bouts' uprights interpolated in time) onto one reference (W566's candidate).
+
+Not from a seed: the threshold is this module's choice (W565), set before measuring.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from pdrlearn.decision_refs import decision_ref
+from pdrlearn.signal import runs
+from pdrlearn.waist.posture import contact_directions, walking_upright
+from pdrlearn.waist.upright import MIN_WALKING_CONTACTS
+
+#: decision W565: a mount drifting more than this (deg) between the first and the last walking bout is said: half of
+#: W222's 15 deg sitting tilt (a drift that large eats half the margin between standing and sitting); our choice
+MOUNT_DRIFT_DEG = 7.5
+#: decision W566 (adopted): the posture code reads each walking bout's upright when W565's line is said (fresh users
+#: 16790-16819 with a drifting mount: misses + false transfers 6 -> 0)
+PER_BOUT_UPRIGHT = True
+
+
+def bout_uprights(t: np.ndarray, up_body: np.ndarray, event_s: np.ndarray,
+                  has_next: np.ndarray) -> list[tuple[float, np.ndarray]]:
+    """Decision W565: ``(mid_s, upright)`` of each walking bout (a run of at least W277's
+    :data:`~pdrlearn.waist.upright.MIN_WALKING_CONTACTS` contacts joined by ``has_next``), in time order: W102's
+    upright (:func:`~pdrlearn.waist.posture.walking_upright`) over the bout's contacts alone."""
+    e = np.asarray(event_s, dtype=float)
+    hn = np.asarray(has_next, dtype=bool)
+    if e.size == 0 or up_body is None:
+        return []
+    d = contact_directions(t, up_body, e)
+    out = []
+    for a, b in runs(hn):
+        if b - a < MIN_WALKING_CONTACTS - 1:
+            continue
+        b = min(b, e.size - 1)  # contacts a..b are the bout's (has_next joins b - 1 to b)
+        seg = d[a:b + 1]
+        seg = seg[np.isfinite(seg).all(axis=1)]
+        if len(seg) >= MIN_WALKING_CONTACTS:
+            out.append((float(0.5 * (e[a] + e[b])), walking_upright(seg, np.ones(len(seg), bool))))
+    return out
+
+
+def drift_deg(bouts: list[tuple[float, np.ndarray]]) -> float:
+    """Decision W565: the angle (deg) between the first and the last bout's uprights (0 with fewer than two)."""
+    if len(bouts) < 2:
+        return 0.0
+    return float(np.degrees(np.arccos(np.clip(bouts[0][1] @ bouts[-1][1], -1.0, 1.0))))
+
+
+def drift_message(deg: float, bouts: list[tuple[float, np.ndarray]], corrected: bool) -> str:
+    """Decisions W565 / W566: the one line of a drifting mount."""
+    then = (f"the posture and the chair transfers read each walking bout's upright ({decision_ref('W566')})"
+            if corrected else
+            "the posture times and chair transfers, read from one upright, may be wrong late in the recording")
+    return (f"the lower-back unit turned on the belt: the walking trunk's upright moved {deg:.1f} deg in the unit "
+            f"between the first walking bout (at {bouts[0][0]:.1f} s) and the last (at {bouts[-1][0]:.1f} s); "
+            f"{then}; fasten the unit so that it cannot slide ({decision_ref('W565')})")
+
+
+def turned_up(t: np.ndarray, up_body: np.ndarray, bouts: list[tuple[float, np.ndarray]],
+              reference: np.ndarray) -> np.ndarray:
+    """Decision W566: ``up_body`` (n, 3) turned per sample by the smallest rotation taking the instant's upright
+    (the ``bouts``' uprights interpolated linearly between their mid-times, held outside them) onto ``reference``."""
+    mids = np.array([m for m, _ in bouts], dtype=float)
+    ups = np.array([u for _, u in bouts], dtype=float)
+    u = np.column_stack([np.interp(t, mids, ups[:, k]) for k in range(3)])
+    u /= np.linalg.norm(u, axis=1, keepdims=True)
+    ref = np.asarray(reference, dtype=float) / np.linalg.norm(reference)
+    axis = np.cross(u, ref)
+    s = np.linalg.norm(axis, axis=1)
+    c = u @ ref
+    k = np.divide(axis, s[:, None], out=np.zeros_like(axis), where=s[:, None] > 1e-12)
+    v = np.asarray(up_body, dtype=float)
+    # Rodrigues: v cos + (k x v) sin + k (k . v)(1 - cos)
+    return v * c[:, None] + np.cross(k, v) * s[:, None] + k * (k * v).sum(axis=1)[:, None] * (1.0 - c)[:, None]
+
+
+def drift_imu(imu, event_s: np.ndarray, has_next: np.ndarray, *, correct: bool | None = None):
+    """Decisions W565 / W566: ``(imu, line)``: the lower-back IMU the posture code reads and W565's line (None when
+    the mount did not drift more than :data:`MOUNT_DRIFT_DEG`). When it did and ``correct`` (default
+    :data:`PER_BOUT_UPRIGHT`), a copy whose ``up_body`` is :func:`turned_up` onto W102's whole-recording upright."""
+    correct = PER_BOUT_UPRIGHT if correct is None else correct
+    if imu.up_body is None:
+        return imu, None
+    bouts = bout_uprights(imu.t, imu.up_body, event_s, has_next)
+    deg = drift_deg(bouts)
+    if not deg > MOUNT_DRIFT_DEG:
+        return imu, None
+    line = drift_message(deg, bouts, correct)
+    if not correct:
+        return imu, line
+    ref = walking_upright(contact_directions(imu.t, imu.up_body, np.asarray(event_s, float)),
+                          np.asarray(has_next, bool))
+    return dataclasses.replace(imu, up_body=turned_up(imu.t, imu.up_body, bouts, ref)), line
