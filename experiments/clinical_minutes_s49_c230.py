@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-USERS = range(16740, 16748)
+USERS = range(16740, 16748)  # C230; C232: --users 16748-16755
 PY = [sys.executable, "-m", "pdrlearn"]
 UNITS = {"foot": [], "waist": ["--units", "waist", "--pipeline", "waist-pendulum"]}
 
@@ -71,20 +71,35 @@ def one(uid: int, work: Path) -> list[dict]:
         got = steps_per_minute(pd.read_csv(out / "steps.csv"), s["walk_test_start_s"], n)
         edges = s["walk_test_start_s"] + 60.0 * np.arange(n + 1)
         true = np.histogram(ic, bins=edges)[0].tolist()
-        rows.append({"user": uid, "unit": unit, "rest": has_rest, "got": got, "true": true})
+        rows.append({"user": uid, "unit": unit, "rest": has_rest, "got": got, "true": true,
+                     "missed": s.get("turn_steps_missed") or 0})
     return rows
 
 
 def main() -> None:
     args = [a for a in sys.argv[1:] if not a.startswith("--")]
     jobs = int(sys.argv[sys.argv.index("--jobs") + 1]) if "--jobs" in sys.argv else 1
-    args = [a for a in args if not a.isdigit()]
+    users = USERS
+    if "--users" in sys.argv:  # decision C232: a fresh range, FIRST-LAST
+        first, last = sys.argv[sys.argv.index("--users") + 1].split("-")
+        users = range(int(first), int(last) + 1)
+    args = [a for a in args if not a.isdigit() and "-" not in a]
     work = Path(args[0] if args else "out/c230")
     work.mkdir(parents=True, exist_ok=True)
     with ThreadPoolExecutor(jobs) as pool:
-        rows = [r for rs in pool.map(lambda u: one(u, work), USERS) for r in rs]
+        rows = [r for rs in pool.map(lambda u: one(u, work), users) for r in rs]
     for r in rows:
-        print(f"{r['user']} {r['unit']:5s} rest={r['rest']!s:5s} got {r['got']} true {r['true']}")
+        print(f"{r['user']} {r['unit']:5s} rest={r['rest']!s:5s} turn_steps_missed={r['missed']} got {r['got']} "
+              f"true {r['true']}")
+    summarise(rows, "C230")
+    from pdrlearn.report.clinical import minute_steps_given
+
+    summarise([r for r in rows if minute_steps_given(r["unit"] == "waist", r["missed"])], "C232 given")
+    print(f"C232 withheld: {sum(not minute_steps_given(r['unit'] == 'waist', r['missed']) for r in rows)} sessions, "
+          f"of them with turn_steps_missed > 0: {sum(r['missed'] > 0 and r['unit'] == 'waist' for r in rows)}")
+
+
+def summarise(rows: list[dict], name: str) -> None:
     for unit in UNITS:
         sel = [r for r in rows if r["unit"] == unit]
         diffs = [abs(g - t) for r in sel for g, t in zip(r["got"], r["true"], strict=False)]
@@ -98,7 +113,8 @@ def main() -> None:
             true, got = np.array(r["true"]), np.array(r["got"])
             k = int(np.argmin(true))  # the rest's minute: the fewest true steps
             rest_ok += bool(len(got) == len(true) and got[k] <= np.median(got) - 10)
-        print(f"C230 {unit}: within 3 steps on {within} of {n_minutes} minutes ({100 * within / max(n_minutes, 1):.1f} %), "
+        pct = 100 * within / max(n_minutes, 1)
+        print(f"{name} {unit} ({len(sel)} sessions): within 3 steps on {within} of {n_minutes} minutes ({pct:.1f} %), "
               f"max |diff| {max(diffs) if diffs else float('nan')}; rest minute >= 10 under the median on {rest_ok} "
               f"of {rest_n}; minute counts got {len(diffs)} of {n_minutes}")
 

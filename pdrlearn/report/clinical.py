@@ -166,7 +166,11 @@ def walk_test_pace_line(summary: dict, folder: Path | None = None) -> str | None
     if isinstance(minutes, list) and minutes:
         parts.append("per minute " + " / ".join(f"{m:.0f}" for m in minutes) + " m")
     counts = walk_test_steps_per_minute(summary, folder) if folder is not None else None
-    if counts:  # decision C230: the test's own minutes, rests included (not the walking cadence)
+    missed = int(summary.get("turn_steps_missed") or 0)
+    if counts and not minute_steps_given(summary.get("pipeline") in LOWER_BACK_PIPELINES, missed):  # decision C232
+        parts.append(f"steps per minute not given: {missed} turning steps on the spot are not detected on the lower "
+                     "back (W331, C232)")
+    elif counts:  # decision C230: the test's own minutes, rests included (not the walking cadence)
         parts.append("steps per minute " + " / ".join(str(c) for c in counts)
                      + " (steps counted in each full minute of the test, rests included; C230)")
     fatigue = summary.get("fatigue_index")
@@ -176,6 +180,16 @@ def walk_test_pace_line(summary: dict, folder: Path | None = None) -> str | None
         rest = fatigue_rest_text(summary)  # decision C218: a rest, not slowing, drives it
         parts.append(f"fatigue index {fatigue:.2f} (last / first full minute)" + (f": {rest}" if rest else ""))
     return "  - " + "; ".join(parts)
+
+
+#: decision C232: the pipelines whose steps are the lower back's contacts
+LOWER_BACK_PIPELINES = tuple(k for k, v in UNIT_NAMES.items() if v == "lower-back unit")
+
+
+def minute_steps_given(lower_back: bool, turn_steps_missed: int) -> bool:
+    """Decision C232: whether the walk test's steps per minute (C230) are given: a foot unit's always, a lower
+    back's only when no turning step on the spot went undetected (summary ``turn_steps_missed``, W331, is 0)."""
+    return not lower_back or turn_steps_missed <= 0
 
 
 def walk_test_steps_per_minute(summary: dict, folder: Path) -> list[int] | None:
@@ -578,8 +592,9 @@ PAGE_NAME_MAX = 80
 
 def page_names(patients: list[str]) -> dict[str, str]:
     """Decision C229: ``{patient: file name stem}``: the name (W426's folder path without :data:`NO_SUBJECT`) with
-    every character but an ASCII letter, digit, ``-``, ``_`` or ``.`` as ``_``, no leading dot, at most :data:`PAGE_NAME_MAX` characters ("patient" when nothing is left); a name
-    that collides (case-blind, as on a case-blind disk) with an earlier one gets ``_2``, ``_3``, ..."""
+    every character but an ASCII letter, digit, ``-``, ``_`` or ``.`` as ``_``, no leading dot, at most
+    :data:`PAGE_NAME_MAX` characters ("patient" when nothing is left); a name that collides (case-blind, as on a
+    case-blind disk) with an earlier one gets ``_2``, ``_3``, ..."""
     names: dict[str, str] = {}
     taken: set[str] = set()
     for patient in patients:
