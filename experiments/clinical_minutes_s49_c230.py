@@ -12,13 +12,14 @@ root); ``--jobs 2`` runs two users at once.
 from __future__ import annotations
 
 import json
-import subprocess
 import sys
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
+
+from experiments.corridor_scale_s49_w562 import laps_route, run
 
 USERS = range(16740, 16748)  # C230; C232: --users 16748-16755
 PY = [sys.executable, "-m", "pdrlearn"]
@@ -30,23 +31,7 @@ def route(uid: int, sl: float, st: float, total_s: float = 400.0) -> tuple[str, 
     rng = np.random.default_rng(uid + 7)
     turn = "curve:180:0.5" if uid % 4 < 2 else "turn:180"
     rest = (1 + uid % 5, float(rng.uniform(0.2, 0.8)), float(rng.uniform(15, 30))) if uid % 2 == 0 else None
-    v, parts, t, lap = sl / st, [], 0.0, 0
-    while t < total_s:
-        if rest and lap == rest[0]:
-            parts += [f"straight:{30 * rest[1]:.1f}", f"stand:{rest[2]:.1f}", f"straight:{30 * (1 - rest[1]):.1f}"]
-            t += rest[2]
-        else:
-            parts.append("straight:30")
-        t += 30 / v + 3
-        lap += 1
-        parts.append(turn)
-    return ", ".join(parts), rest is not None
-
-
-def run(cmd: list[str]) -> None:
-    got = subprocess.run(["nice", *cmd], capture_output=True, text=True)
-    if got.returncode:
-        raise RuntimeError(f"{' '.join(cmd[3:5])}: {got.stderr.strip()[-300:]}")
+    return laps_route(sl, st, turn, rest, total_s), rest is not None
 
 
 def one(uid: int, work: Path) -> list[dict]:

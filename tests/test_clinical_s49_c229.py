@@ -12,7 +12,13 @@ import pandas as pd
 import pytest
 
 from pdrlearn.cli import main
-from pdrlearn.report.clinical import clinical_markdown, clinical_texts, page_names, walk_test_pace_line
+from pdrlearn.report.clinical import (
+    clinical_markdown,
+    clinical_texts,
+    minute_steps_given,
+    page_names,
+    walk_test_pace_line,
+)
 from pdrlearn.report.time_course import plot_time_course, time_course_section, walk_test_span
 from pdrlearn.track.corridor import steps_per_minute
 
@@ -102,6 +108,17 @@ def test_the_pace_line_gives_steps_per_minute_from_steps_csv(clinic):
     assert "per minute 47 / 43" in post and "steps per minute" not in post  # no steps.csv: no part
     summary = json.loads((clinic / "P01_pre" / "summary.json").read_text())
     assert "steps per minute" not in walk_test_pace_line(summary)  # no folder: as before
+
+
+def test_a_lower_back_with_stepless_turns_gives_no_steps_per_minute(clinic):
+    summary = json.loads((clinic / "P01_pre" / "summary.json").read_text())
+    assert "steps per minute 96 /" in walk_test_pace_line({**summary, "turn_steps_missed": 0}, clinic / "P01_pre")
+    line = walk_test_pace_line({**summary, "turn_steps_missed": 8}, clinic / "P01_pre")
+    assert ("steps per minute not given: 8 turning steps on the spot are not detected on the lower back (W331, "
+            "C232)") in line and "96 / 76" not in line
+    foot = walk_test_pace_line({**summary, "pipeline": "plasys", "turn_steps_missed": 8}, clinic / "P01_pre")
+    assert "steps per minute 96 / 76 / 94 / 96 / 98 / 48" in foot  # a foot unit's count has no such gap
+    assert minute_steps_given(False, 5) and minute_steps_given(True, 0) and not minute_steps_given(True, 1)
 
 
 def test_time_course_marks_the_walk_test(clinic, monkeypatch):
