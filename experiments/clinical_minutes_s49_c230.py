@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from experiments.corridor_scale_s49_w562 import laps_route, run
+from experiments.corridor_scale_s49_w562 import laps_route, run, simulate_user
 
 USERS = range(16740, 16748)  # C230; C232: --users 16748-16755
 PY = [sys.executable, "-m", "pdrlearn"]
@@ -37,13 +37,7 @@ def route(uid: int, sl: float, st: float, total_s: float = 400.0) -> tuple[str, 
 def one(uid: int, work: Path) -> list[dict]:
     from pdrlearn.track.corridor import steps_per_minute
 
-    rng = np.random.default_rng(uid)
-    sl, st = round(float(rng.uniform(0.40, 0.65)), 3), round(float(rng.uniform(0.52, 0.66)), 3)
-    r, has_rest = route(uid, sl, st)
-    ses = work / f"u{uid}"
-    if not (ses / "meta.json").is_file():
-        run([*PY, "simulate", "--route", r, "--user-seed", str(uid), "--step-length", str(sl), "--step-time",
-             str(st), "--bounce", "pendulum", "--rate", "100", "--out", str(ses), "--force"])
+    ses, _, _, has_rest = simulate_user(uid, work, route)
     ic = np.sort(pd.read_csv(ses / "ics.csv").ic_ms.to_numpy() / 1000)
     rows = []
     for unit, opts in UNITS.items():

@@ -65,7 +65,9 @@ def truth(ses: Path, start: float, dur: float = 360.0) -> dict:
     return {"rests": len(gaps), "path_per_min": minutes}
 
 
-def one(uid: int, work: Path) -> list[dict]:
+def simulate_user(uid: int, work: Path, route=route) -> tuple[Path, float, float, bool]:
+    """User ``uid``'s session (its step length and time drawn from the id) on ``route(uid, sl, st)``: ``(folder,
+    sl, st, has_rest)`` (shared with experiments/clinical_minutes_s49_c230.py)."""
     rng = np.random.default_rng(uid)
     sl, st = round(float(rng.uniform(0.40, 0.65)), 3), round(float(rng.uniform(0.52, 0.66)), 3)
     r, has_rest = route(uid, sl, st)
@@ -73,6 +75,11 @@ def one(uid: int, work: Path) -> list[dict]:
     if not (ses / "meta.json").is_file():
         run([*PY, "simulate", "--route", r, "--user-seed", str(uid), "--step-length", str(sl), "--step-time",
              str(st), "--bounce", "pendulum", "--rate", "100", "--out", str(ses), "--force"])
+    return ses, sl, st, has_rest
+
+
+def one(uid: int, work: Path) -> list[dict]:
+    ses, sl, st, has_rest = simulate_user(uid, work)
     variants = [("uncal", [])]
     if uid in CALIBRATED:
         cal = work / f"cal{uid}"

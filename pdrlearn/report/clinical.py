@@ -1,5 +1,6 @@
 """A short per-patient clinical summary of track outputs (decision W420, docs/decisions/waist.md): ``pdrlearn report
-SOURCE --out OUT --clinical`` writes ``OUT/clinical.md`` beside report.md.
+SOURCE --out OUT --clinical`` writes ``OUT/clinical.md`` beside report.md and (decision C229) each patient's own
+block as ``OUT/clinical/<patient>.md`` (:func:`clinical_texts`, :func:`page_names`).
 
 One block per patient (summary.json ``subject``, else the folder's path under SOURCE, W426): the patient and session
 ids, the recording date (summary.json ``recording_start``, else the tracked session's meta.json via run.json, L298's
