@@ -30,6 +30,12 @@ def route(uid: int, sl: float, st: float, total_s: float = 400.0) -> tuple[str, 
     rng = np.random.default_rng(uid + 7)
     turn = "curve:180:0.5" if uid < 16580 else "turn:180"
     rest = (2 + uid % 4, float(rng.uniform(0.2, 0.8)), float(rng.uniform(15, 30))) if uid % 3 == 0 else None
+    return laps_route(sl, st, turn, rest, total_s), rest is not None
+
+
+def laps_route(sl: float, st: float, turn: str, rest: tuple[int, float, float] | None, total_s: float) -> str:
+    """The route of 30 m laps, ``turn`` after each, ``rest`` (lap, fraction of it walked first, seconds) in one
+    (shared with experiments/clinical_minutes_s49_c230.py)."""
     v, parts, t, lap = sl / st, [], 0.0, 0
     while t < total_s:
         if rest and lap == rest[0]:
@@ -40,7 +46,7 @@ def route(uid: int, sl: float, st: float, total_s: float = 400.0) -> tuple[str, 
         t += 30 / v + 3
         lap += 1
         parts.append(turn)
-    return ", ".join(parts), rest is not None
+    return ", ".join(parts)
 
 
 def run(cmd: list[str]) -> None:
@@ -59,7 +65,9 @@ def truth(ses: Path, start: float, dur: float = 360.0) -> dict:
     return {"rests": len(gaps), "path_per_min": minutes}
 
 
-def one(uid: int, work: Path) -> list[dict]:
+def simulate_user(uid: int, work: Path, route=route) -> tuple[Path, float, float, bool]:
+    """User ``uid``'s session (its step length and time drawn from the id) on ``route(uid, sl, st)``: ``(folder,
+    sl, st, has_rest)`` (shared with experiments/clinical_minutes_s49_c230.py)."""
     rng = np.random.default_rng(uid)
     sl, st = round(float(rng.uniform(0.40, 0.65)), 3), round(float(rng.uniform(0.52, 0.66)), 3)
     r, has_rest = route(uid, sl, st)
@@ -67,6 +75,11 @@ def one(uid: int, work: Path) -> list[dict]:
     if not (ses / "meta.json").is_file():
         run([*PY, "simulate", "--route", r, "--user-seed", str(uid), "--step-length", str(sl), "--step-time",
              str(st), "--bounce", "pendulum", "--rate", "100", "--out", str(ses), "--force"])
+    return ses, sl, st, has_rest
+
+
+def one(uid: int, work: Path) -> list[dict]:
+    ses, sl, st, has_rest = simulate_user(uid, work)
     variants = [("uncal", [])]
     if uid in CALIBRATED:
         cal = work / f"cal{uid}"

@@ -21,7 +21,8 @@ def report(
                                   "recording date and one line per clinical test tracked (6MWT, TUG with phases, "
                                   "steps and turn time, 10 m walk, gait speed and cadence), each naming its unit "
                                   "(decision W420); a gait / gait-all output adds each walk's step-time, stance and "
-                                  "step-length asymmetry, the two feet of one walk one block (W438)."),
+                                  "step-length asymmetry, the two feet of one walk one block (W438); and one page per "
+                                  "patient, clinical/<patient>.md (C229)."),
 ) -> None:
     """Render accuracy tables, confusion matrices, trajectories and latency figures as one page.
 
@@ -48,17 +49,19 @@ def report(
     from pdrlearn.report import build_report
 
     out_folder(out, "report", force=force, inputs=(source,))
-    text = None
+    extra = None
     if clinical:  # decision W420: read before anything is written (one line when there is no track)
-        from pdrlearn.report.clinical import clinical_markdown
+        from pdrlearn.report.clinical import clinical_texts
 
-        text = clinical_markdown(source)
+        text, pages = clinical_texts(source)  # decision C229: and each patient's own page, clinical/<patient>.md
+        extra = {"clinical.md": text + "\n", **{f"clinical/{name}": page for name, page in pages.items()}}
     was = existed(out)
-    path = build_report(source, out, title=title, extra=None if text is None else {"clinical.md": text + "\n"})
+    path = build_report(source, out, title=title, extra=extra)
     replaced(out, was)
     typer.echo(str(path / "index.html"))
-    if text is not None:
+    if extra is not None:
         typer.echo(str(path / "clinical.md"))
+        typer.echo(f"{path / 'clinical'}/ ({len(extra) - 1} patient page(s), C229)")
 
 
 def register(app: typer.Typer) -> None:

@@ -521,5 +521,6 @@ def build_report(source: str | os.PathLike, out: str | os.PathLike, *, title: st
         (tmp / "index.html").write_text(_html(sections, title))
         (tmp / "report.md").write_text(_markdown(sections, title, names))
         for name, text in (extra or {}).items():
+            (tmp / name).parent.mkdir(parents=True, exist_ok=True)  # decision C229: clinical/<patient>.md
             (tmp / name).write_text(text)
     return out

@@ -1,5 +1,6 @@
 """A short per-patient clinical summary of track outputs (decision W420, docs/decisions/waist.md): ``pdrlearn report
-SOURCE --out OUT --clinical`` writes ``OUT/clinical.md`` beside report.md.
+SOURCE --out OUT --clinical`` writes ``OUT/clinical.md`` beside report.md and (decision C229) each patient's own
+block as ``OUT/clinical/<patient>.md`` (:func:`clinical_texts`, :func:`page_names`).
 
 One block per patient (summary.json ``subject``, else the folder's path under SOURCE, W426): the patient and session
 ids, the recording date (summary.json ``recording_start``, else the tracked session's meta.json via run.json, L298's
@@ -150,11 +151,12 @@ def gait_speed_line(summary: dict, unit: str) -> str | None:
     return f"- Gait speed {speed:.2f} m/s{cadence} ({'; '.join(flags)})"
 
 
-def walk_test_pace_line(summary: dict) -> str | None:
+def walk_test_pace_line(summary: dict, folder: Path | None = None) -> str | None:
     """Decisions C177, L650: the corridor walk test's minutes and pace under its line - the distance per minute, the
     fatigue index (last / first minute) and the test's own mean speed (its distance from the corridor's laps / its
-    duration), said to be the test's, not the gait speed line's (whole recording, step lengths); None without a
-    walk test."""
+    duration), said to be the test's, not the gait speed line's (whole recording, step lengths); decision C230: the
+    steps in each full minute of the test from ``folder``'s steps.csv (:func:`walk_test_steps_per_minute`); None
+    without a walk test."""
     from pdrlearn.track.corridor import walk_test_speed
 
     speed = walk_test_speed(summary)
@@ -164,6 +166,14 @@ def walk_test_pace_line(summary: dict) -> str | None:
     minutes = summary.get("walk_test_distance_per_minute_m")
     if isinstance(minutes, list) and minutes:
         parts.append("per minute " + " / ".join(f"{m:.0f}" for m in minutes) + " m")
+    counts = walk_test_steps_per_minute(summary, folder) if folder is not None else None
+    missed = int(summary.get("turn_steps_missed") or 0)
+    if counts and not minute_steps_given(summary.get("pipeline") in LOWER_BACK_PIPELINES, missed):  # decision C232
+        parts.append(f"steps per minute not given: {missed} turning steps on the spot are not detected on the lower "
+                     "back (W331, C232)")
+    elif counts:  # decision C230: the test's own minutes, rests included (not the walking cadence)
+        parts.append("steps per minute " + " / ".join(str(c) for c in counts)
+                     + " (steps counted in each full minute of the test, rests included; C230)")
     fatigue = summary.get("fatigue_index")
     if fatigue is not None:
         from pdrlearn.track.corridor import fatigue_rest_text
@@ -171,6 +181,37 @@ def walk_test_pace_line(summary: dict) -> str | None:
         rest = fatigue_rest_text(summary)  # decision C218: a rest, not slowing, drives it
         parts.append(f"fatigue index {fatigue:.2f} (last / first full minute)" + (f": {rest}" if rest else ""))
     return "  - " + "; ".join(parts)
+
+
+#: decision C232: the pipelines whose steps are the lower back's contacts
+LOWER_BACK_PIPELINES = tuple(k for k, v in UNIT_NAMES.items() if v == "lower-back unit")
+
+
+def minute_steps_given(lower_back: bool, turn_steps_missed: int) -> bool:
+    """Decision C232: whether the walk test's steps per minute (C230) are given: a foot unit's always, a lower
+    back's only when no turning step on the spot went undetected (summary ``turn_steps_missed``, W331, is 0)."""
+    return not lower_back or turn_steps_missed <= 0
+
+
+def walk_test_steps_per_minute(summary: dict, folder: Path) -> list[int] | None:
+    """Decision C230: the steps in each full minute of a timed walk test (``walk_test_start_s`` + 60 k; as many
+    minutes as ``walk_test_distance_per_minute_m``, else the full minutes of ``walk_test_duration_s``) from
+    ``folder``'s steps.csv (:func:`pdrlearn.track.corridor.steps_per_minute`); None without a timed test, without
+    steps.csv or when it cannot be read (the line leaves the part out)."""
+    from pdrlearn.io.plasys import read_table
+    from pdrlearn.track.corridor import MINUTE_S, steps_per_minute
+
+    start, dur = summary.get("walk_test_start_s"), summary.get("walk_test_duration_s")
+    path = Path(folder) / "steps.csv"
+    if start is None or dur is None or summary.get("walk_test_distance_m") is None or not path.is_file():
+        return None
+    minutes = summary.get("walk_test_distance_per_minute_m")
+    n = len(minutes) if isinstance(minutes, list) and minutes else int(float(dur) // MINUTE_S)
+    try:
+        steps = read_table(path)
+    except DataError:
+        return None
+    return steps_per_minute(steps, float(start), n) or None
 
 
 def walk_test_rests_line(summary: dict) -> str | None:
@@ -308,7 +349,7 @@ def clinical_lines(summary: dict, folder: Path) -> list[str]:
     walk = walk_test_line(summary, unit)
     if walk:
         lines.append(walk)
-        pace = walk_test_pace_line(summary)  # decisions C177, L650: its minutes, fatigue index and own speed
+        pace = walk_test_pace_line(summary, folder)  # decisions C177, L650, C230: minutes, fatigue, speed
         if pace:
             lines.append(pace)
         rests = walk_test_rests_line(summary)  # decision C217: the test's own rests
@@ -486,9 +527,10 @@ def _gait_walks(root: Path) -> list[dict]:
     return walks
 
 
-def clinical_markdown(source: str | Path) -> str:
-    """Decision W420: clinical.md's text for every track output (summary.json) and (W438) every bilateral gait
-    output (gait_summary.json) under ``source``; one :class:`DataError` line when there is neither."""
+def _patients(source: str | Path) -> dict[str, list]:
+    """Decision W420: every track output (summary.json) and (W438) every bilateral gait output (gait_summary.json)
+    under ``source`` as ``{patient: rows}`` in clinical.md's order; one :class:`DataError` line when there is
+    neither."""
     root = Path(source)
     found = sorted(root.rglob("summary.json")) if root.is_dir() else []
     tracks = [(p.parent, _read(p)) for p in found]
@@ -503,21 +545,70 @@ def clinical_markdown(source: str | Path) -> str:
         # W426: without a subject, the folder's path under SOURCE stands for the patient: two patients' session
         # folders may share a name (patientA/tug, patientB/tug), the session id alone merged them
         rel = folder.relative_to(root).as_posix() if folder != root else folder.name
-        key = str(summary["subject"]) if summary.get("subject") else f"{rel} (no subject in meta.json)"
+        key = str(summary["subject"]) if summary.get("subject") else f"{rel}{NO_SUBJECT}"
         patients.setdefault(key, []).append(("track", folder, rel, summary))
     for g in gaits:
-        key = str(g["subject"]) if g["subject"] else f"{g['rel']} (no subject in meta.json)"
+        key = str(g["subject"]) if g["subject"] else f"{g['rel']}{NO_SUBJECT}"
         patients.setdefault(key, []).append(("gait", g["folder"], g["rel"], g))
-    out = ["# Clinical summary", ""]
+    return patients
+
+
+def _patient_lines(rows: list) -> list[str]:
+    """Decision W420: one patient's blocks (C221's visit order) and (C177) change-from-baseline lines."""
+    out: list[str] = []
+    rows = in_visit_order(rows)  # decision C221: the baseline's sessions first, as the change line pairs them
+    for block in walk_blocks(rows):
+        out += block + [""]
+    changes = change_lines(rows)  # decision C177: the visits' change from baseline
+    if changes:
+        out += changes + [""]
+    return out
+
+
+def clinical_markdown(source: str | Path) -> str:
+    """Decision W420: clinical.md's text for every track output (summary.json) and (W438) every bilateral gait
+    output (gait_summary.json) under ``source``; one :class:`DataError` line when there is neither."""
+    return clinical_texts(source)[0]
+
+
+def clinical_texts(source: str | Path) -> tuple[str, dict[str, str]]:
+    """Decisions W420, C229: clinical.md's text and ``{file name: text}`` of each patient's own page (the patient's
+    block of clinical.md under its own title; :func:`page_names`' file-safe, unique names, ``P01.md``)."""
+    patients = _patients(source)
+    out, pages = ["# Clinical summary", ""], {}
+    names = page_names(list(patients))
     for patient, rows in patients.items():
-        out += [f"## Patient {patient}", ""]
-        rows = in_visit_order(rows)  # decision C221: the baseline's sessions first, as the change line pairs them
-        for block in walk_blocks(rows):
-            out += block + [""]
-        changes = change_lines(rows)  # decision C177: the visits' change from baseline
-        if changes:
-            out += changes + [""]
-    return "\n".join(out)
+        lines = _patient_lines(rows)
+        out += [f"## Patient {patient}", "", *lines]
+        page = "\n".join([f"# Clinical summary: patient {patient}", "", *lines]).rstrip()
+        pages[f"{names[patient]}.md"] = page + "\n"
+    return "\n".join(out), pages
+
+
+#: decision W426: the patient name of a track without a subject (its folder's path under SOURCE before it)
+NO_SUBJECT = " (no subject in meta.json)"
+#: decision C229: the longest page file name (characters, before ".md")
+PAGE_NAME_MAX = 80
+
+
+def page_names(patients: list[str]) -> dict[str, str]:
+    """Decision C229: ``{patient: file name stem}``: the name (W426's folder path without :data:`NO_SUBJECT`) with
+    every character but an ASCII letter, digit, ``-``, ``_`` or ``.`` as ``_``, no leading dot, at most
+    :data:`PAGE_NAME_MAX` characters ("patient" when nothing is left); a name that collides (case-blind, as on a
+    case-blind disk) with an earlier one gets ``_2``, ``_3``, ..."""
+    names: dict[str, str] = {}
+    taken: set[str] = set()
+    for patient in patients:
+        bare = patient.removesuffix(NO_SUBJECT)
+        safe = "".join(c if c.isascii() and (c.isalnum() or c in "-_.") else "_" for c in bare)
+        safe = safe.lstrip(".")[:PAGE_NAME_MAX] or "patient"
+        name, k = safe, 1
+        while name.lower() in taken:
+            k += 1
+            name = f"{safe[:PAGE_NAME_MAX - len(str(k)) - 1]}_{k}"
+        taken.add(name.lower())
+        names[patient] = name
+    return names
 
 
 def in_visit_order(rows: list) -> list:

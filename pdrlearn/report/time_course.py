@@ -80,14 +80,35 @@ def time_course_section(folder: Path, label: str):
     plots = []
     if series:
         name = "".join(c if c.isalnum() else "_" for c in label)[:40]
-        plots.append(("distance and speed over time (periods.csv, laps.csv)", f"time_course_{name}.png",
-                      lambda path: plot_time_course(series, rests, path)))
+        test = walk_test_span(folder)  # decision C231: the walk test's start and end marked
+        plots.append(("distance and speed over time (periods.csv, laps.csv)"
+                      + ("; dashed: the walk test's start and end" if test else ""), f"time_course_{name}.png",
+                      lambda path: plot_time_course(series, rests, path, test=test)))
     return Section(f"Time course — {label}", tables=tables, plots=plots)
 
 
-def plot_time_course(series: list[tuple[str, pd.DataFrame]], rests: pd.DataFrame | None, path: Path) -> bool:
+def walk_test_span(folder: Path) -> tuple[float, float] | None:
+    """Decision C231: ``(start, end)`` (s, the track's clock) of the timed walk test of the track in ``folder``
+    (summary.json ``walk_test_start_s`` and + ``walk_test_duration_s``); None without one or without a readable
+    summary.json."""
+    import json
+
+    try:
+        summary = json.loads((Path(folder) / "summary.json").read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+    start = summary.get("walk_test_start_s") if isinstance(summary, dict) else None
+    dur = summary.get("walk_test_duration_s") if isinstance(summary, dict) else None
+    if not all(isinstance(v, int | float) and not isinstance(v, bool) for v in (start, dur)) or dur <= 0:
+        return None
+    return float(start), float(start) + float(dur)
+
+
+def plot_time_course(series: list[tuple[str, pd.DataFrame]], rests: pd.DataFrame | None, path: Path, *,
+                     test: tuple[float, float] | None = None) -> bool:
     """Decision L386: distance (m) and speed (m/s) of each period / lap drawn as steps over the track's time, the
-    rests shaded; False (no figure) when no row has a distance."""
+    rests shaded; decision C231: with ``test`` (the walk test's start and end, s) a dashed line at each; False (no
+    figure) when no row has a distance."""
     from pdrlearn.mplconfig import ensure_config_dir
 
     ensure_config_dir()  # decision B226
@@ -110,6 +131,13 @@ def plot_time_course(series: list[tuple[str, pd.DataFrame]], rests: pd.DataFrame
             ax.axvspan(r.start_s, r.end_s, color="0.85", zorder=0)
         ax.set_ylabel(label)
         ax.grid(alpha=0.3)
+    if test is not None:  # decision C231: the walk test's start and end (L644's clock of its duration)
+        from pdrlearn.track.corridor import clock_text
+
+        for ax in (axes[0][0], axes[1][0]):
+            for x, color, text in ((test[0], "0.2", "walk test start"),
+                                   (test[1], "C3", f"walk test end ({clock_text(test[1] - test[0])})")):
+                ax.axvline(x, color=color, linestyle="--", linewidth=1.0, label=text if ax is axes[0][0] else None)
     axes[0][0].legend(fontsize=8)
     axes[1][0].set_xlabel("time (s; rests between bouts shaded)")
     save_atomic(fig, Path(path))

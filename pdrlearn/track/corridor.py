@@ -674,3 +674,25 @@ def walk_test_speed_text(summary: dict) -> str:
         return ""
     return (f"; test speed {speed:.2f} m/s (the test's distance / its {summary['walk_test_duration_s']:.0f} s; the "
             "gait speed line is the whole recording's walking, from step lengths: L650)")
+
+
+def steps_per_minute(steps: pd.DataFrame, start_s: float, n_minutes: int) -> list[int]:
+    """Decision C230: the steps in each of ``n_minutes`` full minutes from ``start_s`` (the walk test's go), rests
+    included: a lower-back row is one step at its contact; a foot stride row two, the other foot's at the middle of
+    the stride (between its ``start_s`` and its contact) and its own at the contact; a foot-data gap row none (L124's
+    weights, :func:`_row_steps`)."""
+    if not len(steps) or n_minutes <= 0 or not {"start_s", "end_s"} <= set(steps.columns):
+        return []
+    st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
+    if "length_m" not in st:
+        st = st.assign(length_m=np.nan)
+    contact = _path(st)[0][1:]
+    weights = _row_steps(st)
+    if _is_lower_back(st):
+        times = contact
+    else:  # a stride: the other foot's contact about its middle, its own at its end
+        middle = (st["start_s"].to_numpy(float) + contact) / 2.0
+        times = np.concatenate([middle[weights > 0], contact[weights > 0]])
+    edges = float(start_s) + MINUTE_S * np.arange(n_minutes + 1)
+    counts, _ = np.histogram(times[np.isfinite(times)], bins=edges)
+    return [int(c) for c in counts]
