@@ -37,11 +37,7 @@ ROUTES = {"level": "straight:20, turn:180, straight:20",
 
 def masks_of(terrain, raw):
     terr = np.array([t if isinstance(t, str) else "" for t in terrain], dtype=object)
-    stairs = (terr == "up") | (terr == "down")
-    near = np.zeros(len(terr), dtype=bool)
-    near[1:] |= stairs[:-1]
-    near[:-1] |= stairs[1:]
-    level, stair = AC.clear_contradictions(terr, np.asarray(raw, float), near)
+    level, stair = AC.clear_contradictions(terr, np.asarray(raw, float), AC.next_to_stairs(terr))
     return terr, level | stair
 
 
@@ -93,14 +89,15 @@ def main() -> None:
 
 def real_check() -> None:
     """The check on the real gaitmap foot recordings (not tuned to): C28's three-recording terrain model (level_left,
-    stairs_up_left, stairs_down_left: three of the four are its training recordings); per recording the classes, C233's counts and whether its line fired."""
+    stairs_up_left, stairs_down_left: three of the four are its training recordings); per recording the classes,
+    C233's counts and whether its line fired."""
     from pdrlearn.io import read_session
 
     root = Path(__file__).resolve().parents[1] / "datasets" / "real"
     names = ["gaitmap_level_left", "gaitmap_level_right", "gaitmap_stairs_up_left", "gaitmap_stairs_down_left"]
     sessions = {n: read_session(root / n) for n in names}
-    models = {"c28": train_user([sessions[n] for n in ("gaitmap_level_left", "gaitmap_stairs_up_left",
-                                                         "gaitmap_stairs_down_left")], tasks=["terrain"], cv=10, seed=0)}
+    train = ("gaitmap_level_left", "gaitmap_stairs_up_left", "gaitmap_stairs_down_left")
+    models = {"c28": train_user([sessions[n] for n in train], tasks=["terrain"], cv=10, seed=0)}
     for mname, model in models.items():
         for n, s in sessions.items():
             res = plasys.track_plasys(s, model=model)

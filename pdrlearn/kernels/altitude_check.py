@@ -168,9 +168,9 @@ def steady_slope(classified, raw_dz, min_strides: int = SLOPE_MIN_STRIDES,
     return best
 
 
-#: decision C233 (session 49, trial s49t2 F4): a stride classed up / down whose integrated |dz| is under this (m) clearly
-#: contradicts its class: half L39's 0.10 m level bound; a stair stride climbs at least one riser (IBC 1011.5.2's
-#: least riser, 4 in = 0.10 m)
+#: decision C233 (session 49, trial s49t2 F4): a stride classed up / down whose integrated |dz| is under this (m)
+#: clearly contradicts its class: half L39's 0.10 m level bound; a stair stride climbs at least one riser (IBC
+#: 1011.5.2's least riser, 4 in = 0.10 m)
 CLEAR_LEVEL_DZ_M = 0.05
 #: decision C233: a stride classed flat whose integrated |dz| is this (m) or more clearly contradicts its class, next
 #: to a stair stride or not: more than one riser of the steepest building stair (IBC 1011.5.2's 7 3/4 in = 0.20 m)
@@ -178,6 +178,15 @@ CLEAR_LEVEL_DZ_M = 0.05
 CLEAR_STAIR_DZ_M = 0.25
 #: decision C233: ... and a flat stride not next to a stair stride (C30) from this |dz| (m): a riser's 0.15 m
 CLEAR_FLAT_ALONE_DZ_M = 0.15
+
+
+def next_to_stairs(terr: np.ndarray) -> np.ndarray:
+    """Decision C30: the strides of the string classes ``terr`` whose previous or next stride is classed up / down."""
+    stairs = (terr == "up") | (terr == "down")
+    near = np.zeros(len(terr), dtype=bool)
+    near[1:] |= stairs[:-1]
+    near[:-1] |= stairs[1:]
+    return near
 
 
 def clear_contradictions(terr: np.ndarray, raw: np.ndarray, near: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -216,10 +225,7 @@ def terrain_dz_check(terrain, raw_dz: np.ndarray, dz: np.ndarray) -> tuple[str |
     sign = (up & (raw <= 0)) | (down & (raw >= 0))
     # decision C30: a flat stride next to an up/down stride is a stair's first or last stride (a transition
     # that does climb); it is not counted against its class, nor in the height the flat strides add
-    stairs = up | down
-    near = np.zeros(len(terr), dtype=bool)
-    near[1:] |= stairs[:-1]
-    near[:-1] |= stairs[1:]
+    near = next_to_stairs(terr)
     flat = flat & ~near
     level = flat & (np.abs(raw) >= LEVEL_DZ_M)
     n = int((up | down | (terr == "flat")).sum())
