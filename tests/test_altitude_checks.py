@@ -119,10 +119,13 @@ def test_terrain_dz_check_rules():
     raw = np.array([-0.05, 0.02, 0.0, 0.25, 0.05, 0.0, 0.30, 0.9, 0.0, 0.0])
     msg, info = terrain_dz_check(terr, raw, raw)
     assert info == {"strides_classified": 9, "stairs_against_sign": 2, "flat_with_height": 1,
-                    "altitude_from_flat_m": pytest.approx(0.30), "flat_next_to_stairs": 2}
+                    "altitude_from_flat_m": pytest.approx(0.30), "flat_next_to_stairs": 2,
+                    "clear_level_as_stairs": 1, "clear_stairs_as_flat": 1}  # C233: down at +0.02 m, flat at 0.25 m
     assert msg.startswith("3 of 9 strides' terrain classes contradict") and "pdrlearn evaluate" in msg
-    # two contradictions are not enough (C28: at least 3 and 10 %) ...
+    # two contradictions are not enough (C28: at least 3 and 10 %); C233 says the clear one (down at +0.02 m) ...
     msg, _ = terrain_dz_check(terr[:4], raw[:4] * [1, 1, 0, 0], raw[:4] * 0)
+    assert msg.startswith("1 of 4 strides' terrain classes clearly contradict"), msg
+    msg, _ = terrain_dz_check(terr[:4], raw[:4] * [1, 0, 0, 0] + [0, 0.06, 0, 0], raw[:4] * 0)
     assert msg is None
     # ... but flat strides that add 0.5 m are, whatever the count
     msg, info = terrain_dz_check(np.array(["flat"] * 20, dtype=object), np.full(20, 0.03), np.full(20, 0.03))
@@ -149,10 +152,11 @@ def test_terrain_dz_check_skips_a_staircase_first_and_last_strides():
     """C30: a flat stride next to an up/down stride is a transition that climbs; the demo's scenario D warned on
     three of them (+0.74 m) with right classes."""
     terr = np.array(["flat"] * 5 + ["up"] * 10 + ["flat"] * 5, dtype=object)
-    dz = np.r_[np.zeros(4), 0.3, np.full(10, 0.3), 0.3, np.zeros(4)]
+    # the transitions climb one riser (C233 counts a flat stride next to stairs from 0.25 m: more than one riser)
+    dz = np.r_[np.zeros(4), 0.2, np.full(10, 0.3), 0.2, np.zeros(4)]
     msg, info = terrain_dz_check(terr, dz, dz)
     assert msg is None and info["flat_next_to_stairs"] == 2 and info["flat_with_height"] == 0
-    # the same heights one stride further from the stairs are counted (and add 0.6 m: a warning)
+    # the same heights one stride further from the stairs are counted (and add 0.4 m, 0.6 m with 0.3 m: a warning)
     dz2 = np.r_[np.zeros(3), 0.3, 0.0, np.full(10, 0.3), 0.0, 0.3, np.zeros(3)]
     msg, info = terrain_dz_check(terr, dz2, dz2)
     assert msg is not None and info["flat_with_height"] == 2 and "+0.60 m" in msg

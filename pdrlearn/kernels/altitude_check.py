@@ -28,6 +28,9 @@ LEVEL_ALTITUDE_PER_100M_MAX_M = 4.7
 #: Decision C28: a warning when at least this many strides, and this fraction of them, contradict their class,
 CONFLICT_MIN_STRIDES = 3
 CONFLICT_MIN_FRACTION = 0.10
+#: decision C233: a stride whose measured height clearly contradicts its terrain class is counted and said (False:
+#: C28's thresholds alone, the measurement's baseline)
+CLEAR_CONTRADICTION_LINE = True
 #: or when the strides classed flat add at least this much (m) to the altitude change
 FLAT_ALTITUDE_M = 0.5
 
@@ -165,6 +168,52 @@ def steady_slope(classified, raw_dz, min_strides: int = SLOPE_MIN_STRIDES,
     return best
 
 
+#: decision C233 (session 49, trial s49t2 F4): a stride classed up / down whose integrated |dz| is under this (m)
+#: clearly contradicts its class: half L39's 0.10 m level bound; a stair stride climbs at least one riser (IBC
+#: 1011.5.2's least riser, 4 in = 0.10 m)
+CLEAR_LEVEL_DZ_M = 0.05
+#: decision C233: a stride classed flat whose integrated |dz| is this (m) or more clearly contradicts its class, next
+#: to a stair stride or not: more than one riser of the steepest building stair (IBC 1011.5.2's 7 3/4 in = 0.20 m)
+#: plus the track's error; a staircase's first or last stride (C30) climbs one riser only
+CLEAR_STAIR_DZ_M = 0.25
+#: decision C233: ... and a flat stride not next to a stair stride (C30) from this |dz| (m): a riser's 0.15 m
+CLEAR_FLAT_ALONE_DZ_M = 0.15
+
+
+def next_to_stairs(terr: np.ndarray) -> np.ndarray:
+    """Decision C30: the strides of the string classes ``terr`` whose previous or next stride is classed up / down."""
+    stairs = (terr == "up") | (terr == "down")
+    near = np.zeros(len(terr), dtype=bool)
+    near[1:] |= stairs[:-1]
+    near[:-1] |= stairs[1:]
+    return near
+
+
+def clear_contradictions(terr: np.ndarray, raw: np.ndarray, near: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Decision C233: the masks (strides classed up / down with |dz| < :data:`CLEAR_LEVEL_DZ_M`, strides classed flat
+    with |dz| >= :data:`CLEAR_STAIR_DZ_M`, or >= :data:`CLEAR_FLAT_ALONE_DZ_M` when not ``near`` a stair stride, C30)
+    of the string classes ``terr`` and the integrated heights ``raw`` (NaN: not counted)."""
+    size = np.abs(np.asarray(raw, dtype=float))
+    ok = np.isfinite(size)
+    size = np.where(ok, size, 0.0)
+    level = ok & ((terr == "up") | (terr == "down")) & (size < CLEAR_LEVEL_DZ_M)
+    stair = ok & (terr == "flat") & (size >= np.where(near, CLEAR_STAIR_DZ_M, CLEAR_FLAT_ALONE_DZ_M))
+    return level, stair
+
+
+def clear_contradiction_line(n_level: int, n_stair: int, n: int) -> str:
+    """Decision C233: the line (or C28's clause) for the strides :func:`clear_contradictions` counted."""
+    from pdrlearn.decision_refs import decision_ref
+
+    return (f"{n_level + n_stair} of {n} strides' terrain classes clearly contradict the foot's measured height "
+            f"({n_level} classed up/down that changed height by under {CLEAR_LEVEL_DZ_M:.2f} m, {n_stair} classed "
+            f"flat that climbed or descended {CLEAR_FLAT_ALONE_DZ_M:.2f} m or more, or {CLEAR_STAIR_DZ_M:.2f} m next "
+            "to a stair stride): the altitude and stairs.csv use the measured heights, the terrain column is the "
+            "model's class - the measured terrain is steps.csv's terrain_dz (offline track, L424); check the model "
+            f"on this user's own labelled walk (`pdrlearn evaluate MODEL DIR`) "
+            f"({decision_ref('C233', 'C28', topic='classifiers')})")
+
+
 def terrain_dz_check(terrain, raw_dz: np.ndarray, dz: np.ndarray) -> tuple[str | None, dict]:
     """Decision C28: ``terrain`` (n,) a model's classes (None/NaN: not classified, not counted), ``raw_dz`` (n,)
     the integrated height changes before the rules, ``dz`` (n,) the track's final ones. Returns the warning
@@ -176,10 +225,7 @@ def terrain_dz_check(terrain, raw_dz: np.ndarray, dz: np.ndarray) -> tuple[str |
     sign = (up & (raw <= 0)) | (down & (raw >= 0))
     # decision C30: a flat stride next to an up/down stride is a stair's first or last stride (a transition
     # that does climb); it is not counted against its class, nor in the height the flat strides add
-    stairs = up | down
-    near = np.zeros(len(terr), dtype=bool)
-    near[1:] |= stairs[:-1]
-    near[:-1] |= stairs[1:]
+    near = next_to_stairs(terr)
     flat = flat & ~near
     level = flat & (np.abs(raw) >= LEVEL_DZ_M)
     n = int((up | down | (terr == "flat")).sum())
@@ -188,9 +234,12 @@ def terrain_dz_check(terrain, raw_dz: np.ndarray, dz: np.ndarray) -> tuple[str |
     info = {"strides_classified": n, "stairs_against_sign": int(sign.sum()), "flat_with_height": int(level.sum()),
             "altitude_from_flat_m": flat_alt,
             "flat_next_to_stairs": int(((terr == "flat") & near).sum())}
+    masks = clear_contradictions(terr, raw, near)  # decision C233 (counted; said with CLEAR_CONTRADICTION_LINE)
+    info["clear_level_as_stairs"], info["clear_stairs_as_flat"] = clear = tuple(int(m.sum()) for m in masks)
+    clear = clear if CLEAR_CONTRADICTION_LINE else (0, 0)
     many = bad >= CONFLICT_MIN_STRIDES and n and bad >= CONFLICT_MIN_FRACTION * n
     if not (many or abs(flat_alt) >= FLAT_ALTITUDE_M):
-        return None, info
+        return (clear_contradiction_line(*clear, n) if sum(clear) else None), info
     counts = (f"{int(sign.sum())} up/down against its sign, {int(level.sum())} flat with |dz| >= "
               f"{LEVEL_DZ_M:.2f} m")
     flat_part = f"strides classed flat (not next to stairs, C30) add {flat_alt:+.2f} m to the altitude change"
@@ -201,6 +250,9 @@ def terrain_dz_check(terrain, raw_dz: np.ndarray, dz: np.ndarray) -> tuple[str |
             f"classes contradict their integrated height change ({counts})")
     msg = (f"{lead}: the classes or the foot's integrated height are wrong ({_ACCURACY}); check the model on "
            "this user's own labelled walk (`pdrlearn evaluate MODEL DIR`)")
+    if sum(clear):  # decision C233: C28's line carries the clear contradictions' count
+        msg += (f"; {sum(clear)} strides clearly contradict it ({clear[0]} up/down under {CLEAR_LEVEL_DZ_M:.2f} m, "
+                f"{clear[1]} flat climbing a stair's height; C233)")
     slope = steady_slope(up | down | (terr == "flat"), raw)  # decision C159
     if slope is not None:  # info["steady_slope_strides"]: the slope strides named (absent: none)
         info["steady_slope_strides"] = slope[1] - slope[0]
