@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from experiments.corridor_scale_s49_w562 import laps_route, run, simulate_user
+from corridor_scale_s49_w562 import laps_route, run, simulate_user
 
 USERS = range(16740, 16748)  # C230; C232: --users 16748-16755
 PY = [sys.executable, "-m", "pdrlearn"]

@@ -9,6 +9,7 @@ in /work/shared/data and the trial s49t3's rotated / slid files (not tuned to). 
 
 from __future__ import annotations
 
+import functools
 import logging
 import subprocess
 import sys
@@ -20,6 +21,8 @@ import pandas as pd
 from pdrlearn.io.plasys import read_session
 from pdrlearn.track.waist import track_waist
 from pdrlearn.waist import mount_drift
+
+DRIFT_IMU = mount_drift.drift_imu  # the kernel; run() binds its W566 keyword
 
 ROUTE = "stand:3, straight:15, sit:20, straight:15, turn:180, straight:15, sit:20, straight:15, stand:3"
 SIM = Path("/tmp/fl_sim")
@@ -44,7 +47,7 @@ def simulate(user: int, drift: str | None) -> Path:
 
 
 def run(folder: Path, correct: bool) -> tuple[list[dict], float, float, bool]:
-    mount_drift.PER_BOUT_UPRIGHT = correct
+    mount_drift.drift_imu = functools.partial(DRIFT_IMU, correct=correct)  # W566 on / off (a keyword, W413)
     r = track_waist(read_session(folder), pipeline="waist-pendulum")
     tr = [t for t in (r.info["transfers"] or []) if t["kind"] in ("sit-to-stand", "stand-to-sit")]
     post = r.info["postures"] or []

@@ -8,9 +8,9 @@ import numpy as np
 from pdrlearn.kernels import altitude_check as AC
 
 
-def check(terrain, raw):
+def check(terrain, raw, **kw):
     raw = np.asarray(raw, dtype=float)
-    return AC.terrain_dz_check(np.array(terrain, dtype=object), raw, raw)
+    return AC.terrain_dz_check(np.array(terrain, dtype=object), raw, raw, **kw)
 
 
 def test_level_strides_classed_down_are_said_with_their_count():
@@ -43,15 +43,13 @@ def test_right_classes_ramps_and_a_staircase_first_stride_stay_silent():
     assert info["clear_level_as_stairs"] == 0 and info["clear_stairs_as_flat"] == 0
 
 
-def test_c28s_line_carries_the_clear_count(monkeypatch):
+def test_c28s_line_carries_the_clear_count():
     terr = ["down"] * 3 + ["flat"] * 7
     raw = [0.2, -0.01, -0.02] + [0.0] * 7  # one against its sign (C28), two under 0.05 m
     msg, info = check(terr, raw)
     assert info["stairs_against_sign"] == 1 and info["clear_level_as_stairs"] == 2
-    monkeypatch.setattr(AC, "CLEAR_CONTRADICTION_LINE", False)
-    assert check(terr, raw)[0] is None  # C28 alone stays under its thresholds
+    assert check(terr, raw, clear_line=False)[0] is None  # C28 alone stays under its thresholds
     terr = ["up"] * 4 + ["flat"] * 6
     raw = [-0.3, -0.2, -0.25, 0.02] + [0.0] * 6
-    monkeypatch.setattr(AC, "CLEAR_CONTRADICTION_LINE", True)
     msg = check(terr, raw)[0]
     assert "contradict their integrated height change" in msg and "1 strides clearly contradict it" in msg

@@ -28,9 +28,6 @@ LEVEL_ALTITUDE_PER_100M_MAX_M = 4.7
 #: Decision C28: a warning when at least this many strides, and this fraction of them, contradict their class,
 CONFLICT_MIN_STRIDES = 3
 CONFLICT_MIN_FRACTION = 0.10
-#: decision C233: a stride whose measured height clearly contradicts its terrain class is counted and said (False:
-#: C28's thresholds alone, the measurement's baseline)
-CLEAR_CONTRADICTION_LINE = True
 #: or when the strides classed flat add at least this much (m) to the altitude change
 FLAT_ALTITUDE_M = 0.5
 
@@ -214,10 +211,13 @@ def clear_contradiction_line(n_level: int, n_stair: int, n: int) -> str:
             f"({decision_ref('C233', 'C28', topic='classifiers')})")
 
 
-def terrain_dz_check(terrain, raw_dz: np.ndarray, dz: np.ndarray) -> tuple[str | None, dict]:
+def terrain_dz_check(terrain, raw_dz: np.ndarray, dz: np.ndarray, *,
+                     clear_line: bool = True) -> tuple[str | None, dict]:
     """Decision C28: ``terrain`` (n,) a model's classes (None/NaN: not classified, not counted), ``raw_dz`` (n,)
     the integrated height changes before the rules, ``dz`` (n,) the track's final ones. Returns the warning
-    (None when the classes and heights agree well enough) and ``info["terrain_dz_check"]``."""
+    (None when the classes and heights agree well enough) and ``info["terrain_dz_check"]``. ``clear_line``
+    (decision C233, adopted): a stride whose measured height clearly contradicts its class is said from one; False
+    gives C28's thresholds alone (the measurement's baseline; a keyword, no module switch: W413)."""
     terr = np.array([t if isinstance(t, str) else "" for t in terrain], dtype=object)
     raw = np.asarray(raw_dz, dtype=float)
     fin = np.asarray(dz, dtype=float)
@@ -234,9 +234,9 @@ def terrain_dz_check(terrain, raw_dz: np.ndarray, dz: np.ndarray) -> tuple[str |
     info = {"strides_classified": n, "stairs_against_sign": int(sign.sum()), "flat_with_height": int(level.sum()),
             "altitude_from_flat_m": flat_alt,
             "flat_next_to_stairs": int(((terr == "flat") & near).sum())}
-    masks = clear_contradictions(terr, raw, near)  # decision C233 (counted; said with CLEAR_CONTRADICTION_LINE)
+    masks = clear_contradictions(terr, raw, near)  # decision C233 (counted; said unless clear_line=False)
     info["clear_level_as_stairs"], info["clear_stairs_as_flat"] = clear = tuple(int(m.sum()) for m in masks)
-    clear = clear if CLEAR_CONTRADICTION_LINE else (0, 0)
+    clear = clear if clear_line else (0, 0)
     many = bad >= CONFLICT_MIN_STRIDES and n and bad >= CONFLICT_MIN_FRACTION * n
     if not (many or abs(flat_alt) >= FLAT_ALTITUDE_M):
         return (clear_contradiction_line(*clear, n) if sum(clear) else None), info

@@ -15,8 +15,6 @@ import pandas as pd
 
 #: decision L749: turns.csv ``turn_steps_source`` - the lower back's contacts / the foot's strides x 2 (estimate)
 WAIST, FOOT_X2 = "waist", "foot_x2"
-#: decision L749: whether a foot-only track estimates ``turn_steps`` (2 x its strides); False leaves it empty
-FOOT_ESTIMATE = True
 
 
 def contacts_in(event_s, spans: np.ndarray) -> np.ndarray:
@@ -47,18 +45,20 @@ def waist_spans(turns: pd.DataFrame, yaw_turns) -> np.ndarray:
     return spans
 
 
-def foot_turn_steps(turns: pd.DataFrame, steps: pd.DataFrame, info: dict | None) -> tuple[np.ndarray | None, str]:
+def foot_turn_steps(turns: pd.DataFrame, steps: pd.DataFrame, info: dict | None, *,
+                    foot_estimate: bool = True) -> tuple[np.ndarray | None, str]:
     """Decision L749: a foot track's steps per turn and their source - the lower back's contacts
     (``info["trunk_contacts"]``) inside :func:`waist_spans` (``"waist"``), else 2 x the foot's strides whose
     contact (``event_s``) lies inside the turn (``"foot_x2"``, an estimate: the other foot is assumed to
-    alternate); ``(None, "")`` without either (a foot table without contact times: ``pdrlearn run``'s)."""
+    alternate; ``foot_estimate`` False leaves it empty, L749's alternative, a keyword: W413); ``(None, "")``
+    without either (a foot table without contact times: ``pdrlearn run``'s)."""
     info = info or {}
     trunk = info.get("trunk_contacts")
     if trunk:
         rows = pd.DataFrame(list(trunk))
         col = "event_s" if "event_s" in rows else "start_s"
         return contacts_in(rows[col], waist_spans(turns, info.get("trunk_yaw_turns"))), WAIST
-    if not FOOT_ESTIMATE or "event_s" not in steps or (len(steps) and not np.isfinite(
+    if not foot_estimate or "event_s" not in steps or (len(steps) and not np.isfinite(
             steps["event_s"].to_numpy(float)).any()):
         return None, ""  # no contact times (pdrlearn run's foot strides): no count rather than a guessed one
     return 2 * contacts_in(steps["event_s"], turns[["start_s", "end_s"]].to_numpy(float)), FOOT_X2

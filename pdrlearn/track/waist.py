@@ -65,6 +65,7 @@ from pdrlearn.track.geodetic import heading_in_radians, start_coordinate
 from pdrlearn.track.sideways import sideways_warnings
 from pdrlearn.track.units import unit_span, with_left_out_units
 from pdrlearn.waist import _kernels as K
+from pdrlearn.waist import mount_drift as _mount_drift
 from pdrlearn.waist.ahrs import WaistIMU, waist_imu
 from pdrlearn.waist.backward import backward_warnings
 from pdrlearn.waist.contact_model import CONTACT_MODEL_VALUES, rescore_contacts
@@ -102,7 +103,6 @@ from pdrlearn.waist.lengths import (
     walking_sequences,
 )
 from pdrlearn.waist.lying import postures_and_transfers, session_lying
-from pdrlearn.waist.mount_drift import drift_imu
 from pdrlearn.waist.params import NO_CALIBRATION, NO_SENSOR_HEIGHT, WaistParams, resolve_params, subject_height
 from pdrlearn.waist.pelvic_rhythm import (
     RHYTHM_SLOW,
@@ -1226,7 +1226,7 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
     n_tilted = 0
     pimu = imu  # decisions W565 / W566: the IMU the posture code reads (a drifting mount's turned up direction)
     if not realtime and len(steps) and "has_next" in steps:
-        pimu, line = drift_imu(imu, steps["event_s"].to_numpy(float), steps["has_next"].to_numpy(bool))
+        pimu, line = _mount_drift.drift_imu(imu, steps["event_s"].to_numpy(float), steps["has_next"].to_numpy(bool))
         warnings += [line] if line else []
     if o["max_tilt_deg"] is not None:  # W102: a contact made with the trunk far from its walking upright is no step
         steps = tilt_gate(steps, pimu, float(o["max_tilt_deg"]))

@@ -27,9 +27,6 @@ from pdrlearn.waist.upright import MIN_WALKING_CONTACTS
 #: decision W565: a mount drifting more than this (deg) between the first and the last walking bout is said: half of
 #: W222's 15 deg sitting tilt (a drift that large eats half the margin between standing and sitting); our choice
 MOUNT_DRIFT_DEG = 7.5
-#: decision W566 (adopted): the posture code reads each walking bout's upright when W565's line is said (fresh users
-#: 16790-16819 with a drifting mount: misses + false transfers 6 -> 0)
-PER_BOUT_UPRIGHT = True
 
 
 def bout_uprights(t: np.ndarray, up_body: np.ndarray, event_s: np.ndarray,
@@ -89,11 +86,12 @@ def turned_up(t: np.ndarray, up_body: np.ndarray, bouts: list[tuple[float, np.nd
     return v * c[:, None] + np.cross(k, v) * s[:, None] + k * (k * v).sum(axis=1)[:, None] * (1.0 - c)[:, None]
 
 
-def drift_imu(imu, event_s: np.ndarray, has_next: np.ndarray, *, correct: bool | None = None):
+def drift_imu(imu, event_s: np.ndarray, has_next: np.ndarray, *, correct: bool = True):
     """Decisions W565 / W566: ``(imu, line)``: the lower-back IMU the posture code reads and W565's line (None when
-    the mount did not drift more than :data:`MOUNT_DRIFT_DEG`). When it did and ``correct`` (default
-    :data:`PER_BOUT_UPRIGHT`), a copy whose ``up_body`` is :func:`turned_up` onto W102's whole-recording upright."""
-    correct = PER_BOUT_UPRIGHT if correct is None else correct
+    the mount did not drift more than :data:`MOUNT_DRIFT_DEG`). When it did and ``correct`` (decision W566,
+    adopted: fresh users 16790-16819 with a drifting mount, misses + false transfers 6 -> 0; False, the
+    measurement's baseline, is a keyword, not a module switch: W413), a copy whose ``up_body`` is :func:`turned_up`
+    onto W102's whole-recording upright."""
     if imu.up_body is None:
         return imu, None
     bouts = bout_uprights(imu.t, imu.up_body, event_s, has_next)
