@@ -295,6 +295,11 @@ SESSIONS: tuple[Column, ...] = (
     ("n_reference", "count", "integer", "lower back: reference contacts"),
     ("n_reference_strides", "count", "integer", "reference strides stride_length_mae_m compares"),
     ("n_stance_times", "count", "integer", "--toe-off only: strides with a stance time"),
+    ("toe_contact_share_pct", "%", "number", "offline foot track: 100 x the steady strides (steps.csv steady) whose "
+                                             "contact is forefoot / those with a contact type: a toe walker's "
+                                             "share of toe contacts; empty under 5 such strides (L756)"),
+    ("n_contact_strides", "count", "integer", "offline foot track: the steady strides toe_contact_share_pct is "
+                                              "taken over (L756)"),
     ("n_stereo_matched", "count", "integer", "lower back: contacts matched with both feet"),
     ("n_side_strides", "count", "integer", "foot: strides of side-stepping runs (L219 / L228's sideways rows), "
                                            "not counted as backward (L270); empty on the lower back"),
@@ -1286,6 +1291,9 @@ FOOT_STEPS: tuple[Column, ...] = (
                                       "rest (gaitmap's ic_angle; L421)"),
     ("tc_angle_deg", "deg", "number", "offline foot track with a toe-off (--toe-off): the sole angle at tc_s "
                                       "(gaitmap's tc_angle; L421)"),
+    ("contact", _ID, "text", "offline foot track: the contact type from ic_angle_deg - forefoot below -3 deg "
+                             "(toes down: a toe walker), heel above +3 deg (the heel rocker), flat in between "
+                             "(L756)"),
     ("impossible", _ID, "true/false", "the last-line guard (L94) moved the stride 0 m: no gait values (L97)"),
     ("trunk_pause_s", "s", "number", "offline, with the lower-back unit: the pause before the stride, its time "
                                      "from the previous stride's start beyond the walker's stride (two of the lower "

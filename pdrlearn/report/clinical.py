@@ -342,6 +342,18 @@ def walk_test_line(summary: dict, unit: str) -> str | None:
     return f"- Corridor walk test{name}: {summary['walk_test_distance_m']:.0f} m{laps}{span}{extra} ({unit})"
 
 
+def contact_line(summary: dict, unit: str) -> str | None:
+    """Decision L756: the steady strides' toe-contact share (summary.json ``toe_contact_share_pct``), None without
+    it (a lower-back track, under 5 steady strides)."""
+    from pdrlearn.kernels.contact_type import FLAT_CONTACT_DEG
+
+    pct, n = summary.get("toe_contact_share_pct"), summary.get("n_contact_strides")
+    if pct is None:
+        return None
+    return (f"- Toe contact: {pct:.0f} % of {n} steady strides land on the forefoot (sole angle at contact below "
+            f"-{FLAT_CONTACT_DEG:g} deg; steps.csv contact; {unit}; L756)")
+
+
 def clinical_lines(summary: dict, folder: Path) -> list[str]:
     """Decision W420: one line per clinical test the track in ``folder`` (its ``summary``) measured."""
     unit = UNIT_NAMES.get(str(summary.get("pipeline")), str(summary.get("pipeline")))
@@ -391,6 +403,9 @@ def clinical_lines(summary: dict, folder: Path) -> list[str]:
     lines += [x for x in (spatiotemporal_line(summary, unit, stride_given=own),  # decisions C195, C197
                           _normalised(summary, unit, speed is not None and own, own)) if x]  # decisions C196, C197
     lines += [x for x in (stairs_line(summary, folder, unit), asymmetry_line(summary, unit)) if x]  # decision C190
+    contact = contact_line(summary, unit)  # decision L756: a toe walker's outcome
+    if contact:
+        lines.append(contact)
     lines += travel_lines(summary, folder, unit)  # decision L582: backward / side strides, turns
     lines += daily_living_lines(summary, folder)
     warnings = warnings_line(summary)
@@ -504,6 +519,7 @@ def _gait_walks(root: Path) -> list[dict]:
     """Decision W438: every gait_summary.json under ``root`` (gait --out, gait-all's W437 per-pair files) as ``{folder,
     rel, subject, left, right (session paths), names, walk}``; one not written by gait is the line plain report
     gives."""
+    from pdrlearn.cohort import meta_visit
     from pdrlearn.track.gait import leg_length
 
     walks = []
@@ -521,7 +537,10 @@ def _gait_walks(root: Path) -> list[dict]:
         rel = path.parent.relative_to(root).as_posix() if path.parent != root else path.parent.name
         names = {s: row.get(f"session_{s}") or (Path(side[s]).name if side[s] else "?") for s in ("left", "right")}
         found = leg_length(_meta(side["left"]) or _meta(side["right"]))  # decision C196: a measured leg only
-        walks.append({"folder": path.parent, "rel": rel, "subject": subject or None, "walk": walk, **side,
+        # decision C238: the visit too (gait_pairs.csv's, else meta.json's), so C221 orders the gait rows
+        visit = row.get("visit") or meta_visit(_meta(side["left"])) or meta_visit(_meta(side["right"]))
+        walks.append({"folder": path.parent, "rel": rel, "subject": subject or None, "visit": visit or None,
+                      "walk": walk, **side,
                       "names": names, "stairs": summary.get("stairs"),  # L561: stairs
                       "leg_m": measured_leg(found.get("leg_length_m"), found.get("leg_length_source"))})
     return walks

@@ -724,6 +724,9 @@ def _basic(result: TrackResult, out: dict) -> None:
     from pdrlearn.waist.transfers import transfer_summary
 
     out.update(clinical_summary(result.steps))  # decision L104: pauses, walking bouts, turns, stride-time CV
+    from pdrlearn.track.contact_summary import contact_summary
+
+    out.update(contact_summary(result.steps))  # decision L756: the steady strides' toe-contact share
     out.update(leg_summary(result.steps))  # decision W228: steps per leg, the lower back's step-time asymmetry
     # decision L200: each turn's duration, angle, peak rate (L210: a lower-back track's yaw-rate turns)
     table = turn_table(result.steps, yaw_turns=result.info.get("yaw_turns"),

@@ -1940,6 +1940,10 @@ def swing_columns(table: pd.DataFrame, fd: FootDisplacement, valid: np.ndarray) 
     place_column(table, "ic_angle_deg", np.where(valid, fd.sole_angle(table["event_s"].to_numpy(float)), np.nan),
                  after=("max_sensor_lift_m",))
     place_column(table, "tc_angle_deg", np.where(valid, fd.sole_angle(tc), np.nan), after=("ic_angle_deg",))
+    from pdrlearn.kernels.contact_type import contact_types
+
+    # decision L756: forefoot / flat / heel from the sole angle at the contact
+    place_column(table, "contact", contact_types(table["ic_angle_deg"].to_numpy(float)), after=("tc_angle_deg",))
     if getattr(fd, "heel_lift_m_", None) is not None:  # decision L721: --reference-point heel with a lever arm
         place_column(table, "max_heel_lift_m", np.where(valid, fd.heel_lift_m_, np.nan), after=("max_sensor_lift_m",))
 
