@@ -649,7 +649,7 @@ def run(
                               cycling=not no_cycling,  # decision E304
                               length_reference=length_reference,  # decision C117
                               check_domain=True, warn_out_of_domain=warn_out_of_domain)  # decision E105
-            from pdrlearn.classify.training import bundle_own_user
+            from pdrlearn.classify.users import bundle_own_user
 
             tracker.domain_user = bundle_own_user(bundle, session)  # decision C227
             dropped = "waist" in bundle.body_units and "waist" not in tracker.units  # --units foot (E26)
