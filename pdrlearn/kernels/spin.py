@@ -16,8 +16,10 @@ import numpy as np
 from pdrlearn.kernels.units import STANDARD_GRAVITY
 
 #: decision L742: a turn in place tilts the foot at most this fast (rad/s): the peak rate across the window's mean
-#: specific force (trial s49t2 spins 0.10-0.36; real strides, stepping turns and side steps included, >= 2.78)
-SPIN_TILT_MAX_RAD_S = 1.0
+#: specific force (trial s49t2 spins 0.10-0.36; real strides, stepping turns and side steps included, >= 2.78);
+#: 0.6, not FE's 1.0: a 0.4 m/s patient's small turn step at 20 Hz (7 cm, 5 cm lift) peaked at 0.927 (the lead,
+#: at the merge: tests/test_clinical_summary.py's patient walk)
+SPIN_TILT_MAX_RAD_S = 0.6
 #: decision L742: nor moves |specific force| further than this from g (m/s^2; a pivot 0.15 m off the unit at 3 rad/s
 #: adds 1.4; trial s49t2 spins 0.12-0.18, real strides >= 12)
 SPIN_ACC_DEV_MAX = 3.0
