@@ -48,7 +48,12 @@ def simulate(user: int, drift: str | None) -> Path:
 
 def run(folder: Path, correct: bool) -> tuple[list[dict], float, float, bool]:
     mount_drift.drift_imu = functools.partial(DRIFT_IMU, correct=correct)  # W566 on / off (a keyword, W413)
-    r = track_waist(read_session(folder), pipeline="waist-pendulum")
+    from pdrlearn.waist.params import resolve_params
+
+    session = read_session(folder)
+    p, _ = resolve_params(session, None)
+    p.options = {"mount_drift": True}  # W571: an opt-in since the merge (PARAMS.json)
+    r = track_waist(session, pipeline="waist-pendulum", params=p)
     tr = [t for t in (r.info["transfers"] or []) if t["kind"] in ("sit-to-stand", "stand-to-sit")]
     post = r.info["postures"] or []
     sit = sum(b - a for a, b, k in post if k == "sitting")

@@ -72,12 +72,26 @@ def slid():
     return {d: simulate_path(route, user, seed=1, stand_s=1.0, waist_mount_end_deg=d) for d in (None, (0.0, 20.0, 0.0))}
 
 
+def _track(session, on: bool = True):
+    from pdrlearn.waist.params import resolve_params
+
+    p, _ = resolve_params(session, None)
+    p.options = {"mount_drift": on}  # W571: an opt-in (PARAMS.json)
+    return track_waist(session, pipeline="waist-pendulum", params=p)
+
+
 def test_track_says_the_slide_and_an_unslid_session_is_unchanged_w565(slid, monkeypatch):
-    r = track_waist(slid[(0.0, 20.0, 0.0)], pipeline="waist-pendulum")
+    r = _track(slid[(0.0, 20.0, 0.0)])
     assert sum("turned on the belt" in w for w in r.info["warnings"]) == 1
     assert [t["kind"] for t in r.info["transfers"]] == ["stand-to-sit", "sit-to-stand"] * 2
-    plain = track_waist(slid[None], pipeline="waist-pendulum")
+    plain = _track(slid[None])
     assert not any("turned on the belt" in w for w in plain.info["warnings"])
     monkeypatch.setattr(M, "drift_imu", functools.partial(M.drift_imu, correct=False))  # W566 off (the baseline)
-    again = track_waist(slid[None], pipeline="waist-pendulum")
+    again = _track(slid[None])
     assert again.info["transfers"] == plain.info["transfers"] and again.info["postures"] == plain.info["postures"]
+
+
+def test_the_default_track_reads_no_drift_w571(slid):
+    """W571: off by default (the real HA002 Test11 read a 12.4 deg 'drift' with no slide)."""
+    r = track_waist(slid[(0.0, 20.0, 0.0)], pipeline="waist-pendulum")
+    assert not any("turned on the belt" in w for w in r.info["warnings"])

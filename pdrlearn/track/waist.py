@@ -711,6 +711,7 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "pelvic_rhythm_veto": False,  # W440: measured, not adopted (Test11's step F1 fell); an option
                    "rhythm_warning": False,  # W338: phone-only stride-rhythm warning; W339: not met, opt-in
                    "trunk_rhythm_veto": False,  # W550: runs without a step rhythm (trunk jerks); measured, not adopted
+                   "mount_drift": False,  # W565 / W566: a sliding belt unit said and corrected; not adopted (W571)
                    "side_at_contact": False,  # W235: the sequence rules' sides at the contact (offline pendulum)
                    "fast_fill": False,  # W242: a merged step's 5 Hz maximum (offline pendulum)
                    "ap_above_mean": False,  # W265: W29's IC, the last AP maximum above the AP mean (offline pendulum)
@@ -752,6 +753,8 @@ SCOPED_OPTIONS = {
                            lambda pl, rt, m, det, stops: not rt),
     "trunk_rhythm_veto": ("the offline waist tracks (W550: a run is judged after its last contact)",
                           lambda pl, rt, m, det, stops: not rt),
+    "mount_drift": ("the offline waist tracks (W565 / W566: the bouts' uprights are read over the whole recording)",
+                    lambda pl, rt, m, det, stops: not rt),
     "pll_edge_lock": ("waist-pll with its own PLL detector (W356)",
                       lambda pl, rt, m, det, stops: pl == "waist-pll" and not det),
     "pll_slow_follow": ("the offline waist-pll with its own PLL detector (W504)",
@@ -1100,6 +1103,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "pll_edge_lock": pll_edge_lock,  # W356
              "rhythm_warning": None,  # W338 / W339: a PARAMS.json option only
              "trunk_rhythm_veto": None,  # W550: a PARAMS.json option only
+             "mount_drift": None,  # W565 / W566 / W571: a PARAMS.json option only
              "rest_bias": rest_bias, "step_bound": None,  # W230: a PARAMS.json option only
              "climb_veto": None,  # L330: a PARAMS.json option only
              "ride_vibration": None,  # L402 / L403: a PARAMS.json option only
@@ -1225,7 +1229,7 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
             steps = drop_contacts(steps, rhythmic, "n_arrhythmic")
     n_tilted = 0
     pimu = imu  # decisions W565 / W566: the IMU the posture code reads (a drifting mount's turned up direction)
-    if not realtime and len(steps) and "has_next" in steps:
+    if o["mount_drift"] and not realtime and len(steps) and "has_next" in steps:  # W571: an opt-in
         pimu, line = _mount_drift.drift_imu(imu, steps["event_s"].to_numpy(float), steps["has_next"].to_numpy(bool))
         warnings += [line] if line else []
     if o["max_tilt_deg"] is not None:  # W102: a contact made with the trunk far from its walking upright is no step

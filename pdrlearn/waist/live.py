@@ -129,6 +129,7 @@ LIVE_UNAPPLIED_OPTIONS = ("stairs_climb", "max_tilt_deg", "sit_veto", "vault_vet
                           "foot_rest_veto",  # W336: a foot rest is judged over its whole run of contacts
                           "rhythm_warning",  # W338: a chunk of 16 contacts is judged after its last one
                           "trunk_rhythm_veto",  # W550: a run is judged after its last contact
+                          "mount_drift",  # W565 / W571: the bouts' uprights are read over the whole recording
                           "side_at_contact",  # W235: the offline detector's sequence rules only
                           "fast_fill",  # W242: the offline detector's sequence rules only
                           "ap_above_mean",  # W265: W29's IC of the offline detector only
