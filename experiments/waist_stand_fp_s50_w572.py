@@ -64,6 +64,30 @@ def window_cues(imu, t: float) -> dict:
             "vrms": float(v)}
 
 
+def contact_cues(session, steps) -> dict:
+    """Every contact of ``steps`` (sorted): its time ``e``, W573's four cues (``vloc``, ``still``, ``ml``, ``amp``)
+    and ``inner`` (neither the first nor the last of its walking sequence)."""
+    st = steps.sort_values("event_s", kind="stable")
+    e, has_next = st["event_s"].to_numpy(float), st["has_next"].to_numpy(bool)
+    imu = waist_imu(session)
+    seq = sequences(e, has_next)
+    cues = [window_cues(imu, t) for t in e]
+    vr = np.array([x["vrms"] for x in cues])
+    c = M.stages(session)
+    med_h = float(np.median(c["h"][np.flatnonzero(c["det"])]))
+    out = {k: np.full(e.size, np.nan) for k in ("vloc", "still", "ml", "amp")}
+    inner = np.zeros(e.size, bool)
+    for j in range(e.size):
+        same = np.flatnonzero(seq == seq[j])
+        others = same[same != j]
+        inner[j] = same[0] != j and same[-1] != j
+        out["vloc"][j] = vr[j] / np.median(vr[others]) if others.size else np.nan
+        out["still"][j], out["ml"][j] = cues[j]["still"], cues[j]["ml"]
+        _, i = M.fp_stage(e[j], c)
+        out["amp"][j] = np.nan if i is None else float(c["h"][i] / med_h)
+    return {"e": e, "inner": inner, **out}
+
+
 def rows_of(sub: str, session) -> list[dict]:
     res = track_waist(session, pipeline="waist-pendulum")
     st = res.steps.sort_values("event_s", kind="stable")
