@@ -1,7 +1,7 @@
 """Decision E320 (session 50, I3): the lean runtime's gait values against E311's `run --gait` and offline `gait`.
 
     python experiments/runtime_gait_s50_e320.py 17100 17120 > users.txt   # fresh simulated users 17100-17119
-    python experiments/runtime_gait_s50_e320.py 0 0 real > real.txt        # the gaitmap level pair only (a check)
+    python experiments/runtime_gait_s50_e320.py 0 0 real > real.txt        # the real foot pairs only (a check)
 
 Sessions are simulated into $OUT (default /tmp/e320): 17100-17109 at 50 Hz, 17110-17119 at 100 Hz, a left and a right
 foot of E311's walk each. Per foot: lean = `pdrlearn.runtime.__main__.replay(units="foot", contacts=True,
@@ -24,6 +24,7 @@ from pdrlearn.track.bilateral import offline_foot_track, pair_sessions, read_pai
 from pdrlearn.track.gait import gait_summary, stride_rows
 
 REAL = Path("/work/shared/data")
+EXTERNAL = Path(__file__).resolve().parents[1] / "datasets" / "external"
 BUNDLE = Path(__file__).resolve().parents[1] / "models" / "plasys-sim-default"
 TOL_S = 0.020
 
@@ -127,6 +128,9 @@ def run(first: int, stop: int, real: bool) -> None:
         pair(f"user {u} ({rate} Hz)", root / f"u{u}_left", root / f"u{u}_right", bundle, pools)
     if real:
         pair("gaitmap_level", REAL / "gaitmap_level_left", REAL / "gaitmap_level_right", bundle, pools)
+        for name in ("gaitmap_ms", "gaitmap_walk4x10"):  # datasets/external's foot pairs (a check too)
+            if (EXTERNAL / f"{name}_left").is_dir():
+                pair(name, EXTERNAL / f"{name}_left", EXTERNAL / f"{name}_right", bundle, pools)
     for name, pool in pools.items():
         if pool["dt"]:
             report(name, pool)
