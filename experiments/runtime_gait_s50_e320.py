@@ -77,19 +77,28 @@ def _pool() -> dict:
             "median_speed_mps": [], "median_stride_length_m": []}
 
 
-def pair(tag: str, left: Path, right: Path, bundle, pools: dict) -> None:
-    sessions, _, _ = read_pair(left, right, streamed=True)
-    off_sessions, _, _ = read_pair(left, right)
-    lean = {}
-    for side, d, s_st, s_off in zip(("left", "right"), (left, right), sessions, off_sessions, strict=True):
-        tracker, _ = replay(BUNDLE, d, units="foot", contacts=True, gait=True)
-        lean[side] = tracker
-        mine, mine_sum = tracker.gait_strides(), tracker.gait_summary()
-        for name, table in (("E311", streamed_foot_track(bundle)(s_st, False).steps),
-                            ("offline", offline_foot_track(s_off, False).steps)):
-            ref, ref_sum = reference(table)
-            row = compare(mine, mine_sum, ref, ref_sum, pools[name])
-            print(json.dumps({"tag": tag, "foot": side, "vs": name, "n_lean": len(mine["event_s"]), **row}), flush=True)
+def one_foot(tag: str, side: str, d: Path, bundle, pools: dict):
+    """One foot session: the lean tracker's values against E311's and offline's tables; the tracker."""
+    from pdrlearn.io import read_session
+
+    tracker, _ = replay(BUNDLE, d, units="foot", contacts=True, gait=True)
+    mine, mine_sum = tracker.gait_strides(), tracker.gait_summary()
+    for name, table in (("E311", streamed_foot_track(bundle)(read_session(d, streamed=True), False).steps),
+                        ("offline", offline_foot_track(read_session(d), False).steps)):
+        ref, ref_sum = reference(table)
+        row = compare(mine, mine_sum, ref, ref_sum, pools[name])
+        print(json.dumps({"tag": tag, "foot": side, "vs": name, "n_lean": len(mine["event_s"]), **row}), flush=True)
+    return tracker
+
+
+def pair(tag: str, left: Path, right: Path, bundle, pools: dict, *, paired: bool = True) -> None:
+    """Both feet (:func:`one_foot`) and, ``paired`` (one walk on one clock), the symmetry indices against
+    `run --gait`'s walk."""
+    if paired:
+        read_pair(left, right, streamed=True)  # gait's checks: one walk, one clock
+    lean = {side: one_foot(tag, side, d, bundle, pools) for side, d in (("left", left), ("right", right))}
+    if not paired:
+        return
     both = lean["left"].gait_summary(lean["right"])
     walk = pair_sessions(left, right, streamed=True, track_foot=streamed_foot_track(bundle))["walk"]
     print(json.dumps({"tag": tag, "si": {k: (None if both[k] is None else round(both[k], 3)) for k in
@@ -130,7 +139,8 @@ def run(first: int, stop: int, real: bool) -> None:
         pair("gaitmap_level", REAL / "gaitmap_level_left", REAL / "gaitmap_level_right", bundle, pools)
         for name in ("gaitmap_ms", "gaitmap_walk4x10"):  # datasets/external's foot pairs (a check too)
             if (EXTERNAL / f"{name}_left").is_dir():
-                pair(name, EXTERNAL / f"{name}_left", EXTERNAL / f"{name}_right", bundle, pools)
+                pair(name, EXTERNAL / f"{name}_left", EXTERNAL / f"{name}_right", bundle, pools,
+                     paired=False)  # each foot alone: gait refuses the pair (not one clock)
     for name, pool in pools.items():
         if pool["dt"]:
             report(name, pool)
