@@ -1,11 +1,12 @@
 """Decision E320 (session 50, I3): the lean runtime's gait values against E311's `run --gait` and offline `gait`.
 
     python experiments/runtime_gait_s50_e320.py 17100 17120 > users.txt   # fresh simulated users 17100-17119
+    python experiments/runtime_gait_s50_e320.py 17120 17140 > e321.txt    # decision E321's fresh users 17120-17139
     python experiments/runtime_gait_s50_e320.py 0 0 real > real.txt        # the real foot pairs only (a check)
 
-Sessions are simulated into $OUT (default /tmp/e320): 17100-17109 at 50 Hz, 17110-17119 at 100 Hz, a left and a right
-foot of E311's walk each. Per foot: lean = `pdrlearn.runtime.__main__.replay(units="foot", contacts=True,
-gait=True)` (numpy only), E311 = `cli.run_gait.streamed_foot_track`'s table, offline = `track.bilateral.
+Sessions are simulated into $OUT (default /tmp/e320): 17100-17109 / 17120-17129 at 50 Hz, the next tens at 100 Hz,
+a left and a right foot of E311's walk each. Per foot: lean = `pdrlearn.runtime.__main__.replay(units="foot",
+contacts=True, gait=True)` (numpy only), E311 = `cli.run_gait.streamed_foot_track`'s table, offline = `track.bilateral.
 offline_foot_track`'s. Strides matched by IC (|dIC| <= 20 ms)."""
 
 import json
@@ -101,6 +102,9 @@ def pair(tag: str, left: Path, right: Path, bundle, pools: dict, *, paired: bool
         return
     both = lean["left"].gait_summary(lean["right"])
     walk = pair_sessions(left, right, streamed=True, track_foot=streamed_foot_track(bundle))["walk"]
+    for k in ("stride_time_s_si_pct", "stride_length_m_si_pct"):  # decision E321's rule
+        if both[k] is not None and walk[k] is not None:
+            pools["si"].setdefault(k, []).append(abs(both[k] - walk[k]))
     print(json.dumps({"tag": tag, "si": {k: (None if both[k] is None else round(both[k], 3)) for k in
                                          ("stride_time_s_si_pct", "stride_length_m_si_pct")},
                       "run_gait_si": {k: (None if walk[k] is None else round(walk[k], 3)) for k in
@@ -126,9 +130,9 @@ def run(first: int, stop: int, real: bool) -> None:
     logging.disable(logging.WARNING)
     bundle = load_bundle(BUNDLE)
     root = Path(os.environ.get("OUT", "/tmp/e320"))
-    pools = {"E311": _pool(), "offline": _pool()}
+    pools = {"E311": _pool(), "offline": _pool(), "si": {}}
     for u in range(first, stop):
-        rate = "50" if u < 17110 else "100"
+        rate = "50" if (u // 10) % 2 == 0 else "100"  # 17100-17109, 17120-17129: 50 Hz; the next tens 100 Hz
         for f in ("left", "right"):
             d = root / f"u{u}_{f}"
             if not d.exists():
@@ -141,9 +145,12 @@ def run(first: int, stop: int, real: bool) -> None:
             if (EXTERNAL / f"{name}_left").is_dir():
                 pair(name, EXTERNAL / f"{name}_left", EXTERNAL / f"{name}_right", bundle, pools,
                      paired=False)  # each foot alone: gait refuses the pair (not one clock)
-    for name, pool in pools.items():
-        if pool["dt"]:
-            report(name, pool)
+    for name in ("E311", "offline"):
+        if pools[name]["dt"]:
+            report(name, pools[name])
+    for k, v in pools["si"].items():
+        print(f"|lean - run --gait| {k} (points) median over pairs", round(float(np.median(v)), 3),
+              "max", round(float(np.max(v)), 3), "n", len(v))
 
 
 if __name__ == "__main__":

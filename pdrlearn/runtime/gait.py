@@ -6,7 +6,8 @@ per-foot tables give per stride - the stride time (initial contact to initial co
 :func:`pdrlearn.kernels.contact.stride_times`), cadence, speed (:func:`pdrlearn.kernels.gait_values.cadence_speed`),
 length and turn - and a session summary: medians, the CV of the stride time and length (L104's formula, withheld
 under L113's minimum) and, with the other foot's strides, each side's mean and Robinson's symmetry index
-(:func:`pdrlearn.kernels.gait_values.side_pair`; L461's minimum per side). The arithmetic is the offline tables'
+(:func:`pdrlearn.kernels.gait_values.side_pair`; L461's minimum per side; decision E321: the stride lengths' means,
+CV and index without gait initiation's and termination's half strides, L317). The arithmetic is the offline tables'
 (``pdrlearn.track.gait``, ``pdrlearn.track.bilateral`` import the same kernels). No stance / swing time: the
 streamed strides carry no toe-off (L73's kernel filters the whole recording, scipy), ``run --gait`` gives them.
 """
@@ -61,38 +62,74 @@ class StrideGait:
                 "stride_length_m": np.where(valid, np.abs(length), np.nan), "stride_time_s": stride,
                 "cadence_spm": cadence, "speed_mps": speed, "turn_angle_rad": np.where(turn_ok, turn, np.nan)}
 
-    def summary(self) -> dict:
+    def bout_ends(self) -> np.ndarray:
+        """Decision E321: (B,) bool, this foot's strides that are the first or the last of a bout of its own
+        (:func:`bout_end_rows` on its contacts): one foot cannot tell which of them is the half stride (L317)."""
+        s = self.strides()
+        return bout_end_rows(s["event_s"], np.isfinite(s["stride_length_m"]), self.max_stride_s)
+
+    def summary(self, partial=None) -> dict:
         """The session's values of this foot: ``n_strides`` (rows with gait values), ``n_stride_times``, the medians
         ``median_stride_time_s``, ``median_cadence_spm``, ``median_speed_mps``, ``median_stride_length_m``,
         ``distance_m`` (the strides' |length| summed), ``mean_stride_time_s``, ``mean_stride_length_m`` (a symmetry
         index's values) and ``cv_stride_time_pct`` / ``cv_stride_length_pct`` (L104's 100 x SD / mean over every
         stride that has the value; None under L113's :data:`~pdrlearn.kernels.gait_values.CV_MIN_STRIDES` of them;
-        not summary.json's ``stride_time_cv_pct``, which takes the steady straight strides only). None without a
+        not summary.json's ``stride_time_cv_pct``, which takes the steady straight strides only). Decision E321: the
+        stride length's mean and CV leave out the ``partial`` rows ((B,) bool; default :meth:`bout_ends`), gait
+        initiation's and termination's half strides (L317); ``n_full_strides`` counts the rest. None without a
         value."""
         s = self.strides()
         length, stride = s["stride_length_m"], s["stride_time_s"]
+        partial = self.bout_ends() if partial is None else np.asarray(partial, dtype=bool)
+        full = np.where(partial, np.nan, length)  # decision E321 (L317)
         out = {"n_strides": int(np.isfinite(length).sum()), "n_stride_times": int(np.isfinite(stride).sum()),
+               "n_full_strides": int(np.isfinite(full).sum()),
                "median_stride_time_s": median_finite(stride), "median_cadence_spm": median_finite(s["cadence_spm"]),
                "median_speed_mps": median_finite(s["speed_mps"]), "median_stride_length_m": median_finite(length),
                "distance_m": float(np.nansum(length)) if len(length) else 0.0,
-               "mean_stride_time_s": mean_finite(stride), "mean_stride_length_m": mean_finite(length)}
-        for key, v in (("cv_stride_time_pct", stride), ("cv_stride_length_pct", length)):
+               "mean_stride_time_s": mean_finite(stride), "mean_stride_length_m": mean_finite(full)}
+        for key, v in (("cv_stride_time_pct", stride), ("cv_stride_length_pct", full)):
             v = v[np.isfinite(v)]
             cv = cv_pct(v) if len(v) >= CV_MIN_STRIDES else math.nan  # decisions L104, L113
             out[key] = cv if math.isfinite(cv) else None
         return out
 
 
+def bout_end_rows(event_s, valid, max_stride_s: float = MAX_STRIDE_S) -> np.ndarray:
+    """Decision E321: (B,) bool, the rows that open or close a bout - L317's partial contacts (gait initiation's and
+    termination's half strides) - of rows ``event_s`` (any order; NaN: no contact) that are ``valid`` (a row that
+    is not - a gap row, a guarded stride - ends a bout, as a stop does): a bout ends where the next contact comes
+    more than ``max_stride_s`` (L79's stop, :data:`~pdrlearn.kernels.contact.MAX_STRIDE_S`) after it."""
+    ev = np.asarray(event_s, dtype=float)
+    ok = np.asarray(valid, dtype=bool) & np.isfinite(ev)
+    out = np.zeros(len(ev), bool)
+    order = np.argsort(np.where(np.isfinite(ev), ev, np.inf), kind="stable")
+    order = order[np.isfinite(ev[order])]
+    run: list[int] = []
+    for i in [*order.tolist(), -1]:
+        if run and (i < 0 or not ok[i] or ev[i] - ev[run[-1]] > max_stride_s + 1e-9):
+            out[[run[0], run[-1]]] = True
+            run = []
+        if i >= 0 and ok[i]:
+            run.append(i)
+    return out
+
+
 def gait_summary(left: StrideGait, right: StrideGait | None = None) -> dict:
     """Decision E320: the session summary of one foot (``left``: the only foot, whichever it is) or of two feet of
     one walk: ``{"left": ..., "right": ...}`` (each :meth:`StrideGait.summary`) with ``stride_time_s_left`` /
     ``_right`` / ``_si_pct`` / ``_ratio`` and ``stride_length_m_*`` (the sides' means, Robinson's index,
-    :func:`~pdrlearn.kernels.gait_values.side_pair`, as ``gait``'s walk measures) and ``si_withheld``: the reason
+    :func:`~pdrlearn.kernels.gait_values.side_pair`, as ``gait``'s walk measures; decision E321: the stride lengths
+    without each bout's first and last contact of the two feet, :func:`bout_end_rows`) and ``si_withheld``: the reason
     when a side has fewer than L461's minimum (:data:`~pdrlearn.kernels.gait_values.CV_MIN_STRIDES`) stride times,
     the indices and ratios then None."""
     if right is None:
         return left.summary()
-    sides = {"left": left.summary(), "right": right.summary()}
+    # decision E321: L317's half strides of the two feet's merged contacts, each foot's rows of them
+    a, b = left.strides(), right.strides()
+    ends = bout_end_rows(np.r_[a["event_s"], b["event_s"]],
+                         np.isfinite(np.r_[a["stride_length_m"], b["stride_length_m"]]), left.max_stride_s)
+    sides = {"left": left.summary(ends[:len(left)]), "right": right.summary(ends[len(left):])}
     out: dict = dict(sides)
     out.update(side_pair("stride_time_s", sides["left"]["mean_stride_time_s"], sides["right"]["mean_stride_time_s"]))
     out.update(side_pair("stride_length_m", sides["left"]["mean_stride_length_m"],
