@@ -14,7 +14,7 @@ import pytest
 from pdrlearn.errors import DataError
 from pdrlearn.kernels.gait_values import cadence_speed, side_pair
 from pdrlearn.runtime import Tracker
-from pdrlearn.runtime.gait import STRIDE_COLUMNS, StrideGait, gait_summary
+from pdrlearn.runtime.gait import STRIDE_COLUMNS, StrideGait, bout_end_rows, gait_summary
 from pdrlearn.runtime.tracker import Step
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
@@ -96,3 +96,23 @@ def test_gap_and_impossible_rows_have_no_gait_values_and_the_indices():
     assert out["stride_length_m_si_pct"] == pytest.approx(100 * 0.2 / 1.3)
     assert out["stride_length_m_ratio"] == pytest.approx(side_pair("x", 1.4, 1.2)["x_ratio"])
     assert out["left"]["cv_stride_time_pct"] == pytest.approx(0.0, abs=1e-9)  # 11 stride times of 1.0 s
+
+
+def test_half_strides_leave_the_stride_length_index_e321():
+    """Decision E321: a walk started and ended with the feet side by side (L317): the first foot's first stride and
+    the last foot's last stride are half strides; they leave the stride-length means, CV and index."""
+    left, right = StrideGait(), StrideGait()
+    left.add([_step(float(i), 0.7 if i == 0 else 1.4) for i in range(12)])
+    right.add([_step(i + 0.5, 0.7 if i == 11 else 1.4) for i in range(12)])
+    ends = bout_end_rows(np.r_[left.strides()["event_s"], right.strides()["event_s"]], np.ones(24, bool))
+    assert np.flatnonzero(ends).tolist() == [0, 23]  # the walk's first and last contact
+    out = gait_summary(left, right)
+    assert out["stride_length_m_si_pct"] == pytest.approx(0.0, abs=1e-12)  # E320 read 100 x 0.7 / 12 / 1.3706 %
+    assert out["left"]["mean_stride_length_m"] == pytest.approx(1.4) and out["left"]["n_full_strides"] == 11
+    assert out["left"]["cv_stride_length_pct"] == pytest.approx(0.0, abs=1e-9)
+    assert out["left"]["median_stride_length_m"] == pytest.approx(1.4) and out["left"]["n_strides"] == 12
+    one = left.summary()  # one foot: each of its bouts' first and last stride
+    assert one["n_full_strides"] == 10 and one["mean_stride_length_m"] == pytest.approx(1.4)
+    stop = StrideGait()  # a stop over L79's 3 s splits the bouts
+    stop.add([_step(float(i), 1.4) for i in range(5)] + [_step(10.0 + i, 1.4) for i in range(5)])
+    assert np.flatnonzero(stop.bout_ends()).tolist() == [0, 4, 5, 9]
