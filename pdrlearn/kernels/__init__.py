@@ -36,6 +36,8 @@ Modules
 - :mod:`~pdrlearn.kernels.rests` - the spans between a walk's rows: standstills (L464), streamed rests (E205), pauses
   (L110).
 - :mod:`~pdrlearn.kernels.order` - the timestamp-order check of the runtime's pushes, the sensor pairing and split.
+- :mod:`~pdrlearn.kernels.gait_values` - a stride's cadence / speed, medians, CV and symmetry index: the offline gait
+  tables' and the lean runtime's gait values (E320).
 
 This ``__init__`` imports nothing (importing a submodule never loads the others).
 """

@@ -48,7 +48,7 @@ def _parser() -> argparse.ArgumentParser:
 
 def replay(bundle_dir: Path, session_dir: Path, *, chunk_s: float = 1.0, units: str | None = None,
            method: str | None = None, fallback_line: bool = True, domain_line: bool = True,
-           block_rows: int | None = None, clip_lines: bool = True):
+           block_rows: int | None = None, clip_lines: bool = True, contacts: bool = False, gait: bool = False):
     """The tracker after replaying ``session_dir`` through ``bundle_dir`` and its steps, as ``pdrlearn run`` pushes
     a session (same input rates, stream ends, frames when the session declares them; decision E76).
     ``fallback_line=False``: no E26 line about the foot unit only (``evaluate`` says it its own way, E196);
@@ -58,7 +58,9 @@ def replay(bundle_dir: Path, session_dir: Path, *, chunk_s: float = 1.0, units: 
     said them).
     ``block_rows``: the sensor files are read this many data rows at a time (default ``chunked.BLOCK_ROWS``;
     decision E274: bounded memory, the same pushes as the whole files'; a file the block reader finds unusual is
-    read whole, as before)."""
+    read whole, as before).
+    ``contacts``, ``gait``: the :class:`~pdrlearn.runtime.tracker.Tracker`'s (decisions E49, E320: with both, the
+    tracker's :meth:`~pdrlearn.runtime.tracker.Tracker.gait_strides` / ``gait_summary`` after the replay)."""
     from pdrlearn.errors import DataError
     from pdrlearn.runtime import Tracker, load_bundle
     from pdrlearn.runtime import chunked as _chunked
@@ -82,7 +84,8 @@ def replay(bundle_dir: Path, session_dir: Path, *, chunk_s: float = 1.0, units: 
                       units=asked, sensors=list(ends), methods=methods,
                       input_rates_hz={n: 1.0 / p if p > 0 else float("nan") for n, p in periods.items()},
                       stream_ends_s=ends, check_domain=True,  # decision E105: C61's out-of-domain line, as pdrlearn run
-                      full_scale=(meta or {}).get("full_scale"))  # decision B456: the session's declared ranges
+                      full_scale=(meta or {}).get("full_scale"),  # decision B456: the session's declared ranges
+                      contacts=contacts, gait=gait)  # decisions E49, E320
     if not domain_line:  # decision E198: checked, never said
         tracker.quiet_domain()
     if not clip_lines:  # decision E303: said when the caller read the session

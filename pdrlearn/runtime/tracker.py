@@ -103,6 +103,7 @@ from pdrlearn.runtime.clocks import SENSORS as CLOCK_SENSORS
 from pdrlearn.runtime.clocks import ClockCheck, offset_remedy, waist_on_foot_clock
 from pdrlearn.runtime.domain import DomainLog
 from pdrlearn.runtime.fixes import FixInput
+from pdrlearn.runtime.gait import StrideGait, gait_summary
 from pdrlearn.runtime.guard import LIVE_STRIDES, FrozenFootWatch, FrozenWatch, MirrorWatch, UnitGuard
 from pdrlearn.runtime.links import RepeatedLines, StartClocks, order_error, unit_of
 from pdrlearn.runtime.rate_watch import DROP_FACTOR, RateWatch
@@ -507,6 +508,10 @@ class Tracker(OwnGuard, FixInput):
         ``full_scale``): clipping is judged at them (samples within 5 % of the range). Decision E303: with
         ``check_input`` and ``stream_checks``, each IMU stream's 10 s blocks are checked for clipping (B77 / B311, or
         at the declared range) and stuck axes (B455): one line per stream, and per stream and axis, in ``warnings``.
+    gait : decision E320: keep every returned stride's gait values (:class:`pdrlearn.runtime.gait.StrideGait`,
+        numpy only; needs ``contacts=True``: a stride time is initial contact to initial contact):
+        :meth:`gait_strides` per stride, :meth:`gait_summary` the session's (with the other foot's tracker, the
+        symmetry indices). Not carried over by ``restart_state`` / ``resume``.
     """
 
     _one_at_a_time = "push/flush/add_fix"  # decisions E231, E256: the calls one_call_at_a_time guards
@@ -564,6 +569,7 @@ class Tracker(OwnGuard, FixInput):
     _drop_dups = False
     _starts: StartClocks | None = None
     _repeats: RepeatedLines | None = None
+    _gait_log: StrideGait | None = None  # decision E320 (a bare Tracker.__new__: none kept)
 
     def __init__(
         self,
@@ -608,6 +614,7 @@ class Tracker(OwnGuard, FixInput):
         gated_level_dz: bool | str = False,
         cycling: bool = True,
         full_scale: dict | None = None,
+        gait: bool = False,
     ):
         self._busy = new_guard()  # decision E231: push / flush one thread at a time
         start_xyz = enu_start(start, start_enu_m)  # decision L159
@@ -802,6 +809,10 @@ class Tracker(OwnGuard, FixInput):
         self.speculative = bool(speculative)
         #: decisions E49-E51: give each stride its initial contact and stride time (an option: E50's rule not met)
         self.contacts = bool(contacts)
+        if not isinstance(gait, bool | np.bool_) or (gait and not self.contacts):  # decision E320
+            raise DataError(f"gait={gait!r}: give True (with contacts=True: a stride time is initial contact to "
+                            "initial contact, decisions E49, L66) or False")
+        self._gait_log = StrideGait() if gait else None
         self._spec: tuple | None = None
         self._trims = 0
         #: decisions E30, E31: the gaps the current push opens ``(sensor, last sample before, first after)`` (s), the
@@ -1285,6 +1296,8 @@ class Tracker(OwnGuard, FixInput):
             self._trim(min(st.start_s for st in steps) - _LOOK_BACK_S)
         if self._carry:  # decision L134: the steps the restart state's samples completed come first
             steps, self._carry = [*self._carry, *steps], []
+        if self._gait_log is not None:  # decision E320
+            self._gait_log.add(steps)
         return steps
 
     def _refuse_out_of_range(self, checked: dict, fast: dict) -> None:
@@ -1396,6 +1409,26 @@ class Tracker(OwnGuard, FixInput):
                 self._drops[name] = (n - excess, longest)
             else:
                 del self._drops[name]
+
+    def gait_strides(self) -> dict[str, np.ndarray]:
+        """Decision E320: the gait values of every stride returned so far (``Tracker(gait=True)``), one (B,) array per
+        :data:`pdrlearn.runtime.gait.STRIDE_COLUMNS` name (:meth:`pdrlearn.runtime.gait.StrideGait.strides`)."""
+        return self._gait().strides()
+
+    def gait_summary(self, other: Tracker | StrideGait | None = None) -> dict:
+        """Decision E320: the session's gait summary of the strides returned so far
+        (:func:`pdrlearn.runtime.gait.gait_summary`); ``other``: the other foot's ``Tracker(gait=True)`` (or its
+        :class:`~pdrlearn.runtime.gait.StrideGait`) of the same walk, this tracker's foot the ``left`` one of the
+        result, adding each side's means and the symmetry indices."""
+        if isinstance(other, Tracker):
+            other = other._gait()
+        return gait_summary(self._gait(), other)
+
+    def _gait(self) -> StrideGait:
+        if self._gait_log is None:
+            raise DataError("Tracker: no gait values kept - create it with Tracker(..., contacts=True, gait=True) "
+                            "(decision E320)")
+        return self._gait_log
 
     def drop_stats(self) -> dict[str, dict]:
         """Decision E230: per pushed stream with dropped samples, ``{"intervals": n, "longest_s": s}``: the intervals
@@ -1682,6 +1715,8 @@ class Tracker(OwnGuard, FixInput):
         self._warn_turning_lengths()  # decisions C89 / C94
         if self._carry:  # decision L134
             steps, self._carry = [*self._carry, *steps], []
+        if self._gait_log is not None:  # decision E320
+            self._gait_log.add(steps)
         return steps
 
     def _process_ready(self, force: bool = False) -> list[Step]:

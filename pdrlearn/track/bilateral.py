@@ -37,9 +37,12 @@ import pandas as pd
 
 from pdrlearn.decision_refs import decision_ref
 from pdrlearn.errors import DataError
+
+# decision E320: the sides' means and indices, numpy only, shared with the lean runtime's gait summary
+from pdrlearn.kernels.gait_values import mean_finite, side_pair
 from pdrlearn.kernels.nearest import nearest_index
 from pdrlearn.kernels.turn_length import STRAIGHT_MAX_RAD
-from pdrlearn.track.clinical import CV_MIN_STRIDES, bout_rows, symmetry_index_pct
+from pdrlearn.track.clinical import CV_MIN_STRIDES, bout_rows, symmetry_index_pct  # noqa: F401
 from pdrlearn.track.contact_quality import comparability_warning, impact_sharpness
 from pdrlearn.track.flags import flag_values
 from pdrlearn.track.foot_heights import height_warning
@@ -439,20 +442,6 @@ def cycle_table(both: pd.DataFrame) -> pd.DataFrame:
     return pd.DataFrame(rows, columns=cols).sort_values("start_s", kind="stable").reset_index(drop=True)
 
 
-def _mean(x) -> float | None:
-    x = np.asarray(x, dtype=float)
-    x = x[np.isfinite(x)]
-    return float(x.mean()) if len(x) else None
-
-
-def _pair(name: str, left: float | None, right: float | None) -> dict:
-    """``{name}_left``, ``_right``, ``_si_pct`` (Robinson 1987) and ``_ratio`` (L / R, Patterson et al. 2010)."""
-    both = left is not None and right is not None and left + right > 0 and right > 0
-    return {f"{name}_left": left, f"{name}_right": right,
-            f"{name}_si_pct": symmetry_index_pct(left, right) if both else None,
-            f"{name}_ratio": float(left / right) if both else None}
-
-
 #: decision L461: a symmetry index or ratio of the walk needs at least this many steps on each side. No source gives a
 #: minimum for the SI; the project's minimum for a stride-time CV (L113, :data:`CV_MIN_STRIDES`) is reused: an index
 #: compares two means, each as noisy as a CV's mean from the same number of steps
@@ -486,27 +475,29 @@ def withhold_all(res: dict) -> None:
 
 def gait_measures(both: pd.DataFrame, steps: pd.DataFrame, cycles: pd.DataFrame) -> dict:
     """Decisions L259, L262: the walk's (or one bout's) bilateral measures from its tables (module docstring)."""
+    def sides(name: str, table: pd.DataFrame, col: str | None = None, mask=True) -> dict:  # E320: side_pair's means
+        return side_pair(name, *(mean_finite(table.loc[mask & (table["side"] == s), col or name]) for s in SIDES))
+
     out = {"n_steps_left": int((steps["side"] == "left").sum()), "n_steps_right": int((steps["side"] == "right").sum())}
-    out.update(_pair("step_time_s", *(_mean(steps.loc[steps["side"] == s, "step_time_s"]) for s in SIDES)))
-    out.update(_pair("stride_time_s", *(_mean(cycles.loc[cycles["side"] == s, "stride_time_s"]) for s in SIDES)))
+    out.update(sides("step_time_s", steps))
+    out.update(sides("stride_time_s", cycles))
     full = ~both["partial"] if "partial" in both else True  # decision L317: no initiation / termination half stride
     # decision L746: the stride's length whichever way it travels (L654's sign is the travel; the kind says which)
-    out.update(_pair("stride_length_m", *(_mean(both.loc[full & (both["side"] == s), "length_m"].abs())
-                                          for s in SIDES)))
-    out.update(_pair("swing_time_s", *(_mean(steps.loc[steps["side"] == s, "swing_time_s"]) for s in SIDES)))
-    out.update(_pair("stance_time_s", *(_mean(cycles.loc[cycles["side"] == s, "stance_time_s"]) for s in SIDES)))
+    out.update(side_pair("stride_length_m", *(mean_finite(both.loc[full & (both["side"] == s), "length_m"].abs())
+                                              for s in SIDES)))
+    out.update(sides("swing_time_s", steps))
+    out.update(sides("stance_time_s", cycles))
     if "step_length_m" in steps:  # decision L310
-        out.update(_pair("step_length_m", *(_mean(steps.loc[steps["side"] == s, "step_length_m"]) for s in SIDES)))
+        out.update(sides("step_length_m", steps))
         out["n_step_lengths"] = int(steps["step_length_m"].notna().sum())
     out["clock_offset_s"] = clock_offset_s(steps)
     ok = cycles["double_support_pct"].notna()
     out["n_support_cycles"] = int(ok.sum())
     fl = cycles["flight_time_s"].to_numpy(float) > 0 if "flight_time_s" in cycles else np.zeros(len(cycles), bool)
     out["n_flight_cycles"] = int(fl.sum())  # decision L729: cycles with a toe-off before the other foot's contact
-    out["flight_time_s"] = _mean(cycles.loc[fl, "flight_time_s"]) if fl.any() else None
-    out["double_support_pct"] = _mean(cycles.loc[ok, "double_support_pct"])
-    out.update(_pair("single_support_pct", *(_mean(cycles.loc[ok & (cycles["side"] == s), "single_support_pct"])
-                                             for s in SIDES)))
+    out["flight_time_s"] = mean_finite(cycles.loc[fl, "flight_time_s"]) if fl.any() else None
+    out["double_support_pct"] = mean_finite(cycles.loc[ok, "double_support_pct"])
+    out.update(sides("single_support_pct", cycles, mask=ok))
     return out
 
 
@@ -516,7 +507,7 @@ def clock_offset_s(steps: pd.DataFrame) -> float | None:
     steps' mean (step time - swing time), i.e. of the double support before each foot's swing. A walker's own
     double-support imbalance adds half of itself. None without swing times of both feet."""
     ok = steps["swing_time_s"].notna()
-    d = [_mean((steps["step_time_s"] - steps["swing_time_s"])[ok & (steps["side"] == s)]) for s in SIDES]
+    d = [mean_finite((steps["step_time_s"] - steps["swing_time_s"])[ok & (steps["side"] == s)]) for s in SIDES]
     return None if None in d else 0.5 * (d[0] - d[1])
 
 
@@ -538,7 +529,8 @@ def clock_offset_warning(walk: dict) -> str | None:
         return None
     si, swing_si, off = walk["step_time_s_si_pct"], walk["swing_time_s_si_pct"], walk["clock_offset_s"]
     late, early = ("left", "right") if off > 0 else ("right", "left")
-    stride = _mean([v for v in (walk.get("stride_time_s_left"), walk.get("stride_time_s_right")) if v is not None])
+    stride = mean_finite([v for v in (walk.get("stride_time_s_left"), walk.get("stride_time_s_right"))
+                          if v is not None])
     period = ("" if stride is None else f" (an offset is only known modulo the stride time, {stride:.3f} s: the "
               "clocks may differ by this plus or minus whole strides; decision L537)")
     return (f"bilateral gait: step-time symmetry index {si:.1f} % but swing-time {swing_si:.1f} % (single support "

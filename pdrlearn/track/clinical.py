@@ -56,6 +56,8 @@ import math
 import numpy as np
 import pandas as pd
 
+# decision E320: the CV, its minimum and the symmetry index, numpy only, shared with the lean runtime's gait values
+from pdrlearn.kernels.gait_values import CV_MIN_STRIDES, cv_pct, symmetry_index_pct  # noqa: F401
 from pdrlearn.kernels.rests import between_rows
 from pdrlearn.kernels.yaw_turns import TURN_TIMING_FRACTIONS as _TURN_TIMING_FRACTIONS
 from pdrlearn.track.flags import flag_values
@@ -74,8 +76,6 @@ TURN_ON_SPOT_MIN_DPS = 20.0
 TURN_RATE_MIN_DPS = 15.0
 #: ``turn_count`` counts turns of at least this angle (deg)
 TURN_COUNT_MIN_DEG = 80.0
-#: ``stride_time_cv_pct`` needs at least this many straight strides with a stride time
-CV_MIN_STRIDES = 10
 
 #: decision L113's candidate: a contact timing scatter (s) of this much or more withholds ``stride_time_cv_pct``
 #: (two contacts per stride time: it contributes sqrt(2) x 30 ms = 42 ms (in quadrature) to the SD of a ~1.1 s
@@ -1057,12 +1057,6 @@ def lower_back_cv(steps: pd.DataFrame, *, turn_gaps=None) -> dict:
             "n_jitter_free_strides": n}
 
 
-def cv_pct(x: np.ndarray) -> float:
-    """100 x SD / mean (SD with n - 1) of ``x``; NaN with fewer than 2 values or a mean not above 0 (L104's CV)."""
-    x = np.asarray(x, dtype=float)
-    return float(100.0 * x.std(ddof=1) / x.mean()) if len(x) >= 2 and x.mean() > 0 else math.nan
-
-
 def steady_stride_lengths(st: pd.DataFrame, steady: np.ndarray) -> np.ndarray:
     """Decision L212: the stride lengths (m, |``length_m``|) of :func:`steady_rows`' strides ``steady`` of ``st``
     (its table in ``start_s`` order), the strides the stride-time CV is taken over; NaN for a row without a length
@@ -1196,12 +1190,6 @@ def contact_scatter_s(stride_s: np.ndarray, onset_s: np.ndarray) -> float:
     independent errors add variances, and a stride time holds two contacts' errors."""
     excess = float(np.var(stride_s, ddof=1) - np.var(onset_s, ddof=1))
     return float(np.sqrt(excess / 2.0)) if excess > 0 else 0.0
-
-
-def symmetry_index_pct(a: float, b: float) -> float:
-    """The symmetry index of two sides' values, 100 x |a - b| / (0.5 x (a + b)) % (Robinson, Herzog & Nigg 1987,
-    J Manipulative Physiol Ther 10(4):172-176, SI; 0 = symmetric; which side is which does not matter)."""
-    return float(100.0 * abs(a - b) / (0.5 * (a + b)))
 
 
 def step_time_asymmetry(step_s, has_next, broken=None, *, min_steps: int = ASYMMETRY_MIN_STEPS

@@ -30,6 +30,9 @@ import pandas as pd
 # stride time as it emits it
 from pdrlearn.kernels.contact import MAX_STRIDE_S, TOUCH_S, stride_times  # noqa: F401
 
+# decision E320: cadence / speed and the finite median, numpy only, shared with the lean runtime's gait values
+from pdrlearn.kernels.gait_values import cadence_speed, median_finite
+
 # decision L79: a stride turning less than STRAIGHT_MAX_RAD (|turn_angle_rad|) is straight for
 # ``median_speed_straight_mps``: 15 deg, above the straight-pass strides' -10..+11 deg and below the turnaround
 # strides' 20..121 deg of L66 (in the kernels since C91: the runtime's C88 rule reads it)
@@ -147,10 +150,9 @@ def add_gait_columns(table: pd.DataFrame, *, turn_rad=None, valid=None, tc_s=Non
     turn_valid = valid if turn_valid is None else turn_valid
     if turn_valid is not None:
         turn[~np.asarray(turn_valid, dtype=bool)] = np.nan
-    with np.errstate(invalid="ignore", divide="ignore"):
-        table["stride_time_s"] = stride
-        table["cadence_spm"] = 120.0 / stride  # two steps per stride of one foot, per minute
-        table["speed_mps"] = np.abs(table["length_m"].to_numpy(float)) / moving  # decisions L509, L512
+    table["stride_time_s"] = stride
+    # decision E320: the lean runtime's kernel (L66: two steps per stride of one foot; decisions L509, L512)
+    table["cadence_spm"], table["speed_mps"] = cadence_speed(table["length_m"].to_numpy(float), stride, moving)
     table["turn_angle_rad"] = turn
     if tc_s is not None:
         with np.errstate(invalid="ignore", divide="ignore"):
@@ -230,12 +232,6 @@ def _turn_bridges(h, last: int | None, i: int, gap_s: float, max_break_s: float,
     turn_deg = abs(float(np.degrees(h[i] - h[last])))
     allow = min(turn_deg / TURN_ON_SPOT_MIN_DPS, max(gap_s - still_s, 0.0))  # decision L372
     return turn_deg >= PAUSE_MAX_TURN_DEG and gap_s <= max_break_s + allow + 1e-9
-
-
-def _median(v) -> float | None:
-    v = np.asarray(v, dtype=float)
-    v = v[np.isfinite(v)]
-    return float(np.median(v)) if len(v) else None
 
 
 #: every summary carries these keys (None / 0 when the table cannot give them, B14)
@@ -365,7 +361,7 @@ def _speed_fields(out: dict, steps: pd.DataFrame, length, valid, speed, straight
     sp = np.where(np.asarray(straight, dtype=bool) & ~stair & ~not_straight_travel_rows(steps),
                   np.asarray(speed, dtype=float), np.nan)
     out["n_straight_strides"] = int(np.isfinite(sp).sum())
-    out["median_speed_straight_mps"] = _median(sp)
+    out["median_speed_straight_mps"] = median_finite(sp)
 
 
 def session_walking_pieces(steps: pd.DataFrame, valid=None) -> list[tuple[float, float]]:
@@ -460,10 +456,10 @@ def waist_gait_summary(steps: pd.DataFrame, cadence_from: str | None = None) -> 
     grid = _contact_grid(st)  # W359 amended (R1): classes one sample period of the contacts' own grid wide
     stride_med, step_med = _waist_time_median(stride, grid), _waist_time_median(step, grid)  # decision W359
     out: dict = {"n_stride_times": int(len(stride)), "median_stride_time_s": stride_med,
-                 "median_cadence_spm": (median_cadence(stride_med, _median(cadence))
+                 "median_cadence_spm": (median_cadence(stride_med, median_finite(cadence))
                                         if _waist_medians_from(cadence_from) == "strides"
-                                        else _median(cadence)),  # W225: L176's formula is the default
-                 "median_speed_mps": _median(speed),
+                                        else median_finite(cadence)),  # W225: L176's formula is the default
+                 "median_speed_mps": median_finite(speed),
                  "median_step_time_s": step_med}
     _speed_fields(out, steps, length, has_next, speed, straight)
     return out
@@ -483,7 +479,7 @@ def _waist_time_median(times: np.ndarray, grid: float | None) -> float | None:
     plain median without a grid."""
     from pdrlearn.kernels.grouped_median import grouped_median
 
-    return grouped_median(times, grid) if grid else _median(times)
+    return grouped_median(times, grid) if grid else median_finite(times)
 
 
 #: decisions W224/W225: the medians a lower-back summary takes by default - ``"strides"`` (cadence 120 / the median
@@ -631,7 +627,7 @@ def trimmed_gait_summary(steps: pd.DataFrame, cadence_from: str | None = None) -
     out["n_stride_times"] = int(np.isfinite(st).sum())
     for key, col in (("median_stride_time_s", "stride_time_s"), ("median_cadence_spm", "cadence_spm"),
                      ("median_speed_mps", "speed_mps")):
-        out[key] = _median(steps[col].to_numpy(float)[rhythm])
+        out[key] = median_finite(steps[col].to_numpy(float)[rhythm])
     if cadence_from == "strides":  # decision L176's formula on the foot (an option; W225 adopted it on the waist)
         out["median_cadence_spm"] = median_cadence(out["median_stride_time_s"], None)
     valid = stride_rows(steps) & keep  # decisions L67, L97; L415
@@ -643,7 +639,7 @@ def trimmed_gait_summary(steps: pd.DataFrame, cadence_from: str | None = None) -
         out["n_stance_times"] = int(np.isfinite(steps["stance_time_s"].to_numpy(float)).sum())
         for key, col in (("median_stance_time_s", "stance_time_s"), ("median_swing_time_s", "swing_time_s"),
                          ("median_stance_pct", "stance_pct")):
-            out[key] = _median(steps[col].to_numpy(float))
+            out[key] = median_finite(steps[col].to_numpy(float))
     return out
 
 
