@@ -14,8 +14,9 @@ import subprocess
 import sys
 from pathlib import Path
 
-import mount_drift_s49_w565 as base
 import numpy as np
+
+import mount_drift_s49_w565 as base
 
 SIM = Path("/tmp/i4_w576/sim")
 DRIFTED = range(17150, 17180)

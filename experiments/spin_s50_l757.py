@@ -81,13 +81,14 @@ def main(bundle_dir: str, mode: str, *limits: str) -> None:
                                      ("walk", f"stand:2, straight:4, stand:2, {sp}, stand:2, straight:4, stand:2")):
                     s = simulate_path(parse_route(route), UserProfile.from_seed(u), rate_hz=rate, seed=5,
                                       name=f"spin_u{u}_{rate}_{where}")
+                    true = 0 if s.steps is None else len(s.steps)  # a spin alone has no stride
                     spins = s.extras["spins"][["start_s", "end_s"]].to_numpy(float)
                     kern += [{"kind": "spin", "rate": rate, "user": u, "tilt": v} for v in kernel_view(s, spins)]
                     for lim in lims:
                         res = tracked(s, bundle, lim)
                         for path in ("run", "stream", "track"):
                             rows.append({"user": u, "rate": rate, "where": where, "spin": sp, "limit": lim,
-                                         "path": path, "strides": len(res[path]), "true": len(s.steps),
+                                         "path": path, "strides": len(res[path]), "true": true,
                                          "in_spin": inside(res[path], spins)})
                     print(pd.DataFrame(rows[-3 * len(lims):]).to_string(header=len(rows) <= 3 * len(lims)),
                           flush=True)
@@ -125,14 +126,16 @@ def report() -> None:
     if (WORK / "rows_spin.csv").exists():
         sp = pd.read_csv(WORK / "rows_spin.csv")
         for (lim, path, rate), g in sp.groupby(["limit", "path", "rate"]):
+            walk = g[g["where"] == "walk"]
             print(f"spin    limit {lim:.2f} {path:6s} {rate:3d} Hz: strides inside a spin window "
                   f"{int(g['in_spin'].sum())} (sessions with one {int((g['in_spin'] > 0).sum())} of {len(g)}); "
-                  f"walk sessions strides - true {(g[g['where'] == 'walk']['strides'] - g[g['where'] == 'walk']['true']).tolist()}")
+                  f"walk sessions strides - true {(walk['strides'] - walk['true']).tolist()}")
     if (WORK / "rows_patient.csv").exists():
         pa = pd.read_csv(WORK / "rows_patient.csv")
         off = pa[pa["limit"] == 0].set_index(["user", "rate", "path"])["strides"]
         for (lim, path, rate), g in pa.groupby(["limit", "path", "rate"]):
-            d = g.set_index(["user", "rate", "path"])["strides"] - off.reindex(g.set_index(["user", "rate", "path"]).index)
+            g = g.set_index(["user", "rate", "path"])
+            d = g["strides"] - off.reindex(g.index)
             print(f"patient limit {lim:.2f} {path:6s} {rate:3d} Hz: strides - rule off {d.tolist()}; "
                   f"strides - true {(g['strides'] - g['true']).tolist()}")
 
