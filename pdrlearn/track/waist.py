@@ -711,7 +711,9 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "pelvic_rhythm_veto": False,  # W440: measured, not adopted (Test11's step F1 fell); an option
                    "rhythm_warning": False,  # W338: phone-only stride-rhythm warning; W339: not met, opt-in
                    "trunk_rhythm_veto": False,  # W550: runs without a step rhythm (trunk jerks); measured, not adopted
-                   "mount_drift": False,  # W565 / W566: a sliding belt unit said and corrected; not adopted (W571)
+                   # W565 / W566: a sliding belt unit said and corrected; W571: not on the walking upright alone;
+                   # W577: adopted with W576's check, the quiet standing before and after moved with it ("standing")
+                   "mount_drift": "standing",
                    "side_at_contact": False,  # W235: the sequence rules' sides at the contact (offline pendulum)
                    "fast_fill": False,  # W242: a merged step's 5 Hz maximum (offline pendulum)
                    "ap_above_mean": False,  # W265: W29's IC, the last AP maximum above the AP mean (offline pendulum)
