@@ -46,13 +46,13 @@ def simulate(user: int, drift: str | None) -> Path:
     return out
 
 
-def run(folder: Path, correct: bool) -> tuple[list[dict], float, float, bool]:
+def run(folder: Path, correct: bool, mode=True) -> tuple[list[dict], float, float, bool]:
     mount_drift.drift_imu = functools.partial(DRIFT_IMU, correct=correct)  # W566 on / off (a keyword, W413)
     from pdrlearn.waist.params import resolve_params
 
     session = read_session(folder)
     p, _ = resolve_params(session, None)
-    p.options = {"mount_drift": True}  # W571: an opt-in since the merge (PARAMS.json)
+    p.options = {"mount_drift": mode}  # W571: an opt-in since the merge (PARAMS.json); W576: "standing"
     r = track_waist(session, pipeline="waist-pendulum", params=p)
     tr = [t for t in (r.info["transfers"] or []) if t["kind"] in ("sit-to-stand", "stand-to-sit")]
     post = r.info["postures"] or []

@@ -29,26 +29,32 @@ def _inside(t: np.ndarray, t0: float, t1: float) -> slice:
     return slice(int(np.searchsorted(t, t0, side="left")), int(np.searchsorted(t, t1, side="right")))
 
 
-def turn_in_place(t_acc, acc, t_gyr, gyr, t0: float, t1: float) -> bool:
-    """Decision L742: whether the foot window ``[t0, t1]`` (s) is a turn on the spot, no stride: its samples'
-    (sensor axes; ``t_acc`` (n,), ``acc`` (n, 3) m/s^2, ``t_gyr`` (m,), ``gyr`` (m, 3) rad/s) peak rate across the
-    window's mean specific force is under :data:`SPIN_TILT_MAX_RAD_S` and their peak | |acc| - g | under
-    :data:`SPIN_ACC_DEV_MAX`. False when the window has under two samples of either."""
+def turn_rates(t_acc, acc, t_gyr, gyr, t0: float, t1: float) -> tuple[float, float]:
+    """Decision L742's two statistics of the foot window ``[t0, t1]`` (s; sensor axes as :func:`turn_in_place`'s):
+    ``(peak rate across the window's mean specific force (rad/s), peak | |acc| - g | (m/s^2))``; NaN when the window
+    has under two samples of either or no mean specific force."""
     t_acc, t_gyr = np.asarray(t_acc, dtype=float), np.asarray(t_gyr, dtype=float)
     a = np.asarray(acc, dtype=float)[_inside(t_acc, t0, t1)]
     w = np.asarray(gyr, dtype=float)[_inside(t_gyr, t0, t1)]
     if len(a) < 2 or len(w) < 2:
-        return False
-    dev = np.abs(np.sqrt(np.add.reduce(a * a, axis=1)) - STANDARD_GRAVITY)
-    if not np.nanmax(dev) < SPIN_ACC_DEV_MAX:
-        return False
+        return float("nan"), float("nan")
+    dev = float(np.nanmax(np.abs(np.sqrt(np.add.reduce(a * a, axis=1)) - STANDARD_GRAVITY)))
     up = np.nanmean(a, axis=0)
     n = float(np.sqrt(up.dot(up)))
     if not n > 0:
-        return False
+        return float("nan"), dev
     up = up / n
     across = w - np.outer(w @ up, up)
-    return bool(np.nanmax(np.sqrt(np.add.reduce(across * across, axis=1))) < SPIN_TILT_MAX_RAD_S)
+    return float(np.nanmax(np.sqrt(np.add.reduce(across * across, axis=1)))), dev
+
+
+def turn_in_place(t_acc, acc, t_gyr, gyr, t0: float, t1: float) -> bool:
+    """Decision L742: whether the foot window ``[t0, t1]`` (s) is a turn on the spot, no stride: its samples'
+    (sensor axes; ``t_acc`` (n,), ``acc`` (n, 3) m/s^2, ``t_gyr`` (m,), ``gyr`` (m, 3) rad/s) peak rate across the
+    window's mean specific force is under :data:`SPIN_TILT_MAX_RAD_S` and their peak | |acc| - g | under
+    :data:`SPIN_ACC_DEV_MAX` (:func:`turn_rates`). False when the window has under two samples of either."""
+    tilt, dev = turn_rates(t_acc, acc, t_gyr, gyr, t0, t1)
+    return bool(dev < SPIN_ACC_DEV_MAX and tilt < SPIN_TILT_MAX_RAD_S)
 
 
 def turns_in_place(t_acc, acc, t_gyr, gyr, start_s, end_s) -> np.ndarray:

@@ -711,7 +711,9 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "pelvic_rhythm_veto": False,  # W440: measured, not adopted (Test11's step F1 fell); an option
                    "rhythm_warning": False,  # W338: phone-only stride-rhythm warning; W339: not met, opt-in
                    "trunk_rhythm_veto": False,  # W550: runs without a step rhythm (trunk jerks); measured, not adopted
-                   "mount_drift": False,  # W565 / W566: a sliding belt unit said and corrected; not adopted (W571)
+                   # W565 / W566: a sliding belt unit said and corrected; W571: not on the walking upright alone;
+                   # W577: adopted with W576's check, the quiet standing before and after moved with it ("standing")
+                   "mount_drift": "standing",
                    "side_at_contact": False,  # W235: the sequence rules' sides at the contact (offline pendulum)
                    "fast_fill": False,  # W242: a merged step's 5 Hz maximum (offline pendulum)
                    "ap_above_mean": False,  # W265: W29's IC, the last AP maximum above the AP mean (offline pendulum)
@@ -797,7 +799,7 @@ FLAG_OPTIONS = tuple(k for k, v in OPTION_DEFAULTS.items()
                      if isinstance(v, bool) and k not in ("sit_veto", "pause_steps", "vault_veto", "stairs_length",
                                                           "parity_fill", "stand_veto", "contact_model", "fast_fill",
                                                           "cadence_law", "pll_edge_lock", "turn_bridge",
-                                                          "pelvic_rhythm_veto"))
+                                                          "pelvic_rhythm_veto", "mount_drift"))
 FLAG_RULES = {k: Rule("flag", ints=True) for k in FLAG_OPTIONS}  # B199: 0 / 1 pass (B206's shared check)
 #: the values of the ``sit_veto`` option: off, W104's veto, W109's veto sparing left/right step pairs, W180's
 #: sparing also an undecided contact between two same-side contacts of its sequence, W184's sparing instead an
@@ -834,7 +836,9 @@ CHOICE_OPTIONS = {"sit_veto": (SIT_VETO_VALUES, "W104, W109, W180, W184"),
                   "cadence_law": (CADENCE_LAW_VALUES, "W240, W261"),
                   "pll_edge_lock": (EDGE_LOCK_VALUES, "W356, W358, W367, W372"),
                   "turn_bridge": (TURN_BRIDGE_VALUES, "W374, W384"),
-                  "pelvic_rhythm_veto": (PELVIC_RHYTHM_VALUES, "W440")}
+                  "pelvic_rhythm_veto": (PELVIC_RHYTHM_VALUES, "W440"),
+                  # W576: "standing", the line only when the quiet standing moved with the walking upright
+                  "mount_drift": ((False, True, "standing"), "W565, W571, W576")}
 
 
 def resolve_options(p: WaistParams, given: dict) -> dict:
@@ -1230,7 +1234,8 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
     n_tilted = 0
     pimu = imu  # decisions W565 / W566: the IMU the posture code reads (a drifting mount's turned up direction)
     if o["mount_drift"] and not realtime and len(steps) and "has_next" in steps:  # W571: an opt-in
-        pimu, line = _mount_drift.drift_imu(imu, steps["event_s"].to_numpy(float), steps["has_next"].to_numpy(bool))
+        pimu, line = _mount_drift.drift_imu(imu, steps["event_s"].to_numpy(float), steps["has_next"].to_numpy(bool),
+                                            standing=o["mount_drift"] == "standing")  # W576
         warnings += [line] if line else []
     if o["max_tilt_deg"] is not None:  # W102: a contact made with the trunk far from its walking upright is no step
         steps = tilt_gate(steps, pimu, float(o["max_tilt_deg"]))
