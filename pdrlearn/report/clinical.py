@@ -21,7 +21,6 @@ from pathlib import Path
 
 import pandas as pd
 
-from pdrlearn.decision_refs import decision_ref
 from pdrlearn.errors import DataError
 from pdrlearn.report.daily_living import daily_living_lines
 from pdrlearn.report.spatiotemporal import gait_spatiotemporal_line, measured_leg, normalised_line, spatiotemporal_line
@@ -203,8 +202,8 @@ def unchecked_turns_text(summary: dict) -> str:
 
     why = (f"the walk has fewer than {MIN_INTERVALS} step gaps under {STEP_GAP_MAX_S:g} s to judge them by"
            if "turn_steps_missed" in summary else "the summary predates the check")
-    return (f"steps per minute not given: turns on the spot could not be checked ({why}; "
-            f"{decision_ref('W331', 'C232', 'C239', topic='cohort')})")
+    # bare codes as the pace line's other parts: W420's clinical.md names no "decision" (no decision_ref path)
+    return f"steps per minute not given: turns on the spot could not be checked ({why}; W331, C232, C239)"
 
 
 def walk_test_steps_per_minute(summary: dict, folder: Path) -> list[int] | None:
