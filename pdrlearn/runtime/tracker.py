@@ -34,10 +34,10 @@ from pdrlearn.kernels import spin as _spin
 from pdrlearn.kernels import stop_bias as _stop_bias
 from pdrlearn.kernels import turn_length as _turn_length
 from pdrlearn.kernels.align import MAX_CLOCK_DRIFT
+from pdrlearn.kernels.altitude_check import judged_terrain
 from pdrlearn.kernels.backward import signed_chord
 from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, SIGMA_REL, check_rules, confident_one
 from pdrlearn.kernels.contact import force_at, stride_contact, stride_times
-from pdrlearn.kernels.altitude_check import judged_terrain
 from pdrlearn.kernels.counter_wrap import live_wrap
 from pdrlearn.kernels.distance import (
     applicable_calibration,
