@@ -37,7 +37,7 @@ def _folder(root, name, subject, visit, *, steps=None, dist=245.2):
     summary = {"session": f"s_{name}", "pipeline": "waist-pendulum", "visit": visit, "corridor_m": 30.0,
                "n_laps": int(dist // 30), "walk_test_distance_m": dist, "walk_test_duration_s": 360.0,
                "walk_test_start_s": 5.0, "walk_test_distance_per_minute_m": MINUTES, "fatigue_index": 0.69,
-               "gait_speed_mps": 0.61, "median_cadence_spm": 96.0}
+               "gait_speed_mps": 0.61, "median_cadence_spm": 96.0, "turn_steps_missed": 0}  # W331 judged: none
     if subject:
         summary["subject"] = subject
     (d / "summary.json").write_text(json.dumps(summary))

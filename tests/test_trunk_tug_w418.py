@@ -145,11 +145,31 @@ def test_report_clinical_writes_a_short_summary_per_patient_w420(patient):
     assert f"- 10 m walk: {walk['ten_m_walk_speed_mps']:.2f} m/s" in text
     assert f"- Gait speed {walk['gait_speed_mps']:.2f} m/s, cadence" in text
     # C209 (session 49): each track warning's own text (its fix and its decision) is listed under the count line;
-    # W420's rule - no research terms - holds for the clinical lines themselves
-    clinical = "\n".join(x for x in text.splitlines() if not x.startswith("  - "))
+    # W420's rule - no research terms - holds for the clinical lines themselves, their sub-lines (pace, rests) too
+    clinical = clinical_lines(text)
     assert any(x.startswith("  - E153: no model") for x in text.splitlines())
-    for research in ("error", "MAE", "no model"):
+    assert "- Track warnings: " in clinical and "  - E153: no model" not in clinical
+    for research in ("error", "MAE", "no model", "decision"):
         assert research not in clinical, research
+
+
+def clinical_lines(text: str) -> str:
+    """clinical.md less C209's warning items (the indented lines right under a "- Track warnings:" line): the lines
+    W420's no-research-terms rule reads (review R1 F5 of session 50: the pace and rests sub-lines stay in)."""
+    kept, in_warnings = [], False
+    for x in text.splitlines():
+        in_warnings = x.startswith("- Track warnings:") or (in_warnings and x.startswith("  - "))
+        if not (in_warnings and x.startswith("  - ")):
+            kept.append(x)
+    return "\n".join(kept)
+
+
+def test_only_the_warning_items_are_left_out_of_w420s_check():
+    text = ("- 6MWT: 420 m\n  - test speed 1.17 m/s; a decision\n- Track warnings: 1 (E153), what each means:\n"
+            "  - E153: no model (decision E153)\n- Gait speed 1.10 m/s\n  - Rests during the test: 1 error")
+    got = clinical_lines(text)
+    assert got == ("- 6MWT: 420 m\n  - test speed 1.17 m/s; a decision\n- Track warnings: 1 (E153), what each "
+                   "means:\n- Gait speed 1.10 m/s\n  - Rests during the test: 1 error")
 
 
 def test_report_clinical_without_a_track_is_one_line(tmp_path, capsys):

@@ -116,6 +116,17 @@ ZEROED_CLIMB_MIN_STRIDES = 2
 ZEROED_CLIMB_MIN_M = 0.17
 
 
+def judged_terrain(terrain, unjudged):
+    """Decision C240: the terrain classes the height checks (C28 / C233's :func:`terrain_dz_check`, L543's
+    :func:`zeroed_climb_check`) judge: None at the strides ``unjudged`` marks - a data gap's (E30) and one L94 moved
+    0 m as impossible (its integrated height is no stride's: one such stride must not blame the terrain model).
+    ``terrain`` (n,) with ``unjudged`` (n,) bool gives an (n,) object array; one stride's class with one bool (the
+    live Tracker's, stride by stride) gives that class or None."""
+    if np.ndim(unjudged) == 0:
+        return None if unjudged else terrain
+    return np.where(np.asarray(unjudged, dtype=bool), None, np.asarray(terrain, dtype=object))
+
+
 def zeroed_climb_check(terrain, raw_dz: np.ndarray, dz: np.ndarray) -> tuple[str | None, dict]:
     """Decision L543: ``terrain`` (n,) a model's top terrain classes (None / NaN: none), ``raw_dz`` (n,) the strides'
     integrated height changes, ``dz`` (n,) the track's. A stride classed up (down) whose ``dz`` is 0 while its

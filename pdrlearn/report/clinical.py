@@ -167,10 +167,11 @@ def walk_test_pace_line(summary: dict, folder: Path | None = None) -> str | None
     if isinstance(minutes, list) and minutes:
         parts.append("per minute " + " / ".join(f"{m:.0f}" for m in minutes) + " m")
     counts = walk_test_steps_per_minute(summary, folder) if folder is not None else None
-    missed = int(summary.get("turn_steps_missed") or 0)
+    missed = summary.get("turn_steps_missed")  # decision C239: None (W331 could not judge) is not 0
     if counts and not minute_steps_given(summary.get("pipeline") in LOWER_BACK_PIPELINES, missed):  # decision C232
-        parts.append(f"steps per minute not given: {missed} turning steps on the spot are not detected on the lower "
-                     "back (W331, C232)")
+        parts.append(unchecked_turns_text(summary) if missed is None else
+                     f"steps per minute not given: {int(missed)} turning steps on the spot are not detected on the "
+                     "lower back (W331, C232)")
     elif counts:  # decision C230: the test's own minutes, rests included (not the walking cadence)
         parts.append("steps per minute " + " / ".join(str(c) for c in counts)
                      + " (steps counted in each full minute of the test, rests included; C230)")
@@ -187,10 +188,22 @@ def walk_test_pace_line(summary: dict, folder: Path | None = None) -> str | None
 LOWER_BACK_PIPELINES = tuple(k for k, v in UNIT_NAMES.items() if v == "lower-back unit")
 
 
-def minute_steps_given(lower_back: bool, turn_steps_missed: int) -> bool:
+def minute_steps_given(lower_back: bool, turn_steps_missed: int | None) -> bool:
     """Decision C232: whether the walk test's steps per minute (C230) are given: a foot unit's always, a lower
-    back's only when no turning step on the spot went undetected (summary ``turn_steps_missed``, W331, is 0)."""
-    return not lower_back or turn_steps_missed <= 0
+    back's only when no turning step on the spot went undetected (summary ``turn_steps_missed``, W331, is 0);
+    decision C239: not when it is None (W331 could not judge the turns, or the summary has no such key)."""
+    return not lower_back or (turn_steps_missed is not None and turn_steps_missed <= 0)
+
+
+def unchecked_turns_text(summary: dict) -> str:
+    """Decision C239: the pace line's part when a lower back's steps per minute are withheld because its turns on
+    the spot could not be checked (summary ``turn_steps_missed`` None or absent), with why."""
+    from pdrlearn.waist.turn_steps import MIN_INTERVALS, STEP_GAP_MAX_S
+
+    why = (f"the walk has fewer than {MIN_INTERVALS} step gaps under {STEP_GAP_MAX_S:g} s to judge them by"
+           if "turn_steps_missed" in summary else "the summary predates the check")
+    # bare codes as the pace line's other parts: W420's clinical.md names no "decision" (no decision_ref path)
+    return f"steps per minute not given: turns on the spot could not be checked ({why}; W331, C232, C239)"
 
 
 def walk_test_steps_per_minute(summary: dict, folder: Path) -> list[int] | None:

@@ -34,6 +34,7 @@ from pdrlearn.kernels import spin as _spin
 from pdrlearn.kernels import stop_bias as _stop_bias
 from pdrlearn.kernels import turn_length as _turn_length
 from pdrlearn.kernels.align import MAX_CLOCK_DRIFT
+from pdrlearn.kernels.altitude_check import judged_terrain
 from pdrlearn.kernels.backward import signed_chord
 from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, SIGMA_REL, check_rules, confident_one
 from pdrlearn.kernels.contact import force_at, stride_contact, stride_times
@@ -2348,7 +2349,7 @@ class Tracker(OwnGuard, FixInput):
         self.heading = heading
         self.position = np.array((x, y, z))
         self.n_steps += 1
-        self._heights.append(classes.get("terrain"), raw_dz, dz)  # decision E47
+        self._heights.append(judged_terrain(classes.get("terrain"), impossible), raw_dz, dz)  # decisions E47, C240
         turn = float(turn)  # decision E51: the stride's own turn (L690: not wrapped, a spin of 180-360 deg is itself)
         chord = float(signed_chord(dx, dy, _sideways.foot_turn(lev),  # decision L692: the measured travel
                                    _sideways.step_frame(lev)))  # against the foot's own mid-stride facing

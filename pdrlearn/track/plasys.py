@@ -60,6 +60,7 @@ from pdrlearn.kernels import stride as SK
 from pdrlearn.kernels import turn_length as KT
 from pdrlearn.kernels.altitude_check import (
     integrated_altitude_check,
+    judged_terrain,
     steep_stride_check,
     terrain_dz_check,
     zeroed_climb_check,
@@ -1554,23 +1555,23 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     length, dz = np.where(in_gap, 0.0, length), np.where(in_gap, 0.0, dz)
     length, dz, impossible = _drop_impossible(length, dz, strides["start_s"].to_numpy(float),
                                               strides["end_s"].to_numpy(float), warnings)  # decision L94
+    unjudged = in_gap | impossible  # decision C240: the strides no height check judges (a gap's, L94's)
     # decision L564: the heights before L39's level rule (0 where the stride has none), for the fused altitude
     leveled = no_classes or "terrain" in untrained
-    climb_dz = np.where(in_gap | impossible, 0.0, raw_dz) if leveled else None
+    climb_dz = np.where(unjudged, 0.0, raw_dz) if leveled else None
     altitude_check, terrain_check = None, None
-    msg, steep_check = steep_stride_check(np.where(in_gap | impossible, 0.0, np.hypot(disp[:, 0], disp[:, 1])), dz)
+    msg, steep_check = steep_stride_check(np.where(unjudged, 0.0, np.hypot(disp[:, 0], disp[:, 1])), dz)
     warnings += [msg] if msg else []  # decision L430: strides steeper than any stair
     if no_classes or "terrain" in untrained:  # decision L69: the altitude is the foot's integrated height
         msg, altitude_check = coded_altitude_check(  # decisions L69, L145
-            dz, raw_dz=np.where(in_gap | impossible, 0.0, raw_dz))
+            dz, raw_dz=np.where(unjudged, 0.0, raw_dz))
         warnings += [msg] if msg else []
     elif cfg["rules"] and not (isinstance(model, str) and model == "oracle"):  # decision C28
-        msg, terrain_check = terrain_dz_check(np.where(in_gap, None, classes["terrain"].to_numpy(dtype=object)),
-                                              disp[:, 2], dz)
+        judged = judged_terrain(classes["terrain"].to_numpy(dtype=object), unjudged)  # decision C240
+        msg, terrain_check = terrain_dz_check(judged, disp[:, 2], dz)
         warnings += [msg] if msg else []
         if altitude != "fused":  # decision L543: up / down strides the level rule zeroed (fused reads the barometer)
-            msg, terrain_check["zeroed_climb"] = zeroed_climb_check(
-                np.where(in_gap | impossible, None, classes["terrain"].to_numpy(dtype=object)), disp[:, 2], dz)
+            msg, terrain_check["zeroed_climb"] = zeroed_climb_check(judged, disp[:, 2], dz)
             warnings += [msg] if msg else []
 
     bridge_foot_yaw(fd, foot_gaps, (lambda n: (work.streams[n].t, work.streams[n].values)) if bridged else None)
@@ -2291,8 +2292,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         msg, altitude_check = coded_altitude_check(dz, levelled=False)
         warnings += [msg] if msg else []
     elif method == "M3" and not (isinstance(model, str) and model == "oracle") and "terrain" in classes:  # C28
-        msg, terrain_check = terrain_dz_check(np.where(in_gap, None, classes["terrain"].to_numpy(dtype=object)),
-                                              raw_disp[:, 2], dz)
+        msg, terrain_check = terrain_dz_check(judged_terrain(classes["terrain"].to_numpy(dtype=object),
+                                                             in_gap | impossible), raw_disp[:, 2], dz)  # C240
         warnings += [msg] if msg else []
     head = initial_heading + np.cumsum(dyaw) + place  # decision L34: the direction each stride is placed along
     walk_ref = FirstWalk(initial_heading, enabled=first_walk)  # decision E215: L494's first-walk direction, said once

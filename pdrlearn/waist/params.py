@@ -14,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
+from pdrlearn.decision_refs import decision_ref
 from pdrlearn.errors import DataError
 from pdrlearn.io import Session
 from pdrlearn.settings import Rule, broken, broken_line
@@ -52,6 +53,22 @@ RUN_SLOPE_PER_HEIGHT = 0.20
 #: decision B210: the parameters that must be positive when given (a negative ``walk_threshold_mps2`` gated
 #: every sample as walking)
 POSITIVE_KEYS = ("walk_threshold_mps2",)
+
+
+def misplaced_option_error(d: dict, unknown: list[str], where: str) -> None:
+    """Decision B472: raise one DataError when every unknown top-level key of the waist parameters ``d`` is a
+    waist track option (:data:`pdrlearn.track.waist.OPTION_DEFAULTS`), which a PARAMS.json sets under "options":
+    the line gives the corrected JSON (``{"mount_drift": true}`` -> ``{"options": {"mount_drift": true}}``).
+    Returns None otherwise (the caller's "not a waist parameter file" line)."""
+    from pdrlearn.track.waist import OPTION_DEFAULTS  # lazy: only on this error path (the track module is heavy)
+
+    if not unknown or not set(unknown) <= set(OPTION_DEFAULTS):
+        return
+    moved = {k: v for k, v in d.items() if k not in unknown}
+    opts = d.get("options") if isinstance(d.get("options"), dict) else {}
+    moved["options"] = {**opts, **{k: d[k] for k in unknown}}
+    raise DataError(f"{where}: {', '.join(unknown)} {'is a track option' if len(unknown) == 1 else 'are track options'}"
+                    f", set under \"options\": give {json.dumps(moved)} ({decision_ref('B472')})")
 
 
 @dataclass
@@ -118,6 +135,7 @@ class WaistParams:
         names = {f.name for f in fields(cls)}
         unknown = sorted(set(d) - names - {"schema", "fit", "paths_redacted", "pdrlearn_version"})  # E136; E176
         if unknown:
+            misplaced_option_error(d, unknown, where)  # decision B472: a track option given at the top level
             more = f" and {len(unknown) - 5} more" if len(unknown) > 5 else ""
             raise DataError(f"{where}: not a waist parameter file (unknown key(s) {', '.join(unknown[:5])}{more}); "
                             "pass the PARAMS.json written by `pdrlearn calibrate`")
