@@ -46,7 +46,7 @@ def build(work: Path) -> tuple[Path, Path]:
 def replay(bundle, session, *, native: bool = False, chunk_s: float = 1.0):
     """The steps of ``pdrlearn run BUNDLE SESSION`` (its 1 s replay); ``native``: without the rate check and
     without resampling."""
-    from pdrlearn.cli.export import _frames_of
+    from pdrlearn.cli.export import frames_of
     from pdrlearn.runtime.tracker import Tracker
 
     if native:  # no stream is at another rate: nothing resampled, nothing refused
@@ -54,7 +54,7 @@ def replay(bundle, session, *, native: bool = False, chunk_s: float = 1.0):
 
         bundle = load_bundle(bundle) if not isinstance(bundle, Bundle) else bundle
         bundle.off_rate = lambda rates: {}
-    tr = Tracker(bundle, frames=_frames_of(session, bundle),  # as `run` makes it (its rates, stream ends)
+    tr = Tracker(bundle, frames=frames_of(session, bundle),  # as `run` makes it (its rates, stream ends)
                  input_rates_hz={n: st.rate_hz for n, st in session.streams.items()},
                  stream_ends_s={n: float(st.t[-1]) for n, st in session.streams.items() if len(st)})
     t_all = np.concatenate([st.t for st in session.streams.values()])

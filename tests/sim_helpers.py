@@ -108,3 +108,70 @@ def session_digest(s) -> str:
             h.update(np.round(v.astype(float), 9).tobytes() if num else "|".join(map(str, v)).encode())
     h.update(json.dumps(s.meta, sort_keys=True, default=str).encode())
     return h.hexdigest()
+
+
+_MADE: dict = {}
+
+#: ``train``'s options of :func:`terrain_cv_model` (decisions C143, C150)
+TERRAIN_CV_TRAIN = ["--tasks", "terrain", "--methods", "svm,heuristic", "--cv", "3", "--cv-groups", "user",
+                    "--no-distance-calibration"]
+TERRAIN_CV_USERS = (9660, 9661, 9662)
+
+
+def terrain_cv_model(tmp_path_factory):
+    """Users 9660-9662's terrain exercises (``root / "u9660"`` ...) trained by ``train --report`` into
+    ``root / "model"`` and ``root / "rep"``, train's console text (stdout, piped: not a terminal) in
+    ``root / "console.txt"``, and ``pdrlearn report root/model --out root/R``: made once per test run
+    (``runtime_helpers.made_once``) for the tests of decisions C143 and C150, which built the same model each
+    (testing decision D51). Read-only: a test that writes copies it first."""
+    if "terrain_cv" not in _MADE:
+        from tests.runtime_helpers import made_once
+
+        _MADE["terrain_cv"] = made_once(tmp_path_factory, "terrain_cv_model", _train_terrain_cv)
+    return _MADE["terrain_cv"]
+
+
+def _train_terrain_cv(root) -> None:
+    import contextlib
+    import io
+
+    from pdrlearn.cli import main
+    from pdrlearn.io import write_session
+    from pdrlearn.sim import simulate
+
+    dirs = [str(write_session(simulate("terrain", user_seed=u), root / f"u{u}")) for u in TERRAIN_CV_USERS]
+    buf = io.StringIO()
+    with contextlib.redirect_stdout(buf):
+        code = main(["train", *dirs, "--out", str(root / "model"), *TERRAIN_CV_TRAIN, "--report", str(root / "rep")])
+    assert code == 0
+    (root / "console.txt").write_text(buf.getvalue(), encoding="utf-8")
+    with contextlib.redirect_stdout(io.StringIO()):
+        assert main(["report", str(root / "model"), "--out", str(root / "R")]) == 0
+
+
+#: the users of :func:`shared_terrain_cohort` (decision C92's test's)
+TERRAIN_COHORT_USERS = (8660, 8661)
+
+
+def shared_terrain_cohort(tmp_path_factory):
+    """:func:`terrain_cohort` of users 8660 and 8661 and its ``evaluate-all --per-method`` output
+    (:func:`evaluate_per_method` into ``eval``), made once per test run (``runtime_helpers.made_once``) for the tests
+    of decisions C92 and C97, which built and evaluated the same kind of cohort each (testing decision D51):
+    ``(cohort, models, eval)``. Read-only."""
+    if "terrain_cohort" not in _MADE:
+        from tests.runtime_helpers import made_once
+
+        _MADE["terrain_cohort"] = made_once(tmp_path_factory, "terrain_cohort", _make_terrain_cohort)
+    root = _MADE["terrain_cohort"]
+    return root / "cohort", root / "cohort_models", root / "eval"
+
+
+def _make_terrain_cohort(root) -> None:
+    import contextlib
+    import io
+
+    from pdrlearn.cli import main
+
+    with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
+        cohort, models = terrain_cohort(root / "cohort", TERRAIN_COHORT_USERS, main)
+        evaluate_per_method(models, cohort, root / "eval", main)

@@ -79,10 +79,10 @@ def test_tracker_start_is_three_enu_metres(synthetic_bundle):
 
 
 def test_step_to_dict_heading_is_the_steps_table_one():
-    from pdrlearn.cli.export import _result
+    from pdrlearn.cli.export import streamed_result
     from pdrlearn.runtime.tracker import Step
 
     steps = [Step(1.0, 2.0, length_m=0.7, heading_rad=7.73), Step(2.0, 3.0, length_m=0.7, heading_rad=-4.0)]
     rows = [s.to_dict()["heading_rad"] for s in steps]
-    np.testing.assert_allclose(rows, _result(steps).steps["heading_rad"])  # pdrlearn run's steps.csv
+    np.testing.assert_allclose(rows, streamed_result(steps).steps["heading_rad"])  # pdrlearn run's steps.csv
     assert rows[0] == pytest.approx(7.73 - 2 * math.pi) and steps[0].heading_rad == 7.73  # the attribute: unwrapped

@@ -29,6 +29,14 @@ def walk(tmp_path_factory):
     return load(d), load_bundle(BUNDLE)
 
 
+@pytest.fixture(scope="module")
+def clean(walk):
+    """The clean stream's track (``_track`` of the fault-free packets, pushed as they come): each test's reference,
+    tracked once for the module (testing decision D51)."""
+    d, bundle = walk
+    return _track(bundle, packets(d, 0, faults=False))
+
+
 def _chunks(pk):
     """Each packet as a chunk on one clock: each pod's counter unwrapped (E297) and put on the session's clock (its
     counter at the first sample taken off: what a gateway's clock sync at connection gives)."""
@@ -91,9 +99,9 @@ def test_reorderer_releases_in_sample_order_drops_repeats_and_counts_late():
         ro.push({"fGyroscope": (t[:3], v[:2])})
 
 
-def test_reorderer_tracks_the_trials_bluetooth_stream_as_the_clean_one(walk):
+def test_reorderer_tracks_the_trials_bluetooth_stream_as_the_clean_one(walk, clean):
     d, bundle = walk
-    clean, clean_end, refused, _ = _track(bundle, packets(d, 0, faults=False))
+    clean, clean_end, refused, _ = clean
     assert refused == 0
     for seed in (0, 1, 2):
         pk = packets(d, seed, loss=0.0)  # jitter, repeats, swapped packets; none lost
@@ -115,14 +123,14 @@ def test_reorderer_tracks_the_trials_bluetooth_stream_as_the_clean_one(walk):
         np.testing.assert_allclose(end, ref_end, atol=1e-6)
 
 
-def test_the_documented_thread_recipe_with_a_reorderer_per_unit_paced_at_arrival(walk):
+def test_the_documented_thread_recipe_with_a_reorderer_per_unit_paced_at_arrival(walk, clean):
     d, bundle = walk
     src = (ROOT / "docs" / "deploying.md").read_text()
     code = re.search(r"<!-- example: tests/test_runtime_threads_queue.py -->\n```python\n(.*?)```", src, re.S)
     ns: dict = {}
     exec(code.group(1), ns)  # noqa: S102 - the docs' own recipe
     pk = packets(d, 0)
-    clean, _, _, _ = _track(bundle, packets(d, 0, faults=False))
+    clean = clean[0]
     units: dict[str, list] = {"foot": [], "waist": []}
     for p, chunk in _chunks(pk):
         units["foot" if p["unit"] == "f" else "waist"].append((p["arrival_s"], chunk))
@@ -142,13 +150,13 @@ def test_the_documented_thread_recipe_with_a_reorderer_per_unit_paced_at_arrival
     assert not late and abs(dist - clean) < 0.5
 
 
-def test_the_documented_ble_gateway_tracks_the_trials_stream_as_the_clean_one(walk):
+def test_the_documented_ble_gateway_tracks_the_trials_stream_as_the_clean_one(walk, clean):
     d, bundle = walk
     src = (ROOT / "docs" / "deploying.md").read_text()
     code = re.search(r"<!-- example: tests/test_ble_stream_s45_e296.py -->\n```python\n(.*?)```", src, re.S)
     ns: dict = {}
     exec(code.group(1), ns)  # noqa: S102 - the docs' own gateway
-    clean, clean_end, _, _ = _track(bundle, packets(d, 0, faults=False))
+    clean, clean_end, _, _ = clean
     lines: list[str] = []
     pk = [(p["unit"], p["counter"], p["data"]) for p in packets(d, 1, loss=0.0)]
     steps = list(ns["gateway"](Tracker(bundle), pk, START_MS, log=lines.append))

@@ -5,31 +5,32 @@ from __future__ import annotations
 
 import json
 import math
+import shutil
 
 import pandas as pd
 import pytest
 
 from pdrlearn.cli import main
 from pdrlearn.columns import undocumented
-from tests.sim_helpers import evaluate_per_method, terrain_cohort
+from tests.sim_helpers import TERRAIN_COHORT_USERS, shared_terrain_cohort
 
-USERS = (8660, 8661)
+USERS = TERRAIN_COHORT_USERS
 
 
 @pytest.fixture(scope="module")
 def trained(tmp_path_factory):
-    return terrain_cohort(tmp_path_factory.mktemp("cohort_c92"), USERS, main)
+    """``(cohort, models, eval)``: the terrain cohort of USERS and its ``evaluate-all --per-method`` output, made
+    once per run for decisions C92's and C97's tests (``tests.sim_helpers.shared_terrain_cohort``, testing D51)."""
+    return shared_terrain_cohort(tmp_path_factory)
 
 
 def _same(a, b) -> bool:
     return (a is None or (isinstance(a, float) and math.isnan(a))) if b is None else math.isclose(a, b, abs_tol=1e-12)
 
 
-def test_per_method_rows_equal_evaluate_json(trained, tmp_path, capsys):
-    cohort, models = trained
-    out = tmp_path / "eval"
-    rows = evaluate_per_method(models, cohort, out, main)
-    capsys.readouterr()
+def test_per_method_rows_equal_evaluate_json(trained, capsys):
+    cohort, models, out = trained
+    rows = pd.read_csv(out / "cohort_methods.csv")  # evaluate-all MODELS COHORT --out eval --serial --per-method
     assert not undocumented("cohort_methods.csv", rows.columns)
     assert set(rows["user"]) == {f"u{u}" for u in USERS}
     for u in USERS:
@@ -62,9 +63,9 @@ def test_per_method_rows_equal_evaluate_json(trained, tmp_path, capsys):
 
 
 def test_without_per_method_no_method_tables_are_left(trained, tmp_path, capsys):
-    cohort, models = trained
+    cohort, models, per_method = trained
     out = tmp_path / "eval"
-    assert main(["evaluate-all", str(models), str(cohort), "--out", str(out), "--serial", "--per-method"]) == 0
+    shutil.copytree(per_method, out)  # an evaluate-all --per-method output (the shared fixture's), overwritten:
     assert (out / "cohort_methods.csv").is_file()
     assert main(["evaluate-all", str(models), str(cohort), "--out", str(out), "--serial", "--force"]) == 0
     assert sorted(p.name for p in out.iterdir()) == ["cohort_summary.csv", "cohort_summary.md"]

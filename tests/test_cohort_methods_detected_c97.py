@@ -11,17 +11,18 @@ import pytest
 
 from pdrlearn.classify import evaluate_model, load_model
 from pdrlearn.classify.detected import MIN_IOU, detected_strides
-from pdrlearn.cli import main
 from pdrlearn.io import read_session
 from pdrlearn.track.evaluate import match_by_overlap
-from tests.sim_helpers import evaluate_per_method, terrain_cohort
+from tests.sim_helpers import TERRAIN_COHORT_USERS, shared_terrain_cohort
 
-USERS = (8844, 8845)
+USERS = TERRAIN_COHORT_USERS
 
 
 @pytest.fixture(scope="module")
 def trained(tmp_path_factory):
-    return terrain_cohort(tmp_path_factory.mktemp("cohort_c97"), USERS, main)
+    """``(cohort, models, eval)``: the terrain cohort of USERS and its ``evaluate-all --per-method`` output, made
+    once per run for decisions C92's and C97's tests (``tests.sim_helpers.shared_terrain_cohort``, testing D51)."""
+    return shared_terrain_cohort(tmp_path_factory)
 
 
 def _by_hand(model, session, method, unit):
@@ -35,11 +36,9 @@ def _by_hand(model, session, method, unit):
     return float(np.mean(ok)), len(ok)
 
 
-def test_every_method_row_has_its_own_detected_stride_accuracy(trained, tmp_path, capsys):
-    cohort, models = trained
-    out = tmp_path / "eval"
-    rows = evaluate_per_method(models, cohort, out, main)
-    capsys.readouterr()
+def test_every_method_row_has_its_own_detected_stride_accuracy(trained):
+    cohort, models, out = trained
+    rows = pd.read_csv(out / "cohort_methods.csv")  # evaluate-all MODELS COHORT --out eval --serial --per-method
     assert rows["accuracy_detected"].notna().all() and (rows["n_steps_detected"] > 0).all()
     differ = 0
     for u in USERS:

@@ -1,32 +1,21 @@
 """Decision C150: one function builds a model's CV table (``cv_report.display_table``); train's console table,
 ``train --report``'s report.md and ``pdrlearn report MODEL_DIR`` render it, so the three carry the same rows and
-numbers, the thesis' figure (C144) included. Users 9990-9992."""
+numbers, the thesis' figure (C144) included. Users 9660-9662 (C143's model, testing decision D51)."""
 
 from __future__ import annotations
 
-import contextlib
-import io
-
 import pytest
 
-from pdrlearn.cli import main
-from pdrlearn.io import write_session
-from pdrlearn.sim import simulate
-
-TRAIN = ["--tasks", "terrain", "--methods", "svm,heuristic", "--cv", "3", "--cv-groups", "user",
-         "--no-distance-calibration"]
+from tests.sim_helpers import terrain_cv_model
 
 
 @pytest.fixture(scope="module")
 def outputs(tmp_path_factory):
-    root = tmp_path_factory.mktemp("c150")
-    dirs = [str(write_session(simulate("terrain", user_seed=u), root / f"u{u}")) for u in (9990, 9991, 9992)]
-    buf = io.StringIO()  # the console's text: train prints to stdout (piped here, not a terminal)
-    with contextlib.redirect_stdout(buf):
-        code = main(["train", *dirs, "--out", str(root / "model"), *TRAIN, "--report", str(root / "rep")])
-    assert code == 0
-    assert main(["report", str(root / "model"), "--out", str(root / "R")]) == 0
-    return buf.getvalue(), (root / "rep" / "report.md").read_text(), (root / "R" / "report.md").read_text()
+    """train's console text, train --report's report.md and pdrlearn report's report.md of one model (users
+    9660-9662, shared with decision C143's tests: ``tests.sim_helpers.terrain_cv_model``)."""
+    root = terrain_cv_model(tmp_path_factory)
+    return ((root / "console.txt").read_text(encoding="utf-8"), (root / "rep" / "report.md").read_text(),
+            (root / "R" / "report.md").read_text())
 
 
 def _rows(lines, sep):

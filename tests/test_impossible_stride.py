@@ -149,7 +149,7 @@ def test_zeroed_stride_is_left_out_of_the_gait_parameters(walk, monkeypatch, str
 
 
 def test_runtime_zeroed_stride_is_left_out_of_the_gait_parameters(tmp_path_factory, walk, monkeypatch):
-    from pdrlearn.cli.export import _result
+    from pdrlearn.cli.export import streamed_result
     from pdrlearn.track.gait import gait_summary
 
     root = trained_dirs(tmp_path_factory)["root"]
@@ -160,10 +160,10 @@ def test_runtime_zeroed_stride_is_left_out_of_the_gait_parameters(tmp_path_facto
     assert [st.impossible for st in steps] == [i == 3 for i in range(len(steps))]
     assert math.isfinite(clean[3].stride_time_s) and math.isfinite(clean[4].stride_time_s)
     assert math.isnan(steps[3].stride_time_s) and math.isnan(steps[4].stride_time_s)
-    table = _result(steps).steps
+    table = streamed_result(steps).steps
     assert table["impossible"].tolist() == [i == 3 for i in range(len(steps))]
     assert np.isnan(table["speed_mps"].iloc[3]) and (table["speed_mps"].dropna() > 0).all()
-    got, want = gait_summary(table), gait_summary(_result(clean).steps)
+    got, want = gait_summary(table), gait_summary(streamed_result(clean).steps)
     dur = steps[4].start_s - steps[2].end_s
     assert got["walking_time_s"] == pytest.approx(want["walking_time_s"] - dur, abs=1e-6)
 

@@ -3,8 +3,9 @@
 names (experiments/ is on ``sys.path`` by path; ``experiments/__init__.py`` adds it for ``-m``), the tests' helpers
 through ``experiments/_repo.py``.
 
-Each launch is emulated in a fresh subprocess per mode: ``sys.path`` as Python sets it for that launch (experiments/
-first by path, the repository root first for ``-m``; the checkout's pdrlearn through a folder that holds only it),
+Each launch is emulated in one fresh subprocess for both modes (decision D51): ``sys.path`` as Python sets it for
+that launch (experiments/ first by path, the repository root first for ``-m``; the checkout's pdrlearn through a
+folder that holds only it),
 and every script is run under another name than ``__main__`` (its imports and module-level code, not its
 experiment), with the modules of experiments/ and tests/ forgotten between scripts. A few scripts' ``--help`` are
 then launched for real, both ways."""
@@ -25,13 +26,13 @@ EXP = ROOT / "experiments"
 CHECK = r'''
 import os, runpy, sys
 from pathlib import Path
-mode, root = sys.argv[1], Path(sys.argv[2])
+modes, root = sys.argv[1].split(","), Path(sys.argv[2])
 exp = root / "experiments"
 import pdrlearn  # noqa: F401  (the checkout's, through the folder on PYTHONPATH)
 base = [p for p in sys.path if p not in ("", str(root), os.getcwd())]
 keep = set(sys.modules)
 bad = []
-for f in sorted(exp.glob("*.py")):
+for mode, f in ((m, f) for m in modes for f in sorted(exp.glob("*.py"))):
     if f.name == "__init__.py":
         continue
     sys.path[:] = ([str(exp)] if mode == "path" else [str(root)]) + base
@@ -46,7 +47,7 @@ for f in sorted(exp.glob("*.py")):
         else:
             runpy.run_module(f"experiments.{f.stem}", run_name="_e301_check", alter_sys=True)
     except BaseException as e:  # noqa: BLE001  (SystemExit too: a script that exits at import)
-        bad.append(f"{f.name}: {type(e).__name__}: {str(e)[:150]}")
+        bad.append(f"{mode} {f.name}: {type(e).__name__}: {str(e)[:150]}")
 print("\n".join(bad))
 print(f"FAILED {len(bad)}")
 '''
@@ -61,21 +62,35 @@ def _env(tmp_path: Path) -> dict:
     return {**os.environ, "PYTHONPATH": str(link), "OMP_NUM_THREADS": "1", "MPLBACKEND": "Agg"}
 
 
-def check_launches(root: Path, mode: str, tmp_path: Path) -> list[str]:
-    """The scripts of ``root``/experiments that do not import as ``mode`` ("path" / "module") launches them."""
+def check_launches(root: Path, modes: str, tmp_path: Path) -> dict[str, list[str]]:
+    """The scripts of ``root``/experiments that do not import as each of ``modes`` ("path", "module" or
+    "path,module") launches them: ``{mode: ["NAME.py: error", ...]}``. One subprocess for all the modes (decision
+    D51): between two scripts, of one mode or the next, it forgets the modules of experiments/ and tests/ and resets
+    ``sys.path`` alike, so each script is imported as in a process of its own mode; the libraries stay imported."""
     script = tmp_path / "check.py"
     script.write_text(CHECK)
-    r = subprocess.run([sys.executable, str(script), mode, str(root)], cwd=tmp_path, env=_env(tmp_path),
-                       capture_output=True, text=True, timeout=600)
+    r = subprocess.run([sys.executable, str(script), modes, str(root)], cwd=tmp_path, env=_env(tmp_path),
+                       capture_output=True, text=True, timeout=900)
     lines = r.stdout.strip().splitlines()
     assert lines and lines[-1].startswith("FAILED "), r.stderr[-2000:]
-    return [ln for ln in lines[:-1] if ": " in ln and ln.split(":")[0].endswith(".py")]
+    bad = {m: [] for m in modes.split(",")}
+    for ln in lines[:-1]:
+        mode, _, rest = ln.partition(" ")
+        if mode in bad and ": " in rest and rest.split(":")[0].endswith(".py"):
+            bad[mode].append(rest)
+    return bad
+
+
+@pytest.fixture(scope="module")
+def both_launches(tmp_path_factory) -> dict[str, list[str]]:
+    """Both launches' failures, checked in one subprocess for the module (decision D51: not one per mode)."""
+    return check_launches(ROOT, "path,module", tmp_path_factory.mktemp("e301"))
 
 
 @pytest.mark.slow
 @pytest.mark.parametrize("mode", ["path", "module"])
-def test_every_script_imports_as_each_launch_would_e301(mode, tmp_path):
-    assert check_launches(ROOT, mode, tmp_path) == []
+def test_every_script_imports_as_each_launch_would_e301(mode, both_launches):
+    assert both_launches[mode] == []
 
 
 # by path: a former experiments.x import (drops, clock_origin_l198), bare siblings (waist_cadence_law), the tests'

@@ -63,16 +63,16 @@ def test_run_summary_has_walking_time_gait_speed_and_error_scope(tmp_path, capsy
 
 
 def test_run_and_track_streaming_split_the_walking_time_at_a_gap(tmp_path_factory):
-    from pdrlearn.cli.export import _result
+    from pdrlearn.cli.export import streamed_result
     from pdrlearn.runtime.tracker import Tracker
     from pdrlearn.track import get_pipeline
     from tests.runtime_helpers import replay, synthetic_session, trained_dirs, without
 
     root = trained_dirs(tmp_path_factory)["root"]
     walk = synthetic_session(24, seed=11, name="walk", turn_rad_per_step=0.3)
-    whole = gait_summary(_result(replay(Tracker(root / "bundle"), walk, 1.0)).steps)
+    whole = gait_summary(streamed_result(replay(Tracker(root / "bundle"), walk, 1.0)).steps)
     s = without(walk, 10.2, 11.7)
-    run = gait_summary(_result(replay(Tracker(root / "bundle"), s, 1.0)).steps)
+    run = gait_summary(streamed_result(replay(Tracker(root / "bundle"), s, 1.0)).steps)
     st = gait_summary(get_pipeline("plasys")(s, model=str(root / "model"), streaming=True).steps)
     assert run["walking_time_s"] == pytest.approx(st["walking_time_s"], abs=1e-6)
     assert run["gait_speed_mps"] == pytest.approx(st["gait_speed_mps"], rel=1e-6)

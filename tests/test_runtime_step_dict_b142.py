@@ -6,7 +6,7 @@ steps.csv: ``to_dict()`` called the length class ``length``, the others ``length
 
 from __future__ import annotations
 
-from pdrlearn.cli.export import _result
+from pdrlearn.cli.export import streamed_result
 from pdrlearn.features import TASK_COLUMNS
 from pdrlearn.runtime.tracker import Step
 
@@ -24,6 +24,6 @@ def test_to_dict_names_the_classes_by_the_steps_table_columns():
 
 
 def test_run_steps_table_has_one_length_class_column():
-    df = _result([_step()]).steps
+    df = streamed_result([_step()]).steps
     assert list(df.columns).count("length_class") == 1 and "length" not in df.columns
     assert df["length_class"].tolist() == ["short"]

@@ -164,7 +164,7 @@ def test_run_contacts_fill_the_steps_and_summary_as_track_streaming(sim_a, tmp_p
 def test_runtime_steps_carry_the_stride_time_as_emitted(sim_a):
     """The Tracker's own ``stride_time_s`` (computed as each stride is emitted, E51) is the table's (L66/L80) and
     each IC lies in its stride; a gap row between two strides leaves the second one without a stride time."""
-    from pdrlearn.cli.export import _result
+    from pdrlearn.cli.export import streamed_result
     from pdrlearn.runtime.replay import replay_chunks
     from pdrlearn.runtime.tracker import Tracker
     from tests.runtime_helpers import without
@@ -178,7 +178,7 @@ def test_runtime_steps_carry_the_stride_time_as_emitted(sim_a):
         for ch in replay_chunks({n: (st.t, st.values) for n, st in sess.streams.items()}, 1.0):
             steps += tr.push(ch)
         steps += tr.flush()
-        table = _result(steps).steps
+        table = streamed_result(steps).steps
         live = np.array([st.stride_time_s for st in steps])
         np.testing.assert_allclose(live, table["stride_time_s"].to_numpy(float), rtol=0, atol=0)
         ev = table["event_s"].to_numpy(float)

@@ -7,36 +7,24 @@ import pandas as pd
 import pytest
 
 from pdrlearn.cli import main
-from pdrlearn.io import write_session
-from pdrlearn.sim import simulate
+from tests.sim_helpers import terrain_cv_model
 
 
 @pytest.fixture(scope="module")
 def trained(tmp_path_factory):
-    root = tmp_path_factory.mktemp("c143")
-    dirs = []
-    for u in (9660, 9661, 9662):
-        write_session(simulate("terrain", user_seed=u), root / f"u{u}")
-        dirs.append(str(root / f"u{u}"))
-    code = main(["train", *dirs, "--out", str(root / "model"), *TRAIN])
-    assert code == 0
-    return root
-
-
-TRAIN = ["--tasks", "terrain", "--methods", "svm,heuristic", "--cv", "3", "--cv-groups", "user",
-         "--no-distance-calibration"]
+    """The users' sessions, ``model`` and ``rep`` of ``train --report`` and ``R`` of ``pdrlearn report model``
+    (``tests.sim_helpers.terrain_cv_model``: made once per run, shared with decision C150's tests, D51)."""
+    return terrain_cv_model(tmp_path_factory)
 
 
 def test_train_report_writes_cv_and_louo_tables_a_confusion_png_and_a_short_report_md(trained, tmp_path):
     from pdrlearn.classify import load_model
     from pdrlearn.columns import undocumented
 
-    rep = tmp_path / "rep"
-    dirs = [str(trained / f"u{u}") for u in (9660, 9661, 9662)]
-    assert main(["train", *dirs, "--out", str(tmp_path / "model"), *TRAIN, "--report", str(rep)]) == 0
+    rep = trained / "rep"  # train USERS --out model --report rep (the shared fixture ran it)
     assert sorted(p.name for p in rep.iterdir()) == ["confusion_terrain.png", "cv.csv", "louo.csv", "report.md"]
     cv, louo = pd.read_csv(rep / "cv.csv"), pd.read_csv(rep / "louo.csv")
-    tm = load_model(tmp_path / "model").tasks["terrain"]
+    tm = load_model(trained / "model").tasks["terrain"]
     assert len(cv) == sum(len(per) for per in tm.cv.values())
     for row in cv.itertuples():  # the model's own CV numbers, in %
         r = tm.cv[row.method][row.unit]
@@ -57,9 +45,8 @@ def test_train_report_writes_cv_and_louo_tables_a_confusion_png_and_a_short_repo
     assert (rep / "confusion_terrain.png").read_bytes()[:4] == b"\x89PNG"
 
 
-def test_report_of_a_model_dir_gives_cv_tables_and_a_figure_not_the_manifest_in_one_cell(trained, tmp_path):
-    out = tmp_path / "R"
-    assert main(["report", str(trained / "model"), "--out", str(out)]) == 0
+def test_report_of_a_model_dir_gives_cv_tables_and_a_figure_not_the_manifest_in_one_cell(trained):
+    out = trained / "R"  # pdrlearn report model --out R (the shared fixture ran it)
     md = (out / "report.md").read_text()
     assert max(len(line) for line in md.splitlines()) < 300  # was 55,749 characters: the tasks dict in one cell
     assert "{'terrain'" not in md

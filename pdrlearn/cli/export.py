@@ -165,7 +165,7 @@ def _export_waist(cal: Path, out: Path, frame: str | None, force: bool, as_json:
                f"waist-pendulum, K {p.k:.4f}, leg {p.leg_m:.3f} m, {p.source}, {rate}; frame {fr}")
 
 
-def _frames_of(session, bundle, units=None) -> dict:
+def frames_of(session, bundle, units=None) -> dict:
     """Each unit's frame for the runtime: declared (checked against the data, decisions D10, D23); else inferred
     from the session's data (decision D8, with its warning); else, when the data does not fix the axes, the
     bundle's (its training sessions'), warned. A unit the replay leaves out (``units``, decision E26:
@@ -638,7 +638,7 @@ def run(
             # decision L177: run checked the clocks on the recording above (L170), the same numbers: no second line
             # decision E230: run said the intervals of dropped samples when it read the session (L77): not again
             tracker = Tracker(bundle, heading_source=heading_source,  # decision E285
-                              frames=_frames_of(session, bundle, use), clock_check=False, stream_checks=False,
+                              frames=frames_of(session, bundle, use), clock_check=False, stream_checks=False,
                               resample=resample_mode(resample, no_resample), rules=rules, min_confidence=min_confidence,
                               input_rates_hz=rates, units=use,
                               sensors=[n for n, st in session.streams.items() if len(st)],
@@ -689,7 +689,7 @@ def run(
                 steps += tracker.flush()
             _warn_short_streams(session, tracker, steps)
             source = f"session {session.name}"
-        result = _result(steps, start_ll, start_alt)
+        result = streamed_result(steps, start_ll, start_alt)
         if session is not None and "foot" in tracker.units:  # decision E293: track's rides (L378, L624), rides.csv
             from pdrlearn.track.rides import foot_rides
             from pdrlearn.track.units import with_left_out_units
@@ -1022,7 +1022,7 @@ def _run_waist(bundle_dir: Path, session_dir: Path | None, out: Path | None, chu
                + (f" -> {out}" if out else ""))
 
 
-def _result(steps, start_ll=None, start_alt: float = 0.0):
+def streamed_result(steps, start_ll=None, start_alt: float = 0.0):
     """The runtime's steps as a :class:`~pdrlearn.track.base.TrackResult` with the columns of ``track``:
     the length class column is ``length_class`` (decisions B14, B142: ``Step.to_dict``'s), ``unit`` is ``foot``,
     ``heading_rad`` wrapped to [-pi, pi) as ``track`` writes it (the runtime's heading is unwrapped), the

@@ -19,12 +19,12 @@ def streamed_foot_track(bundle, *, chunk_s: float = 1.0, **tracker_options):
     """Decision E311: a ``track_foot(session, ignore_force)`` for :func:`pdrlearn.track.bilateral.pair_sessions`
     that replays the session's foot unit through a foot-only, contacts-on ``Tracker`` of ``bundle``
     (``tracker_options``: run's classification options, e.g. ``rules``, ``methods``) in ``chunk_s`` pushes and gives
-    the streamed steps as ``run`` writes them (:func:`pdrlearn.cli.export._result`) plus each stride's toe-off
+    the streamed steps as ``run`` writes them (:func:`pdrlearn.cli.export.streamed_result`) plus each stride's toe-off
     ``tc_s`` (L73's gyroscope kernel, as offline). ``ignore_force``: the force files are not streamed (the contact is
     the accelerometer impact, steps decision 72's one detector)."""
 
     def track(session, ignore_force: bool):
-        from pdrlearn.cli.export import _frames_of, _result
+        from pdrlearn.cli.export import frames_of, streamed_result
         from pdrlearn.orient.filters import unit_data
         from pdrlearn.runtime.replay import replay_chunks
         from pdrlearn.runtime.tracker import Tracker
@@ -36,7 +36,7 @@ def streamed_foot_track(bundle, *, chunk_s: float = 1.0, **tracker_options):
                    if n.startswith("f") and len(st) and not (ignore_force and n in FORCE_FILES)}
         rates = {n: st.rate_hz for n, st in streams.items()}
         bundle.check_streams({n: math.nan for n in rates}, where=f"session '{session.name}'", units=("foot",))
-        tracker = Tracker(bundle, frames=_frames_of(session, bundle, ("foot",)), clock_check=False,
+        tracker = Tracker(bundle, frames=frames_of(session, bundle, ("foot",)), clock_check=False,
                           stream_checks=False, input_rates_hz=rates, units=("foot",), sensors=list(streams),
                           start=(0.0, 0.0, 0.0), contacts=True,  # decision E49: each stride's initial contact
                           stream_ends_s={n: float(st.t[-1]) for n, st in streams.items()},
@@ -46,7 +46,7 @@ def streamed_foot_track(bundle, *, chunk_s: float = 1.0, **tracker_options):
         for chunk in replay_chunks({n: (st.t, st.values) for n, st in streams.items()}, chunk_s):
             steps += tracker.push(chunk)
         steps += tracker.flush()
-        result = _result(steps)
+        result = streamed_result(steps)
         table = result.steps
         if len(table):  # decision L73, as offline --toe-off: the toe-off and the stance / swing columns
             foot = unit_data(session, "foot", purpose="the toe-off (decision L73)")
