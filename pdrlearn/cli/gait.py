@@ -227,6 +227,9 @@ def register(app: typer.Typer) -> None:
         overlap for under 50 % of the shorter (B322); with no "foot" recorded one warning says the side is taken from
         the argument order. Both feet are timed by one detector (steps 72): with force sensors on one foot only, or
         with --ignore-force, both by the IMU's; gait_steps.csv's and gait_summary.json's contact_source say which.
+        The walk also gives each side's median foot (sole) angle at contact and at toe-off (the tracks' L421
+        angles, + toes up; C244); --affected-side left|right names the affected side (a prosthesis, a paretic leg):
+        gait_summary.json's affected_side, and `report --clinical` words the sides affected / unaffected (C245).
 
         Examples:
 
