@@ -739,6 +739,14 @@ CHANGES: tuple[Column, ...] = (
                                             "(its change is in points, C101)"),
 )
 
+#: cohort C242: gait-all's gait_changes.csv, changes.csv's columns (no test) over the pairs' gait_summary.json walks;
+#: ``{measure}`` stands for each walk measure compared (pdrlearn.track.gait_changes.GAIT_CHANGE_MEASURES)
+_GAIT_CHANGE_TEXT = {"group": "the pair's first folder under ROOT (track-all's --group-depth 1)",
+                     "baseline_path": "the baseline visit's folder(s) under ROOT (gait_pairs.csv path), ; -separated",
+                     "path": "the later visit's folder(s) under ROOT, ; -separated (a visit's walks averaged, C83)"}
+GAIT_CHANGES: tuple[Column, ...] = tuple((name, unit, kind, _GAIT_CHANGE_TEXT.get(name, text))
+                                         for name, unit, kind, text in CHANGES if name != "test")
+
 #: decisions C23, C81, C85: track-all's changes_summary.csv, one row per later visit, baseline (test, C174) and measure
 CHANGES_SUMMARY: tuple[Column, ...] = (
     ("visit", _ID, "text", "the later visit (changes.csv's visit, C82)"),
@@ -1346,6 +1354,10 @@ GAIT_PAIRS: tuple[Column, ...] = (
 )
 
 
+#: cohort C242: gait-all's gait_changes_summary.csv, changes_summary.csv's columns (no test) of gait_changes.csv
+GAIT_CHANGES_SUMMARY: tuple[Column, ...] = tuple(c for c in CHANGES_SUMMARY if c[0] != "test")
+
+
 def _pair(name: str, unit: str, what: str) -> tuple[Column, ...]:
     """Decision L287: a left / right measure of ``pdrlearn gait`` and its two asymmetry columns (L259)."""
     return ((f"{name}_left", unit, "number", f"the left foot's mean {what}"),
@@ -1438,6 +1450,10 @@ GAIT_BOUTS: tuple[Column, ...] = (
     ("clock_offset_s", "s", "number", "((left step - left swing) - (right step - right swing)) / 2: the left clock's "
                                       "offset the steps imply, plus half the walker's own double-support imbalance "
                                       "(L284; > 0 = the left unit's times late)"),
+    *((f"{a}_{s}", "deg", "number", f"gait_summary.json walk only, foot tracks: the {s} foot's median sole angle "
+       f"{what} (+ toes up) over the headline's steps (steps.csv {a}, L421; C244)")
+      for a, what in (("ic_angle_deg", "at its contact"), ("tc_angle_deg", "at the toe-off before it"))
+      for s in ("left", "right")),
     ("impact_sharpness_left", "m/s^3", "number", "gait_summary.json walk only, foot tracks: the left foot's median "
                                                  "largest |d|a|/dt| within 0.1 s of its contacts (L318)"),
     ("impact_sharpness_right", "m/s^3", "number", "gait_summary.json walk only: the same of the right foot; over 3 x "
@@ -1966,7 +1982,8 @@ TABLES: dict[str, tuple[Column, ...]] = dict(zip(TABLE_NAMES, (
     SPLITS,
     DIRECTION_CHANGES, TRANSFERS, TUG_PHASE_TABLE, TUG_TRIAL_TABLE, TEN_M_WALK_TRIAL_TABLE,
     FREEZES, FLIGHTS, RAMPS, RAMP_RUNS, STAIRS, CURBS, RIDES, WB_SCORES, WAIST_STEPS,
-    FOOT_STEPS, TRAJECTORY, AT_TIMES, GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS, GAIT_PAIRS, DETECTIONS, EVENTS, STEPS_JSON,
+    FOOT_STEPS, TRAJECTORY, AT_TIMES, GAIT_STEPS, GAIT_CYCLES, GAIT_BOUTS, GAIT_PAIRS,
+    GAIT_CHANGES, GAIT_CHANGES_SUMMARY, DETECTIONS, EVENTS, STEPS_JSON,
     COHORT_SUMMARY, COHORT_METHODS, COHORT_METHODS_SUMMARY, TRAIN_CV, TRAIN_LOUO), strict=True))
 
 #: a line under a table's heading (decision W129: steps.csv is documented for lower-back tracks)
@@ -2041,8 +2058,12 @@ def undocumented(table: str, columns) -> list[str]:
     known = expanded(table)
     if table == "strides.csv":  # decision E163: the sessions' own steps.csv columns follow the lead ones
         known = {**expanded("steps.csv"), **expanded("steps.csv (foot)"), **known}
-    if table == "changes.csv":  # decision C81: any sessions.csv number column can be a --metrics measure
-        measures = [name for name, _, kind, _ in SESSIONS if kind in ("number", "integer")]
+    if table in ("changes.csv", "gait_changes.csv"):  # decision C81: any sessions.csv number column can be a
+        # --metrics measure; cohort C242: gait_changes.csv's, the gait walk's
+        from pdrlearn.track.gait_changes import GAIT_CHANGE_MEASURES
+
+        measures = (GAIT_CHANGE_MEASURES if table == "gait_changes.csv" else
+                    [name for name, _, kind, _ in SESSIONS if kind in ("number", "integer")])
         known.update({f"{m}_{k}": ("", "", "", "") for m in measures for k in ("baseline", "change", "change_pct")})
     # decision E137: "p_<task>_<class>" / "ood_*" name a family of columns by its prefix
     prefixes = tuple(k.split("<")[0].rstrip("*") for k in known if "<" in k or k.endswith("*"))

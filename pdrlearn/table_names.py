@@ -31,6 +31,7 @@ TABLE_NAMES: tuple[str, ...] = ("sessions.csv", "groups.csv", "subjects.csv",
                                 "at_times.csv",  # L638
                                 "gait_steps.csv", "gait_cycles.csv", "gait_bouts.csv",  # L287
                                 "gait_pairs.csv",  # C110
+                                "gait_changes.csv", "gait_changes_summary.csv",  # cohort C242
                                 "detections.csv", "events.csv", "steps.json",  # steps 59
                                 "cohort_summary.csv",  # cohort C106
                                 "cohort_methods.csv", "cohort_methods_summary.csv",  # cohort C92

@@ -286,6 +286,7 @@ def _validators() -> dict[tuple[str, str], object]:
     from pdrlearn.sim.route import parse_route
     from pdrlearn.sim.simulate import FEET
     from pdrlearn.steps.detectors import DETECTORS, get_detector
+    from pdrlearn.track.affected_side import check_affected_side
     from pdrlearn.track.altitude import ALTITUDES
     from pdrlearn.track.base import PIPELINES
     from pdrlearn.track.bouts import BOUT_PRESETS
@@ -382,6 +383,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("fetch", "source"): _one_of(SOURCES),
         ("import", "unit"): _one_of(PLACEMENTS),
         ("import", "foot"): _one_of(FEET),  # decision B321 (the same two feet as importer.FEET)
+        **{(c, "affected_side"): check_affected_side for c in ("gait", "gait-all")},  # cohort C245
         ("import", "time_unit"): time_unit,
         ("import", "acc_unit"): unit_word("acc"),
         ("import", "gyro_unit"): unit_word("gyro"),

@@ -17,6 +17,12 @@ GAIT_FILES = ("gait_summary.json", "gait_steps.csv", "gait_cycles.csv", "gait_bo
 GAIT_ALL_FILES = ("gait_pairs.csv", "gait_steps.csv", "gait_cycles.csv", "gait_bouts.csv")
 
 
+#: cohort C245: the help of gait's and gait-all's --affected-side
+AFFECTED_HELP = ("left or right: the affected side (a prosthesis, a paretic or operated leg). gait_summary.json "
+                 "records it (affected_side) and `report --clinical` words the sides affected / unaffected ('right "
+                 "longer' reads 'unaffected longer'); the measures keep their left / right names (decision C245).")
+
+
 def _fmt(v, spec: str) -> str:
     return "-" if v is None else format(v, spec)
 
@@ -62,7 +68,21 @@ def gait_lines(summary: dict, by_kind: dict | None = None) -> list[str]:
                      f"cycles, {1000 * w['flight_time_s']:.0f} ms on average (L729)")
     if w.get("cadence_spm") is not None:  # decision L539
         lines.append(pace_line(w))
+    angles = foot_angle_text(w)
+    if angles:  # cohort C244
+        lines.append(angles)
     return lines
+
+
+def foot_angle_text(w: dict) -> str | None:
+    """Cohort C244: the walk's per-side median sole angles at contact and toe-off (steps.csv's ic_angle_deg /
+    tc_angle_deg, L421: + toes up), "left/right a / b deg"; None without any."""
+    names = (("ic_angle_deg", "at contact"), ("tc_angle_deg", "at toe-off"))
+    if all(w.get(f"{k}_{s}") is None for k, _ in names for s in ("left", "right")):
+        return None
+    return ("foot (sole) angle left/right, + toes up, medians: " + ", ".join(
+        f"{what} {_fmt(w.get(f'{k}_left'), '.1f')} / {_fmt(w.get(f'{k}_right'), '.1f')} deg" for k, what in names)
+        + " (L421, C244)")
 
 
 def _basis(w: dict, by_kind: dict | None = None) -> str:
@@ -117,6 +137,7 @@ def summary_json(res: dict) -> dict:
     writes one per pair, decision W437)."""
     out = {k: res[k] for k in ("walk", "bouts", "by_kind", "stairs", "toe_off", "reason", "warnings", "sessions",
                                "contact_source", "clock_alignment")}  # L561: stairs
+    out["affected_side"] = res.get("affected_side")  # cohort C245
     ref = res.get("reference")
     out["reference"] = None if ref is None else {k: ref[k] for k in ("walk", "bouts", "by_kind", "stairs", "toe_off",
                                                                      "reason")}
@@ -150,6 +171,9 @@ def result_lines(res: dict, how: str) -> list[str]:
     if aligned is not None:
         lines.append(aligned)
     lines += gait_lines(res["walk"], res["by_kind"])
+    if res.get("affected_side"):  # cohort C245
+        lines.append(f"affected side: {res['affected_side']} (--affected-side; clinical.md words the sides "
+                     "affected / unaffected, C245)")
     if len(res["by_kind"]) > 1:  # decision L538: a walk of one kind has its rows in the headline
         lines.append(f"by kind of step ({decision_ref('L538')}):")  # decision D49
         lines += ["  " + line for line in kind_lines(res["by_kind"])]
@@ -174,6 +198,7 @@ def register(app: typer.Typer) -> None:
                                           "the foot IMU's detector, the force sensors left out (as track's, L366). "
                                           "Without it a pair whose feet would be timed by different detectors (force "
                                           "on one foot only) is timed by the IMU on both, with one line (steps 72)."),
+        affected_side: str = typer.Option(None, "--affected-side", help=AFFECTED_HELP),
     ):
         """Bilateral gait of one walk recorded with a unit on each foot: step time (one foot's initial contact
         to the other's next), step length (the two feet's tracked positions along the walk, straight steps,
@@ -202,6 +227,9 @@ def register(app: typer.Typer) -> None:
         overlap for under 50 % of the shorter (B322); with no "foot" recorded one warning says the side is taken from
         the argument order. Both feet are timed by one detector (steps 72): with force sensors on one foot only, or
         with --ignore-force, both by the IMU's; gait_steps.csv's and gait_summary.json's contact_source say which.
+        The walk also gives each side's median foot (sole) angle at contact and at toe-off (the tracks' L421
+        angles, + toes up; C244); --affected-side left|right names the affected side (a prosthesis, a paretic leg):
+        gait_summary.json's affected_side, and `report --clinical` words the sides affected / unaffected (C245).
 
         Examples:
 
@@ -210,16 +238,21 @@ def register(app: typer.Typer) -> None:
           pdrlearn gait LEFT RIGHT --out gait_out --json
 
           pdrlearn gait LEFT RIGHT --ignore-force   # both feet timed by the IMU, the insoles left out
+
+          pdrlearn gait LEFT RIGHT --out G --affected-side left   # a left prosthesis (C245)
         """
         from pdrlearn.atomic import atomic_directory
         from pdrlearn.cli.common import existed, out_folder, print_json, refused_output, replaced
         from pdrlearn.io.plasys import json_safe
+        from pdrlearn.track.affected_side import check_affected_side
         from pdrlearn.track.bilateral import pair_sessions
 
+        affected_side = check_affected_side(affected_side)  # cohort C245: before any tracking
         if out is not None:
             out_folder(out, "gait", force=force, inputs=(left_dir, right_dir))
         # bad input fails here, before any folder is made
         res = pair_sessions(left_dir, right_dir, ignore_force=ignore_force)
+        res["affected_side"] = affected_side
         summary = json_safe(summary_json(res))
         if out is not None:
             was = existed(out)
@@ -264,6 +297,7 @@ def register_all(app: typer.Typer) -> None:
                                     "earlier run into OUT paired from the same input files and code, and pair the "
                                     "others (a failed pair again); the tables are those an uninterrupted run writes "
                                     "(decision C116). OUT is replaced as with --force."),
+        affected_side: str = typer.Option(None, "--affected-side", help=AFFECTED_HELP),
     ):
         """Bilateral gait of every visit folder under ROOT (decision C110): the session folders are found as
         track-all finds them, grouped by the folder holding them, and each folder's one left and one right foot
@@ -276,6 +310,10 @@ def register_all(app: typer.Typer) -> None:
         time with --jobs N (C115). --resume goes on from an interrupted or earlier run: each paired visit folder's
         result is recorded in OUT (a hidden .gait-all-pairs folder) with its input files' SHA-256, and reused while
         they and pdrlearn's code are unchanged; a changed pair is paired again, its line saying what changed (C116).
+        With two or more visits of a subject (meta.json visit), gait_changes.csv and gait_changes_summary.csv pair
+        them as track-all's changes.csv does (C22 baseline, C83 a visit's walks averaged) over each walk's symmetry
+        indices, each side's means, support, pace and foot angles (C242). --affected-side names one affected side
+        for every pair under ROOT (C245; run gait-all per side otherwise).
 
         Examples:
 
@@ -284,9 +322,13 @@ def register_all(app: typer.Typer) -> None:
           pdrlearn gait-all study/ --out gait_study --jobs 2 --force
 
           pdrlearn gait-all study/ --out gait_study --resume   # after a kill or Ctrl-C: the finished pairs reused
+
+          pdrlearn gait-all study/ --out gait_study --affected-side left   # every patient's left leg affected (C245)
         """
         from pdrlearn.cli.gait_batch import gait_all
+        from pdrlearn.track.affected_side import check_affected_side
 
-        code = gait_all(root, out, force, jobs=jobs, resume=resume)
+        code = gait_all(root, out, force, jobs=jobs, resume=resume,
+                        affected_side=check_affected_side(affected_side))  # cohort C245: before any pairing
         if code:
             raise typer.Exit(code)

@@ -63,20 +63,38 @@ def _portable(summary: dict, args: dict) -> dict:
     return summary
 
 
-def _placed(summary: dict, root: Path) -> dict:
+def _placed(summary: dict, root: Path, affected_side: str | None = None) -> dict:
     """Decision W437: a record's gait_summary.json object with its sessions' paths under this run's ROOT again (the
     file names each foot's session folder as `gait --out`'s does). Decision W457: under the resolved ROOT, so a relative
     ROOT gives the same absolute folders as track-all's summary.json (C13) and `report --clinical` reads the same from
-    any working directory."""
+    any working directory. Cohort C245: ``affected_side`` (gait-all --affected-side) is written at placing, not
+    recorded, so a resumed run with another side words its summaries by the new one."""
     import copy
 
     summary = copy.deepcopy(summary)
+    summary["affected_side"] = affected_side
     root = Path(root).resolve()
     for side in ("left", "right"):
         entry = (summary.get("sessions") or {}).get(side)
         if isinstance(entry, dict) and entry.get("session"):
             entry["session"] = str(root / entry["session"])
     return summary
+
+
+def _write_changes(tmp: Path, values: list) -> list[str]:
+    """Cohort C242: gait_changes.csv and gait_changes_summary.csv of the paired visit folders' walks into ``tmp``
+    (:func:`pdrlearn.track.gait_changes.gait_change_tables`); the names written, none under two visits."""
+    from pdrlearn.table_csv import write_table_csv
+    from pdrlearn.track.gait_changes import gait_change_tables
+
+    walks = [{**v["row"], "walk": (v.get("summary") or {}).get("walk")} for v in values
+             if v is not None and v["row"]["status"] == "ok"]
+    changes, summary = gait_change_tables(walks)
+    if changes is None:
+        return []
+    write_table_csv(changes, tmp / "gait_changes.csv")
+    write_table_csv(summary, tmp / "gait_changes_summary.csv")
+    return ["gait_changes.csv", "gait_changes_summary.csv"]
 
 
 def _progress_text(value: dict | None, error: str | None, reused: bool) -> str:
@@ -89,8 +107,11 @@ def _progress_text(value: dict | None, error: str | None, reused: bool) -> str:
     return f"{'reused' if reused else 'ok'}, {row['n_steps']} steps in {row['n_bouts']} bout(s)"
 
 
-def gait_all(root: Path, out: Path, force: bool = False, jobs: int = 1, resume: bool = False) -> int:
-    """Decisions C110, C115, C116: ``pdrlearn gait-all``'s work; the exit code (1 when a pair failed, as track-all)."""
+def gait_all(root: Path, out: Path, force: bool = False, jobs: int = 1, resume: bool = False,
+             affected_side: str | None = None) -> int:
+    """Decisions C110, C115, C116: ``pdrlearn gait-all``'s work; the exit code (1 when a pair failed, as track-all).
+    Cohort C242: with two or more visits of a subject, gait_changes.csv and gait_changes_summary.csv too; C245:
+    ``affected_side`` ("left" / "right") names the affected side in each pair's gait_summary.json."""
     import shutil
 
     import pandas as pd
@@ -175,8 +196,9 @@ def gait_all(root: Path, out: Path, force: bool = False, jobs: int = 1, resume: 
         for p, v in zip(pairs, values, strict=True):  # decision W437: each pair's summary, for `report` (clinical)
             if v is not None and isinstance(v.get("summary"), dict):
                 (tmp / p["path"]).mkdir(parents=True, exist_ok=True)
-                (tmp / p["path"] / "gait_summary.json").write_text(json.dumps(_placed(v["summary"], root),
-                                                                               indent=2, allow_nan=False) + "\n")
+                (tmp / p["path"] / "gait_summary.json").write_text(json.dumps(
+                    _placed(v["summary"], root, affected_side), indent=2, allow_nan=False) + "\n")
+        changed_files = _write_changes(tmp, values)  # cohort C242: visit against visit
     replaced(out, was)
     # cohort C129: each pair's warnings (fresh, reused or failed), each distinct one said once, as track-all's C12
     said_once([(p["path"], (v or {}).get("warnings") or (ran[i].extra.get("warnings", []) if i in ran else []))
@@ -187,5 +209,7 @@ def gait_all(root: Path, out: Path, force: bool = False, jobs: int = 1, resume: 
     typer.echo(f"{n_ok} of {len(pairs)} visit folder(s) paired"
                + (f" ({len(reuse)} reused from an earlier run, --resume)" if resume else "")
                + f"; wrote {out}/" + ", ".join(GAIT_ALL_FILES)
-               + f" and each pair's PATH/gait_summary.json ({decision_ref('W437')})")  # decision D49
+               + f" and each pair's PATH/gait_summary.json ({decision_ref('W437')})"  # decision D49
+               + "".join(f", {name}" for name in changed_files)
+               + (f" (visit against visit, {decision_ref('C242', topic='cohort')})" if changed_files else ""))
     return 0 if all(r["status"] != "failed" for r in rows) else 1

@@ -300,14 +300,52 @@ def change_lines(rows: list) -> list[str]:
                 continue
             name, unit, k = CHANGE_LINE_MEASURES[m]
             name = walk_names(tracks, row).get(m, name)  # decision C211: the walkway's own name
-            u = f" {unit}" if unit else ""
-            pct = row.get(f"{m}_change_pct")
-            rel = f", {pct:+.0f} %" if pct is not None and not pd.isna(pct) else ""
-            parts.append(f"{name} {base:.{k}f} -> {base + change:.{k}f}{u} ({change:+.{k}f}{u}{rel})")
+            parts.append(change_part(name, unit, k, base, change, row.get(f"{m}_change_pct")))
         if row["status"] != "ok":
             parts = [f"not paired ({row['status']}: {row['reason']})"]
         if parts:
             lines.append(f"- Change from baseline ({row['baseline_visit']} -> {row['visit']}, C177): "
+                         + "; ".join(parts))
+    return lines
+
+
+def change_part(name: str, unit: str, k: int, base: float, change: float, pct=None) -> str:
+    """Decision C177: one measure's "name base -> later unit (change unit, percent %)" of a change line (``k``
+    decimals; no percent when ``pct`` is None or NaN; cohort C242: a symmetry index's change in points, no percent)."""
+    u = f" {unit}" if unit else ""
+    rel = f", {pct:+.0f} %" if pct is not None and not pd.isna(pct) else ""
+    by = f"{change:+.{k}f} points" if unit == "%" else f"{change:+.{k}f}{u}"
+    return f"{name} {base:.{k}f} -> {base + change:.{k}f}{u} ({by}{rel})"
+
+
+#: cohort C242: the bilateral walk measures a patient's gait change line gives (name, unit, decimals; a symmetry
+#: index's change in points): the trial's symmetry outcomes and the pace
+GAIT_CHANGE_LINE_MEASURES = {"step_time_s_si_pct": ("step-time SI", "%", 1),
+                             "stance_time_s_si_pct": ("stance SI", "%", 1), "swing_time_s_si_pct": ("swing SI", "%", 1),
+                             "step_length_m_si_pct": ("step-length SI", "%", 1),
+                             "gait_speed_mps": ("gait speed", "m/s", 2), "cadence_spm": ("cadence", "steps/min", 1)}
+
+
+def gait_change_lines(rows: list) -> list[str]:
+    """Cohort C242: one patient's bilateral gait change lines, one per later visit: the symmetry indices and pace
+    (:data:`GAIT_CHANGE_LINE_MEASURES`) of its gait outputs, baseline -> later, paired as gait-all's
+    gait_changes.csv (:func:`pdrlearn.track.gait_changes.gait_change_tables`: C22's baseline, C83 a visit's walks
+    averaged); none under two visits."""
+    from pdrlearn.track.gait_changes import gait_change_tables
+
+    walks = [{"path": r[2], "subject": r[3].get("subject"), "visit": r[3].get("visit"), "walk": r[3].get("walk")}
+             for r in rows if r[0] == "gait"]
+    changes, _ = gait_change_tables(walks)
+    lines = []
+    for _, row in (changes.iterrows() if changes is not None else iter(())):
+        parts = [change_part(*GAIT_CHANGE_LINE_MEASURES[m], row[f"{m}_baseline"], row[f"{m}_change"])
+                 for m in GAIT_CHANGE_LINE_MEASURES if f"{m}_change" in row and not pd.isna(row[f"{m}_change"])]
+        if row["status"] != "ok":
+            parts = [f"not paired ({row['status']}: {row['reason']})"]
+        n = f"; {int(row['baseline_n_trials'])} / {int(row['n_trials'])} walks averaged" if row["status"] == "ok" \
+            and max(row["baseline_n_trials"], row["n_trials"]) > 1 else ""
+        if parts:
+            lines.append(f"- Gait change, both feet ({row['baseline_visit']} -> {row['visit']}{n}, C242): "
                          + "; ".join(parts))
     return lines
 
@@ -445,19 +483,22 @@ def _number(v) -> float | None:
     return float(v) if isinstance(v, int | float) and not isinstance(v, bool) else None
 
 
-def asymmetry_lines(walk: dict, stairs=None, leg_m: float | None = None) -> list[str]:
+def asymmetry_lines(walk: dict, stairs=None, leg_m: float | None = None, affected: str | None = None) -> list[str]:
     """Decision W438: a gait_summary.json ``walk``'s clinical lines: left / right, the symmetry index and the longer
     side of step time, stance and step length (each read defensively: a measure gait left out is left out), then the
     gait speed and cadence (L539) when given, (C195) stride length, stance % and double support, (C196) with a
     measured ``leg_m`` the leg-length-normalised speed and stride length, then (L561) its ``stairs`` flights: pattern
-    and leading foot."""
+    and leading foot. Cohort C245: with ``affected`` ("left" / "right", gait_summary.json affected_side) the longer
+    side is worded affected / unaffected; cohort C244: the per-side median foot angles after the asymmetry."""
+    from pdrlearn.track.affected_side import side_word, sides_note
+
     parts = []
     for key, name, unit in ASYMMETRY_MEASURES:
         left, right = _number(walk.get(f"{key}_left")), _number(walk.get(f"{key}_right"))
         if left is None or right is None:
             continue
         si = _number(walk.get(f"{key}_si_pct"))
-        side = "equal" if left == right else f"{'left' if left > right else 'right'} longer"
+        side = "equal" if left == right else f"{side_word('left' if left > right else 'right', affected)} longer"
         parts.append(f"{name} L/R {left:.3f} / {right:.3f} {unit} "
                      + (f"(SI {si:.1f} %, {side})" if si is not None else f"({side}; no symmetry index)"))
     if parts and _number(walk.get("step_length_m_left")) is None and "step_length_scale_pct" in walk \
@@ -467,12 +508,17 @@ def asymmetry_lines(walk: dict, stairs=None, leg_m: float | None = None) -> list
     basis = {"level": "level straight steps", "all": "all steps"}.get(str(walk.get("headline_steps")))
     lines = []
     if parts:
-        lines.append(f"- Asymmetry (both feet{f', {basis}' if basis else ''}): " + "; ".join(parts))
+        key = sides_note(affected)  # cohort C245
+        lines.append(f"- Asymmetry (both feet{f', {basis}' if basis else ''}{f'; {key}' if key else ''}): "
+                     + "; ".join(parts))
         withheld = walk.get("si_withheld")
         if isinstance(withheld, str) and withheld:
             lines.append(f"  (symmetry indices withheld: {withheld})")
     else:
         lines.append("- Asymmetry: not measured (too few steps on a side)")
+    angles = foot_angle_line(walk, affected)  # cohort C244
+    if angles:
+        lines.append(angles)
     speed, cad = _number(walk.get("gait_speed_mps")), _number(walk.get("cadence_spm"))
     if speed is not None:
         lines.append(f"- Gait speed {speed:.2f} m/s{f', cadence {cad:.0f} steps/min' if cad is not None else ''} "
@@ -490,6 +536,25 @@ def asymmetry_lines(walk: dict, stairs=None, leg_m: float | None = None) -> list
     if flights:  # decision L561
         lines.append("- Stairs (both foot units, L561): " + "; ".join(flight_line(f) for f in flights))
     return lines
+
+
+def foot_angle_line(walk: dict, affected: str | None = None) -> str | None:
+    """Cohort C244: "- Foot angles ...": each side's median sole angle at contact and at toe-off (gait_summary.json
+    walk ``ic_angle_deg_left`` ..., the track's L421 angles, + toes up), the sides named affected / unaffected with
+    ``affected`` (C245); None without any."""
+    from pdrlearn.track.affected_side import side_word
+
+    parts = []
+    for s, tag in (("left", "L"), ("right", "R")):
+        ic, tc = _number(walk.get(f"ic_angle_deg_{s}")), _number(walk.get(f"tc_angle_deg_{s}"))
+        if ic is None and tc is None:
+            continue
+        name = tag if affected not in ("left", "right") else f"{tag} ({side_word(s, affected)})"
+        parts.append(f"{name} {'-' if ic is None else f'{ic:.1f}'} / {'-' if tc is None else f'{tc:.1f}'} deg")
+    if not parts:
+        return None
+    return ("- Foot angles at contact / toe-off (sole, + toes up, medians of the same steps; L421, C244): "
+            + "; ".join(parts))
 
 
 def _pairs_row(folder: Path, root: Path) -> dict:
@@ -555,6 +620,7 @@ def _gait_walks(root: Path) -> list[dict]:
         walks.append({"folder": path.parent, "rel": rel, "subject": subject or None, "visit": visit or None,
                       "walk": walk, **side,
                       "names": names, "stairs": summary.get("stairs"),  # L561: stairs
+                      "affected": summary.get("affected_side"),  # cohort C245
                       "leg_m": measured_leg(found.get("leg_length_m"), found.get("leg_length_source"))})
     return walks
 
@@ -591,7 +657,7 @@ def _patient_lines(rows: list) -> list[str]:
     rows = in_visit_order(rows)  # decision C221: the baseline's sessions first, as the change line pairs them
     for block in walk_blocks(rows):
         out += block + [""]
-    changes = change_lines(rows)  # decision C177: the visits' change from baseline
+    changes = change_lines(rows) + gait_change_lines(rows)  # decision C177; cohort C242: the gait outputs'
     if changes:
         out += changes + [""]
     return out
@@ -704,7 +770,7 @@ def walk_blocks(rows: list) -> list[list[str]]:
                          "`pdrlearn gait LEFT RIGHT --out G`) and report a folder holding G too (W437, W438)")
         else:
             used.add(id(g))
-            block += asymmetry_lines(g["walk"], g["stairs"], g["leg_m"])
+            block += asymmetry_lines(g["walk"], g["stairs"], g["leg_m"], g["affected"])
         blocks.append(block)
     for g in gaits:
         if id(g) in used:
@@ -712,5 +778,5 @@ def walk_blocks(rows: list) -> list[list[str]]:
         date = session_date(Path(g["left"])) if g["left"] else None
         when = f"recorded {date}" if date else "recording date unknown (no meta.json recording_start)"
         blocks.append([f"Walk {g['rel']} (left {g['names']['left']} + right {g['names']['right']}; pdrlearn gait), "
-                       f"{when}:", *asymmetry_lines(g["walk"], g["stairs"], g["leg_m"])])
+                       f"{when}:", *asymmetry_lines(g["walk"], g["stairs"], g["leg_m"], g["affected"])])
     return blocks

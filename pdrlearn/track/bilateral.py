@@ -106,7 +106,9 @@ def foot_events(steps: pd.DataFrame) -> pd.DataFrame:
     out = pd.DataFrame({"ic_s": st[ic_col].to_numpy(float),
                         "tc_s": st["tc_s"].to_numpy(float) if "tc_s" in st else np.full(len(st), np.nan),
                         "length_m": length, "x_m": x, "y_m": y, "z_m": z, "dir_rad": d, "terrain": terrain,
-                        "turn_deg": turn, "stride_s": span, "backward": stride_backward(steps)[ok]})  # L746
+                        "turn_deg": turn, "stride_s": span, "backward": stride_backward(steps)[ok],  # L746
+                        **{c: pd.to_numeric(st[c], errors="coerce").to_numpy(float) if c in st
+                           else np.full(len(st), np.nan) for c in FOOT_ANGLES}})  # cohort C244: L421's angles
     return out.sort_values("ic_s", kind="stable").reset_index(drop=True)
 
 
@@ -737,6 +739,7 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
     if toe_off:  # decision L262: a foot track's (event_s) support times carry L73's biases; a label table's do not
         reason = support_note(setup_of(contact_source), _cycle_s(walk), rate_hz) if "event_s" in left_steps else None
     walk["headline_steps"] = basis  # decision L538
+    walk.update(foot_angles(both[masks[0]]))  # cohort C244: the headline strides' sole angles per side
     walk.update({f"n_steps_all_{s}": int((steps["side"] == s).sum()) for s in SIDES})
     walk["step_length_scale_pct"] = None if scale is None else 100.0 * scale  # decision L310
     log = logging.getLogger(__name__)
@@ -751,6 +754,25 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
     return {"walk": walk, "bouts": bouts, "by_kind": kind_measures(both, steps, cycles), "steps": steps,
             "cycles": cycles, "toe_off": toe_off, "reason": reason, "warnings": [w for w in warnings if w is not None],
             "stairs": stair_flights(both, contact_kinds(both))}  # decision L561
+
+
+#: cohort C244: a foot track's sole angles (steps.csv, decision L421) that :func:`foot_events` carries and
+#: :func:`foot_angles` gives per side: at the initial contact and at the toe-off (--toe-off)
+FOOT_ANGLES = ("ic_angle_deg", "tc_angle_deg")
+
+
+def foot_angles(contacts: pd.DataFrame) -> dict:
+    """Cohort C244: ``{angle}_left`` / ``{angle}_right`` of :data:`FOOT_ANGLES` - the median over each foot's
+    ``contacts`` (:func:`merged_contacts` rows; the walk's headline contacts) of its track's sole angle at the
+    contact and at the toe-off before it (the same stride's, L421: + toes up); None where a side has none (a label
+    table, a track without --toe-off)."""
+    out = {}
+    for name in FOOT_ANGLES:
+        for s in SIDES:
+            v = contacts.loc[contacts["side"] == s, name].to_numpy(float) if name in contacts else np.zeros(0)
+            v = v[np.isfinite(v)]
+            out[f"{name}_{s}"] = float(np.median(v)) if len(v) else None
+    return out
 
 
 def _cycle_s(walk: dict) -> float | None:

@@ -1,0 +1,34 @@
+"""Cohort C245: the affected side of a bilateral walk (``gait`` / ``gait-all --affected-side left|right``: a
+prosthesis, a paretic or an operated leg) and the words its sides take: a side is "affected" or "unaffected" where
+one is named, else "left" / "right". Pure functions; gait_summary.json's ``affected_side`` carries the choice."""
+
+from __future__ import annotations
+
+from pdrlearn.errors import DataError
+
+
+def check_affected_side(value: str | None, option: str = "--affected-side") -> str | None:
+    """Cohort C245: ``value`` lower-cased when it is "left" or "right", None for None; else one error line naming
+    ``option`` and the fix."""
+    from pdrlearn.track.bilateral import SIDES
+
+    if value is None:
+        return None
+    side = str(value).strip().lower()
+    if side not in SIDES:
+        raise DataError(f"{option} {value!r}: not a side; give left or right (the foot of the prosthesis, or the "
+                        "paretic or operated leg; decision C245)")
+    return side
+
+
+def side_word(side: str, affected: str | None) -> str:
+    """Cohort C245: ``side`` ("left" / "right") as the summary words it: "affected" / "unaffected" when ``affected``
+    names a side, else the side itself."""
+    if affected not in ("left", "right"):
+        return side
+    return "affected" if side == affected else "unaffected"
+
+
+def sides_note(affected: str | None) -> str:
+    """Cohort C245: "left = affected" (the L / R columns' key) when a side is named, else ""."""
+    return f"{affected} = affected" if affected in ("left", "right") else ""
