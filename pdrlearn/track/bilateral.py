@@ -44,6 +44,8 @@ from pdrlearn.track.contact_quality import comparability_warning, impact_sharpne
 from pdrlearn.track.flags import flag_values
 from pdrlearn.track.foot_heights import height_warning
 from pdrlearn.track.gait_flight import cycle_flights, flight_after, flight_warning
+from pdrlearn.track.step_anchors import (anchor_offsets, anchor_rows, drift_bound_pct, pass_bound_pct, pass_corrected,
+                                        pass_starts, short_strides)
 from pdrlearn.track.support_bias import setup_of, support_note
 
 #: the columns :func:`foot_events` gives: one row per initial contact of one foot; ``x_m`` / ``y_m`` (the foot's
@@ -385,6 +387,13 @@ def joined_kind(landing: np.ndarray, other: np.ndarray) -> np.ndarray:
     return np.where(rank(landing) <= rank(other), landing, other).astype(object)
 
 
+def step_contacts(both: pd.DataFrame) -> np.ndarray:
+    """Decision L259: the merged contacts (rows of ``both``) that end a step: the other foot's contact before, in
+    one bout."""
+    side, bout = both["side"].to_numpy(), both["bout"].to_numpy(int)
+    return np.flatnonzero((side[1:] != side[:-1]) & (bout[1:] == bout[:-1])) + 1
+
+
 def step_table(both: pd.DataFrame) -> pd.DataFrame:
     """Decision L259: one row per step of :func:`merged_contacts` - ``side`` (the foot it lands on), ``bout``,
     ``start_s`` (the other foot's IC), ``ic_s``, ``step_time_s``, (decision L284) ``swing_time_s``: the landing
@@ -393,7 +402,7 @@ def step_table(both: pd.DataFrame) -> pd.DataFrame:
     (:func:`joined_kind` of the two contacts)."""
     t, side, bout = both["ic_s"].to_numpy(float), both["side"].to_numpy(), both["bout"].to_numpy(int)
     tc = both["tc_s"].to_numpy(float)
-    k = np.flatnonzero((side[1:] != side[:-1]) & (bout[1:] == bout[:-1])) + 1
+    k = step_contacts(both)
     swing = np.where(tc[k] < t[k], t[k] - tc[k], np.nan)  # L284: one unit's toe-off to its IC (any clock offset)
     length = step_lengths(both, k) if "x_m" in both else np.full(len(k), np.nan)  # decision L310
     kinds = contact_kinds(both)  # decision L538
@@ -578,7 +587,7 @@ def unanchored_warning(walk: dict, steps: pd.DataFrame, reach: float = 0.0) -> s
     (:func:`closure_scale` None), so L310 gives no step length; None otherwise. Decision C208: with ``reach``
     (:func:`lateral_reach`, m; given when the reach alone refused the walk's anchors) over
     :data:`CLOSURE_LATERAL_MAX_M` the line says the walk left its axis by that much."""
-    if walk.get("step_length_scale_pct") is not None or not len(steps):
+    if walk.get("step_length_scale_pct") is not None or walk.get("step_length_passes") or not len(steps):
         return None
     if reach > CLOSURE_LATERAL_MAX_M:
         return (f"{UNANCHORED_NOTE}. This walk left its axis (the line from its start to its end) by {reach:.1f} m "
@@ -587,6 +596,20 @@ def unanchored_warning(walk: dict, steps: pd.DataFrame, reach: float = 0.0) -> s
                 "400 m track's bend read a 9 % step-length asymmetry as 173 %; "
                 f"{decision_ref('C208', topic='cohort')})")
     return UNANCHORED_NOTE
+
+
+def drift_warning(walk: dict, *, max_pct: float = 2.0) -> str | None:
+    """Decision L761: one line when the walk's step-length symmetry index is given and the tracks' drift bound
+    (``step_length_si_drift_pct``, :func:`pdrlearn.track.step_anchors.drift_bound_pct`) exceeds ``max_pct`` points
+    (the 2 points a prosthetics lab asked for, trial s50t2); None otherwise."""
+    b, si = walk.get("step_length_si_drift_pct"), walk.get("step_length_m_si_pct")
+    if b is None or si is None or not b > max_pct:
+        return None
+    return (f"bilateral gait: the step-length symmetry index ({si:.1f} %) may be off by about {b:.0f} points: the two "
+            f"foot tracks drifted {b * 0.5 * (walk['step_length_m_left'] + walk['step_length_m_right']):.0f}"  # b % of it
+            " cm apart along the walk between the standing start and the first closing step, and drift of that size "
+            f"inside a pass is not seen ({decision_ref('L761', topic='localization')}); the step time, stride length "
+            "and stance symmetry are not affected - report the step-length index as a range, not a measured value")
 
 
 def _fmt_pct(v) -> str:
@@ -690,7 +713,7 @@ def kind_measures(both: pd.DataFrame, steps: pd.DataFrame, cycles: pd.DataFrame)
 
 def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
                    step_lengths: pd.DataFrame | None = None, contact_source=None,
-                   rate_hz: float | None = None) -> dict:
+                   rate_hz: float | None = None, reanchor: bool = True) -> dict:
     """Decisions L259-L262 (Python API): bilateral gait of one walk from the left and the right foot's step
     tables (a foot track's ``steps.csv`` or a label table, :func:`foot_events`) on one clock.
 
@@ -703,7 +726,9 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
     (decision L540): a label table of both feet's contacts with each step's length (ics.csv), whose lengths the steps
     take (:func:`known_step_lengths`). ``contact_source`` (decision L703: "force" / "imu", or a per-foot dict; None:
     unknown) picks the set-up whose known support bias ``reason`` states, in this walk's gait cycle, at the foot
-    units' ``rate_hz`` (decision L737; None: unknown). Refuses
+    units' ``rate_hz`` (decision L737; None: unknown). ``reanchor`` (decision L760): a walk with closing steps
+    inside it (before its turns) has each pass re-anchored at its own closing step
+    (:func:`pdrlearn.track.step_anchors.pass_corrected`) instead of L310's one scale; False: L310's scale only. Refuses
     (:class:`DataError`, one line) two tables whose contacts do not overlap in time (L260: not one walk on one
     clock)."""
     left, right = foot_events(left_steps), foot_events(right_steps)
@@ -719,15 +744,32 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
     both = merged_contacts(common_frame(left, right), right)  # decision L310: one frame for the step lengths
     warnings = [alternation_warning(both)]
     steps, cycles = step_table(both), cycle_table(both)
-    scale = closure_scale(both, steps)  # decision L310: the closing step anchors the two tracks' relative scale
-    # decision C208: the line names the walk's reach only when the reach alone refused the anchors
-    bend = lateral_reach(both) if scale is None and closure_scale(both, steps, max_reach=math.inf) is not None else 0.0
+    k = step_contacts(both)
+    raw = steps["step_length_m"].to_numpy(float)
+    anchors = anchor_rows(contact_kinds(both), both["bout"].to_numpy(), k, raw)  # decision L760
+    passes, first = None, None
+    if len(anchors) >= 2 and reanchor:  # decision L760: closing steps inside the walk: each pass re-anchored
+        scale, bend, passes = None, 0.0, len(anchors)
+        first = float(anchor_offsets(steps["side"].to_numpy(), raw, anchors)[0])
+        cols = [both[c].to_numpy(float) for c in ("x_m", "y_m", "dir_rad")]
+        side = both["side"].to_numpy()
+        starts = pass_starts(contact_kinds(both), side, both["ic_s"].to_numpy(float), *cols, short_strides(side, both["length_m"].to_numpy(float),
+                                                        share=CLOSING_STRIDE_SHARE), k, raw, anchors)
+        steps["step_length_m"] = pass_corrected(steps["side"].to_numpy(), raw, steps["ic_s"].to_numpy(float),
+                                                anchors, starts, opened=opening_step(both),
+                                                start=float(both["ic_s"].iloc[0]))
+    else:
+        scale = closure_scale(both, steps)  # decision L310: the closing step anchors the two tracks' relative scale
+        # decision C208: the line names the walk's reach only when the reach alone refused the anchors
+        bend = (lateral_reach(both) if scale is None and closure_scale(both, steps, max_reach=math.inf) is not None
+                else 0.0)
     if scale is not None:
+        first = float(raw[-1] if steps["side"].iloc[-1] == "left" else -raw[-1])  # decision L761: (left - right) . u
         both = rescaled(both, scale)
         steps = step_table(both)
-    if scale is None:  # decision L311: not anchored at both ends - no step length (the drift is unknown)
+    if scale is None and passes is None:  # decision L311: not anchored at both ends - no step length
         steps["step_length_m"] = np.nan
-    else:  # decision L310: the closing step brought the feet side by side: the anchor, no step length
+    elif scale is not None:  # decision L310: the closing step brought the feet side by side: the anchor, no length
         steps.loc[steps.index[-1], "step_length_m"] = np.nan
     steps = known_step_lengths(steps, step_lengths)  # decision L540: the labels' own step lengths
     toe_off = bool(np.isfinite(both["tc_s"]).any())
@@ -747,10 +789,20 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
     walk["headline_steps"] = basis  # decision L538
     walk.update({f"n_steps_all_{s}": int((steps["side"] == s).sum()) for s in SIDES})
     walk["step_length_scale_pct"] = None if scale is None else 100.0 * scale  # decision L310
+    walk["step_length_passes"] = passes  # decision L760
+    mean_step = [walk.get(f"step_length_m_{s}") for s in SIDES]
+    if passes is not None:  # decision L761: the passes' spread
+        level = masks[1] & np.isfinite(steps["step_length_m"].to_numpy(float))
+        walk["step_length_si_drift_pct"] = pass_bound_pct(steps["side"].to_numpy(),
+                                                          np.where(level, steps["step_length_m"], np.nan), anchors)
+    else:  # decision L761: one pass: its closing step's offset
+        walk["step_length_si_drift_pct"] = (drift_bound_pct(first, 0.5 * (mean_step[0] + mean_step[1]))
+                                            if None not in mean_step else None)
     log = logging.getLogger(__name__)
     for line in (clock_offset_warning(walk), flight_warning(walk, cycles[masks[2]]),  # L729: the headline's
                  stance_warning(walk) if "event_s" in left_steps else None,
-                 unanchored_warning(walk, steps, bend) if np.isfinite(both["x_m"]).any() else None):
+                 unanchored_warning(walk, steps, bend) if np.isfinite(both["x_m"]).any() else None,
+                 drift_warning(walk)):  # decision L761
         if line is not None:  # L285 judges a track's toe-off, not a label table's
             log.warning(line)
             warnings.append(line)
