@@ -432,12 +432,13 @@ def _number(v) -> float | None:
     return float(v) if isinstance(v, int | float) and not isinstance(v, bool) else None
 
 
-def asymmetry_lines(walk: dict, stairs=None, leg_m: float | None = None) -> list[str]:
+def asymmetry_lines(walk: dict, stairs=None, leg_m: float | None = None, caveat: str | None = None) -> list[str]:
     """Decision W438: a gait_summary.json ``walk``'s clinical lines: left / right, the symmetry index and the longer
     side of step time, stance and step length (each read defensively: a measure gait left out is left out), then the
     gait speed and cadence (L539) when given, (C195) stride length, stance % and double support, (C196) with a
     measured ``leg_m`` the leg-length-normalised speed and stride length, then (L561) its ``stairs`` flights: pattern
-    and leading foot."""
+    and leading foot. ``caveat`` (decision L762): gait_summary.json's ``reason``, the foot units' support bias said
+    in words beside the stance and double support."""
     parts = []
     for key, name, unit in ASYMMETRY_MEASURES:
         left, right = _number(walk.get(f"{key}_left")), _number(walk.get(f"{key}_right"))
@@ -464,7 +465,7 @@ def asymmetry_lines(walk: dict, stairs=None, leg_m: float | None = None) -> list
     if speed is not None:
         lines.append(f"- Gait speed {speed:.2f} m/s{f', cadence {cad:.0f} steps/min' if cad is not None else ''} "
                      "(both foot units)")
-    spatio = gait_spatiotemporal_line(walk)  # decision C195
+    spatio = gait_spatiotemporal_line(walk, caveat)  # decision C195; L762: the bias in words
     if spatio:
         lines.append(spatio)
     left, right = _number(walk.get("stride_length_m_left")), _number(walk.get("stride_length_m_right"))
@@ -542,6 +543,7 @@ def _gait_walks(root: Path) -> list[dict]:
         walks.append({"folder": path.parent, "rel": rel, "subject": subject or None, "visit": visit or None,
                       "walk": walk, **side,
                       "names": names, "stairs": summary.get("stairs"),  # L561: stairs
+                      "reason": summary.get("reason") if isinstance(summary.get("reason"), str) else None,  # L762
                       "leg_m": measured_leg(found.get("leg_length_m"), found.get("leg_length_source"))})
     return walks
 
@@ -691,7 +693,7 @@ def walk_blocks(rows: list) -> list[list[str]]:
                          "`pdrlearn gait LEFT RIGHT --out G`) and report a folder holding G too (W437, W438)")
         else:
             used.add(id(g))
-            block += asymmetry_lines(g["walk"], g["stairs"], g["leg_m"])
+            block += asymmetry_lines(g["walk"], g["stairs"], g["leg_m"], g.get("reason"))
         blocks.append(block)
     for g in gaits:
         if id(g) in used:
@@ -699,5 +701,5 @@ def walk_blocks(rows: list) -> list[list[str]]:
         date = session_date(Path(g["left"])) if g["left"] else None
         when = f"recorded {date}" if date else "recording date unknown (no meta.json recording_start)"
         blocks.append([f"Walk {g['rel']} (left {g['names']['left']} + right {g['names']['right']}; pdrlearn gait), "
-                       f"{when}:", *asymmetry_lines(g["walk"], g["stairs"], g["leg_m"])])
+                       f"{when}:", *asymmetry_lines(g["walk"], g["stairs"], g["leg_m"], g.get("reason"))])
     return blocks

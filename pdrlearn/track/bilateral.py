@@ -566,9 +566,11 @@ def stance_warning(walk: dict) -> str | None:
     low = [s for s in SIDES if st[s] is not None and st[s] < STANCE_MIN_PCT]
     if not low:
         return None
+    feet = " and the ".join(low)  # decision L763: the foot (or feet) it fires on, by name
     return (f"bilateral gait: tracked stance left/right {_fmt_pct(st['left'])} / {_fmt_pct(st['right'])} % of the "
-            f"gait cycle, under {STANCE_MIN_PCT:.0f} % (walking: ~60 %, more when slower; decision L285): the "
-            "toe-off reads early or the contact late here (a soft impact, decision L318), so the double support ("
+            f"gait cycle, the {feet} foot's under {STANCE_MIN_PCT:.0f} % (walking: ~60 %, more when slower; decision "
+            f"L285): the {feet} foot's toe-off reads early or its contact late (a soft impact of that foot, decision "
+            "L318), so the double support ("
             f"{_fmt_pct(walk.get('double_support_pct'))} %) is too low and the step times may be off too; do not "
             "report them as measured")
 
