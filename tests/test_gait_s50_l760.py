@@ -8,8 +8,15 @@ import pytest
 from pdrlearn.report.spatiotemporal import gait_spatiotemporal_line
 from pdrlearn.track.bilateral import drift_warning, stance_warning
 from pdrlearn.track.gait import stance_share_warning
-from pdrlearn.track.step_anchors import (anchor_offsets, anchor_rows, drift_bound_pct, pass_bound_pct,
-                                         pass_corrected, pass_starts, short_strides)
+from pdrlearn.track.step_anchors import (
+    anchor_offsets,
+    anchor_rows,
+    drift_bound_pct,
+    pass_bound_pct,
+    pass_corrected,
+    pass_starts,
+    short_strides,
+)
 
 
 def _two_passes(jump: float = 0.2, drift: float = 0.05):

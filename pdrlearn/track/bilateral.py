@@ -44,8 +44,14 @@ from pdrlearn.track.contact_quality import comparability_warning, impact_sharpne
 from pdrlearn.track.flags import flag_values
 from pdrlearn.track.foot_heights import height_warning
 from pdrlearn.track.gait_flight import cycle_flights, flight_after, flight_warning
-from pdrlearn.track.step_anchors import (anchor_offsets, anchor_rows, drift_bound_pct, pass_bound_pct, pass_corrected,
-                                        pass_starts, short_strides)
+from pdrlearn.track.step_anchors import (
+    anchor_rows,
+    drift_bound_pct,
+    pass_bound_pct,
+    pass_corrected,
+    pass_starts,
+    short_strides,
+)
 from pdrlearn.track.support_bias import setup_of, support_note
 
 #: the columns :func:`foot_events` gives: one row per initial contact of one foot; ``x_m`` / ``y_m`` (the foot's
@@ -607,8 +613,9 @@ def drift_warning(walk: dict, *, max_pct: float = 2.0) -> str | None:
     b, si = walk.get("step_length_si_drift_pct"), walk.get("step_length_m_si_pct")
     if b is None or si is None or not b > max_pct:
         return None
+    mean = 0.5 * (walk["step_length_m_left"] + walk["step_length_m_right"])
     return (f"bilateral gait: the step-length symmetry index ({si:.1f} %) may be off by about {b:.0f} points: the two "
-            f"foot tracks drifted {b * 0.5 * (walk['step_length_m_left'] + walk['step_length_m_right']):.0f}"  # b % of it
+            f"foot tracks drifted {b * mean:.0f}"  # b % of the mean step (m) in cm
             " cm apart along the walk between the standing start and the first closing step, and drift of that size "
             f"inside a pass is not seen ({decision_ref('L761', topic='localization')}); the step time, stride length "
             "and stance symmetry are not affected - report the step-length index as a range, not a measured value")
@@ -748,15 +755,15 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
     steps, cycles = step_table(both), cycle_table(both)
     k = step_contacts(both)
     raw = steps["step_length_m"].to_numpy(float)
-    anchors = anchor_rows(contact_kinds(both), both["bout"].to_numpy(), k, raw)  # decision L760
+    ck = contact_kinds(both)
+    anchors = anchor_rows(ck, both["bout"].to_numpy(), k, raw)  # decision L760
     passes, first = None, None
     if len(anchors) >= 2 and reanchor:  # decision L760: closing steps inside the walk: each pass re-anchored
         scale, bend, passes = None, 0.0, len(anchors)
-        first = float(anchor_offsets(steps["side"].to_numpy(), raw, anchors)[0])
         cols = [both[c].to_numpy(float) for c in ("x_m", "y_m", "dir_rad")]
         side = both["side"].to_numpy()
-        starts = pass_starts(contact_kinds(both), side, both["ic_s"].to_numpy(float), *cols, short_strides(side, both["length_m"].to_numpy(float),
-                                                        share=CLOSING_STRIDE_SHARE), k, raw, anchors)
+        short = short_strides(side, both["length_m"].to_numpy(float), share=CLOSING_STRIDE_SHARE)
+        starts = pass_starts(ck, side, both["ic_s"].to_numpy(float), *cols, short, k, raw, anchors)
         steps["step_length_m"] = pass_corrected(steps["side"].to_numpy(), raw, steps["ic_s"].to_numpy(float),
                                                 anchors, starts, opened=opening_step(both),
                                                 start=float(both["ic_s"].iloc[0]))

@@ -85,8 +85,9 @@ def pass_corrected(side: np.ndarray, length: np.ndarray, at: np.ndarray, anchors
     p (:func:`anchor_offsets`, its offset known there) and starts where the offset was last known: 0 at ``start``
     (the walk's first contact) for the first pass of a walk that ``opened`` from standing (L310's opening step),
     else ``starts[p - 1]`` (:func:`pass_starts`: the row of the pass's first step, the offset of the feet side by
-    side before it and its time). Inside the pass the offset is interpolated linearly in ``at`` (each step's landing contact, s:
-    drift that accumulates with the walking, a Brownian bridge's mean; across a turn it jumps, so never across one),
+    side before it and its time). Inside the pass the offset is interpolated linearly in ``at`` (each step's landing
+    contact, s: drift that accumulates with the walking, a Brownian bridge's mean; across a turn it jumps, so never
+    across one),
     the left steps minus it, the right steps plus it. Steps of a pass without a known start, after the last anchor,
     in a turn before a pass's first step, and the anchors themselves (the feet side by side) get NaN."""
     side, length, at = np.asarray(side), np.asarray(length, float), np.asarray(at, float)
