@@ -570,7 +570,8 @@ def stance_share_warning(steps: pd.DataFrame, foot: str | None = None) -> str | 
                  "the contact - a prosthetic foot's, if it is one), and then median_stance_time_s, "
                  "median_swing_time_s and median_stance_pct are not measured values; or this foot's stance is really "
                  "short - an antalgic gait, which spares a painful or operated leg (after a knee or hip replacement, "
-                 "an injury), or the simulator's --stance-time-asymmetry on this foot; one foot cannot tell which, nor give a stance asymmetry: that needs a unit on each foot "
+                 "an injury), or the simulator's --stance-time-asymmetry on this foot; one foot cannot tell which, "
+                 "nor give a stance asymmetry: that needs a unit on each foot "
                  "(pdrlearn gait, L685)",
                  "L285")  # decision E170: L285, the first of "decisions L285, L315" (E168)
 
