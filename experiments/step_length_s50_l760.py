@@ -31,13 +31,14 @@ def pair_numbers(folder: Path) -> dict:
         bil.bilateral_gait = orig
     left, right, kw = cap[0]
     old = orig(left, right, reanchor=False, **kw)["walk"]
-    w = res["walk"]
+    drift = orig(left, right, si_drift=True, **kw)  # decision L761's opt-in bound and line
+    w = {**res["walk"], "step_length_si_drift_pct": drift["walk"].get("step_length_si_drift_pct")}
     true = res["reference"]["walk"]["step_length_m_si_pct"]
     if true is None and not (res["reference"]["walk"].get("n_step_lengths") or 0):
         true = 0.0  # a symmetric walker: ics.csv has step lengths only with the knob (L311); the truth is 0
     return {"true": true, "old": old["step_length_m_si_pct"],
             "new": w["step_length_m_si_pct"], "passes": w["step_length_passes"],
-            "bound": w["step_length_si_drift_pct"], "flag": any("may be off by about" in x for x in res["warnings"])}
+            "bound": w["step_length_si_drift_pct"], "flag": any("may be off by about" in x for x in drift["warnings"])}
 
 
 def _f(v):

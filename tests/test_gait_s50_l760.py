@@ -101,3 +101,49 @@ def test_support_caveat_in_words_and_the_stance_line_names_its_foot():
     right = stance_share_warning(steps, "right")
     assert "of the right foot" in right and "prosthesis" not in right and "if it is one" in right
     assert "of this foot" in stance_share_warning(steps)
+
+
+def _corridor(jump: float = 0.2):
+    """Two feet's tracked step tables of a walk out and back along x with a turn on the spot between: steps onto
+    the left foot 0.45 m, onto the right 0.55 m, each pass from the feet side by side to a closing step; the left
+    track's turn strides carry ``jump`` m of error along x (the tracks' offset moved in the turn)."""
+    pos = {"left": complex(0, 0.1), "right": complex(0, -0.1)}
+    rows = {"left": [], "right": []}
+    t = [0.0]
+
+    def stride(side, new, turn=0.0, err=0j):
+        d = new - pos[side] + err
+        rows[side].append({"start_s": t[0] - 0.6, "end_s": t[0] + 0.1, "event_s": t[0], "tc_s": t[0] - 0.4,
+                           "length_m": abs(d), "heading_rad": float(np.angle(d)), "turn_angle_rad": turn})
+        pos[side] = new
+        t[0] += 0.6
+
+    def straight(sign, n, lateral, first="right"):
+        front = pos["left"].real
+        second = "left" if first == "right" else "right"
+        for i in range(n):
+            side = first if i % 2 == 0 else second
+            front += sign * (0.55 if side == "right" else 0.45)
+            stride(side, complex(front, lateral[side]))
+        last = second if n % 2 == 1 else first  # the trailing foot closes beside the other
+        stride(last, complex(front, lateral[last]))
+
+    straight(1, 9, {"left": 0.1, "right": -0.1})
+    x = pos["left"].real
+    for side, y in (("left", 0.05), ("right", -0.05), ("left", -0.1), ("right", 0.1)):  # on the spot, 45 deg
+        stride(side, complex(x, y), np.pi / 4, complex(jump / 2, 0) if side == "left" else 0j)  # a stride
+    straight(-1, 29, {"left": -0.1, "right": 0.1}, "left")  # back past the start: it ends 10 m from it
+    return pd.DataFrame(rows["left"]), pd.DataFrame(rows["right"])
+
+
+def test_bilateral_gait_re_anchors_each_pass_of_a_walk_with_a_turn():
+    from pdrlearn.track.bilateral import bilateral_gait
+
+    left, right = _corridor()
+    new, old = bilateral_gait(left, right), bilateral_gait(left, right, reanchor=False)
+    w = new["walk"]
+    assert w["step_length_passes"] == 2 and "step_length_si_drift_pct" not in w  # L761 not adopted: opt-in
+    assert w["step_length_m_left"] == pytest.approx(0.45, abs=0.01)
+    assert w["step_length_m_right"] == pytest.approx(0.55, abs=0.01)
+    assert abs(old["walk"]["step_length_m_si_pct"] - 20.0) > 5  # L310's one scale keeps the turn's 0.2 m
+    assert bilateral_gait(left, right, si_drift=True)["walk"]["step_length_si_drift_pct"] is not None

@@ -722,7 +722,7 @@ def kind_measures(both: pd.DataFrame, steps: pd.DataFrame, cycles: pd.DataFrame)
 
 def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
                    step_lengths: pd.DataFrame | None = None, contact_source=None,
-                   rate_hz: float | None = None, reanchor: bool = True) -> dict:
+                   rate_hz: float | None = None, reanchor: bool = True, si_drift: bool = False) -> dict:
     """Decisions L259-L262 (Python API): bilateral gait of one walk from the left and the right foot's step
     tables (a foot track's ``steps.csv`` or a label table, :func:`foot_events`) on one clock.
 
@@ -737,7 +737,10 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
     unknown) picks the set-up whose known support bias ``reason`` states, in this walk's gait cycle, at the foot
     units' ``rate_hz`` (decision L737; None: unknown). ``reanchor`` (decision L760): a walk with closing steps
     inside it (before its turns) has each pass re-anchored at its own closing step
-    (:func:`pdrlearn.track.step_anchors.pass_corrected`) instead of L310's one scale; False: L310's scale only. Refuses
+    (:func:`pdrlearn.track.step_anchors.pass_corrected`) instead of L310's one scale; False: L310's scale only.
+    ``si_drift`` (decision L761, not adopted: the bound flagged 35 of 40 simulated pairs and missed 3 of 5 unflagged
+    ones over 2 points): the walk's ``step_length_si_drift_pct`` and :func:`drift_warning`'s line, for measuring
+    only. Refuses
     (:class:`DataError`, one line) two tables whose contacts do not overlap in time (L260: not one walk on one
     clock)."""
     left, right = foot_events(left_steps), foot_events(right_steps)
@@ -800,11 +803,11 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
     walk["step_length_scale_pct"] = None if scale is None else 100.0 * scale  # decision L310
     walk["step_length_passes"] = passes  # decision L760
     mean_step = [walk.get(f"step_length_m_{s}") for s in SIDES]
-    if passes is not None:  # decision L761: the passes' spread
+    if si_drift and passes is not None:  # decision L761 (not adopted, opt-in): the passes' spread
         level = masks[1] & np.isfinite(steps["step_length_m"].to_numpy(float))
         walk["step_length_si_drift_pct"] = pass_bound_pct(steps["side"].to_numpy(),
                                                           np.where(level, steps["step_length_m"], np.nan), anchors)
-    else:  # decision L761: one pass: its closing step's offset
+    elif si_drift:  # decision L761 (not adopted, opt-in): one pass: its closing step's offset
         walk["step_length_si_drift_pct"] = (drift_bound_pct(first, 0.5 * (mean_step[0] + mean_step[1]))
                                             if None not in mean_step else None)
     log = logging.getLogger(__name__)
