@@ -56,9 +56,12 @@ def main(paths: list[str]) -> None:
               f"bound {_f(r['bound'])} flagged {r['flag']}", flush=True)
     err = {m: np.array([abs(r[m] - r["true"]) if None not in (r[m], r["true"]) else np.nan for r in rows])
            for m in ("old", "new")}
-    for walk in ("2mwt", "10m"):
+    for walk in ("2mwt", "10m", "ret"):
         sel = np.array([r["name"].endswith(walk) for r in rows])
         for m in ("old", "new"):
+            if not np.isfinite(err[m][sel]).any():
+                print(f"{walk} {m}: pairs {sel.sum()} with SI 0")
+                continue
             e = err[m][sel]
             print(f"{walk} {m}: pairs {sel.sum()} with SI {np.isfinite(e).sum()} median |err| {np.nanmedian(e):.2f} "
                   f"within 2: {int((e <= 2).sum())} max {np.nanmax(e):.2f}")
