@@ -1445,6 +1445,12 @@ GAIT_BOUTS: tuple[Column, ...] = (
     ("step_length_scale_pct", "%", "number", "gait_summary.json walk only: the left track's length scale against "
                                              "the right's that the closing step implied, taken out (L310); empty "
                                              "without a closing step"),
+    ("step_length_passes", "count", "integer", "gait_summary.json walk only: the passes of a walk with turns whose "
+                                               "step lengths were re-anchored at their own closing steps (L760); "
+                                               "empty for a one-pass walk (L310's scale)"),
+    ("step_length_si_drift_pct", "%", "number", "gait_summary.json walk only, with bilateral_gait(si_drift=True) "
+                                                "(L761, not adopted): the points the step-length symmetry index may "
+                                                "be off by from the two foot tracks' drift"),
     ("si_withheld", _ID, "text", "why this bout's (in gait_summary.json's walk: the walk's) symmetry indices and "
                                  "ratios are empty (fewer than 10 steps on a side, L461); empty when given"),
     ("clock_offset_s", "s", "number", "((left step - left swing) - (right step - right swing)) / 2: the left clock's "

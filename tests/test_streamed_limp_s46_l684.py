@@ -114,5 +114,5 @@ def test_short_stance_line_names_an_antalgic_gait_l685():
     line = stance_share_warning(pd.DataFrame({"stance_pct": np.full(12, 46.0)}))
     assert "antalgic" in line and "operated" in line and "--stance-time-asymmetry" in line
     assert "a unit on each foot" in line and "L685" in line
-    assert "prosthesis" in line  # the sensor cause stays named
+    assert "prosthetic foot's, if it is one" in line  # the sensor cause stays named (L763: on no foot by default)
     assert warning_code(line) == "L285"  # E170's code unchanged

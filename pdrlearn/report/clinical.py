@@ -483,13 +483,16 @@ def _number(v) -> float | None:
     return float(v) if isinstance(v, int | float) and not isinstance(v, bool) else None
 
 
-def asymmetry_lines(walk: dict, stairs=None, leg_m: float | None = None, affected: str | None = None) -> list[str]:
+def asymmetry_lines(walk: dict, stairs=None, leg_m: float | None = None, affected: str | None = None,
+                    caveat: str | None = None) -> list[str]:
     """Decision W438: a gait_summary.json ``walk``'s clinical lines: left / right, the symmetry index and the longer
     side of step time, stance and step length (each read defensively: a measure gait left out is left out), then the
     gait speed and cadence (L539) when given, (C195) stride length, stance % and double support, (C196) with a
     measured ``leg_m`` the leg-length-normalised speed and stride length, then (L561) its ``stairs`` flights: pattern
     and leading foot. Cohort C245: with ``affected`` ("left" / "right", gait_summary.json affected_side) the longer
-    side is worded affected / unaffected; cohort C244: the per-side median foot angles after the asymmetry."""
+    side is worded affected / unaffected; cohort C244: the per-side median foot angles after the asymmetry.
+    ``caveat`` (decision L762): gait_summary.json's ``reason``, the foot units' support bias said in words beside
+    the stance and double support."""
     from pdrlearn.track.affected_side import side_word, sides_note
 
     parts = []
@@ -523,7 +526,7 @@ def asymmetry_lines(walk: dict, stairs=None, leg_m: float | None = None, affecte
     if speed is not None:
         lines.append(f"- Gait speed {speed:.2f} m/s{f', cadence {cad:.0f} steps/min' if cad is not None else ''} "
                      "(both foot units)")
-    spatio = gait_spatiotemporal_line(walk)  # decision C195
+    spatio = gait_spatiotemporal_line(walk, caveat)  # decision C195; L762: the bias in words
     if spatio:
         lines.append(spatio)
     left, right = _number(walk.get("stride_length_m_left")), _number(walk.get("stride_length_m_right"))
@@ -621,6 +624,7 @@ def _gait_walks(root: Path) -> list[dict]:
                       "walk": walk, **side,
                       "names": names, "stairs": summary.get("stairs"),  # L561: stairs
                       "affected": summary.get("affected_side"),  # cohort C245
+                      "reason": summary.get("reason") if isinstance(summary.get("reason"), str) else None,  # L762
                       "leg_m": measured_leg(found.get("leg_length_m"), found.get("leg_length_source"))})
     return walks
 
@@ -770,7 +774,7 @@ def walk_blocks(rows: list) -> list[list[str]]:
                          "`pdrlearn gait LEFT RIGHT --out G`) and report a folder holding G too (W437, W438)")
         else:
             used.add(id(g))
-            block += asymmetry_lines(g["walk"], g["stairs"], g["leg_m"], g["affected"])
+            block += asymmetry_lines(g["walk"], g["stairs"], g["leg_m"], g["affected"], g.get("reason"))
         blocks.append(block)
     for g in gaits:
         if id(g) in used:
@@ -778,5 +782,6 @@ def walk_blocks(rows: list) -> list[list[str]]:
         date = session_date(Path(g["left"])) if g["left"] else None
         when = f"recorded {date}" if date else "recording date unknown (no meta.json recording_start)"
         blocks.append([f"Walk {g['rel']} (left {g['names']['left']} + right {g['names']['right']}; pdrlearn gait), "
-                       f"{when}:", *asymmetry_lines(g["walk"], g["stairs"], g["leg_m"], g["affected"])])
+                       f"{when}:",
+                       *asymmetry_lines(g["walk"], g["stairs"], g["leg_m"], g["affected"], g.get("reason"))])
     return blocks

@@ -76,10 +76,11 @@ def _ratio(num, den) -> float | None:
     return 100.0 * num / den if num is not None and den is not None and den > 0 else None
 
 
-def gait_spatiotemporal_line(walk: dict) -> str | None:
+def gait_spatiotemporal_line(walk: dict, caveat: str | None = None) -> str | None:
     """Decision C195: a gait_summary.json ``walk``'s line: stride length left / right, stance % of each side's
     stride (mean stance / mean stride time, when ``--toe-off`` measured stance) and double support % of the cycle
-    (L262)."""
+    (L262). Decision L762: with ``caveat`` (gait_summary.json ``reason``: the foot units' known support bias, L703)
+    and a stance or double support shown, the line says in words that they are not measured values."""
     parts = []
     left, right = _number(walk.get("stride_length_m_left")), _number(walk.get("stride_length_m_right"))
     if left is not None and right is not None:
@@ -93,7 +94,10 @@ def gait_spatiotemporal_line(walk: dict) -> str | None:
         parts.append(f"double support {ds:.1f} % of the gait cycle")
     if not parts:
         return None
-    return f"- Spatiotemporal (both foot units): {', '.join(parts)}"
+    line = f"- Spatiotemporal (both foot units): {', '.join(parts)}"
+    if isinstance(caveat, str) and caveat and (ds is not None or sl is not None):  # decision L762
+        line += f" - stance and double support are not measured values here: {caveat}"
+    return line
 
 
 def measured_leg(leg_m, source) -> float | None:

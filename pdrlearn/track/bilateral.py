@@ -47,6 +47,14 @@ from pdrlearn.track.contact_quality import comparability_warning, impact_sharpne
 from pdrlearn.track.flags import flag_values
 from pdrlearn.track.foot_heights import height_warning
 from pdrlearn.track.gait_flight import cycle_flights, flight_after, flight_warning
+from pdrlearn.track.step_anchors import (
+    anchor_rows,
+    drift_bound_pct,
+    pass_bound_pct,
+    pass_corrected,
+    pass_starts,
+    short_strides,
+)
 from pdrlearn.track.support_bias import setup_of, support_note
 
 #: the columns :func:`foot_events` gives: one row per initial contact of one foot; ``x_m`` / ``y_m`` (the foot's
@@ -390,6 +398,13 @@ def joined_kind(landing: np.ndarray, other: np.ndarray) -> np.ndarray:
     return np.where(rank(landing) <= rank(other), landing, other).astype(object)
 
 
+def step_contacts(both: pd.DataFrame) -> np.ndarray:
+    """Decision L259: the merged contacts (rows of ``both``) that end a step: the other foot's contact before, in
+    one bout."""
+    side, bout = both["side"].to_numpy(), both["bout"].to_numpy(int)
+    return np.flatnonzero((side[1:] != side[:-1]) & (bout[1:] == bout[:-1])) + 1
+
+
 def step_table(both: pd.DataFrame) -> pd.DataFrame:
     """Decision L259: one row per step of :func:`merged_contacts` - ``side`` (the foot it lands on), ``bout``,
     ``start_s`` (the other foot's IC), ``ic_s``, ``step_time_s``, (decision L284) ``swing_time_s``: the landing
@@ -398,7 +413,7 @@ def step_table(both: pd.DataFrame) -> pd.DataFrame:
     (:func:`joined_kind` of the two contacts)."""
     t, side, bout = both["ic_s"].to_numpy(float), both["side"].to_numpy(), both["bout"].to_numpy(int)
     tc = both["tc_s"].to_numpy(float)
-    k = np.flatnonzero((side[1:] != side[:-1]) & (bout[1:] == bout[:-1])) + 1
+    k = step_contacts(both)
     swing = np.where(tc[k] < t[k], t[k] - tc[k], np.nan)  # L284: one unit's toe-off to its IC (any clock offset)
     length = step_lengths(both, k) if "x_m" in both else np.full(len(k), np.nan)  # decision L310
     kinds = contact_kinds(both)  # decision L538
@@ -551,9 +566,11 @@ def stance_warning(walk: dict) -> str | None:
     low = [s for s in SIDES if st[s] is not None and st[s] < STANCE_MIN_PCT]
     if not low:
         return None
+    feet = " and the ".join(low)  # decision L763: the foot (or feet) it fires on, by name
     return (f"bilateral gait: tracked stance left/right {_fmt_pct(st['left'])} / {_fmt_pct(st['right'])} % of the "
-            f"gait cycle, under {STANCE_MIN_PCT:.0f} % (walking: ~60 %, more when slower; decision L285): the "
-            "toe-off reads early or the contact late here (a soft impact, decision L318), so the double support ("
+            f"gait cycle, the {feet} foot's under {STANCE_MIN_PCT:.0f} % (walking: ~60 %, more when slower; decision "
+            f"L285): the {feet} foot's toe-off reads early or its contact late (a soft impact of that foot, decision "
+            "L318), so the double support ("
             f"{_fmt_pct(walk.get('double_support_pct'))} %) is too low and the step times may be off too; do not "
             "report them as measured")
 
@@ -572,7 +589,7 @@ def unanchored_warning(walk: dict, steps: pd.DataFrame, reach: float = 0.0) -> s
     (:func:`closure_scale` None), so L310 gives no step length; None otherwise. Decision C208: with ``reach``
     (:func:`lateral_reach`, m; given when the reach alone refused the walk's anchors) over
     :data:`CLOSURE_LATERAL_MAX_M` the line says the walk left its axis by that much."""
-    if walk.get("step_length_scale_pct") is not None or not len(steps):
+    if walk.get("step_length_scale_pct") is not None or walk.get("step_length_passes") or not len(steps):
         return None
     if reach > CLOSURE_LATERAL_MAX_M:
         return (f"{UNANCHORED_NOTE}. This walk left its axis (the line from its start to its end) by {reach:.1f} m "
@@ -581,6 +598,21 @@ def unanchored_warning(walk: dict, steps: pd.DataFrame, reach: float = 0.0) -> s
                 "400 m track's bend read a 9 % step-length asymmetry as 173 %; "
                 f"{decision_ref('C208', topic='cohort')})")
     return UNANCHORED_NOTE
+
+
+def drift_warning(walk: dict, *, max_pct: float = 2.0) -> str | None:
+    """Decision L761: one line when the walk's step-length symmetry index is given and the tracks' drift bound
+    (``step_length_si_drift_pct``, :func:`pdrlearn.track.step_anchors.drift_bound_pct`) exceeds ``max_pct`` points
+    (the 2 points a prosthetics lab asked for, trial s50t2); None otherwise."""
+    b, si = walk.get("step_length_si_drift_pct"), walk.get("step_length_m_si_pct")
+    if b is None or si is None or not b > max_pct:
+        return None
+    mean = 0.5 * (walk["step_length_m_left"] + walk["step_length_m_right"])
+    return (f"bilateral gait: the step-length symmetry index ({si:.1f} %) may be off by about {b:.0f} points: the two "
+            f"foot tracks drifted {b * mean:.0f}"  # b % of the mean step (m) in cm
+            " cm apart along the walk between the standing start and the first closing step, and drift of that size "
+            f"inside a pass is not seen ({decision_ref('L761', topic='localization')}); the step time, stride length "
+            "and stance symmetry are not affected - report the step-length index as a range, not a measured value")
 
 
 def _fmt_pct(v) -> str:
@@ -684,7 +716,7 @@ def kind_measures(both: pd.DataFrame, steps: pd.DataFrame, cycles: pd.DataFrame)
 
 def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
                    step_lengths: pd.DataFrame | None = None, contact_source=None,
-                   rate_hz: float | None = None) -> dict:
+                   rate_hz: float | None = None, reanchor: bool = True, si_drift: bool = False) -> dict:
     """Decisions L259-L262 (Python API): bilateral gait of one walk from the left and the right foot's step
     tables (a foot track's ``steps.csv`` or a label table, :func:`foot_events`) on one clock.
 
@@ -697,7 +729,12 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
     (decision L540): a label table of both feet's contacts with each step's length (ics.csv), whose lengths the steps
     take (:func:`known_step_lengths`). ``contact_source`` (decision L703: "force" / "imu", or a per-foot dict; None:
     unknown) picks the set-up whose known support bias ``reason`` states, in this walk's gait cycle, at the foot
-    units' ``rate_hz`` (decision L737; None: unknown). Refuses
+    units' ``rate_hz`` (decision L737; None: unknown). ``reanchor`` (decision L760): a walk with closing steps
+    inside it (before its turns) has each pass re-anchored at its own closing step
+    (:func:`pdrlearn.track.step_anchors.pass_corrected`) instead of L310's one scale; False: L310's scale only.
+    ``si_drift`` (decision L761, not adopted: the bound flagged 35 of 40 simulated pairs and missed 3 of 5 unflagged
+    ones over 2 points): the walk's ``step_length_si_drift_pct`` and :func:`drift_warning`'s line, for measuring
+    only. Refuses
     (:class:`DataError`, one line) two tables whose contacts do not overlap in time (L260: not one walk on one
     clock)."""
     left, right = foot_events(left_steps), foot_events(right_steps)
@@ -713,15 +750,32 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
     both = merged_contacts(common_frame(left, right), right)  # decision L310: one frame for the step lengths
     warnings = [alternation_warning(both)]
     steps, cycles = step_table(both), cycle_table(both)
-    scale = closure_scale(both, steps)  # decision L310: the closing step anchors the two tracks' relative scale
-    # decision C208: the line names the walk's reach only when the reach alone refused the anchors
-    bend = lateral_reach(both) if scale is None and closure_scale(both, steps, max_reach=math.inf) is not None else 0.0
+    k = step_contacts(both)
+    raw = steps["step_length_m"].to_numpy(float)
+    ck = contact_kinds(both)
+    anchors = anchor_rows(ck, both["bout"].to_numpy(), k, raw)  # decision L760
+    passes, first = None, None
+    if len(anchors) >= 2 and reanchor:  # decision L760: closing steps inside the walk: each pass re-anchored
+        scale, bend, passes = None, 0.0, len(anchors)
+        cols = [both[c].to_numpy(float) for c in ("x_m", "y_m", "dir_rad")]
+        side = both["side"].to_numpy()
+        short = short_strides(side, both["length_m"].to_numpy(float), share=CLOSING_STRIDE_SHARE)
+        starts = pass_starts(ck, side, both["ic_s"].to_numpy(float), *cols, short, k, raw, anchors)
+        steps["step_length_m"] = pass_corrected(steps["side"].to_numpy(), raw, steps["ic_s"].to_numpy(float),
+                                                anchors, starts, opened=opening_step(both),
+                                                start=float(both["ic_s"].iloc[0]))
+    else:
+        scale = closure_scale(both, steps)  # decision L310: the closing step anchors the two tracks' relative scale
+        # decision C208: the line names the walk's reach only when the reach alone refused the anchors
+        bend = (lateral_reach(both) if scale is None and closure_scale(both, steps, max_reach=math.inf) is not None
+                else 0.0)
     if scale is not None:
+        first = float(raw[-1] if steps["side"].iloc[-1] == "left" else -raw[-1])  # decision L761: (left - right) . u
         both = rescaled(both, scale)
         steps = step_table(both)
-    if scale is None:  # decision L311: not anchored at both ends - no step length (the drift is unknown)
+    if scale is None and passes is None:  # decision L311: not anchored at both ends - no step length
         steps["step_length_m"] = np.nan
-    else:  # decision L310: the closing step brought the feet side by side: the anchor, no step length
+    elif scale is not None:  # decision L310: the closing step brought the feet side by side: the anchor, no length
         steps.loc[steps.index[-1], "step_length_m"] = np.nan
     steps = known_step_lengths(steps, step_lengths)  # decision L540: the labels' own step lengths
     toe_off = bool(np.isfinite(both["tc_s"]).any())
@@ -742,10 +796,20 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
     walk.update(foot_angles(both[masks[0]]))  # cohort C244: the headline strides' sole angles per side
     walk.update({f"n_steps_all_{s}": int((steps["side"] == s).sum()) for s in SIDES})
     walk["step_length_scale_pct"] = None if scale is None else 100.0 * scale  # decision L310
+    walk["step_length_passes"] = passes  # decision L760
+    mean_step = [walk.get(f"step_length_m_{s}") for s in SIDES]
+    if si_drift and passes is not None:  # decision L761 (not adopted, opt-in): the passes' spread
+        level = masks[1] & np.isfinite(steps["step_length_m"].to_numpy(float))
+        walk["step_length_si_drift_pct"] = pass_bound_pct(steps["side"].to_numpy(),
+                                                          np.where(level, steps["step_length_m"], np.nan), anchors)
+    elif si_drift:  # decision L761 (not adopted, opt-in): one pass: its closing step's offset
+        walk["step_length_si_drift_pct"] = (drift_bound_pct(first, 0.5 * (mean_step[0] + mean_step[1]))
+                                            if None not in mean_step else None)
     log = logging.getLogger(__name__)
     for line in (clock_offset_warning(walk), flight_warning(walk, cycles[masks[2]]),  # L729: the headline's
                  stance_warning(walk) if "event_s" in left_steps else None,
-                 unanchored_warning(walk, steps, bend) if np.isfinite(both["x_m"]).any() else None):
+                 unanchored_warning(walk, steps, bend) if np.isfinite(both["x_m"]).any() else None,
+                 drift_warning(walk)):  # decision L761
         if line is not None:  # L285 judges a track's toe-off, not a label table's
             log.warning(line)
             warnings.append(line)

@@ -543,12 +543,14 @@ def streamed_gait_summary(steps: pd.DataFrame) -> dict:
     return out
 
 
-def stance_share_warning(steps: pd.DataFrame) -> str | None:
+def stance_share_warning(steps: pd.DataFrame, foot: str | None = None) -> str | None:
     """Decision L315: ``track --toe-off``'s one warning line when the foot's median ``stance_pct`` (L73) is under
     L285's :data:`pdrlearn.track.bilateral.STANCE_MIN_PCT` (the same bound ``pdrlearn gait`` warns on): implausible
     for a healthy walker, the toe-off (or the contact) misread, or (decision L685) a real short stance on this foot
     (an antalgic gait), which one foot's unit cannot tell apart. None without the column, with fewer than L123's
-    :data:`MIN_STRAIGHT_FOR_RANGE` stance times, or at or above the bound."""
+    :data:`MIN_STRAIGHT_FOR_RANGE` stance times, or at or above the bound. Decision L763: the line names the
+    ``foot`` (meta.json's, L260; "this foot" without) and says a soft contact of *this* foot moves it, a prosthetic
+    foot only if it is one (trial s50t2: the line fired on the intact foot and blamed a prosthesis)."""
     from pdrlearn.track.bilateral import STANCE_MIN_PCT
 
     if "stance_pct" not in steps:
@@ -557,13 +559,15 @@ def stance_share_warning(steps: pd.DataFrame) -> str | None:
     pct = pct[np.isfinite(pct)]
     if len(pct) < MIN_STRAIGHT_FOR_RANGE or float(np.median(pct)) >= STANCE_MIN_PCT:
         return None
-    return coded(f"toe-off: median stance {float(np.median(pct)):.1f} % of the gait cycle over {len(pct)} strides, "
-                 f"under {STANCE_MIN_PCT:.0f} % (walking: ~60 %, more when slower; decisions L285, L315): either the "
-                 "toe-off reads early or the contact late (a soft, low-impact foot such as a prosthesis moves the "
-                 "contact), and then median_stance_time_s, median_swing_time_s and median_stance_pct are not measured "
-                 "values; or this foot's stance is really short - an antalgic gait, which spares a painful or operated "
-                 "leg (after a knee or hip replacement, an injury), or the simulator's --stance-time-asymmetry on this "
-                 "foot; one foot cannot tell which, nor give a stance asymmetry: that needs a unit on each foot "
+    who = f"the {foot} foot" if foot in ("left", "right") else "this foot"  # decision L763
+    return coded(f"toe-off: median stance {float(np.median(pct)):.1f} % of the gait cycle of {who} over {len(pct)} "
+                 f"strides, under {STANCE_MIN_PCT:.0f} % (walking: ~60 %, more when slower; decisions L285, L315): "
+                 f"either {who}'s toe-off reads early or its contact late (a soft, low-impact contact of {who} moves "
+                 "the contact - a prosthetic foot's, if it is one), and then median_stance_time_s, "
+                 "median_swing_time_s and median_stance_pct are not measured values; or this foot's stance is really "
+                 "short - an antalgic gait, which spares a painful or operated leg (after a knee or hip replacement, "
+                 "an injury), or the simulator's --stance-time-asymmetry on this foot; one foot cannot tell which, "
+                 "nor give a stance asymmetry: that needs a unit on each foot "
                  "(pdrlearn gait, L685)",
                  "L285")  # decision E170: L285, the first of "decisions L285, L315" (E168)
 

@@ -1741,9 +1741,10 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         if line:
             warnings.append(line)
     if toe_off:  # decision L315: L285's stance bound on one foot's track
+        from pdrlearn.track.bilateral import session_foot
         from pdrlearn.track.gait import stance_share_warning
 
-        line = stance_share_warning(table)
+        line = stance_share_warning(table, session_foot(session.meta or {}))  # decision L763: the foot named
         if line:
             warnings.append(line)
     swing_columns(table, fd, ~in_gap & ~impossible)  # decision L421: clearance and sole angles
