@@ -522,9 +522,9 @@ def count_phrase(summary: dict) -> str:
     tracked foot (~48 steps)" for a foot track, "48 steps" for a lower-back one."""
     n = summary["n_steps"]
     if summary.get("step_count_withheld"):  # decision W476: W442's contacts are no step count
-        gyro = (summary.get("info") or {}).get("n_pelvic_gyro_steps")
-        return (f"{n} contacts (no step count, decision W476"
-                + (f"; the pelvic gyro counts {gyro} steps" if gyro is not None else "") + ")")
+        from pdrlearn.waist.plausibility import withheld_steps_text  # here: the CLI's import loads no numpy (C14)
+
+        return withheld_steps_text(summary)
     if summary.get("n_steps_counts") == "strides of the tracked foot":
         both = summary.get("n_steps_both_feet")
         return f"{n} strides of the tracked foot" + (f" (~{both} steps)" if both is not None else "")
@@ -565,6 +565,8 @@ def _cv_phrase(summary: dict, cv: float | None, needed: int) -> str:
         from pdrlearn.decision_refs import decision_ref
         from pdrlearn.track.clinical import JITTER_FREE_WALK, LOWER_BACK_CV_INFLATION
 
+        if summary.get("step_count_withheld"):  # decision C247: a stride is two contacts that are no steps
+            return f", no stride-time CV (the lower back's contacts are no step count; {decision_ref('W476', 'C247')})"
         if w.get("jitter_free_cv_pct") is not None:  # decision W558: a long walk's, the contacts' jitter out
             return (f", stride-time CV {w['jitter_free_cv_pct']:.1f} % with the lower back's contact jitter taken out "
                     f"({w['n_jitter_free_strides']} stride intervals; {decision_ref('W558')})")
