@@ -545,8 +545,11 @@ def walk_line(summary: dict) -> str | None:
     # + 1) is named beside it when another rule (--bout-rule mobgap, --bout-min-strides) gives a different count
     other = (f" (bouts.csv; {summary['n_walking_bouts']} between the pauses)"
              if n_bouts != summary["n_walking_bouts"] else "")
-    return (f"{n_bouts} walking bout(s){other}, {n} pause(s) of >= 1 s"
-            + (f" ({summary['pause_time_s']:.1f} s in all)" if n else "")
+    seated = summary.get("pause_seated_lying_s")  # decision C248: a pause is standing
+    left = f"{seated:.1f} s sitting or lying between steps left out, C248" if seated else ""
+    return (f"{n_bouts} walking bout(s){other}, {n} pause(s) of >= 1 s" + (" standing" if seated is not None else "")
+            + (f" ({summary['pause_time_s']:.1f} s in all{'; ' + left if left else ''})" if n
+               else f" ({left})" if left else "")
             + f", {summary.get('turn_count', 0)} turn(s) of >= {summary.get('turn_count_min_deg', 80):g} deg"
             + _cv_phrase(summary, cv, CV_MIN_STRIDES))
 
@@ -566,7 +569,8 @@ def _cv_phrase(summary: dict, cv: float | None, needed: int) -> str:
         from pdrlearn.track.clinical import JITTER_FREE_WALK, LOWER_BACK_CV_INFLATION
 
         if summary.get("step_count_withheld"):  # decision C247: a stride is two contacts that are no steps
-            return f", no stride-time CV (the lower back's contacts are no step count; {decision_ref('W476', 'C247')})"
+            return (f", no stride-time CV (the lower back's contacts are no step count; {decision_ref('W476')}; "
+                    f"{decision_ref('C247', topic='cohort')})")
         if w.get("jitter_free_cv_pct") is not None:  # decision W558: a long walk's, the contacts' jitter out
             return (f", stride-time CV {w['jitter_free_cv_pct']:.1f} % with the lower back's contact jitter taken out "
                     f"({w['n_jitter_free_strides']} stride intervals; {decision_ref('W558')})")

@@ -59,7 +59,8 @@ def walking_line(summary: dict, folder: Path, unit: str, *, distance_given: bool
     if not withheld and (pd.isna(steps) or steps <= 0):
         return None
     approx = _estimated(summary)
-    text = f"- Walking: steps not given, {withheld}" if withheld else f"- Walking: {'~' if approx else ''}{int(steps)} steps"
+    text = (f"- Walking: steps not given, {withheld}" if withheld
+            else f"- Walking: {'~' if approx else ''}{int(steps)} steps")
     walking = summary.get("walking_time_s")
     if walking is not None:
         text += f", {float(walking):.1f} s walking"

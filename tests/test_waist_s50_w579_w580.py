@@ -1,0 +1,59 @@
+"""Session 50 (FE), trial s50t3 findings F9 and F1 (docs/decisions/waist.md): W579 (W211's calibration-speed line
+judges the pelvic gyro's cadence when W476 withheld the contacts') and W580 (W442's / W476's advice names `track
+--detector pelvic-gyro`; an imported session's frame refusal leads with the --frames fix)."""
+
+from __future__ import annotations
+
+import json
+
+from pdrlearn.waist.plausibility import (
+    calibration_line,
+    not_alternating_message,
+    step_count_withheld_reason,
+)
+
+#: trial s50t3's p17401: calibrated at 86 steps/min, 0.29 m/s; 609 contacts at 176 per minute; the pelvic gyro 344
+#: steps at 88.2 steps/min
+GAIT = {"median_cadence_spm": 86.0, "speed_mps": 0.29}
+
+
+def test_w211_reads_the_pelvic_gyro_when_the_contacts_are_no_steps_w579():
+    contacts = calibration_line(GAIT, 176.0, 609, "waist-pendulum")
+    assert contacts is not None and "this walk's median cadence 176 steps/min" in contacts  # W211 as before
+    assert calibration_line(GAIT, 176.0, 609, "waist-pendulum", pelvic=(88.2, 344)) is None
+    fast = calibration_line(GAIT, 176.0, 609, "waist-pendulum", pelvic=(120.0, 344))
+    assert fast.startswith("the pelvic gyro's median cadence (the waist contacts are no step count, decisions W476, "
+                           "W579) 120 steps/min (344 steps) is outside the waist-pendulum calibration's 86")
+
+
+def test_uncountable_lines_name_a_track_on_the_pelvic_gyro_w580():
+    track = "'pdrlearn track DIR --units waist --detector pelvic-gyro' (with --params) for a track on its steps"
+    assert track in not_alternating_message(0.2, 609, (617, 344))
+    assert track in step_count_withheld_reason((617, 344), 0.68)
+
+
+def test_imported_frame_refusal_leads_with_the_frames_fix_w580(tmp_path):
+    from pdrlearn.errors import DataError
+    from pdrlearn.io import read_session, write_session
+    from pdrlearn.sim import simulate_path
+    from pdrlearn.sim.route import parse_route
+    from tests.test_frail_s40 import _slow_user
+
+    # B419's slow 20 Hz walk whose rhythm fixes no axes
+    s = simulate_path(parse_route("stand:5, straight:10, stand:5"), _slow_user(10934, 0.35, 1.0), seed=0,
+                      bounce="pendulum", rate_hz=20)
+    write_session(s, tmp_path)
+    meta = json.loads((tmp_path / "meta.json").read_text())
+    meta.pop("frames", None)
+    meta.pop("source_project", None)
+    meta["imported"] = {"file": "logger.csv", "unit": "waist"}
+    (tmp_path / "meta.json").write_text(json.dumps(meta))
+    try:
+        read_session(tmp_path).require_frame("waist")
+    except DataError as exc:
+        msg = str(exc)
+    else:
+        raise AssertionError("no refusal")
+    assert "declares no axis frame for the waist unit; re-import it with its axes named" in msg
+    assert msg.index("--frames") < msg.index("its data does not fix the axes")
+    assert msg.rstrip().endswith(")")
