@@ -4,8 +4,6 @@ judges the pelvic gyro's cadence when W476 withheld the contacts') and W580 (W44
 
 from __future__ import annotations
 
-import json
-
 from pdrlearn.waist.plausibility import (
     calibration_line,
     not_alternating_message,
@@ -34,20 +32,10 @@ def test_uncountable_lines_name_a_track_on_the_pelvic_gyro_w580():
 
 def test_imported_frame_refusal_leads_with_the_frames_fix_w580(tmp_path):
     from pdrlearn.errors import DataError
-    from pdrlearn.io import read_session, write_session
-    from pdrlearn.sim import simulate_path
-    from pdrlearn.sim.route import parse_route
-    from tests.test_frail_s40 import _slow_user
+    from pdrlearn.io import read_session
+    from tests.test_frail_s40 import imported_unframed_walk
 
-    # B419's slow 20 Hz walk whose rhythm fixes no axes
-    s = simulate_path(parse_route("stand:5, straight:10, stand:5"), _slow_user(10934, 0.35, 1.0), seed=0,
-                      bounce="pendulum", rate_hz=20)
-    write_session(s, tmp_path)
-    meta = json.loads((tmp_path / "meta.json").read_text())
-    meta.pop("frames", None)
-    meta.pop("source_project", None)
-    meta["imported"] = {"file": "logger.csv", "unit": "waist"}
-    (tmp_path / "meta.json").write_text(json.dumps(meta))
+    imported_unframed_walk(tmp_path)  # B419's slow 20 Hz walk whose rhythm fixes no axes
     try:
         read_session(tmp_path).require_frame("waist")
     except DataError as exc:
