@@ -45,3 +45,30 @@ def test_imported_frame_refusal_leads_with_the_frames_fix_w580(tmp_path):
     assert "declares no axis frame for the waist unit; re-import it with its axes named" in msg
     assert msg.index("--frames") < msg.index("its data does not fix the axes")
     assert msg.rstrip().endswith(")")
+
+
+def test_a_calibrated_track_of_uncountable_contacts_judges_the_pelvic_gyro_w579():
+    """W475's fresh user 11831 at 0.2 m every 1.2 s (W476's test walk): 77 contacts at 188 per minute, the pelvic gyro
+    31 steps at 56 steps/min; before W579 a calibration at 56 steps/min read "this walk's median cadence 188"."""
+    import dataclasses
+
+    from pdrlearn.sim import Stand, Straight, UserProfile, simulate_path
+    from pdrlearn.sim.user import SPEED_FACTORS
+    from pdrlearn.track.waist import track_waist
+    from pdrlearn.waist.params import WaistParams
+
+    f_len, f_time = SPEED_FACTORS["normal"]
+    u = dataclasses.replace(UserProfile.from_seed(11831), step_length_m=0.2 / f_len, step_time_s=1.2 / f_time)
+    s = simulate_path([Stand(2), Straight(6), Stand(2)], u, speed="normal", rate_hz=50, seed=11831,
+                      bounce="pendulum", rocker="smooth")
+
+    def w211(cadence):
+        p = WaistParams(leg_m=0.9, source="calibrated", pipeline="waist-pendulum",
+                        gait={"median_cadence_spm": cadence, "speed_mps": 0.17})
+        r = track_waist(s, pipeline="waist-pendulum", params=p)
+        assert r.info["step_count_unusable"] is True
+        return [w for w in r.info["warnings"] if "W211" in w]
+
+    assert w211(56.0) == []
+    assert [w[:81] for w in w211(100.0)] == ["the pelvic gyro's median cadence (the waist contacts are no step count, "
+                                             "decisions"]
