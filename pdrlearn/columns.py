@@ -384,7 +384,10 @@ SESSIONS: tuple[Column, ...] = (
      "with a model (track --model, run): strides outside its training range (C16, C63)"),
     ("pause_time_s", "s", "number", "total pause time (L104): the pauses between consecutive steps beyond the walk's "
                                     "rhythm; with --window only those between the window's steps. Not a share of "
-                                    "the session's time: see time_between_steps_s (L275)"),
+                                    "the session's time: see time_between_steps_s (L275). With the posture known "
+                                    "(lower back) the standing time only (C248)"),
+    ("pause_seated_lying_s", "s", "number", "lower back: the sitting and lying seconds between steps left out of the "
+                                            "pauses (C248); empty without the posture"),
     ("per_s", "s", "number", "--per only: the period of periods.csv (L277)"),
     ("corridor_m", "m", "number", "--corridor only: the corridor walk test's course length (L383)"),
     ("n_laps", "count", "integer", "--corridor only: the corridor lengths walked between cone turns (laps.csv's "

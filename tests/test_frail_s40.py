@@ -74,19 +74,24 @@ def test_slow_walk_at_20_hz_infers_its_frame_w452(monkeypatch):
         F.infer_session_frame(s, "waist")
 
 
-def test_frame_refusal_of_an_imported_session_names_import_frames_b419(tmp_path, capsys):
+def imported_unframed_walk(folder):
+    """Decision B419's session (W580's too): a slow 20 Hz walk whose rhythm (1.6 noise SDs, W452's measurement) fixes
+    no axes even at W452's 5, written to ``folder`` as ``pdrlearn import logger.csv --unit waist`` without --frames."""
     from pdrlearn.io import write_session
 
-    # a slow 20 Hz walk whose rhythm (1.6 noise SDs, W452's measurement) fixes no axes even at W452's 5
     s = simulate_path(parse_route("stand:5, straight:10, stand:5"), _slow_user(10934, 0.35, 1.0), seed=0,
                       bounce="pendulum", rate_hz=20)
-    folder = tmp_path / "imp"
     write_session(s, folder)
     meta = json.loads((folder / "meta.json").read_text())
     meta.pop("frames", None)
     meta.pop("source_project", None)
     meta["imported"] = {"file": "logger.csv", "unit": "waist"}
     (folder / "meta.json").write_text(json.dumps(meta))
+    return folder
+
+
+def test_frame_refusal_of_an_imported_session_names_import_frames_b419(tmp_path, capsys):
+    folder = imported_unframed_walk(tmp_path / "imp")
     assert main(["track", str(folder), "--units", "waist", "--out", str(tmp_path / "out")]) != 0
     err = capsys.readouterr().err
     assert "`pdrlearn import logger.csv --unit waist ...` command with --frames x=left,y=up,z=forward" in err

@@ -522,9 +522,9 @@ def count_phrase(summary: dict) -> str:
     tracked foot (~48 steps)" for a foot track, "48 steps" for a lower-back one."""
     n = summary["n_steps"]
     if summary.get("step_count_withheld"):  # decision W476: W442's contacts are no step count
-        gyro = (summary.get("info") or {}).get("n_pelvic_gyro_steps")
-        return (f"{n} contacts (no step count, decision W476"
-                + (f"; the pelvic gyro counts {gyro} steps" if gyro is not None else "") + ")")
+        from pdrlearn.waist.plausibility import withheld_steps_text  # here: the CLI's import loads no numpy (C14)
+
+        return withheld_steps_text(summary)
     if summary.get("n_steps_counts") == "strides of the tracked foot":
         both = summary.get("n_steps_both_feet")
         return f"{n} strides of the tracked foot" + (f" (~{both} steps)" if both is not None else "")
@@ -545,8 +545,11 @@ def walk_line(summary: dict) -> str | None:
     # + 1) is named beside it when another rule (--bout-rule mobgap, --bout-min-strides) gives a different count
     other = (f" (bouts.csv; {summary['n_walking_bouts']} between the pauses)"
              if n_bouts != summary["n_walking_bouts"] else "")
-    return (f"{n_bouts} walking bout(s){other}, {n} pause(s) of >= 1 s"
-            + (f" ({summary['pause_time_s']:.1f} s in all)" if n else "")
+    seated = summary.get("pause_seated_lying_s")  # decision C248: a pause is standing
+    left = f"{seated:.1f} s sitting or lying between steps left out, C248" if seated else ""
+    return (f"{n_bouts} walking bout(s){other}, {n} pause(s) of >= 1 s" + (" standing" if seated is not None else "")
+            + (f" ({summary['pause_time_s']:.1f} s in all{'; ' + left if left else ''})" if n
+               else f" ({left})" if left else "")
             + f", {summary.get('turn_count', 0)} turn(s) of >= {summary.get('turn_count_min_deg', 80):g} deg"
             + _cv_phrase(summary, cv, CV_MIN_STRIDES))
 
@@ -565,6 +568,9 @@ def _cv_phrase(summary: dict, cv: float | None, needed: int) -> str:
         from pdrlearn.decision_refs import decision_ref
         from pdrlearn.track.clinical import JITTER_FREE_WALK, LOWER_BACK_CV_INFLATION
 
+        if summary.get("step_count_withheld"):  # decision C247: a stride is two contacts that are no steps
+            return (f", no stride-time CV (the lower back's contacts are no step count; {decision_ref('W476')}; "
+                    f"{decision_ref('C247', topic='cohort')})")
         if w.get("jitter_free_cv_pct") is not None:  # decision W558: a long walk's, the contacts' jitter out
             return (f", stride-time CV {w['jitter_free_cv_pct']:.1f} % with the lower back's contact jitter taken out "
                     f"({w['n_jitter_free_strides']} stride intervals; {decision_ref('W558')})")

@@ -517,11 +517,14 @@ class Session:
                      "declared by its nearest axes), as in the thesis mounting")
         hint = self._waist_hint(placement)  # decision B288: a "foot" unit that never swings is named as a lower back
         frame = nearest or EXAMPLE_FRAMES.get(placement, EXAMPLE_FRAMES["foot"])
+        fix = self._import_fix(placement, frame)
+        # decision W580: an imported session's line leads with the frames fix; why the data did not fix the axes last
+        lead, why = ("", f" ({reason.strip()})") if fix and reason else (reason, "")
         err = DataError(
-            f"{where} declares no axis frame for the {placement} unit{reason}; {hint + '; else ' if hint else ''}"
-            f"{self._import_fix(placement, frame)}add a \"frames\" entry giving the "
+            f"{where} declares no axis frame for the {placement} unit{lead}; {hint + '; else ' if hint else ''}"
+            f"{fix}add a \"frames\" entry giving the "
             f"body direction of each of its axes (forward, backward, left, right, up, down), e.g. {what} "
-            f"\"frames\": {example}"
+            f"\"frames\": {example}{why}"
         )
         err.walk_s = getattr(self._inferred.get(placement), "walk_s", None)  # W61: too little walking to infer
         raise err

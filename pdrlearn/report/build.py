@@ -381,6 +381,9 @@ def step_count_columns(df: pd.DataFrame) -> pd.DataFrame:
     old_strides = n.where(foot)
     df[STEPS_COLUMN] = old_steps if steps is None else steps.fillna(old_steps)
     df[STRIDES_COLUMN] = old_strides if strides is None else strides.fillna(old_strides)
+    if "step_count_withheld" in df:  # decision C246: W476's contacts are no steps (a summary written before C246 too)
+        withheld = df["step_count_withheld"].map(lambda v: isinstance(v, str) and bool(v))
+        df[STEPS_COLUMN] = df[STEPS_COLUMN].where(~withheld)
     for c in (STEPS_COLUMN, STRIDES_COLUMN):
         df[c] = df[c].astype("Int64")
     if df[[STEPS_COLUMN, STRIDES_COLUMN]].isna().all().all():

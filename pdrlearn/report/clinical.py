@@ -143,6 +143,10 @@ def gait_speed_line(summary: dict, unit: str) -> str | None:
         flags.append("all the recording's walking, from step lengths; the walk test's own speed is its line's (L650)")
     if speed < VALIDATED_MIN_MPS or slow_cad:
         flags.append(f"slower than the validated {VALIDATED_MIN_MPS:g} m/s / {VALIDATED_MIN_SPM:g} steps/min (L95)")
+    if summary.get("step_count_withheld"):  # decision C247: summed from contacts that are no steps
+        from pdrlearn.waist.plausibility import CONTACTS_FLAG
+
+        flags.append(CONTACTS_FLAG)
     scaled = summary.get("gait_speed_corridor_mps")
     if scaled is not None:  # decision W562: the corridor's laps give the step lengths' scale
         return (f"- Gait speed {scaled:.2f} m/s on the corridor's scale (the step lengths x "
@@ -470,7 +474,8 @@ def _normalised(summary: dict, unit: str, speed_given: bool, stride_given: bool)
     the median stride length, each only when ``*_given`` says it is a foot unit's or a calibrated lower back's (an
     uncalibrated one is the height model's step length, not the walker's)."""
     return normalised_line(summary.get("gait_speed_mps") if speed_given else None,
-                           summary.get("median_stride_length_m") if stride_given else None,
+                           summary.get("median_stride_length_m")  # decision C247: no stride of W476's contacts
+                           if stride_given and not summary.get("step_count_withheld") else None,
                            measured_leg(summary.get("leg_length_m"), summary.get("leg_length_source")), unit)
 
 

@@ -10,6 +10,7 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.report.build import STEPS_COLUMN, step_count_columns
+from pdrlearn.waist.plausibility import withheld_steps_text
 
 #: decision W448: a recording this long (s) or longer gets the block (a supervised test lasts minutes)
 DAILY_MIN_S = 3600.0
@@ -65,14 +66,18 @@ def daily_living_lines(summary: dict, folder: Path) -> list[str]:
     counts = {k: [summary.get(k)] for k in ("n_steps", "n_steps_both_feet")}
     steps = _both_feet(pd.DataFrame(counts), summary).iloc[0] if summary.get("n_steps") is not None else np.nan
     approx = "~" if _estimated(summary) else ""
-    if not pd.isna(steps):
+    withheld = withheld_steps_text(summary)  # decision C246: W476's contacts are no steps
+    if withheld or not pd.isna(steps):
         caveat = ("; lower-back step count not validated below "
                   f"{VALIDATED_MIN_SPM:g} steps/min (L95)" if str(summary.get("pipeline")).startswith("waist")
                   and cad is not None and cad < VALIDATED_MIN_SPM else "")
-        text = (f"- Daily living over {_h(span)} recorded: {approx}{int(steps)} steps "
-                f"({3600 * steps / float(span):.0f} per hour")
-        text += f", {86400 * steps / float(span):.0f} per day" if float(span) >= 86400 else ""
-        text += "; 2 per stride of the tracked foot)" if approx else ")"
+        text = f"- Daily living over {_h(span)} recorded: "
+        if withheld:
+            text += f"steps not given, {withheld}"
+        else:
+            text += f"{approx}{int(steps)} steps ({3600 * steps / float(span):.0f} per hour"
+            text += f", {86400 * steps / float(span):.0f} per day" if float(span) >= 86400 else ""
+            text += "; 2 per stride of the tracked foot)" if approx else ")"
         walking = summary.get("walking_time_s")
         if walking is not None:
             text += f"; walking {float(walking) / 60:.1f} min"
@@ -100,5 +105,7 @@ def daily_living_lines(summary: dict, folder: Path) -> list[str]:
         n = _both_feet(periods, summary)  # decision W458: periods.csv's n_steps_both_feet, as the line above
         per = f" per {_per(summary['per_s'])}" if summary.get("per_s") else " per period"
         src = "periods.csv, ~2 per stride of the tracked foot" if _estimated(summary) else "periods.csv"
-        lines.append(f"- Steps{per} ({src}): " + ", ".join("-" if pd.isna(v) else f"{v:.0f}" for v in n))
+        counts = ("not given: the lower back's contacts are no step count (W476, C246)" if withheld  # C246
+                  else ", ".join("-" if pd.isna(v) else f"{v:.0f}" for v in n))
+        lines.append(f"- Steps{per} ({src}): {counts}")
     return lines

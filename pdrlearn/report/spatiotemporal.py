@@ -28,6 +28,8 @@ def _cv_text(summary: dict) -> str | None:
         return f"stride-time CV {cv:.1f} %" + (f" ({n} strides)" if isinstance(n, int) and n else "")
     withheld = summary.get("stride_time_cv_withheld")
     cause = withheld.get("cause") if isinstance(withheld, dict) else None
+    if cause == "lower_back" and summary.get("step_count_withheld"):  # decision C247: two contacts are no stride
+        return "stride-time CV not given: the lower back's contacts are no step count (W476, C247)"
     if cause == "lower_back":  # decision W559: why, in numbers (W557), and what gives it
         from pdrlearn.track.clinical import JITTER_FREE_WALK, LOWER_BACK_CV_INFLATION
 
@@ -50,6 +52,9 @@ def spatiotemporal_line(summary: dict, unit: str, stride_given: bool = True) -> 
     gait`)."""
     parts = []
     stride = _number(summary.get("median_stride_length_m")) if stride_given else None
+    if summary.get("step_count_withheld"):  # decision C247: a summary written before C247 still holds it
+        stride = None
+        parts.append("stride length not given")
     if stride is not None:
         parts.append(f"stride length {stride:.2f} m")
     stance = _number(summary.get("median_stance_pct"))

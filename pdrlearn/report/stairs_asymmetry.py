@@ -73,6 +73,8 @@ def asymmetry_line(summary: dict, unit: str) -> str | None:
     if pct is None:
         return None
     se = _number(summary.get("step_time_asymmetry_se_points"))
+    if se is None and summary.get("step_count_withheld"):  # decision C247: the lower back's contacts are no steps
+        return f"- Step-time asymmetry: not given (the lower back's contacts are no step count, W476, C247) ({unit})"
     notes = ([", ".join([f"standard error {se:.1f} points", *asymmetry_flags(pct, se)])] if se is not None
              else ["its size is misread by the lower back alone (L121)"])
     left, right = _number(summary.get("step_time_s_left")), _number(summary.get("step_time_s_right"))

@@ -11,6 +11,7 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.report.daily_living import _both_feet, _csv, _estimated
+from pdrlearn.waist.plausibility import CONTACTS_FLAG, withheld_steps_text
 
 #: decision W515: up to this many bouts their lengths are listed one by one (a ward session's few walks); more get
 #: the median and the longest (a day's hundreds would drown the line)
@@ -52,12 +53,14 @@ def walking_line(summary: dict, folder: Path, unit: str, *, distance_given: bool
     ``distance_given`` False (an uncalibrated lower back under the validated speed, W446) leaves the metres out and
     says why; ``uncalibrated`` (a lower back without ``calibrate``'s PARAMS) tags the metres given as the gait speed
     line tags its speed (decision C222: trial T1 F5 read the line's 351.4 m beside a corridor's 341 m untagged)."""
+    withheld = withheld_steps_text(summary)  # decision C246: W476's contacts are no steps
     counts = {k: [summary.get(k)] for k in ("n_steps", "n_steps_both_feet")}
     steps = _both_feet(pd.DataFrame(counts), summary).iloc[0] if summary.get("n_steps") is not None else np.nan
-    if pd.isna(steps) or steps <= 0:
+    if not withheld and (pd.isna(steps) or steps <= 0):
         return None
     approx = _estimated(summary)
-    text = f"- Walking: {'~' if approx else ''}{int(steps)} steps"
+    text = (f"- Walking: steps not given, {withheld}" if withheld
+            else f"- Walking: {'~' if approx else ''}{int(steps)} steps")
     walking = summary.get("walking_time_s")
     if walking is not None:
         text += f", {float(walking):.1f} s walking"
@@ -75,4 +78,6 @@ def walking_line(summary: dict, folder: Path, unit: str, *, distance_given: bool
         notes.append("distance not given: uncalibrated lower back under the validated speed (W446)")
     elif uncalibrated:  # decision C222
         notes.append("uncalibrated: metres from step lengths by body height (W169)")
+    if withheld and distance_given:
+        notes.append(CONTACTS_FLAG)  # decision C247
     return f"{text} ({'; '.join(notes)})"

@@ -103,7 +103,7 @@ CV_BOUT_MIN_STRIDES = 5
 CV_POOLED_FACTOR = 2.0
 
 #: the keys :func:`clinical_summary` gives every summary (None / 0 when the table cannot give them)
-CLINICAL_KEYS = ("n_pauses", "pause_time_s", "longest_pause_s", "n_walking_bouts", "turn_count",
+CLINICAL_KEYS = ("n_pauses", "pause_time_s", "longest_pause_s", "pause_seated_lying_s", "n_walking_bouts", "turn_count",
                  "turn_count_min_deg", "stride_time_cv_pct", "n_cv_strides", "stride_time_cv_withheld",
                  "stride_time_cv_within_bouts_pct", "stride_time_cv_bouts", "stride_length_cv_pct",
                  "stride_length_cv_within_segments_pct", "n_cv_segments", "stride_time_cv_direction")
@@ -1351,7 +1351,22 @@ def leg_summary(steps: pd.DataFrame) -> dict:
     return out
 
 
-def clinical_summary(steps: pd.DataFrame, *, contact_scatter_max_s: float | None = None, turn_gaps=None) -> dict:
+def standing_pauses(spans: np.ndarray, postures, *, min_s: float = PAUSE_MIN_S) -> tuple[np.ndarray, float]:
+    """Decision C248: the pauses of ``spans`` (:func:`pause_spans`, s) less the seconds the posture runs
+    ``postures`` (a lower-back track's ``info["postures"]``, ``[start_s, end_s, posture]``, W222) read as sitting or
+    lying, those with at least ``min_s`` (L104's pause) left, in time order; and the seconds taken out."""
+    from pdrlearn.waist.posture_time import LYING, SITTING
+
+    seated = np.array([(float(a), float(b)) for a, b, p in postures if p in (SITTING, LYING)], float).reshape(-1, 2)
+    spans = np.asarray(spans, float).reshape(-1, 2)
+    cut = np.array([np.clip(np.minimum(seated[:, 1], b) - np.maximum(seated[:, 0], a), 0.0, None).sum()
+                    for a, b in spans]) if len(spans) else np.zeros(0)
+    left = spans[:, 1] - spans[:, 0] - cut
+    return left[left >= min_s], float(cut.sum())
+
+
+def clinical_summary(steps: pd.DataFrame, *, contact_scatter_max_s: float | None = None, turn_gaps=None,
+                     postures=None) -> dict:
     """Decision L104: :data:`CLINICAL_KEYS` of a tracked step table (module docstring): ``n_pauses``,
     ``pause_time_s`` (summed), ``longest_pause_s``, ``n_walking_bouts``, ``turn_count`` (turns of at least
     ``turn_count_min_deg``), ``stride_time_cv_pct`` over ``n_cv_strides`` straight strides, withheld (decision
@@ -1363,9 +1378,12 @@ def clinical_summary(steps: pd.DataFrame, *, contact_scatter_max_s: float | None
     ``n_not_level``, the straight strides and those L188's level criterion drops). Decision C180: ``turn_gaps``
     (a lower-back track's :class:`~pdrlearn.track.turn_gaps.TurnGaps`, an option: ``track`` passes none, so L104's
     pauses and walking bouts keep the fixed 1 s rule; C182's corridor fill is bouts.csv's): an interval a walker's
-    turn fills is no pause."""
+    turn fills is no pause. Decision C248: with ``postures`` (a lower-back track's ``info["postures"]``) the pauses
+    are the standing time (:func:`standing_pauses`) and ``pause_seated_lying_s`` the sitting / lying seconds left
+    out (None without ``postures``)."""
     limit = CONTACT_SCATTER_MAX_S if contact_scatter_max_s is None else float(contact_scatter_max_s)
-    out: dict = {"n_pauses": 0, "pause_time_s": 0.0, "longest_pause_s": None, "n_walking_bouts": 0,
+    out: dict = {"n_pauses": 0, "pause_time_s": 0.0, "longest_pause_s": None, "pause_seated_lying_s": None,
+                 "n_walking_bouts": 0,
                  "turn_count": 0, "turn_count_min_deg": TURN_COUNT_MIN_DEG, "stride_time_cv_pct": None,
                  "n_cv_strides": 0, "stride_time_cv_withheld": None, "stride_time_cv_within_bouts_pct": None,
                  "stride_time_cv_bouts": [], "stride_length_cv_pct": None,
@@ -1373,6 +1391,8 @@ def clinical_summary(steps: pd.DataFrame, *, contact_scatter_max_s: float | None
     if not len(steps) or "start_s" not in steps:
         return out
     p = pauses(steps, turn_gaps=turn_gaps)
+    if postures is not None:  # decision C248: a pause is standing; sitting and lying are left out
+        p, out["pause_seated_lying_s"] = standing_pauses(pause_spans(steps, turn_gaps=turn_gaps), postures)
     out["n_pauses"], out["pause_time_s"] = int(len(p)), float(p.sum())
     out["longest_pause_s"] = float(p.max()) if len(p) else None
     # n_pauses + 1 without a data gap (L269: a long gap ends one)

@@ -723,7 +723,8 @@ def _basic(result: TrackResult, out: dict) -> None:
     from pdrlearn.track.clinical import clinical_summary, leg_summary, turn_summary, turn_table, walked_turns
     from pdrlearn.waist.transfers import transfer_summary
 
-    out.update(clinical_summary(result.steps))  # decision L104: pauses, walking bouts, turns, stride-time CV
+    # decision L104: pauses, walking bouts, turns, stride-time CV; C248: the pauses standing (the posture runs known)
+    out.update(clinical_summary(result.steps, postures=result.info.get("postures")))
     from pdrlearn.track.contact_summary import contact_summary
 
     out.update(contact_summary(result.steps))  # decision L756: the steady strides' toe-contact share

@@ -51,6 +51,9 @@ PERIOD_GAIT_KEYS = ("median_stride_length_m", "median_speed_mps", "stride_time_c
                     "n_cv_strides")
 #: decision L514: periods.csv's positions at each period's start and end and its net displacement (m)
 POSITION_KEYS = ("start_x_m", "start_y_m", "end_x_m", "end_y_m", "dx_m", "dy_m")
+#: decisions W476, C246, C247: the periods.csv / segments.csv keys left empty where W442 found the lower back's
+#: contacts no step count (summary.json's ``step_count_withheld``)
+PERIOD_WITHHELD_KEYS = ("n_steps_both_feet", "median_cadence_spm", "median_stride_time_s", "median_stride_length_m")
 #: periods.csv's columns, in order (docs/columns.md; ``session`` / ``subject`` first, bouts.csv's key, L165)
 PERIOD_COLUMNS = ("session", "subject", "visit", "period", "start_s", "end_s", "duration_s", "partial", "distance_m",
                   "n_steps", "n_steps_counts", "n_steps_both_feet", "median_stride_time_s", "median_cadence_spm",
@@ -488,6 +491,7 @@ def interval_rows(result, session, starts, ends, closed, *, unit: str | None, bo
     sigma = traj["pos_sigma_m"].to_numpy(float) if "pos_sigma_m" in traj and len(traj) else None
     tt = traj["t"].to_numpy(float) if len(traj) else np.zeros(0)
     counts = step_counts(steps)["n_steps_counts"]  # decision L320: what n_steps counts, as the summary's
+    withheld = bool(result.info.get("step_count_unusable"))  # decision C246: W442's contacts (W476)
     travel = travel_masks(steps)  # decision L484: the backward / side strides of the summary's counts
     starts_s, stops_s = (steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float)) if len(steps) \
         else (np.zeros(0), np.zeros(0))
@@ -517,6 +521,8 @@ def interval_rows(result, session, starts, ends, closed, *, unit: str | None, bo
         j = int(np.searchsorted(tt, b + 1e-9, side="right")) - 1
         row["position_sigma_end_m"] = float(sigma[j]) if sigma is not None and j >= 0 else None
         row.update(period_displacement(traj, starts_s, stops_s, a, b, last=last))  # L514, L528
+        if withheld:  # decisions W476, C246, C247: the contacts are no step count, nor their cadence or strides
+            row.update(dict.fromkeys(PERIOD_WITHHELD_KEYS))
         rows.append(row)
     return rows
 

@@ -1476,8 +1476,10 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
     if pause_line:
         warnings.append(pause_line)
     # decisions W140 (gait_check: an option, its adoption rule was not met), W211 (speed_check: on); one line
-    cadence_ratio, calibration, covers = _calibration_gait(steps, p, pipeline, bool(o["gait_check"]),
-                                                           bool(o["speed_check"]))
+    pelvic = _pelvic_cadence(counts, gyro_s()) if uncountable else None  # decision W579
+    judged = not uncountable or pelvic is not None  # W579: contacts that are no steps judge no calibration
+    cadence_ratio, calibration, covers = _calibration_gait(steps, p, pipeline, bool(o["gait_check"]) and judged,
+                                                           bool(o["speed_check"]) and judged, pelvic=pelvic)
     if calibration:
         warnings.append(calibration)
     n = len(steps)
@@ -1809,8 +1811,16 @@ def _gyro_count(session: Session, steps: pd.DataFrame, gyro_s: np.ndarray | None
     return None if counts is None else counts[1]
 
 
+def _pelvic_cadence(counts: tuple[int, int], gyro_s: np.ndarray | None) -> tuple[float, int] | None:
+    """Decision W579: the pelvic-gyro detector's cadence (60 / its median step interval, as W476's reason) and its
+    count; None without a finite interval."""
+    period = median_step_period(gyro_s)
+    return (60.0 / period, int(counts[1])) if np.isfinite(period) and period > 0 else None
+
+
 def _calibration_gait(steps: pd.DataFrame, p: WaistParams, pipeline: str, gait_check: bool,
-                      speed_check: bool) -> tuple[float | None, str | None, bool | None]:
+                      speed_check: bool, *, pelvic: tuple[float, int] | None = None
+                      ) -> tuple[float | None, str | None, bool | None]:
     """Decision W140: ``(ratio, line, covers)``, this track's median cadence over its calibration walks' (None: not
     calibrated, a params file without ``gait``, or fewer than ten steps), the one calibration line under the options
     (:func:`~pdrlearn.waist.plausibility.calibration_line`: W140's, else W211's; None: neither fires) and W227's
@@ -1821,7 +1831,7 @@ def _calibration_gait(steps: pd.DataFrame, p: WaistParams, pipeline: str, gait_c
     if not ref or cadence is None or n < PLAUSIBILITY_MIN_PAIRS:
         return None, None, None
     line = calibration_line(p.gait, cadence, n, p.pipeline or pipeline, gait_check=gait_check,
-                            speed_check=speed_check)
+                            speed_check=speed_check, pelvic=pelvic)  # decision W579
     return cadence / float(ref), line, calibration_covers(p.gait, cadence, n)
 
 

@@ -192,6 +192,12 @@ UNCOUNTABLE_CAUSE = ("the steps are too small or too slow for the lower back to 
                      "cadence and the distance are not usable (not short fast steps and not running)")
 
 
+#: decision W580: where the pelvic gyro's steps are had - a track on them (trial s50t3: steps +8..+10 %, speed
+#: -3..+2 % with calibration) or their count alone
+PELVIC_GYRO_ADVICE = ("'pdrlearn track DIR --units waist --detector pelvic-gyro' (with --params) for a track on its "
+                      "steps, or 'pdrlearn steps DIR --detector pelvic-gyro' for the count")
+
+
 def step_count_withheld_reason(counts: tuple[int, int], pelvic_period_s: float) -> str:
     """Decision W476: why a lower-back track whose contacts are :func:`steps_uncountable` (W442) withholds its
     cadence and step times (summary.json ``step_count_withheld``, the track's count line): the two counts and the
@@ -201,7 +207,7 @@ def step_count_withheld_reason(counts: tuple[int, int], pelvic_period_s: float) 
     return (f"the {counts[0]} waist contacts are over {STEP_COUNT_UNUSABLE:g} x the pelvic-gyro detector's "
             f"{counts[1]} steps (decision W442): no step count, so median_cadence_spm, median_step_time_s and "
             f"median_stride_time_s are withheld and n_steps counts contacts (decision W476); the pelvic gyro counts "
-            f"{counts[1]} steps{cadence} ('pdrlearn steps DIR --detector pelvic-gyro')")
+            f"{counts[1]} steps{cadence} ({PELVIC_GYRO_ADVICE})")
 
 
 def uncountable_steps_line(counts: tuple[int, int] | None, detector: str) -> str | None:
@@ -215,19 +221,41 @@ def uncountable_steps_line(counts: tuple[int, int] | None, detector: str) -> str
             "--detector pelvic-gyro' for the step count and cadence, or a foot unit")
 
 
-#: decision W476: the summary.json keys a :func:`steps_uncountable` lower-back track withholds (None)
-WITHHELD_STEP_KEYS = ("median_cadence_spm", "median_step_time_s", "median_stride_time_s")
+#: decision W476: the summary.json keys a :func:`steps_uncountable` lower-back track withholds (None); decision
+#: C246: its steps of both feet (the contacts are none); C247: its stride length (two contacts, W537)
+WITHHELD_STEP_KEYS = ("median_cadence_spm", "median_step_time_s", "median_stride_time_s", "n_steps_both_feet",
+                      "median_stride_length_m")
 
 
 def withhold_step_count(summary: dict) -> dict:
     """Decision W476: ``summary`` (a track's summary.json dict, changed in place and returned) with
     :data:`WITHHELD_STEP_KEYS` None and ``step_count_withheld`` the reason when its ``info.step_count_withheld``
-    says W442 fired; ``step_count_withheld`` None otherwise."""
+    says W442 fired; ``step_count_withheld`` None otherwise. Decision C247: W558's jitter-free stride-time CV (two
+    contact intervals a stride) is withheld too."""
     reason = (summary.get("info") or {}).get("step_count_withheld")
     summary["step_count_withheld"] = reason or None
     if reason:
         summary.update(dict.fromkeys(WITHHELD_STEP_KEYS))
+        cv = summary.get("stride_time_cv_withheld")
+        if isinstance(cv, dict) and cv.get("jitter_free_cv_pct") is not None:  # decision C247
+            cv.update(jitter_free_cv_pct=None, n_jitter_free_strides=None)
     return summary
+
+
+#: decision C247: the flag of a speed or distance summed from contacts that W476 found no step count
+CONTACTS_FLAG = ("from contacts that are no step count (W476): may read high; 'track --detector pelvic-gyro' "
+                 "counts the steps (C247)")
+
+
+def withheld_steps_text(summary: dict) -> str | None:
+    """Decision C246 (W476's count line, shared by ``track`` and the reports): "618 contacts (no step count, decision
+    W476; the pelvic gyro counts 344 steps)" for a summary whose ``step_count_withheld`` is set; None otherwise."""
+    if not summary.get("step_count_withheld"):
+        return None
+    gyro = (summary.get("info") or {}).get("n_pelvic_gyro_steps")
+    n = summary.get("n_steps")
+    return (f"{n} contacts (no step count, decision W476"
+            + (f"; the pelvic gyro counts {gyro} steps" if gyro is not None else "") + ")")
 
 
 def _counts_text(counts: tuple[int, int], decision: str) -> str:
@@ -258,9 +286,9 @@ def not_alternating_message(index: float, pairs: int, counts: tuple[int, int] | 
     use = "; use 'pdrlearn steps DIR --detector pelvic-gyro' for the step count and cadence, or a foot unit"
     if steps_missed(counts):
         return head + _counts_text(counts, "decision W114") + f": {MISSED_STEPS_CAUSE}" + use
-    if steps_uncountable(counts):
+    if steps_uncountable(counts):  # decision W580: the track on the pelvic gyro's steps named too
         return (head + _counts_text(counts, f"over {STEP_COUNT_UNUSABLE:g} x warns, decision W442") +
-                f": {UNCOUNTABLE_CAUSE}" + use)
+                f": {UNCOUNTABLE_CAUSE}; use {PELVIC_GYRO_ADVICE}, or a foot unit")
     return (head + "the pelvis shows no sideways weight shift from step to step, so the step count, distance and "
             "speed may not be walking (wheelchair propulsion, walking-aid strikes, phantom steps at very slow gait); "
             "check with a foot unit or 'pdrlearn steps DIR --detector pelvic-gyro'")
@@ -613,11 +641,13 @@ def calibration_covers(gait: dict | None, cadence: float | None, n: int) -> bool
     return bool(lo <= cadence <= hi)
 
 
-def calibration_speed_message(gait: dict | None, cadence: float | None, n: int, pipeline: str) -> str | None:
+def calibration_speed_message(gait: dict | None, cadence: float | None, n: int, pipeline: str, *,
+                               pelvic_gyro: bool = False) -> str | None:
     """Decision W211's one warning line when a track calibrated on walks of ``gait`` (:func:`calibration_gait`; its
     ``cadence_range_spm``, else ``median_cadence_spm`` for both ends; None: not judged) has a median ``cadence``
     (steps/min, over ``n`` >= :data:`PLAUSIBILITY_MIN_PAIRS` steps) outside the range widened by
-    :data:`CALIBRATION_SPEED_MARGIN` either way."""
+    :data:`CALIBRATION_SPEED_MARGIN` either way. Decision W579: ``pelvic_gyro`` - the cadence and count are the
+    pelvic-gyro detector's, read because W442 found the waist contacts no step count; the line says so."""
     gait = gait or {}
     rng = gait.get("cadence_range_spm") or [gait.get("median_cadence_spm")] * 2
     if calibration_covers(gait, cadence, n) is not False:
@@ -625,7 +655,9 @@ def calibration_speed_message(gait: dict | None, cadence: float | None, n: int, 
     cal = f"{float(rng[0]):.0f}" if rng[0] == rng[1] else f"{float(rng[0]):.0f}-{float(rng[1]):.0f}"
     speed = gait.get("speed_mps")
     at = f", {float(speed):.2f} m/s" if speed is not None else ""
-    return (f"this walk's median cadence {cadence:.0f} steps/min ({n} steps) is outside the {pipeline} calibration's "
+    whose = ("the pelvic gyro's median cadence (the waist contacts are no step count, decisions W476, W579)"
+             if pelvic_gyro else "this walk's median cadence")
+    return (f"{whose} {cadence:.0f} steps/min ({n} steps) is outside the {pipeline} calibration's "
             f"{cal} steps/min{at} by more than {100 * CALIBRATION_SPEED_MARGIN:.0f} % (decision W211): a calibration "
             "holds near the speed it was made at (one at 1.0 m/s read +7..+10 % at 0.6 m/s and -8 % at 2.0 m/s); "
             "calibrate on walks at several speeds ('pdrlearn calibrate SLOW NORMAL FAST -d M -d M -d M', which "
@@ -657,13 +689,17 @@ def calibration_gait_message(gait: dict | None, cadence: float | None, n: int, p
 
 
 def calibration_line(gait: dict | None, cadence: float | None, n: int, pipeline: str, *, gait_check: bool = False,
-                     speed_check: bool = True) -> str | None:
+                     speed_check: bool = True, pelvic: tuple[float, int] | None = None) -> str | None:
     """The one calibration line of a calibrated waist track (decisions W140, W211; E142: ``track`` and ``run`` alike):
     W140's change-of-gait line when the option ``gait_check`` is on and it fires (its band lies outside W211's, so
-    one line, not two), else W211's speed line when ``speed_check`` (on by default) and it fires; None: neither."""
+    one line, not two), else W211's speed line when ``speed_check`` (on by default) and it fires; None: neither.
+    Decision W579: ``pelvic`` (the pelvic-gyro detector's cadence, steps/min, and count), given when W442 found the
+    contacts no step count: both checks read it instead of the contacts' ``cadence`` and ``n``."""
+    if pelvic is not None:  # decision W579: the contacts' cadence is not the walker's
+        cadence, n = pelvic
     line = calibration_gait_message(gait, cadence, n, pipeline) if gait_check else None
     if line is None and speed_check:
-        line = calibration_speed_message(gait, cadence, n, pipeline)
+        line = calibration_speed_message(gait, cadence, n, pipeline, pelvic_gyro=pelvic is not None)
     return line
 
 #: W105: the still period read: the first standstill of at least 2 s (thesis ch.7.2's setup standstill, as
