@@ -6,6 +6,7 @@ F4). Routes (20 Hz, 0.3 m steps in 0.8 s, pendulum bounce, walks seed 0): the tr
 (frail_transfers_w450's matching). Prints found / true and false rows per route, transfer time and reading.
 
     PYTHONPATH=. OMP_NUM_THREADS=1 .venv/bin/python experiments/frail_transfers_w583.py FIRST LAST
+    ... --real   (check (d), run from the repository root)
 """
 
 from __future__ import annotations
@@ -54,5 +55,23 @@ def main(first: int, last: int) -> None:
               f"found {f} of {t}, false {x}")
 
 
+def real() -> None:
+    """Check (d): the real lower-back recordings' transfers with and without W583."""
+    from pathlib import Path
+
+    from pdrlearn.io import read_session
+
+    folders = sorted({p.resolve() for p in [*Path("datasets/external").glob("mobgap_*"),
+                                            *Path("/work/shared/data").glob("mobgap_*")]})
+    for f in folders:
+        s = read_session(f)
+        a, b = rows_of(s, False), rows_of(s, True)
+        same = a.round(6).equals(b.round(6))
+        print(f"{f.name}: today {len(a)} rows, W583 {len(b)} rows, {'unchanged' if same else 'CHANGED'}")
+
+
 if __name__ == "__main__":
-    main(int(sys.argv[1]), int(sys.argv[2]))
+    if sys.argv[1] == "--real":
+        real()
+    else:
+        main(int(sys.argv[1]), int(sys.argv[2]))
