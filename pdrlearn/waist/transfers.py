@@ -363,14 +363,14 @@ def still_upright_transfers(imu: WaistIMU) -> tuple[pd.DataFrame, np.ndarray | N
     return transfers_from_tilt(imu, _tilt_deg(imu, up)), up
 
 
-def chair_transfers_upright(imu: WaistIMU, steps: pd.DataFrame, *, slow_pairs: bool = False
+def chair_transfers_upright(imu: WaistIMU, steps: pd.DataFrame, *, slow_pairs: bool = True
                             ) -> tuple[pd.DataFrame, np.ndarray | None, str]:
     """Decisions W182, W277: ``(rows, upright, source)`` of a lower-back track. ``source`` ``"walking"``: W102's
     walking upright of ``steps``' contacts (``event_s``, ``has_next``), when they hold a walking sequence
     (:func:`~pdrlearn.waist.upright.walking_is_reliable`); ``"still"``: else the still standing upright
     (:func:`still_upright_transfers`); ``"none"``: neither (no rows, upright None); ``"walking"`` with no rows and
     upright None also when the AHRS gave no up direction or there is no contact at all to go by. ``slow_pairs``
-    (decision W583's candidate): and :func:`with_slow_pairs`' seated periods."""
+    (decision W583, adopted; False: without it): and :func:`with_slow_pairs`' seated periods."""
     if imu.up_body is None:
         return _empty(), None, "walking"
     ev = steps["event_s"].to_numpy(float) if len(steps) and "event_s" in steps else np.zeros(0)
