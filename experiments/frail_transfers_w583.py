@@ -15,11 +15,11 @@ import dataclasses
 import functools
 import sys
 
-import frail_transfers_w450 as w450
 import pandas as pd
-import waist_backward
 
+import frail_transfers_w450 as w450
 import pdrlearn.track.waist as track_mod
+import waist_backward
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
 from pdrlearn.waist.transfers import chair_transfers_upright

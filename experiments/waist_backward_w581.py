@@ -13,8 +13,7 @@ import dataclasses
 import logging
 import sys
 
-import waist_backward  # noqa: E402  (sibling script, E301)
-
+import waist_backward  # a sibling script, imported by bare name (E301)
 from pdrlearn.cli.simulate import with_swing_and_sway
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
