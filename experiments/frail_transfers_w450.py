@@ -34,6 +34,30 @@ def use_candidate(text: str | None) -> None:
         T.transfers_from_tilt = functools.partial(T.transfers_from_tilt, slow_bounds=json.loads(text))
 
 
+def truth_of(s) -> list[tuple[str, float, float]]:
+    """The simulated session's true transfers ``(kind, start_s, end_s)`` (its ``extras["transfers"]``)."""
+    truth = []
+    for r in (s.extras["transfers"].itertuples() if "transfers" in s.extras else ()):
+        if r.start_s >= 0 and r.seated_s - r.start_s > 0.5:
+            truth.append(("stand-to-sit", r.start_s, r.seated_s))
+        if r.end_s > r.rise_s:
+            truth.append(("sit-to-stand", r.rise_s, r.end_s))
+    return truth
+
+
+def match(truth, rows: pd.DataFrame) -> tuple[int, int, list[float]]:
+    """``(found, false, duration errors)``: a row matches a true transfer it overlaps with the same kind."""
+    used, found, derr = set(), 0, []
+    for kind, a, b in truth:
+        m = [i for i, r in rows.iterrows() if r["kind"] == kind and r["start_s"] < b and r["end_s"] > a
+             and i not in used]
+        if m:
+            used.add(m[0])
+            found += 1
+            derr.append(rows.loc[m[0], "duration_s"] - (b - a))
+    return found, len(rows) - len(used), derr
+
+
 def sim(lo: float, hi: float, users: range) -> str:
     found = tot = false = 0
     derr = []
@@ -42,23 +66,10 @@ def sim(lo: float, hi: float, users: range) -> str:
         p = dataclasses.replace(p, step_length_m=0.3, step_time_s=0.8, class_step_length_m=p.step_length_m)
         s = simulate_path(parse_route(ROUTE), p, seed=0, bounce="pendulum", sit_start_s=20, sit_end_s=20,
                           transfer_s=(lo, hi))
-        truth = []
-        for r in s.extras["transfers"].itertuples():
-            if r.start_s >= 0 and r.seated_s - r.start_s > 0.5:
-                truth.append(("stand-to-sit", r.start_s, r.seated_s))
-            if r.end_s > r.rise_s:
-                truth.append(("sit-to-stand", r.rise_s, r.end_s))
-        rows = pd.DataFrame(track_waist(s, pipeline="waist-pendulum").info["transfers"] or [])
-        used = set()
-        for kind, a, b in truth:
-            tot += 1
-            m = [i for i, r in rows.iterrows() if r["kind"] == kind and r["start_s"] < b and r["end_s"] > a
-                 and i not in used]
-            if m:
-                used.add(m[0])
-                found += 1
-                derr.append(rows.loc[m[0], "duration_s"] - (b - a))
-        false += len(rows) - len(used)
+        truth = truth_of(s)
+        f, x, d = match(truth, pd.DataFrame(track_waist(s, pipeline="waist-pendulum").info["transfers"] or []))
+        tot, found, false = tot + len(truth), found + f, false + x
+        derr += d
     return (f"transfer-time {lo:g}:{hi:g} users {users.start}-{users.stop - 1}: found {found} of {tot}, false {false}, "
             f"median |duration error| {np.median(np.abs(derr)):.2f} s")
 

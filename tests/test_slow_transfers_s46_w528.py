@@ -72,6 +72,7 @@ def test_w182s_whole_seated_period_is_left_alone(monkeypatch):
 def _track(monkeypatch, w528: bool):
     if not w528:
         monkeypatch.setattr(T, "with_slow_seats", lambda imu, tilt, rows, contacts: rows)
+        monkeypatch.setattr(T, "with_slow_pairs", lambda imu, tilt, rows, contacts: rows)  # W583 reads it too
     s = simulate_path(parse_route("stand:3, straight:5, sit:40, straight:5, stand:3"),
                       UserProfile.from_seed(14270), rate_hz=100.0, seed=0, scenario="route", transfer_s=(3.0, 5.0))
     r = get_pipeline("waist-pendulum")(s)

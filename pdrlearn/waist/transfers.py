@@ -289,6 +289,36 @@ def with_slow_seats(imu: WaistIMU, tilt: np.ndarray, rows: pd.DataFrame, contact
     return _with_added(rows, added)
 
 
+def with_slow_pairs(imu: WaistIMU, tilt: np.ndarray, rows: pd.DataFrame, contacts: np.ndarray) -> pd.DataFrame:
+    """Decision W583: ``rows`` with each seated period read by W450's candidate C (:data:`W450_CANDIDATE`) alone, as
+    W528 reads one between two walks but with no walk needed (a stand-pivot between two chairs, a rise that leads
+    nowhere, a seated start or end): two consecutive rows of that reading, a stand-to-sit then a sit-to-stand, at
+    least :data:`UNMATCHED_SIT_S` apart (seated between) and with none of ``contacts`` (s) from the sit's start to
+    the rise's end; each of the two is added unless it overlaps a row already read (a pair whose sit or rise overlaps a
+    row of another kind adds nothing). Rows renumbered in time order."""
+    slow = transfers_from_tilt(imu, tilt, slow_bounds=W450_CANDIDATE)
+    c = np.asarray(contacts, dtype=float)
+    start, end, kind = rows["start_s"].to_numpy(float), rows["end_s"].to_numpy(float), rows["kind"].to_numpy()
+    added = []
+    for k in range(len(slow) - 1):
+        sit, rise = slow.iloc[k], slow.iloc[k + 1]
+        if sit["kind"] != STAND_TO_SIT or rise["kind"] != SIT_TO_STAND:
+            continue
+        if float(rise["start_s"]) - float(sit["end_s"]) < UNMATCHED_SIT_S:
+            continue
+        if ((c >= float(sit["start_s"])) & (c <= float(rise["end_s"]))).any():
+            continue  # walked while "seated": no seated period
+        new, clash = [], False
+        for j in (k, k + 1):
+            over = (start < float(slow["end_s"].iloc[j])) & (end > float(slow["start_s"].iloc[j]))
+            clash |= bool((kind[over] != slow["kind"].iloc[j]).any())
+            if not over.any():
+                new.append(slow.iloc[[j]])
+        if not clash:
+            added += new
+    return _with_added(rows, added)
+
+
 def _final_turn_end(imu: WaistIMU, last: float) -> float:
     """Decision W506: the end (s) of the first pelvis yaw-rate turn (L210) of at least C180's
     :data:`~pdrlearn.track.turn_gaps.TURN_GAP_MIN_DEG` that starts at most :data:`SLOW_EDGE_WALK_S` after ``last``
@@ -333,12 +363,14 @@ def still_upright_transfers(imu: WaistIMU) -> tuple[pd.DataFrame, np.ndarray | N
     return transfers_from_tilt(imu, _tilt_deg(imu, up)), up
 
 
-def chair_transfers_upright(imu: WaistIMU, steps: pd.DataFrame) -> tuple[pd.DataFrame, np.ndarray | None, str]:
+def chair_transfers_upright(imu: WaistIMU, steps: pd.DataFrame, *, slow_pairs: bool = True
+                            ) -> tuple[pd.DataFrame, np.ndarray | None, str]:
     """Decisions W182, W277: ``(rows, upright, source)`` of a lower-back track. ``source`` ``"walking"``: W102's
     walking upright of ``steps``' contacts (``event_s``, ``has_next``), when they hold a walking sequence
     (:func:`~pdrlearn.waist.upright.walking_is_reliable`); ``"still"``: else the still standing upright
     (:func:`still_upright_transfers`); ``"none"``: neither (no rows, upright None); ``"walking"`` with no rows and
-    upright None also when the AHRS gave no up direction or there is no contact at all to go by."""
+    upright None also when the AHRS gave no up direction or there is no contact at all to go by. ``slow_pairs``
+    (decision W583, adopted; False: without it): and :func:`with_slow_pairs`' seated periods."""
     if imu.up_body is None:
         return _empty(), None, "walking"
     ev = steps["event_s"].to_numpy(float) if len(steps) and "event_s" in steps else np.zeros(0)
@@ -355,12 +387,13 @@ def chair_transfers_upright(imu: WaistIMU, steps: pd.DataFrame) -> tuple[pd.Data
         tilt = _tilt_deg(imu, up)
         # decision L648: a slow rise before the first contact / sit after the last one (a TUG's) by W450's bounds;
         # W528: a slow seated period between two walks, as a sit-and-rise pair
-        rows = with_slow_edges(imu, tilt, transfers_from_tilt(imu, tilt), ev)
-        return with_slow_seats(imu, tilt, rows, ev), up, "walking"
+        rows = with_slow_seats(imu, tilt, with_slow_edges(imu, tilt, transfers_from_tilt(imu, tilt), ev), ev)
+        return (with_slow_pairs(imu, tilt, rows, ev) if slow_pairs else rows), up, "walking"  # decision W583
     rows, up = still if still is not None else still_upright_transfers(imu)
     if up is not None:  # decision L648: W277's upright, the same slow rise / sit at the walk's ends (W528: between)
         tilt = _tilt_deg(imu, up)
         rows = with_slow_seats(imu, tilt, with_slow_edges(imu, tilt, rows, ev), ev)
+        rows = with_slow_pairs(imu, tilt, rows, ev) if slow_pairs else rows  # decision W583
     return rows, up, "still" if up is not None else "none"
 
 
