@@ -156,7 +156,8 @@ META_ONLY_WHEN_SET = ("pelvis", "bounce", "waist_mount_deg", "waist_mount_end_de
                       "foot_sensor_pos", "foot_sensor_height_m", "foot_mount_roll_deg",
                       "pelvis_height_m", "bounce_scale", "step_time_asymmetry", "step_length_asymmetry",
                       "stance_time_asymmetry", "sit_start_s", "sit_end_s", "instrumented_foot", "paretic_side", "gaps",
-                      "longer_stance_side", "prosthetic_side", *PROSTHETIC_FOOT_FIELDS, "transfer_s", "gyro_bias_tau_s", "trunk_jerk_rate_hz", "trunk_jerk_deg", "trunk_jerk_m")
+                      "longer_stance_side", "prosthetic_side", *PROSTHETIC_FOOT_FIELDS,  # decisions S119, S120
+                      "transfer_s", "gyro_bias_tau_s", "trunk_jerk_rate_hz", "trunk_jerk_deg", "trunk_jerk_m")
 #: decisions S54, S55: the values of the two foot-side knobs
 FEET = ("left", "right")
 

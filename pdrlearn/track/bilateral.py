@@ -82,11 +82,12 @@ OFFSET_SWING_SHARE_MAX = 0.5
 STANCE_MIN_PCT = 55.0
 
 
-def foot_events(steps: pd.DataFrame) -> pd.DataFrame:
+def foot_events(steps: pd.DataFrame, *, ramps: bool = False) -> pd.DataFrame:
     """Decision L259: the IC events of one foot track's ``steps.csv`` (offline plasys: ``event_s``; ``tc_s`` with
     ``--toe-off``, else NaN; ``length_m``, NaN on an ``impossible`` stride) in time order; gap rows (``gap_s`` > 0,
     L67) and rows without an IC left out. A label table (``ic_s`` / ``tc_s`` in s, e.g. a mocap ``steps.csv`` read
-    by :func:`pdrlearn.io.read_session`) is taken as it is."""
+    by :func:`pdrlearn.io.read_session`) is taken as it is. ``ramps`` (decision L775, measured and not adopted; off by
+    default): ``ramp`` is :func:`stride_ramp`'s and a ramp stride's terrain flat; off, ``ramp`` is all False."""
     ic_col = "event_s" if "event_s" in steps else "ic_s"
     if ic_col not in steps:
         raise DataError("bilateral gait: the foot table has no initial contacts (event_s / ic_s); track the foot "
@@ -102,7 +103,8 @@ def foot_events(steps: pd.DataFrame) -> pd.DataFrame:
     if "impossible" in st:
         length = np.where(flag_values(st["impossible"]), np.nan, length)
     terrain_all = stride_terrain(steps)
-    ramp = stride_ramp(steps, terrain_all)[ok]  # decision L775
+    # decision L775 (measured, not adopted: off by default): the ramp strides, their own kind
+    ramp = stride_ramp(steps, terrain_all)[ok] if ramps else np.zeros(int(ok.sum()), bool)
     # decision L775: a ramp stride is no stair step (the simulator labels a ramp stride rising 0.08 m "up", S3)
     terrain, turn = np.where(ramp, "flat", terrain_all[ok]).astype(object), stride_turn_deg(steps)[ok]  # L538
     span = (st["end_s"].to_numpy(float) - st["start_s"].to_numpy(float) if {"start_s", "end_s"} <= set(st)
@@ -714,7 +716,7 @@ def kind_measures(both: pd.DataFrame, steps: pd.DataFrame, cycles: pd.DataFrame)
 
 def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
                    step_lengths: pd.DataFrame | None = None, contact_source=None,
-                   rate_hz: float | None = None) -> dict:
+                   rate_hz: float | None = None, ramps: bool = False) -> dict:
     """Decisions L259-L262 (Python API): bilateral gait of one walk from the left and the right foot's step
     tables (a foot track's ``steps.csv`` or a label table, :func:`foot_events`) on one clock.
 
@@ -727,10 +729,11 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
     (decision L540): a label table of both feet's contacts with each step's length (ics.csv), whose lengths the steps
     take (:func:`known_step_lengths`). ``contact_source`` (decision L703: "force" / "imu", or a per-foot dict; None:
     unknown) picks the set-up whose known support bias ``reason`` states, in this walk's gait cycle, at the foot
-    units' ``rate_hz`` (decision L737; None: unknown). Refuses
+    units' ``rate_hz`` (decision L737; None: unknown). ``ramps`` (decision L775, not adopted; default off): ramp
+    strides (:func:`stride_ramp`) their own kind ``ramp``, out of the level headline. Refuses
     (:class:`DataError`, one line) two tables whose contacts do not overlap in time (L260: not one walk on one
     clock)."""
-    left, right = foot_events(left_steps), foot_events(right_steps)
+    left, right = foot_events(left_steps, ramps=ramps), foot_events(right_steps, ramps=ramps)  # decision L775
     for s, ev in zip(SIDES, (left, right), strict=True):
         if len(ev) < 2:
             raise DataError(f"bilateral gait: the {s} foot has {len(ev)} initial contact(s); give a walk of at least "
@@ -1106,7 +1109,7 @@ def read_pair(left_dir: Path, right_dir: Path, *, streamed: bool = False) -> tup
 
 
 def pair_sessions(left_dir: Path, right_dir: Path, *, ignore_force: bool = False, track_foot=None,
-                  streamed: bool = False, read: tuple | None = None) -> dict:
+                  streamed: bool = False, read: tuple | None = None, ramps: bool = False) -> dict:
     """Decisions L259-L263: read and track (offline plasys with ``toe_off=True``, L73) the left and the right foot's
     session folders of one walk and give :func:`bilateral_gait` of their tracks, plus ``"reference"``: the same
     measures of their labelled events when both sessions have them (L263), and ``"sessions"``: each track's
@@ -1144,7 +1147,7 @@ def pair_sessions(left_dir: Path, right_dir: Path, *, ignore_force: bool = False
     from pdrlearn.track.clock import on_export_clock
 
     out = bilateral_gait(*(on_export_clock(t.steps, sh) for t, sh in zip(tracks, shifts, strict=True)),  # L537
-                         contact_source=sources, rate_hz=foot_rate_hz(sessions))  # L703, L737: the bias
+                         contact_source=sources, rate_hz=foot_rate_hz(sessions), ramps=ramps)  # L703, L737, L775
     out["clock_alignment"] = alignment
     if alignment["note"] is not None:
         logging.getLogger(__name__).warning(alignment["note"])
@@ -1156,7 +1159,7 @@ def pair_sessions(left_dir: Path, right_dir: Path, *, ignore_force: bool = False
     ics = sessions[0].extras.get("ics")  # decision L540: the simulator's both-feet contacts with step lengths
     ics = None if ics is None else on_export_clock(ics, shifts[0])
     out["reference"] = (bilateral_gait(*(on_export_clock(x, sh) for x, sh in zip(labels, shifts, strict=True)),
-                                       step_lengths=ics) if all(x is not None for x in labels) else None)
+                                       step_lengths=ics, ramps=ramps) if all(x is not None for x in labels) else None)
     sharp = [impact_sharpness(s["fAccelerometer"].t, s["fAccelerometer"].values, t.steps["event_s"])
              for s, t in zip(sessions, tracks, strict=True)]  # decision L318
     out["walk"]["impact_sharpness_left"], out["walk"]["impact_sharpness_right"] = sharp
