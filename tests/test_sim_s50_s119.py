@@ -96,3 +96,17 @@ def test_bad_prosthetic_options_are_one_line_s119(args, match, tmp_path, capsys)
     assert len(err) == 1 and match in err[0] and not out.exists()
     with pytest.raises(DataError, match="prosthetic_impact_speed_mps 0: give a number from 0.05 to 2"):
         simulate_path(ROUTE, USER, prosthetic_side="right", prosthetic_impact_speed_mps=0)
+
+
+def test_the_help_gives_the_ranges_the_knobs_check_s119():
+    """The CLI's help (numpy-free, C14) states PROSTHETIC_FOOT_FIELDS' ranges."""
+    import typer
+
+    from pdrlearn.cli import app
+    from pdrlearn.sim.user import PROSTHETIC_FOOT_FIELDS
+
+    params = {p.name: p for p in typer.main.get_command(app).commands["simulate"].params}
+    for knob, (_, (lo, hi)) in PROSTHETIC_FOOT_FIELDS.items():
+        name = knob.rsplit("_", 1)[0] if not knob.endswith("_mps") else "prosthetic_impact_speed"
+        text = params[name].help
+        assert f"{lo:g} to {hi:g}" in text or f"{lo:g}-{hi:g}" in text, (knob, text)
