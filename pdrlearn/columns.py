@@ -1209,6 +1209,9 @@ FOOT_STEPS: tuple[Column, ...] = (
     ("heading_rad", "rad", "number", "the direction the stride is placed along (ENU, 0 = east or the start "
                                      "direction, counter-clockwise)"),
     ("dz_m", "m", "number", "the stride's height change"),
+    ("raw_dz_m", "m", "number", "offline: the stride's integrated height change before L39's level rule or a "
+                                "terrain class (a 1:12 ramp's ~0.09 m stride is 0 in dz_m); empty on a gap row or an "
+                                "impossible stride; gait's ramps keyword reads it (L775, off by default)"),
     ("pause_dz_m", "m", "number", "with a waist barometer (wBarometer.csv): its ride of 1.5 m or more in the "
                                   "standstill before the stride (L378, W231's rule), else 0; not in dz_m nor z, "
                                   "counted in the floors (L375)"),

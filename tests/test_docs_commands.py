@@ -379,7 +379,8 @@ def _validators() -> dict[tuple[str, str], object]:
         ("simulate", "bounce"): _one_of(BOUNCE_MODES),  # decision S29
         ("simulate", "rocker"): _one_of(ROCKER_MODES),  # decisions S31, S63
         ("simulate", "contact"): _one_of(CONTACT_MODES),  # decision S108
-        **{("simulate", k): _one_of(FEET) for k in ("foot", "paretic_side")},  # decisions S54, S55
+        **{("simulate", k): _one_of(FEET)  # decisions S54, S55, S119, S120
+           for k in ("foot", "paretic_side", "longer_stance_side", "prosthetic_side")},
         ("fetch", "source"): _one_of(SOURCES),
         ("import", "unit"): _one_of(PLACEMENTS),
         ("import", "foot"): _one_of(FEET),  # decision B321 (the same two feet as importer.FEET)

@@ -70,7 +70,8 @@ def test_help_says_the_feet_are_anatomical(capsys, monkeypatch):  # decision S94
         pass
     text = " ".join(w for w in capsys.readouterr().out.split() if w.strip("│╭╮╰╯─"))  # rich's box borders apart
     assert "S92" in text  # the route help names the leading foot
-    assert "there is no prosthetic foot (decision S94)" in text
+    # decision S119 (session 50): one foot of its own only with --prosthetic-side
+    assert "the same anatomical foot's (decision S94) unless --prosthetic-side gives one foot its own (S119)" in text
     assert "--stance-time-asymmetry shortens the paretic side's (S94)" in text
 
 

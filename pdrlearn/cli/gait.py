@@ -90,7 +90,7 @@ def _basis(w: dict, by_kind: dict | None = None) -> str:
     straight steps each side had (``by_kind["level"]``, none without)."""
     if w.get("headline_steps") == "level":
         return (f" (level straight steps, of {w['n_steps_all_left']}/{w['n_steps_all_right']}: no stairs, turns, "
-                "starts, stops or backward strides; L538, L746)")
+                "starts, stops, backward or ramp strides; L538, L746, L775)")
     if w.get("headline_steps") == "all":
         from pdrlearn.track.bilateral import HEADLINE_MIN_LEVEL_STEPS
 
@@ -109,7 +109,7 @@ def pace_line(w: dict) -> str:
 
 #: decision L538: the printed name of each step kind's row
 KIND_NAMES = {"level": "level", "stairs_up": "stairs up", "stairs_down": "stairs down", "turn": "turn",
-              "start_stop": "start / stop", "backward": "backward"}  # decision L746
+              "start_stop": "start / stop", "backward": "backward", "ramp": "ramp"}  # decisions L746, L775
 
 
 def kind_lines(by_kind: dict) -> list[str]:

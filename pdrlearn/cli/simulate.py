@@ -237,13 +237,33 @@ def simulate_cmd(
         "onto the left foot (--paretic-side) is 1 + this times as long as the step onto the other, e.g. 0.1; the "
         "stride length stays the user's; ics.csv gets each step's length; 0 (default) to below 1 (decision S42). "
         "Only the step times, lengths and (--stance-time-asymmetry) stance are asymmetric: both feet's kinematics "
-        "(toe-off pitch, push-off, heel strike) are the same anatomical foot's; there is no prosthetic foot "
-        "(decision S94)."),
+        "(toe-off pitch, push-off, heel strike) are the same anatomical foot's (decision S94) unless "
+        "--prosthetic-side gives one foot its own (S119)."),
     stance_time_asymmetry: float = typer.Option(
         0.0, "--stance-time-asymmetry", help="Shorter stance on the --paretic-side foot (a prosthesis user loads "
         "the prosthetic side for less time): its stance fraction is the user's / (1 + this), its swings longer, the "
         f"step times unchanged, so the other foot's stance is about 1 + this times its own; 0 (default) to below "
-        f"{STANCE_TIME_ASYMMETRY_MAX:g} (double support stays; decision S94)."),
+        f"{STANCE_TIME_ASYMMETRY_MAX:g} (double support stays; decision S94); the longer stance's foot: "
+        "--longer-stance-side."),
+    longer_stance_side: str | None = typer.Option(
+        None, "--longer-stance-side", help="With --stance-time-asymmetry: the foot whose stance is the longer, left "
+        "or right (default: the foot that is not --paretic-side), so a prosthetic side's longer stance needs no "
+        "swapped --paretic-side (decision S120)."),
+    prosthetic_side: str | None = typer.Option(
+        None, "--prosthetic-side", help="One foot of its own, left or right (a prosthetic foot): its steps take "
+        "the --prosthetic-* values below in place of the user's; the other foot, the contacts' times and meta.json's "
+        "user stay the user's, and both feet's meta.json record the same knobs, so `pdrlearn gait` pairs the two "
+        "folders simulated with the same arguments (decision S119)."),
+    prosthetic_toe_off_pitch: float | None = typer.Option(
+        None, "--prosthetic-toe-off-pitch", metavar="DEG", help="With --prosthetic-side: that foot's toe-off pitch "
+        "(deg, -80 to 0; the users' own -58 to -50; a stiff prosthetic ankle about -15): less push-off, a lower "
+        "heel in swing (decision S119)."),
+    prosthetic_heel_strike_pitch: float | None = typer.Option(
+        None, "--prosthetic-heel-strike-pitch", metavar="DEG", help="With --prosthetic-side: that foot's pitch at "
+        "heel strike (deg, 0-40; the users' own 17-26; a stiff prosthetic heel about 8; decision S119)."),
+    prosthetic_impact_speed: float | None = typer.Option(
+        None, "--prosthetic-impact-speed", metavar="M_PER_S", help="With --prosthetic-side: that foot's speed at "
+        "contact (m/s, 0.05-2; the users' own 0.45-0.7): the landing's impact (decision S119)."),
     foot: str = typer.Option(
         "right", "--foot", help="The foot that carries the foot unit: right (default) or left. The same arguments "
         "with --foot left give the other foot of the SAME walk (same contacts, waist and trajectory; the foot's "
@@ -409,9 +429,19 @@ def simulate_cmd(
             other = (f"; for the other foot's longer steps give --paretic-side {flip} {name} {-value:g} (decision "
                      "S93)" if math.isfinite(value) and -top < value < 0 else "")
             raise DataError(f"{name} {value:g}: give 0 (symmetric) to below {top:g} ({example}){other}")
-    for name, v in (("--foot", foot), ("--paretic-side", paretic_side)):  # decisions S54, S55
-        if v not in ("left", "right"):
+    for name, v in (("--foot", foot), ("--paretic-side", paretic_side), ("--longer-stance-side",  # S54, S55, S120
+                    longer_stance_side), ("--prosthetic-side", prosthetic_side)):  # decision S119
+        if v not in ("left", "right") and (v is not None or name in ("--foot", "--paretic-side")):
             raise DataError(f"{name} {v!r}: give left or right")
+    from pdrlearn.sim.simulate import check_prosthetic_foot
+
+    prosthetic = {"prosthetic_side": prosthetic_side, "prosthetic_toe_off_pitch_deg": prosthetic_toe_off_pitch,
+                  "prosthetic_heel_strike_pitch_deg": prosthetic_heel_strike_pitch,
+                  "prosthetic_impact_speed_mps": prosthetic_impact_speed}
+    check_prosthetic_foot(prosthetic, options={  # decision S119: the line names the CLI's options
+        "prosthetic_side": "--prosthetic-side", "prosthetic_toe_off_pitch_deg": "--prosthetic-toe-off-pitch",
+        "prosthetic_heel_strike_pitch_deg": "--prosthetic-heel-strike-pitch",
+        "prosthetic_impact_speed_mps": "--prosthetic-impact-speed"})
     if not (math.isfinite(stand) and STAND_RANGE_S[0] <= stand <= STAND_RANGE_S[1]):  # decision S90
         raise DataError(f"--stand {stand:g}: give the standstill before and after the walk in seconds, "
                         f"{STAND_RANGE_S[0]:g} to {STAND_RANGE_S[1]:g} (e.g. --stand 0.5 for a clinic TUG)")
@@ -464,6 +494,8 @@ def simulate_cmd(
         **parse_jerk_size(trunk_jerk_size),  # decision S114
         instrumented_foot=foot,
         paretic_side=paretic_side,
+        longer_stance_side=longer_stance_side,  # decision S120
+        **prosthetic,  # decision S119
     )
     label = scenario or "route"
     with progress(f"simulating {label}", total=2, enabled=not as_json) as advance:

@@ -178,6 +178,8 @@ def schedule(
     affected: str = AFFECTED_FOOT,
     stance_time_asymmetry: float = 0.0,
     contact: str = "heel",
+    feet: dict[str, UserProfile] | None = None,
+    short_stance: str | None = None,
 ) -> Events:
     """Assign gait-event times to the footsteps (both feet) and draw per-step swing parameters.
 
@@ -186,7 +188,12 @@ def schedule(
 
     ``stance_time_asymmetry`` (decision S94): the ``affected`` foot's stance fraction is the user's / (1 + this) - its
     swings before landing are longer, its stance shorter, the step times unchanged - so the other foot's stance is
-    about 1 + this times its own (a prosthesis user loads the prosthetic side for less time).
+    about 1 + this times its own (a prosthesis user loads the prosthetic side for less time). ``short_stance``
+    (decision S120): the foot whose stance is shortened, when it is not the ``affected`` one (None: ``affected``).
+
+    ``feet`` (decision S119): a foot's own profile (``{"left": ...}``, :func:`pdrlearn.sim.user.side_foot`): the
+    steps landing on it take their toe-off pitch, heel-strike pitch and impact speed from it, the other foot's and
+    every time from ``user``; no random draw changes, so the other foot's steps are the same to the bit.
 
     ``rocker``: "hermite" (the foot is flat and still ``LOAD_FRACTION`` of the cycle after the contact) or "smooth"
     (still only ``ROCKER_FRACTION`` after it, decisions S31; the foot-flat event stays at ``LOAD_FRACTION``).
@@ -217,7 +224,7 @@ def schedule(
     settle = stand_s  # time at which all feet are flat after the last bout
     for k, st in enumerate(steps):
         stance = user.stance_fraction  # decision S94: the affected foot's shortened (skipped at 0: bit for bit)
-        if stance_time_asymmetry and st.foot == affected:
+        if stance_time_asymmetry and st.foot == (short_stance or affected):  # decision S120: or the named one
             stance = user.stance_fraction / (1.0 + stance_time_asymmetry)
         kd = KINDS[st.kind]
         dfac, pfac, (vf, vz), clear = kd.duration, kd.toe_off, kd.impact, kd.clearance_m
@@ -248,12 +255,13 @@ def schedule(
         settle = max(settle, ic + still)
         jit = 1.0 + 0.05 * variability * rng.normal()
         gait_pitch = 0.6 if st.gait == "short" else (1.1 if st.gait == "long" else 1.0)
-        ev["theta_to"][k] = np.radians(user.toe_off_pitch_deg) * pfac * SPEED_PITCH[speed] * gait_pitch * jit
+        fu = feet.get(st.foot, user) if feet else user  # decision S119: a one-sided foot's own pitches and impact
+        ev["theta_to"][k] = np.radians(fu.toe_off_pitch_deg) * pfac * SPEED_PITCH[speed] * gait_pitch * jit
         if ic_pitch is None and contact == "forefoot" and st.kind in FOREFOOT_KINDS:  # decision S108
             ic_pitch = np.radians(FOREFOOT_CONTACT_DEG) * (0.6 if st.kind == "close" else 1.0)
         if ic_pitch is None:
             ic_pitch = (
-                np.radians(user.heel_strike_pitch_deg)
+                np.radians(fu.heel_strike_pitch_deg)
                 * (0.6 if st.kind == "close" else 1.0)
                 * SPEED_PITCH[speed]
                 * gait_pitch
@@ -268,7 +276,7 @@ def schedule(
         ev["theta_mid"][k] = (
             0.95 * ev["theta_ic"][k] if kd.mid_swing_deg is None else np.radians(kd.mid_swing_deg) * jit
         )
-        sp = user.impact_speed_mps * np.exp(rng.normal(0.0, 0.25 * variability))
+        sp = fu.impact_speed_mps * np.exp(rng.normal(0.0, 0.25 * variability))
         sp *= {"slow": 0.8, "normal": 1.0, "fast": 1.2}[speed] * GAIT_FACTORS[st.gait][0] ** 0.5
         if st.irregular:
             sp *= 0.5

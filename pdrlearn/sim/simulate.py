@@ -61,7 +61,7 @@ from pdrlearn.sim.transfer import (
     transfer_table,
 )
 from pdrlearn.sim.trunk_jerks import JERK_DEG, JERK_M, check_jerk_options, draw_jerks, jerk_pose, jerk_table
-from pdrlearn.sim.user import SPEEDS, UserProfile
+from pdrlearn.sim.user import PROSTHETIC_FOOT_FIELDS, SPEEDS, UserProfile, side_foot
 from pdrlearn.sim.vehicle import VehicleRide, vehicle_carry
 
 log = logging.getLogger(__name__)
@@ -128,6 +128,14 @@ KNOBS: dict[str, object] = {
     "instrumented_foot": "right",
     # the foot whose steps the two asymmetries lengthen: "left" (S35, S42) or "right" (S55)
     "paretic_side": "left",
+    # decision S120: the foot whose stance stance_time_asymmetry leaves the longer (None: the one not paretic_side)
+    "longer_stance_side": None,
+    # decision S119: a one-sided (prosthetic) foot, "left" or "right", with its own toe-off pitch (deg), heel-strike
+    # pitch (deg) and impact speed (m/s) in place of the user's (None: the user's; sim.user.PROSTHETIC_FOOT_FIELDS)
+    "prosthetic_side": None,
+    "prosthetic_toe_off_pitch_deg": None,
+    "prosthetic_heel_strike_pitch_deg": None,
+    "prosthetic_impact_speed_mps": None,
     # decision S83: data gaps (a battery swap): (unit, start_s, duration_s) per gap, unit foot, waist or both
     "gaps": (),
     # decision S95: the range (s) of each sit-down's / stand-up's duration (sim.transfer.TRANSFER_S by default)
@@ -148,6 +156,7 @@ META_ONLY_WHEN_SET = ("pelvis", "bounce", "waist_mount_deg", "waist_mount_end_de
                       "foot_sensor_pos", "foot_sensor_height_m", "foot_mount_roll_deg",
                       "pelvis_height_m", "bounce_scale", "step_time_asymmetry", "step_length_asymmetry",
                       "stance_time_asymmetry", "sit_start_s", "sit_end_s", "instrumented_foot", "paretic_side", "gaps",
+                      "longer_stance_side", "prosthetic_side", *PROSTHETIC_FOOT_FIELDS,  # decisions S119, S120
                       "transfer_s", "gyro_bias_tau_s", "trunk_jerk_rate_hz", "trunk_jerk_deg", "trunk_jerk_m")
 #: decisions S54, S55: the values of the two foot-side knobs
 FEET = ("left", "right")
@@ -246,9 +255,10 @@ def _check_knobs(knobs: dict) -> dict:
         raise DataError(f"simulate: pelvis={out['pelvis']!r} must be one of {', '.join(PELVIS_MODES)}")
     if out["bounce"] not in BOUNCE_MODES:
         raise DataError(f"simulate: bounce={out['bounce']!r} must be one of {', '.join(BOUNCE_MODES)}")
-    for k in ("instrumented_foot", "paretic_side"):  # decisions S54, S55
-        if out[k] not in FEET:
+    for k in ("instrumented_foot", "paretic_side", "longer_stance_side", "prosthetic_side"):  # S54, S55, S119, S120
+        if out[k] not in FEET and (out[k] is not None or k in ("instrumented_foot", "paretic_side")):
             raise DataError(f"simulate: {k}={out[k]!r} must be 'left' or 'right'")
+    check_prosthetic_foot(out)  # decision S119
     if out["rocker"] not in ROCKER_MODES:
         raise DataError(f"simulate: rocker={out['rocker']!r} must be one of {', '.join(ROCKER_MODES)}")
     if out["contact"] not in CONTACT_MODES:  # decision S108
@@ -305,6 +315,28 @@ def _check_knobs(knobs: dict) -> dict:
         raise DataError(f"simulate: step_length_asymmetry={out['step_length_asymmetry']!r} must be >= 0 and < "
                         f"{STEP_LENGTH_ASYMMETRY_MAX:g} (0.1 = the left foot's steps 10 % longer)")
     return out
+
+
+def check_prosthetic_foot(opt: dict, *, options: dict | None = None) -> None:
+    """Decision S119: the one-sided foot's knobs (:data:`pdrlearn.sim.user.PROSTHETIC_FOOT_FIELDS`) each None or a
+    finite number in its range, given with ``prosthetic_side`` and ``prosthetic_side`` with at least one of them;
+    one line otherwise. ``options``: knob -> the CLI option to name in the line (the knob's name without it)."""
+    def name(k: str) -> str:
+        return (options or {}).get(k, k)
+
+    given = [k for k in PROSTHETIC_FOOT_FIELDS if opt.get(k) is not None]
+    for k in given:
+        lo, hi = PROSTHETIC_FOOT_FIELDS[k][1]
+        v = opt[k]
+        if isinstance(v, bool) or not isinstance(v, int | float | np.number) or not (
+                math.isfinite(v) and lo <= v <= hi):
+            raise DataError(f"simulate: {name(k)} {v!r}: give a number from {lo:g} to {hi:g} (decision S119)")
+    if given and opt.get("prosthetic_side") is None:
+        raise DataError(f"simulate: {name(given[0])} sets one foot's own value: give the foot with "
+                        f"{name('prosthetic_side')} left or right (decision S119)")
+    if opt.get("prosthetic_side") is not None and not given:
+        raise DataError(f"simulate: {name('prosthetic_side')} {opt['prosthetic_side']} names a foot with no value of "
+                        f"its own: give {', '.join(name(k) for k in PROSTHETIC_FOOT_FIELDS)} (decision S119)")
 
 
 def _check_rotvec(name: str, mount) -> tuple[float, float, float]:
@@ -584,10 +616,14 @@ def simulate_path(
     lead = float(opt["sit_start_s"]) + sit0.up_s if sit0 else 0.0
     if not steps and 2 * stand + end_pause + lead + float(opt["sit_end_s"]) < 1.0:
         raise DataError("simulate: nothing to simulate (no steps and stand_s < 1 s); add segments or stand longer")
+    side = side_foot(user, opt)  # decision S119: the prosthetic_side foot's own pitches and impact
+    longer = opt["longer_stance_side"]  # decision S120: the stance shortened is the other foot's
     ev = schedule(steps, user, speed=speed, rng=rng, stand_s=lead + stand, variability=float(opt["variability"]),
                   rocker=str(opt["rocker"]), contact=str(opt["contact"]),
                   step_time_asymmetry=float(opt["step_time_asymmetry"]),
-                  affected=str(opt["paretic_side"]), stance_time_asymmetry=float(opt["stance_time_asymmetry"]))
+                  affected=str(opt["paretic_side"]), stance_time_asymmetry=float(opt["stance_time_asymmetry"]),
+                  feet=None if side is None else {str(opt["prosthetic_side"]): side},
+                  short_stance=None if longer is None else next(f for f in FEET if f != longer))
     total_s = (max(ev.end_s, lead + stand) if steps else lead + stand) + end_pause + stand
     sit_starts = transfer_starts(transfers, ev.rest, lead + stand)  # decision S36
     ride_starts = transfer_starts(rides, ev.rest, lead + stand)  # decision S45: as a transfer's

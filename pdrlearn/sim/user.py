@@ -34,6 +34,30 @@ def asymmetry_factor(foot: str, asymmetry: float, affected: str = AFFECTED_FOOT)
     return 2.0 * r / (1.0 + r) if foot == affected else 2.0 / (1.0 + r)
 
 
+#: decision S119: the knobs of a one-sided (prosthetic) foot -> the :class:`UserProfile` field each replaces on the
+#: ``prosthetic_side`` foot only, and its range. The users' own draws are -58 to -50 deg (toe-off), 17-26 deg (heel
+#: strike) and 0.45-0.7 m/s (impact); a stiff prosthetic ankle rolls off at about -15 deg and lands at about 8 deg
+#: (session 50 trial T2's lab values, assumptions); the ranges keep a plantarflexed toe-off (-80 to 0 deg, S115's
+#: flattest heel lift to its steepest), a heel-first contact (0-40 deg; a forefoot contact is --contact forefoot,
+#: S108) and a landing that stops (0.05-2 m/s)
+PROSTHETIC_FOOT_FIELDS = {
+    "prosthetic_toe_off_pitch_deg": ("toe_off_pitch_deg", (-80.0, 0.0)),
+    "prosthetic_heel_strike_pitch_deg": ("heel_strike_pitch_deg", (0.0, 40.0)),
+    "prosthetic_impact_speed_mps": ("impact_speed_mps", (0.05, 2.0)),
+}
+
+
+def side_foot(user: UserProfile, values: dict) -> UserProfile | None:
+    """Decision S119: the profile of a one-sided (prosthetic) foot: ``user`` with the fields of
+    :data:`PROSTHETIC_FOOT_FIELDS` that ``values`` (knob name -> number or None) gives; None when it gives none (both
+    feet the user's own). The schedule (:func:`pdrlearn.sim.body.schedule`, ``feet``) reads the toe-off pitch (the
+    push-off), the heel-strike pitch and the impact speed of the steps landing on that foot from it; everything
+    else (the contacts' times, the other foot, meta.json's ``user``) stays the user's."""
+    changes = {field_: float(values[k]) for k, (field_, _) in PROSTHETIC_FOOT_FIELDS.items()
+               if values.get(k) is not None}
+    return replace(user, **changes) if changes else None
+
+
 # Foot-unit mounts (decisions S19): from a lateral mount below the ankle (gaitmap level recordings,
 # "lateral shoe sensor": ~25-30 % of the foot length from the heel, 3-4 cm up) to the instep (PLASYS-style
 # top-of-foot unit, gaitmap stairs recordings: ~45-50 %, 5-7 cm up).

@@ -60,7 +60,8 @@ from pdrlearn.track.support_bias import setup_of, support_note
 #: the columns :func:`foot_events` gives: one row per initial contact of one foot; ``x_m`` / ``y_m`` (the foot's
 #: rest position after the stride, its own track's frame) and ``dir_rad`` (the stride's direction) need a tracked
 #: table's ``heading_rad`` (decision L310), else NaN
-EVENT_COLUMNS = ("ic_s", "tc_s", "length_m", "x_m", "y_m", "dir_rad", "terrain", "turn_deg", "stride_s", "backward")
+EVENT_COLUMNS = ("ic_s", "tc_s", "length_m", "x_m", "y_m", "dir_rad", "terrain", "turn_deg", "stride_s", "backward",
+                 "ramp")
 #: decision L260: a foot's ``meta.json`` key naming which foot the unit is on (gaitmap's ``foot``, the simulator's
 #: ``instrumented_foot``)
 FOOT_META_KEYS = ("foot", "instrumented_foot")
@@ -89,11 +90,12 @@ OFFSET_SWING_SHARE_MAX = 0.5
 STANCE_MIN_PCT = 55.0
 
 
-def foot_events(steps: pd.DataFrame) -> pd.DataFrame:
+def foot_events(steps: pd.DataFrame, *, ramps: bool = False) -> pd.DataFrame:
     """Decision L259: the IC events of one foot track's ``steps.csv`` (offline plasys: ``event_s``; ``tc_s`` with
     ``--toe-off``, else NaN; ``length_m``, NaN on an ``impossible`` stride) in time order; gap rows (``gap_s`` > 0,
     L67) and rows without an IC left out. A label table (``ic_s`` / ``tc_s`` in s, e.g. a mocap ``steps.csv`` read
-    by :func:`pdrlearn.io.read_session`) is taken as it is."""
+    by :func:`pdrlearn.io.read_session`) is taken as it is. ``ramps`` (decision L775, measured and not adopted; off by
+    default): ``ramp`` is :func:`stride_ramp`'s and a ramp stride's terrain flat; off, ``ramp`` is all False."""
     ic_col = "event_s" if "event_s" in steps else "ic_s"
     if ic_col not in steps:
         raise DataError("bilateral gait: the foot table has no initial contacts (event_s / ic_s); track the foot "
@@ -108,7 +110,11 @@ def foot_events(steps: pd.DataFrame) -> pd.DataFrame:
     length = st["length_m"].to_numpy(float) if "length_m" in st else np.full(len(st), np.nan)
     if "impossible" in st:
         length = np.where(flag_values(st["impossible"]), np.nan, length)
-    terrain, turn = stride_terrain(steps)[ok], stride_turn_deg(steps)[ok]  # decision L538
+    terrain_all = stride_terrain(steps)
+    # decision L775 (measured, not adopted: off by default): the ramp strides, their own kind
+    ramp = stride_ramp(steps, terrain_all)[ok] if ramps else np.zeros(int(ok.sum()), bool)
+    # decision L775: a ramp stride is no stair step (the simulator labels a ramp stride rising 0.08 m "up", S3)
+    terrain, turn = np.where(ramp, "flat", terrain_all[ok]).astype(object), stride_turn_deg(steps)[ok]  # L538
     span = (st["end_s"].to_numpy(float) - st["start_s"].to_numpy(float) if {"start_s", "end_s"} <= set(st)
             else np.full(len(st), np.nan))  # decision L539: the stride's rest-to-rest time
     out = pd.DataFrame({"ic_s": st[ic_col].to_numpy(float),
@@ -116,8 +122,32 @@ def foot_events(steps: pd.DataFrame) -> pd.DataFrame:
                         "length_m": length, "x_m": x, "y_m": y, "z_m": z, "dir_rad": d, "terrain": terrain,
                         "turn_deg": turn, "stride_s": span, "backward": stride_backward(steps)[ok],  # L746
                         **{c: pd.to_numeric(st[c], errors="coerce").to_numpy(float) if c in st
-                           else np.full(len(st), np.nan) for c in FOOT_ANGLES}})  # cohort C244: L421's angles
+                           else np.full(len(st), np.nan) for c in FOOT_ANGLES},  # cohort C244: L421's angles
+                        "ramp": ramp})  # decision L775
     return out.sort_values("ic_s", kind="stable").reset_index(drop=True)
+
+
+def stride_ramp(steps: pd.DataFrame, terrain: np.ndarray | None = None, *, slope_dz_m: float = 0.04,
+                run: int = 3) -> np.ndarray:
+    """Decision L775: (rows,) bool, each row's stride climbs or descends a ramp: inside L144's
+    :func:`pdrlearn.kernels.distance.sustained_slope` run of the foot's strides - at least ``run`` (3: L304's
+    shortest run) consecutive height changes of one sign, each at least ``slope_dz_m`` (0.04 m: L144's 3 % of a 1.3 m
+    stride) - on a tracked table's ``raw_dz_m`` (the height before L39's level rule, which zeroes a 1:12 ramp's
+    ~0.09 m strides), else a label table's ``height_m`` (the simulator's); all False for a table with neither (an
+    older track). A stair stride ends a run and is none: a tracked table's stair-flight rows (``terrain``,
+    :func:`stride_terrain`, L603), a label table's ``kind`` stairs_up / stairs_down (the simulator's). A gap row
+    (L67, no height) ends a run. Rows in the table's order (walking order)."""
+    from pdrlearn.kernels.distance import sustained_slope
+
+    col = "raw_dz_m" if "raw_dz_m" in steps else "height_m" if "height_m" in steps else None
+    if col is None or not len(steps):
+        return np.zeros(len(steps), bool)
+    dz = np.nan_to_num(pd.to_numeric(steps[col], errors="coerce").to_numpy(float), nan=0.0)
+    if col == "height_m" and "kind" in steps:
+        stair = steps["kind"].astype(str).str.startswith("stairs").to_numpy(bool)
+    else:
+        stair = np.zeros(len(steps), bool) if terrain is None else np.asarray(terrain, dtype=object) != "flat"
+    return sustained_slope(np.where(stair, 0.0, dz), slope_dz_m=slope_dz_m, run=run)
 
 
 def stride_backward(steps: pd.DataFrame) -> np.ndarray:
@@ -350,11 +380,12 @@ def merged_contacts(left: pd.DataFrame, right: pd.DataFrame) -> pd.DataFrame:
 #: stride turns L79's 15 deg or more); a walking bout's first or last step (L317's half strides: gait initiation and
 #: the closing step); decision L746: travelling backward (L203). The walk's headline measures are its level steps'
 #: (:func:`headline_masks`)
-STEP_KINDS = ("level", "stairs_up", "stairs_down", "turn", "start_stop", "backward")
+STEP_KINDS = ("level", "stairs_up", "stairs_down", "turn", "start_stop", "backward", "ramp")  # L775: a ramp's
 #: decision L538: which kind a step (or cycle) takes when its two contacts' strides differ: the lower rank; on a tie
 #: the landing contact's. Decision L746: backward under a start / stop (a backward bout's ends are its start_stop, as
-#: a level bout's) and over level (a step from a forward into a backward stride is no level step)
-_KIND_RANK = {"stairs_up": 0, "stairs_down": 0, "turn": 1, "start_stop": 2, "backward": 3, "level": 4}
+#: a level bout's) and over level (a step from a forward into a backward stride is no level step). Decision L775: ramp
+#: under a start / stop, over backward and level
+_KIND_RANK = {"stairs_up": 0, "stairs_down": 0, "turn": 1, "start_stop": 2, "ramp": 3, "backward": 4, "level": 5}
 
 
 def contact_kinds(both: pd.DataFrame) -> np.ndarray:
@@ -364,12 +395,15 @@ def contact_kinds(both: pd.DataFrame) -> np.ndarray:
     closing step inside a bout (a level stride under L310's :data:`CLOSING_STRIDE_SHARE` of the foot's median level
     stride: the feet brought side by side, e.g. before a stair), else (decision L746) ``backward`` for a stride
     travelling backward (``backward``, :func:`stride_backward`; neither a closing-step candidate nor in the foot's
-    median: a backward stride is short), else ``level``."""
+    median: a backward stride is short), else ``level``; decision L775: ``ramp`` (over backward) for a stride of a
+    ramp (``ramp``, :func:`stride_ramp`; likewise outside the closing-step rule)."""
     kind = np.full(len(both), "level", dtype=object)
     if "partial" in both:
         kind[both["partial"].to_numpy(bool)] = "start_stop"
     back = both["backward"].to_numpy(bool) if "backward" in both else np.zeros(len(both), bool)  # decision L746
     kind[back & (kind == "level")] = "backward"
+    ramp = both["ramp"].to_numpy(bool) if "ramp" in both else np.zeros(len(both), bool)  # decision L775
+    kind[ramp & np.isin(kind, ("level", "backward"))] = "ramp"
     if "length_m" in both:  # L310's closing-step rule on the foot's own strides, inside a bout
         length, side = np.abs(both["length_m"].to_numpy(float)), both["side"].to_numpy()
         plain = kind == "level"
@@ -716,7 +750,8 @@ def kind_measures(both: pd.DataFrame, steps: pd.DataFrame, cycles: pd.DataFrame)
 
 def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
                    step_lengths: pd.DataFrame | None = None, contact_source=None,
-                   rate_hz: float | None = None, reanchor: bool = True, si_drift: bool = False) -> dict:
+                   rate_hz: float | None = None, reanchor: bool = True, si_drift: bool = False,
+                   ramps: bool = False) -> dict:
     """Decisions L259-L262 (Python API): bilateral gait of one walk from the left and the right foot's step
     tables (a foot track's ``steps.csv`` or a label table, :func:`foot_events`) on one clock.
 
@@ -734,10 +769,11 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
     (:func:`pdrlearn.track.step_anchors.pass_corrected`) instead of L310's one scale; False: L310's scale only.
     ``si_drift`` (decision L761, not adopted: the bound flagged 35 of 40 simulated pairs and missed 3 of 5 unflagged
     ones over 2 points): the walk's ``step_length_si_drift_pct`` and :func:`drift_warning`'s line, for measuring
-    only. Refuses
+    only. ``ramps`` (decision L775, not adopted; default off): ramp strides (:func:`stride_ramp`) their own
+    kind ``ramp``, out of the level headline. Refuses
     (:class:`DataError`, one line) two tables whose contacts do not overlap in time (L260: not one walk on one
     clock)."""
-    left, right = foot_events(left_steps), foot_events(right_steps)
+    left, right = foot_events(left_steps, ramps=ramps), foot_events(right_steps, ramps=ramps)  # decision L775
     for s, ev in zip(SIDES, (left, right), strict=True):
         if len(ev) < 2:
             raise DataError(f"bilateral gait: the {s} foot has {len(ev)} initial contact(s); give a walk of at least "
@@ -1160,7 +1196,7 @@ def read_pair(left_dir: Path, right_dir: Path, *, streamed: bool = False) -> tup
 
 
 def pair_sessions(left_dir: Path, right_dir: Path, *, ignore_force: bool = False, track_foot=None,
-                  streamed: bool = False, read: tuple | None = None) -> dict:
+                  streamed: bool = False, read: tuple | None = None, ramps: bool = False) -> dict:
     """Decisions L259-L263: read and track (offline plasys with ``toe_off=True``, L73) the left and the right foot's
     session folders of one walk and give :func:`bilateral_gait` of their tracks, plus ``"reference"``: the same
     measures of their labelled events when both sessions have them (L263), and ``"sessions"``: each track's
@@ -1198,7 +1234,7 @@ def pair_sessions(left_dir: Path, right_dir: Path, *, ignore_force: bool = False
     from pdrlearn.track.clock import on_export_clock
 
     out = bilateral_gait(*(on_export_clock(t.steps, sh) for t, sh in zip(tracks, shifts, strict=True)),  # L537
-                         contact_source=sources, rate_hz=foot_rate_hz(sessions))  # L703, L737: the bias
+                         contact_source=sources, rate_hz=foot_rate_hz(sessions), ramps=ramps)  # L703, L737, L775
     out["clock_alignment"] = alignment
     if alignment["note"] is not None:
         logging.getLogger(__name__).warning(alignment["note"])
@@ -1210,7 +1246,7 @@ def pair_sessions(left_dir: Path, right_dir: Path, *, ignore_force: bool = False
     ics = sessions[0].extras.get("ics")  # decision L540: the simulator's both-feet contacts with step lengths
     ics = None if ics is None else on_export_clock(ics, shifts[0])
     out["reference"] = (bilateral_gait(*(on_export_clock(x, sh) for x, sh in zip(labels, shifts, strict=True)),
-                                       step_lengths=ics) if all(x is not None for x in labels) else None)
+                                       step_lengths=ics, ramps=ramps) if all(x is not None for x in labels) else None)
     sharp = [impact_sharpness(s["fAccelerometer"].t, s["fAccelerometer"].values, t.steps["event_s"])
              for s, t in zip(sessions, tracks, strict=True)]  # decision L318
     out["walk"]["impact_sharpness_left"], out["walk"]["impact_sharpness_right"] = sharp

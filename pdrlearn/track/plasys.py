@@ -1676,6 +1676,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     table["raw_length_m"] = signed_chord(raw_disp[:, 0], raw_disp[:, 1], fd.yaw_change_)  # decision L692
     table["heading_rad"] = wrap_angle(head)
     table["dz_m"] = dz
+    # decision L775: the stride's integrated height change before L39's level rule or a class (gait's ramp strides)
+    table["raw_dz_m"] = np.where(unjudged, np.nan, disp[:, 2])
     for c in ("terrain", "direction", "length_class"):
         table[c] = classes[c].to_numpy() if c in classes else None
     table["confidence"] = classes["confidence"].to_numpy(float) if "confidence" in classes else 1.0
@@ -1758,7 +1760,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         rows = pd.DataFrame({"start_s": extra["start_s"], "end_s": extra["end_s"], "event_s": np.nan,
                              "length_m": 0.0, "raw_length_m": np.nan,
                              "heading_rad": table["heading_rad"].to_numpy()[at - 1],
-                             "dz_m": 0.0, "confidence": np.nan, "unit": "foot", "impossible": False,
+                             "dz_m": 0.0, "raw_dz_m": np.nan, "confidence": np.nan, "unit": "foot",
+                             "impossible": False,
                              "sideways": False,
                              "gap_s": extra["gap_s"]})
         table = pd.concat([table, rows], ignore_index=True)
