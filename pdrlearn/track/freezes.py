@@ -148,13 +148,44 @@ def walkless_freezes(rows: list[dict] | None, steps) -> tuple[list[dict] | None,
                   "decision L617)"]
 
 
+def walked_freezes(rows: list[dict] | None, steps, *, min_length_m: float = 0.15, max_stride_s: float = 3.0,
+                   share_min: float = SIDE_SHARE_MIN) -> tuple[list[dict] | None, list[str]]:
+    """Decision L765: ``(kept, lines)`` - the freeze episodes ``rows`` without those that walking strides of ``steps``
+    cover for at least ``share_min`` of their time (L413's share), renumbered, and one line naming those left out. A
+    walking stride travels at least ``min_length_m`` (L228 / L413's travel bound) within at most ``max_stride_s``
+    (Mobilise-D's 3 s break, L163: a longer stride holds a pause). A slow shuffler's foot (strides of 1.2-2 s, a 6 cm
+    swing) has little power in the 0.5-3 Hz locomotor band and its heel strikes reach 3-8 Hz, so the index reads its
+    steady walking as freezing (trial s50t3 F2); a freeze is trembling in place, with no stride."""
+    if not rows or steps is None or not len(steps) or "length_m" not in steps:
+        return rows, []
+    a, b = steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float)
+    walk = (steps["length_m"].to_numpy(float) >= min_length_m) & (b - a <= max_stride_s)
+    a, b = a[walk], b[walk]
+    kept, gone = [], []
+    for r in rows:
+        s0, s1 = float(r["start_s"]), float(r["end_s"])
+        covered = float(np.sum(np.clip(np.minimum(b, s1) - np.maximum(a, s0), 0.0, None)))
+        if s1 > s0 and covered >= share_min * (s1 - s0):
+            gone.append(r)
+        else:
+            kept.append({**r, "freeze": len(kept) + 1})
+    if not gone:
+        return kept, []
+    spans = ", ".join(f"{r['start_s']:.1f}-{r['end_s']:.1f} s" for r in gone[:5])
+    return kept, [f"{len(gone)} freeze-index episode(s) ({spans}{', ...' if len(gone) > 5 else ''}) are left out of "
+                  f"freezes.csv: the foot's strides of {min_length_m:g} m or more fill them, so the foot walked; slow "
+                  "or shuffling strides read as 3-8 Hz power (decision L765)"]
+
+
 def foot_freezes(session, pipeline: str | None, steps) -> tuple[list[dict] | None, list[str]]:
-    """Decisions W213, L413, L617: a foot track's freeze episodes (:func:`session_freezes`) without its side shuffles
-    (:func:`side_step_freezes` over the track's ``steps``) and without those with no walking next to them
-    (:func:`walkless_freezes`), and the lines naming those left out."""
+    """Decisions W213, L413, L617, L765: a foot track's freeze episodes (:func:`session_freezes`) without its side
+    shuffles (:func:`side_step_freezes` over the track's ``steps``), without those its walking strides fill
+    (:func:`walked_freezes`) and without those with no walking next to them (:func:`walkless_freezes`), and the lines
+    naming those left out."""
     rows, side = side_step_freezes(session_freezes(session, pipeline), steps)
+    rows, walked = walked_freezes(rows, steps)
     rows, alone = walkless_freezes(rows, steps)
-    return rows, side + alone
+    return rows, side + walked + alone
 
 
 def freeze_index_on(options: dict | None) -> bool:
