@@ -21,8 +21,9 @@ COLUMN = "trunk_pause_s"
 
 
 #: decision L687 (second rule): the lower back's stride is used only when it is at least this share of the foot's
-#: 10th-percentile stride time (shorter: it counts spurious contacts, as on L605's 2.5 s-step walker, 0.3 s apart)
-MIN_STRIDE_SHARE = 0.5
+#: 10th-percentile stride time (shorter: it counts spurious contacts, as on L605's 2.5 s-step walker, 0.3 s apart);
+#: decision L766: 0.75, was 0.5 (a slow shuffler's lower back counting two contacts per step read 0.53-0.56)
+MIN_STRIDE_SHARE = 0.75
 
 
 def trunk_pause_seconds(steps: pd.DataFrame, trunk_contacts_s) -> np.ndarray | None:
