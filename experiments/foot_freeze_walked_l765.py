@@ -65,7 +65,8 @@ def main(out: Path, real: list[Path]) -> None:
         for rule, eps in got.items():
             hit[rule] += any(min(t1, e["end_s"]) > max(t0, e["start_s"]) for e in eps)
         print(f"(b) user {u} truth {t0:.1f}-{t1:.1f} s: without {spans(got[False])}, with {spans(got[True])}")
-    print(f"(b) sessions with an episode on the simulated freeze: without L765 {hit[False]} / 15, with {hit[True]} / 15")
+    print(f"(b) sessions with an episode on the simulated freeze: without L765 {hit[False]} / 15, with "
+          f"{hit[True]} / 15")
     for d in real:
         s = read_session(d)
         steps = track_plasys(s).steps

@@ -12,6 +12,7 @@ import sys
 from pathlib import Path
 
 import pandas as pd
+
 import rest_pauses_s46  # sibling: runs `python -m pdrlearn` with a given checkout
 
 
