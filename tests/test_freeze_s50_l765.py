@@ -44,3 +44,12 @@ def test_the_foot_track_leaves_out_a_trembling_walk_but_keeps_a_freeze_l765():
     rows, lines = foot_freezes(session, "plasys", steps)
     assert len(rows) == 1 and 38.0 <= rows[0]["start_s"] <= 42.0  # the stride-free tremble stays
     assert any("L765" in line for line in lines)
+
+
+def test_a_freeze_the_shuffling_ran_into_keeps_its_stride_free_time_l765():
+    """Users 17614 / 17619 (the first rule, failed): the shuffle's false episodes ran into the freeze (35.2-41.2 s)
+    as one episode (27.75-56.75 s) that the strides around it filled for more than half; the stride-free time stays."""
+    steps = pd.concat([_steps(20.0, 35.0), _steps(41.2, 60.0)], ignore_index=True)
+    kept, lines = walked_freezes([_row(27.75, 56.75)], steps)
+    assert [(r["start_s"], r["end_s"]) for r in kept] == [(35.4, 41.2)]  # the last stride before ends at 35.4 s
+    assert len(lines) == 1 and "shortened" in lines[0]
