@@ -31,11 +31,11 @@ def simulate(out: Path, route: str, user: int, shuffler: bool) -> Path:
 
 
 def episodes(session, steps, rule: bool) -> list[dict]:
-    from pdrlearn.track.freezes import foot_freezes, session_freezes, side_step_freezes, walkless_freezes
+    from pdrlearn.track.freezes import foot_freezes
 
     if rule:
-        return foot_freezes(session, "plasys", steps)[0] or []
-    return walkless_freezes(side_step_freezes(session_freezes(session, "plasys"), steps)[0], steps)[0] or []
+        return foot_freezes(session, "plasys", steps, walked_strides=True)[0] or []
+    return foot_freezes(session, "plasys", steps)[0] or []
 
 
 def spans(eps) -> list[tuple]:

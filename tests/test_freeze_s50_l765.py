@@ -1,6 +1,7 @@
-"""Decision L765: a foot freeze-index episode that walking strides (at least 0.15 m within at most 3 s) cover for at
-least half its time is walking, not a freeze. Trial s50t3 (F2): slow shufflers' steady 0.4 m strides every 1.4 s
-read as 22 freeze episodes on user 17401 (little 0.5-3 Hz power, heel strikes in 3-8 Hz)."""
+"""Decision L765 (not adopted: ``foot_freezes(..., walked_strides=True)``, off): the time walking strides (at least
+0.15 m within at most 3 s) cover is cut out of a foot freeze-index episode. Trial s50t3 (F2): slow shufflers'
+steady 0.4 m strides every 1.4 s read as 22 freeze episodes on user 17401 (little 0.5-3 Hz power, heel strikes in
+3-8 Hz)."""
 
 from __future__ import annotations
 
@@ -41,7 +42,8 @@ def test_the_foot_track_leaves_out_a_trembling_walk_but_keeps_a_freeze_l765():
     acc = np.column_stack([np.zeros_like(t), np.zeros_like(t), 9.81 + shake])
     session = SimpleNamespace(streams={"fAccelerometer": SimpleNamespace(t=t, values=acc)})
     steps = pd.concat([_steps(2.0, 21.0), _steps(30.0, 39.0), _steps(51.0, 58.0)], ignore_index=True)
-    rows, lines = foot_freezes(session, "plasys", steps)
+    rows, lines = foot_freezes(session, "plasys", steps, walked_strides=True)
+    assert len(foot_freezes(session, "plasys", steps)[0]) == 2  # off by default (not adopted)
     assert len(rows) == 1 and 38.0 <= rows[0]["start_s"] <= 42.0  # the stride-free tremble stays
     assert any("L765" in line for line in lines)
 

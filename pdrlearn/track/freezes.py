@@ -188,13 +188,14 @@ def walked_freezes(rows: list[dict] | None, steps, *, min_length_m: float = 0.15
                   "the foot walked there; slow or shuffling strides read as 3-8 Hz power (decision L765)"]
 
 
-def foot_freezes(session, pipeline: str | None, steps) -> tuple[list[dict] | None, list[str]]:
-    """Decisions W213, L413, L617, L765: a foot track's freeze episodes (:func:`session_freezes`) without its side
-    shuffles (:func:`side_step_freezes` over the track's ``steps``), without those its walking strides fill
-    (:func:`walked_freezes`) and without those with no walking next to them (:func:`walkless_freezes`), and the lines
-    naming those left out."""
+def foot_freezes(session, pipeline: str | None, steps, *,
+                 walked_strides: bool = False) -> tuple[list[dict] | None, list[str]]:
+    """Decisions W213, L413, L617: a foot track's freeze episodes (:func:`session_freezes`) without its side shuffles
+    (:func:`side_step_freezes` over the track's ``steps``) and without those with no walking next to them
+    (:func:`walkless_freezes`), and the lines naming those left out. ``walked_strides`` (decision L765, not adopted:
+    off): first cut the walking strides' time out of them (:func:`walked_freezes`)."""
     rows, side = side_step_freezes(session_freezes(session, pipeline), steps)
-    rows, walked = walked_freezes(rows, steps)
+    rows, walked = walked_freezes(rows, steps) if walked_strides else (rows, [])
     rows, alone = walkless_freezes(rows, steps)
     return rows, side + walked + alone
 
