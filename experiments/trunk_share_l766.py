@@ -1,6 +1,8 @@
 """Decision L766 (docs/decisions/localization.md): L687's lower-back stride guard at 0.75 (was 0.5), measured against
 the rule written before measuring: `pdrlearn track` (foot + lower back) bouts of L765's slow shufflers (FRESH users
-17590-17604, simulated by experiments/foot_freeze_walked_l765.py into its OUTDIR), old code vs this checkout.
+17590-17604, simulated by experiments/foot_freeze_walked_l765.py into its OUTDIR), old code vs this checkout. It was
+run with this checkout at commit ff9eaadb (`MIN_STRIDE_SHARE` 0.75); not adopted, the constant is 0.5 again, so to
+repeat it set the constant to 0.75 in the checkout measured.
 
 Usage: python experiments/trunk_share_l766.py L765_OUTDIR OUTDIR --old /work/main [SESSION ...]
 """
