@@ -15,6 +15,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import foot_vehicle_l615  # sibling: (b) is its (g) count
+
 WALK = "stand:3, straight:20, turn:180, straight:20, stand:3"
 FREEZE = "stand:3, straight:10, freeze:6, straight:10, stand:3"
 
@@ -55,18 +57,8 @@ def main(out: Path, real: list[Path]) -> None:
             total[rule] += len(got[rule])
         print(f"(a) user {u}: without {len(got[False])} {spans(got[False])}, with {len(got[True])}")
     print(f"(a) shufflers' foot episodes in all: without L765 {total[False]}, with {total[True]}")
-    hit = {False: 0, True: 0}
-    for u in range(17605, 17620):
-        s = read_session(simulate(out, FREEZE, u, u >= 17613))
-        truth = s.extras["freezes"]
-        t0, t1 = float(truth["start_s"].iloc[0]), float(truth["end_s"].iloc[0])
-        steps = track_plasys(s).steps
-        got = {rule: episodes(s, steps, rule) for rule in (False, True)}
-        for rule, eps in got.items():
-            hit[rule] += any(min(t1, e["end_s"]) > max(t0, e["start_s"]) for e in eps)
-        print(f"(b) user {u} truth {t0:.1f}-{t1:.1f} s: without {spans(got[False])}, with {spans(got[True])}")
-    print(f"(b) sessions with an episode on the simulated freeze: without L765 {hit[False]} / 15, with "
-          f"{hit[True]} / 15")
+    freezes = ((u, read_session(simulate(out, FREEZE, u, u >= 17613))) for u in range(17605, 17620))
+    foot_vehicle_l615.freeze_hits(freezes, episodes, "(b)", "L765")
     for d in real:
         s = read_session(d)
         steps = track_plasys(s).steps
