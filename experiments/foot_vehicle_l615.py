@@ -142,22 +142,31 @@ def _spans(eps) -> list[tuple]:
     return [(e["start_s"], e["end_s"], e["peak_fi"]) for e in eps]
 
 
+def freeze_hits(sessions, episodes, tag: str, rule_name: str) -> None:
+    """For each ``(user, session)`` of ``sessions`` (simulated with one freeze), the foot track's episodes without and
+    with a rule (``episodes(session, steps, rule)``) and whether one overlaps the simulated freeze; printed per user
+    and in all (also decision L765's (b), experiments/foot_freeze_walked_l765.py)."""
+    from pdrlearn.track.plasys import track_plasys
+
+    hit, n = {False: 0, True: 0}, 0
+    for u, s in sessions:
+        truth = s.extras["freezes"]
+        t0, t1 = float(truth["start_s"].iloc[0]), float(truth["end_s"].iloc[0])
+        steps = track_plasys(s).steps
+        got = {rule: episodes(s, steps, rule) for rule in (False, True)}
+        for rule, eps in got.items():
+            hit[rule] += any(min(t1, e["end_s"]) > max(t0, e["start_s"]) for e in eps)
+        n += 1
+        print(f"{tag} user {u} truth {t0:.1f}-{t1:.1f} s: without {_spans(got[False])}, with {_spans(got[True])}")
+    print(f"{tag} sessions with an episode on the simulated freeze: without {rule_name} {hit[False]} / {n}, with "
+          f"{hit[True]} / {n}")
+
+
 def freezes(users, t3: Path | None) -> None:
     from pdrlearn.io import read_session
     from pdrlearn.track.plasys import track_plasys
 
-    hit = {False: 0, True: 0}
-    for u in users:
-        s = _sim(FREEZE, u)
-        truth = s.extras["freezes"]
-        t0, t1 = float(truth["start_s"].iloc[0]), float(truth["end_s"].iloc[0])
-        steps = track_plasys(s).steps
-        got = {rule: _episodes(s, steps, rule) for rule in (False, True)}
-        for rule, eps in got.items():
-            hit[rule] += any(min(t1, e["end_s"]) > max(t0, e["start_s"]) for e in eps)
-        print(f"(g) user {u} truth {t0:.1f}-{t1:.1f} s: without {_spans(got[False])}, with {_spans(got[True])}")
-    print(f"(g) sessions with an episode on the simulated freeze: without L617 {hit[False]} / {len(users)}, with "
-          f"{hit[True]} / {len(users)}")
+    freeze_hits(((u, _sim(FREEZE, u)) for u in users), _episodes, "(g)", "L617")
     if t3 is None:
         return
     for name in ("c41", "c41c"):

@@ -148,13 +148,56 @@ def walkless_freezes(rows: list[dict] | None, steps) -> tuple[list[dict] | None,
                   "decision L617)"]
 
 
-def foot_freezes(session, pipeline: str | None, steps) -> tuple[list[dict] | None, list[str]]:
+def walked_freezes(rows: list[dict] | None, steps, *, min_length_m: float = 0.15, max_stride_s: float = 3.0,
+                   min_s: float = FREEZE_MIN_S) -> tuple[list[dict] | None, list[str]]:
+    """Decision L765: ``(kept, lines)`` - the freeze episodes ``rows`` with the time that walking strides of ``steps``
+    cover cut out of them: each stride-free remainder of at least ``min_s`` (W213's shortest episode) stays an
+    episode (the episode's ``peak_fi``), the rest are left out; renumbered, and one line naming the episodes left out
+    or shortened. A walking stride travels at least ``min_length_m`` (L228 / L413's travel bound) within at most
+    ``max_stride_s`` (Mobilise-D's 3 s break, L163: a longer stride holds a pause). A slow shuffler's foot (strides
+    of 1.2-2 s, a 6 cm swing) has little power in the 0.5-3 Hz locomotor band and its heel strikes reach 3-8 Hz, so
+    the index reads its steady walking as freezing (trial s50t3 F2); a freeze is trembling in place, with no stride,
+    and an episode the shuffling ran into keeps it."""
+    if not rows or steps is None or not len(steps) or "length_m" not in steps:
+        return rows, []
+    a, b = steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float)
+    walk = (steps["length_m"].to_numpy(float) >= min_length_m) & (b - a <= max_stride_s)
+    spans = sorted(zip(a[walk].tolist(), b[walk].tolist(), strict=True))
+    kept, changed = [], []
+    for r in rows:
+        s0, s1 = float(r["start_s"]), float(r["end_s"])
+        pieces, at = [], s0
+        for lo, hi in spans:  # the episode's stride-free remainders, in order
+            if hi <= at or lo >= s1:
+                continue
+            if lo > at:
+                pieces.append((at, lo))
+            at = max(at, hi)
+        if at < s1:
+            pieces.append((at, s1))
+        pieces = [(x, y) for x, y in pieces if y - x >= min_s]
+        if pieces != [(s0, s1)]:
+            changed.append(r)
+        kept += [{**r, "start_s": round(x, 3), "end_s": round(y, 3), "duration_s": round(y - x, 3)} for x, y in pieces]
+    kept = [{**r, "freeze": k + 1} for k, r in enumerate(kept)]
+    if not changed:
+        return kept, []
+    named = ", ".join(f"{r['start_s']:.1f}-{r['end_s']:.1f} s" for r in changed[:5])
+    return kept, [f"{len(changed)} freeze-index episode(s) ({named}{', ...' if len(changed) > 5 else ''}) are left "
+                  f"out of freezes.csv or shortened: the foot's strides of {min_length_m:g} m or more cover them, so "
+                  "the foot walked there; slow or shuffling strides read as 3-8 Hz power (decision L765)"]
+
+
+def foot_freezes(session, pipeline: str | None, steps, *,
+                 walked_strides: bool = False) -> tuple[list[dict] | None, list[str]]:
     """Decisions W213, L413, L617: a foot track's freeze episodes (:func:`session_freezes`) without its side shuffles
     (:func:`side_step_freezes` over the track's ``steps``) and without those with no walking next to them
-    (:func:`walkless_freezes`), and the lines naming those left out."""
+    (:func:`walkless_freezes`), and the lines naming those left out. ``walked_strides`` (decision L765, not adopted:
+    off): first cut the walking strides' time out of them (:func:`walked_freezes`)."""
     rows, side = side_step_freezes(session_freezes(session, pipeline), steps)
+    rows, walked = walked_freezes(rows, steps) if walked_strides else (rows, [])
     rows, alone = walkless_freezes(rows, steps)
-    return rows, side + alone
+    return rows, side + walked + alone
 
 
 def freeze_index_on(options: dict | None) -> bool:

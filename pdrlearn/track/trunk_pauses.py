@@ -25,14 +25,15 @@ COLUMN = "trunk_pause_s"
 MIN_STRIDE_SHARE = 0.5
 
 
-def trunk_pause_seconds(steps: pd.DataFrame, trunk_contacts_s) -> np.ndarray | None:
+def trunk_pause_seconds(steps: pd.DataFrame, trunk_contacts_s, *,
+                        min_share: float = MIN_STRIDE_SHARE) -> np.ndarray | None:
     """(N,) for each row of the foot table ``steps`` (rows in time order) the excess (s) of the interval from the
     previous row's ``start_s`` over the walker's stride when at least L104's ``PAUSE_MIN_S``, else 0; the stride is
     the lower back's (two of its median contact intervals ``trunk_contacts_s``, one step of each foot) or, when
     shorter, L500's median movement window of the foot (the lower back's median grows where it misses contacts, as
     on stairs). None (the foot's own rule stays) with fewer than 3 lower-back contacts or 2 foot rows, without a
-    stride time, or when the lower back's stride is under :data:`MIN_STRIDE_SHARE` of the foot's 10th-percentile
-    stride time."""
+    stride time, or when the lower back's stride is under ``min_share`` (:data:`MIN_STRIDE_SHARE`) of the foot's
+    10th-percentile stride time (decision L766's 0.75, not adopted, is this option)."""
     from pdrlearn.track.clinical import PAUSE_MIN_S, movement_windows
 
     w = np.sort(np.asarray(trunk_contacts_s, dtype=float))
@@ -43,7 +44,7 @@ def trunk_pause_seconds(steps: pd.DataFrame, trunk_contacts_s) -> np.ndarray | N
     if len(steps) < 2 or len(w) < 3 or not len(st):
         return None
     stride = 2.0 * float(np.median(np.diff(w)))
-    if stride < MIN_STRIDE_SHARE * float(np.percentile(st, 10)):
+    if stride < min_share * float(np.percentile(st, 10)):
         return None
     window = movement_windows(steps)
     if window.size:
