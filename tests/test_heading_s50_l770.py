@@ -65,22 +65,25 @@ def loop():
     logging.disable(logging.WARNING)
     try:
         ses = simulate_path(parse_route("stand:3, straight:6, turn:90, straight:5, turn:90, straight:6, turn:90, "
-                                        "straight:5, stand:2"), UserProfile.from_seed(17679), rate_hz=50,
-                            seed=17679, scenario="route")
-        asked = track_plasys(ses, compass_sinusoid=True)
-        return asked, evaluate_track(asked, ses)
+                                        "straight:5, stand:2"), UserProfile.from_seed(17677), rate_hz=50,
+                            seed=17677, scenario="route")  # its simulated hard iron: ~9 deg on this square
+        asked, plain = track_plasys(ses, compass_sinusoid=True), track_plasys(ses)
+        return asked, evaluate_track(asked, ses), plain
     finally:
         logging.disable(logging.NOTSET)
 
 
-def test_the_option_says_the_sinusoid_it_took_off(loop):
-    asked, _ = loop
+def test_the_option_says_the_sinusoid_it_took_off_and_the_default_warns(loop):
+    asked, _, plain = loop
     amp = asked.info["compass_sinusoid_deg"]
-    assert asked.info["heading_source"] == "fused" and amp is not None and 0 < amp < 30
+    assert asked.info["heading_source"] == "fused" and amp is not None and 5 < amp < 30
+    assert not [w for w in asked.info["warnings"] if "L770" in w]  # taken off: nothing to warn of
+    said = [w for w in plain.info["warnings"] if "L770" in w]
+    assert len(said) == 1 and f"+-{amp:.1f} deg" in said[0] and "compass_sinusoid_deg" not in plain.info
 
 
 def test_the_summary_gives_the_loop_closure(loop):
-    res, summary = loop
+    res, summary, _ = loop
     tr = res.trajectory
     gap = float(np.hypot(tr["x"].iloc[-1] - tr["x"].iloc[0], tr["y"].iloc[-1] - tr["y"].iloc[0]))
     assert gap > 0 and summary["loop_closure_m"] == pytest.approx(gap)
@@ -95,3 +98,11 @@ def test_the_params_key_is_offline_only(tmp_path):
     assert _track_params({"compass_sinusoid": True}, f, False)[1] == {"compass_sinusoid": True}
     with pytest.raises(DataError, match="compass_sinusoid.*L770.*--streaming"):
         _track_params({"compass_sinusoid": True}, f, True)
+
+
+def test_the_line_names_the_amplitude_from_five_degrees():
+    from pdrlearn.track.plasys import compass_sinusoid_line
+
+    assert compass_sinusoid_line(None) is None and compass_sinusoid_line(4.9) is None
+    line = compass_sinusoid_line(8.66)
+    assert "+-8.7 deg" in line and "compass_sinusoid" in line and "L770" in line and "--units foot" in line
