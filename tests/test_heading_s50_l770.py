@@ -105,4 +105,7 @@ def test_the_line_names_the_amplitude_from_five_degrees():
 
     assert compass_sinusoid_line(None) is None and compass_sinusoid_line(4.9) is None
     line = compass_sinusoid_line(8.66)
-    assert "+-8.7 deg" in line and "compass_sinusoid" in line and "L770" in line and "--units foot" in line
+    from pdrlearn.warning_lines import warning_code
+
+    assert "+-8.7 deg" in line and "compass_sinusoid" in line and "--units foot" in line
+    assert warning_code(line) == "L770"  # E168: the line is coded by its decision
