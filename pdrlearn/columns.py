@@ -76,6 +76,10 @@ SESSIONS: tuple[Column, ...] = (
                                           "track', distance_in_ref_bouts_m when it is 'reference bouts' (W71, W459): "
                                           "a gain fitted by hand is distance_ref_m / distance_compared_m"),
     ("final_position_error_m", "m", "number", "horizontal distance of the last tracked position from the true one"),
+    ("loop_closure_m", "m", "number", "horizontal distance of the last tracked position from the first (L771): "
+                                      "the closure error of a walk that returns to its start, no truth needed"),
+    ("loop_closure_pct", "%", "number", "100 x loop_closure_m / distance_m (L771); meaningful only when the walk "
+                                        "returns to its start"),
     ("walking_time_s", "s", "number", "time walking (stops over 3 s and data gaps left out, L79); with --window "
                                       "the window's strides' (0 when it holds none, L276)"),
     ("gait_speed_mps", "m/s", "number", "distance_m / walking_time_s: rest to rest, with gait initiation and "

@@ -1646,7 +1646,8 @@ def _reference_point(point: str, par, params: Path | None, pipeline: str, stream
 #: decision L636: ``hard_iron_fit`` (L84's fit of the waist compass's hard-iron offset on the walk, an option that is
 #: not the default), offline only
 #: decision L717: ``foot_ramps`` (ramps.csv from a foot track's own L39 heights, an option: its rule failed)
-TRACK_PARAM_KEYS = ("waist_bias", "fused_climb", "hard_iron_fit", "foot_ramps")
+#: decision L770: ``compass_sinusoid`` (the waist compass's direction sinusoid off before the fused window), offline
+TRACK_PARAM_KEYS = ("waist_bias", "fused_climb", "hard_iron_fit", "foot_ramps", "compass_sinusoid")
 #: decision L615: the lower-back PARAMS ``options`` (``{"options": {...}}``) the plasys pipeline reads as well
 PLASYS_OPTION_KEYS = ("ride_vibration",)
 
@@ -1663,10 +1664,11 @@ def _track_params(par: dict, path: Path, streaming: bool) -> tuple[dict, dict]:
         raise DataError(f"{path}: \"waist_bias\" removes the waist gyroscope bias from the offline two-unit heading "
                         "(decisions W126, W422); the --streaming kernel removes instead, always, the bias read at "
                         "each stop of 10 s or more (decision E272): drop --streaming or the key")
-    if "hard_iron_fit" in keys and streaming:  # decision L636
-        raise DataError(f"{path}: \"hard_iron_fit\" fits the waist compass of the offline fused heading (decisions "
-                        "L84, L636); the --streaming kernel heads by the gyroscopes and reads no compass: drop "
-                        "--streaming or the key")
+    for key, codes in (("hard_iron_fit", "L84, L636"), ("compass_sinusoid", "L770")):
+        if key in keys and streaming:  # decisions L636, L770
+            raise DataError(f"{path}: \"{key}\" fits the waist compass of the offline fused heading (decisions "
+                            f"{codes}); the --streaming kernel heads by the gyroscopes and reads no compass: drop "
+                            "--streaming or the key")
     keys.update(_plasys_options(par.get("options"), path, streaming) if "options" in par else {})
     return {k: v for k, v in par.items() if k not in TRACK_PARAM_KEYS and k != "options"}, keys
 

@@ -25,6 +25,18 @@ def walked_distance(length_m) -> float:
     return float(np.nansum(length)) if length.size else 0.0
 
 
+def loop_closure(x_m, y_m, distance_m: float) -> tuple[float | None, float | None]:
+    """Decision L771 (trial s50t1 F8): the horizontal distance (m) of a track's last position ``x_m[-1], y_m[-1]``
+    from its first, and that distance as % of the walked ``distance_m`` (None without a distance). Meaningful only
+    when the walk returns to its start (a loop, an out-and-back mission): then it is the track's closure error
+    without ground truth; on any other walk it is just the start-to-end distance. (None, None) without positions."""
+    x, y = np.asarray(x_m, dtype=float), np.asarray(y_m, dtype=float)
+    if not x.size or not np.isfinite([x[0], x[-1], y[0], y[-1]]).all():
+        return None, None
+    gap = float(math.hypot(x[-1] - x[0], y[-1] - y[0]))
+    return gap, (100.0 * gap / float(distance_m) if distance_m and distance_m > 0 else None)
+
+
 def side_of(lateral_m) -> np.ndarray:
     """Decisions L412, E319 (review R2 F6): (n,) object, ``left`` where the displacement's left component
     ``lateral_m`` (m, the foot's frame: y left) is > 0, ``right`` where < 0, None where it is 0 or NaN (no side)."""

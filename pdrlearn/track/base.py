@@ -295,7 +295,9 @@ def get_pipeline(name: str) -> Pipeline:
       ``bounds``, ``bounds_scale``, ``down_mode``, ``min_confidence``, ``align``, ``rules`` (``"bayes"`` /
       ``"thesis"``), ``fused_tau_s``, ``streaming``, ``distance_gain``, ``calibration``, ``gap_yaw``, ``waist_gap_yaw``,
       ``waist_bridge`` (decisions L91 / L99: streamed on by default), ``warn_out_of_domain``, ``toe_off``
-      (decision L73: the toe-off / stance / swing columns, offline), ``hard_iron_fit`` (decision L84), ``cycling``
+      (decision L73: the toe-off / stance / swing columns, offline), ``hard_iron_fit`` (decision L84),
+      ``compass_sinusoid`` (decision L770: the waist compass's direction sinusoid off before the fused window),
+      ``cycling``
       (decision E304: False judges no stride pedalling, as ``--no-cycling``),
       ``contacts`` (decisions E49-E51: with ``streaming``, each stride's initial contact and stride time),
       ``drop_neighbour`` (decisions L167, E101: with ``streaming``, a stride across dropped foot samples takes the

@@ -709,6 +709,11 @@ def _basic(result: TrackResult, out: dict) -> None:
     out["final_position"] = {k: (float(last[k]) if last is not None else 0.0) for k in ("x", "y", "z")}
     if last is not None and "lat" in tr:
         out["final_position"].update(lat=float(last["lat"]), lon=float(last["lon"]))
+    from pdrlearn.kernels.travel import loop_closure
+
+    # decision L771: the end's distance from the start, m and % of the walked distance (meaningful on a loop)
+    out["loop_closure_m"], out["loop_closure_pct"] = loop_closure(tr["x"], tr["y"], out["distance_m"]) \
+        if len(tr) else (None, None)
     # the tracked altitude change, with or without ground truth (session 14 trial finding 2)
     out["altitude_change_m"] = float(tr["z"].iloc[-1] - tr["z"].iloc[0]) if len(tr) and "z" in tr else 0.0
     from pdrlearn.track.floor_column import ride_change
