@@ -62,6 +62,7 @@ from pdrlearn.kernels.stride import (
     headed_by_foot,
     impossible_stride_one,
     impossible_stride_warning,
+    long_stop_span,
     no_length_bounds_warning,
     placement_offset,
     pre_l59_fallback,
@@ -2510,6 +2511,10 @@ class Tracker(OwnGuard, FixInput):
         elif prev_end is not None and self.waist_gap_yaw and "waist" in self.units \
                 and waist_gap_max_s(prev_end, self._latest) > GAP_YAW_MAX_S:  # decision L498: a stop up to 60 s
             keep_from = min(keep_from, prev_end - _LOOK_BACK_S)  # keeps its samples for the waist's gap yaw
+        if prev_end is not None and carry and self.waist_gap_yaw:  # decision E324: a stop over 60 s keeps the waist's
+            span = long_stop_span(prev_end, self._latest)  # samples (up to 600 s of them) for L296's rest rotation
+            if span is not None:
+                waist_from = min(waist_from, span[0] - _LOOK_BACK_S)
         if self._stop_bias is not None and (prev_end is not None or "wAccelerometer" in self._buf):  # decision E272:
             # a stop's last KEEP_S seconds (E286: also the waist's rest before the first stride)
             start = -math.inf if prev_end is None else prev_end
