@@ -95,6 +95,7 @@ from pdrlearn.kernels.window import (
     segment,
     stride_hole,
     stride_hole_line,
+    stride_pitched,
 )
 from pdrlearn.runtime.baro_check import BaroCheck
 from pdrlearn.runtime.bundle import Bundle, load_bundle, waist_only_hint
@@ -680,7 +681,8 @@ class Tracker(OwnGuard, FixInput):
         #: decision E232: L145's foot-vs-barometer check (a foot track pushed a barometer, run's line at flush)
         self._baro = (BaroCheck(baro) if baro is not None and "foot" in self.units and self.stream_checks
                       else None)
-        self._posture: list | None = None  # decision B131: [first s, last s, steps, index in warnings]
+        #: decision B131: [first s, last s, steps, index in warnings, the line last logged (B473)]
+        self._posture: list | None = None
         self._turn_tally: list | None = None  # decisions C89 / C94: [TurnTally, index of its line in warnings]
         self._model_args = (*check_tasks(self.bundle, tasks, methods), units, step_graph)  # decisions B137, B139
         if self._session_length is not None:  # decision C131: the classes C117's median needs, or one line
@@ -1710,6 +1712,8 @@ class Tracker(OwnGuard, FixInput):
                 continue
             snap = self._before()  # decision E280: what a restart state holds while the stride is held
             try:
+                if self._pitched(t0, t1):  # decision B473: a pitched foot's stride after level ones is B131's posture
+                    raise VerticalAxisError("foot pitched at rest")
                 rec = self._measure(t0, t1)
             except VerticalAxisError:
                 if not (self.n_steps or self._loops.seen):  # decision B131: the session starts so: the frame
@@ -1721,6 +1725,14 @@ class Tracker(OwnGuard, FixInput):
                 raise DataError(self._no_gravity(t0, t1)) from None
             out += self._release(self._loops.add(rec[3], (rec, snap)))
         return out
+
+    def _pitched(self, t0: float, t1: float) -> bool:
+        """Decision B473: after level strides (B131: the frame was judged fine), whether the foot rests pitched far from
+        level at the window's start (:func:`~pdrlearn.kernels.window.pitched_rest`, ``track --streaming``'s test)."""
+        if not (self.n_steps or self._loops.seen) or "foot" not in self.forward \
+                or not all(n in self._buf for n in ("fAccelerometer", "fGyroscope")):
+            return False
+        return stride_pitched(self._stream, self.forward["foot"], t0, t1, rest_search_s=self.rest_search_s)
 
     def _turn_in_place(self, t0: float, t1: float) -> bool:
         """Decision L742: whether the foot window ``[t0, t1]`` is a turn on the spot (:func:`~pdrlearn.kernels.spin.
@@ -1777,10 +1789,15 @@ class Tracker(OwnGuard, FixInput):
     def _log_pedal(self) -> None:
         """Decision E280: at a flush (the end of a recording) L611's line is logged as it stands, once (again when a
         later flush changed it), so the log has ``track --streaming``'s whole line, not its first stride's."""
-        p = self._pedal_line
-        if p is not None and self.warnings[p[1]] != p[2]:
-            p[2] = self.warnings[p[1]]
-            log.warning("bundle %s: %s", self.bundle.path, p[2])
+        self._log_widened(self._pedal_line, 1, 2)
+        self._log_widened(self._posture, 3, 4)  # decision B473: B131's line as it stands (the whole posture)
+
+    def _log_widened(self, p: list | None, at: int, logged: int) -> None:
+        """Decisions E280 / B473: log the warning ``self.warnings[p[at]]`` of a line widened in place unless it is
+        ``p[logged]``, the one last logged (then noted there)."""
+        if p is not None and self.warnings[p[at]] != p[logged]:
+            p[logged] = self.warnings[p[at]]
+            log.warning("bundle %s: %s", self.bundle.path, p[logged])
 
     def _check_unpushed(self, t0: float, t1: float) -> None:
         """Decision B140: with no ``sensors=`` declared, a sensor a task's model reads that nothing has pushed by
@@ -1808,13 +1825,13 @@ class Tracker(OwnGuard, FixInput):
         frame was fine is a posture (kneeling, crawling), not a wrong meta.json: the step is skipped (the position
         holds) and one warning says when; later such steps widen its span and count."""
         if self._posture is None:
-            self._posture = [t0, t1, 0, len(self.warnings)]
+            self._posture = [t0, t1, 0, len(self.warnings), None]
             self.warnings.append("")
         p = self._posture
         p[1], p[2] = max(p[1], t1), p[2] + 1
         self.warnings[p[3]] = posture_warning(p[2], p[0], p[1])
-        if p[2] == 1:
-            log.warning("bundle %s: %s", self.bundle.path, self.warnings[p[3]])
+        if p[2] == 1:  # the first at once; decision B473: the whole span again at a flush (_log_pedal)
+            self._log_widened(p, 3, 4)
 
     def _note_turn_tally(self, label, length_m: float, turn_rad: float) -> None:
         """Decisions C89 / C94: the classifier's length class (before C88) against the stride's measured length."""

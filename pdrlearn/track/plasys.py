@@ -90,6 +90,7 @@ from pdrlearn.kernels.window import (
     posture_warning,
     stride_hole,
     stride_hole_line,
+    stride_pitched,
 )
 from pdrlearn.orient import WaistHeading, unit_data, wrap_angle
 from pdrlearn.orient._kernels import fit_horizontal_hard_iron, level_axes
@@ -2163,6 +2164,9 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                                                                       else float(t0)), float(t1))
             continue
         try:
+            if i > int(posture.sum()) and "foot" in forward and stride_pitched(  # decision B473: after level strides, a
+                    streams.__getitem__, forward["foot"], float(t0), float(t1), rest_search_s=rest_search_s):
+                raise VerticalAxisError("foot pitched at rest")  # foot pitched far from level (the runtime's test)
             lev = levelled_units(streams, float(t0), float(t1), available=available, forward=forward,  # E36: a
                                  rest_search_s=rest_search_s, heading=step_heading, bridge_gaps=True)  # short gap
         except VerticalAxisError:  # = 1 interval; decision B131: after level strides, a posture (the runtime's)
