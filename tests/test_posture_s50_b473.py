@@ -1,5 +1,6 @@
-"""Decision B473 (session 50, FD, trial s50t1 F2): a foot resting pitched over 60 deg after level strides is B131's
-posture (kneeling, crawling) for as long as it lasts: skipped live and by ``track --streaming``, one line."""
+"""Decisions B473 / B474 (session 50, FD, trial s50t1 F2): a foot resting pitched more than 45 deg from its first
+stride's rest is B131's posture (kneeling, crawling) for as long as it lasts: skipped live and by ``track
+--streaming``, one line (B473's absolute 60 deg was not adopted: a real instep mount rests at 72 deg on stairs)."""
 
 from __future__ import annotations
 
@@ -9,7 +10,7 @@ import re
 import numpy as np
 import pytest
 
-from pdrlearn.kernels.window import pitched_rest, stride_pitched
+from pdrlearn.kernels.window import pitched_from, rest_pitch_deg, stride_rest_pitch
 
 ROOT = __import__("pathlib").Path(__file__).resolve().parents[1]
 FWD = np.array([1.0, 0.0, 0.0])  # the simulator's foot frame: x forward, y up, z right
@@ -22,12 +23,17 @@ def _rest(pitch_deg: float, n: int = 40):
     return t, acc, np.zeros((n, 3))
 
 
-@pytest.mark.parametrize(("pitch", "pitched"), [(0.0, False), (30.0, False), (59.0, False), (65.0, True),
-                                                (80.0, True), (-80.0, True)])
-def test_the_kernel_judges_the_first_rest_s_pitch(pitch, pitched):
+@pytest.mark.parametrize("pitch", [0.0, 30.0, 59.0, 80.0, -80.0])
+def test_the_kernel_reads_the_first_rest_s_pitch(pitch):
     t, acc, gyr = _rest(pitch)
-    assert pitched_rest(t, acc, gyr, FWD, rest_search_s=0.25) is pitched
-    assert pitched_rest(t, acc, gyr, FWD, rest_search_s=0.25, max_pitch_deg=85.0) is False  # B131's 84.3 deg passes 80
+    assert rest_pitch_deg(t, acc, gyr, FWD, rest_search_s=0.25) == pytest.approx(abs(pitch), abs=1e-6)
+
+
+def test_a_posture_is_a_pitch_far_from_the_first_stride_s():
+    assert not pitched_from(80.0, None)  # the first stride: its frame is B131's question
+    assert pitched_from(80.0, 5.0) and pitched_from(65.0, 5.0)  # a boot crawling from a level walk
+    assert not pitched_from(72.3, 50.5)  # gaitmap_stairs_down_left: an instep mount on a stair going down (B473's miss)
+    assert not pitched_from(30.0, 0.0) and not pitched_from(float("nan"), 0.0)
 
 
 def _crawl(session, t0: float, t1: float, pitch_deg: float = 80.0):
@@ -84,8 +90,8 @@ def test_the_live_tracker_skips_the_whole_crawl_as_track_streaming_does(crawled,
     assert [w for w in off.info["warnings"] if "(decision B131)" in w] == lines  # the same line
 
 
-def test_stride_pitched_reads_the_buffered_streams(crawled):
+def test_stride_rest_pitch_reads_the_buffered_streams(crawled):
     s, (a, b) = crawled
     stream = {n: (st.t, st.values) for n, st in s.streams.items()}.__getitem__
-    assert stride_pitched(stream, FWD, a + 5.0, a + 6.2, rest_search_s=0.25)
-    assert not stride_pitched(stream, FWD, 3.0, 4.2, rest_search_s=0.25)
+    assert stride_rest_pitch(stream, FWD, a + 5.0, a + 6.2, rest_search_s=0.25) > 70.0
+    assert stride_rest_pitch(stream, FWD, 3.0, 4.2, rest_search_s=0.25) < 20.0

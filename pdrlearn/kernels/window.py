@@ -225,18 +225,26 @@ def window_rests(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, *, rest
     return an, k0, k1, col_mean(acc[max(k0 - h, 0): k0 + h + 1]), col_mean(acc[max(k1 - h, 0): k1 + h + 1])
 
 
-def pitched_rest(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, forward_s: np.ndarray, *,
-                 rest_search_s: float, max_pitch_deg: float = 60.0) -> bool:
-    """Decision B473: whether the foot window's first rest (:func:`window_rests`) holds the declared forward axis
-    ``forward_s`` more than ``max_pitch_deg`` from horizontal (B131's test in :func:`foot_levelled` is 84.3 deg, a
-    horizontal part under 0.1: a boot pitched 80 deg toes-down to crawl passed it). After level strides such a stride
-    is B131's posture (kneeling, crawling): a walking foot rests within about 30 deg of level (tiptoe, a steep ramp)."""
+def rest_pitch_deg(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, forward_s: np.ndarray, *,
+                   rest_search_s: float) -> float:
+    """Decisions B473 / B474: how far (deg) the declared forward axis ``forward_s`` points from horizontal at the foot
+    window's first rest (:func:`window_rests`; B131's test in :func:`foot_levelled` is over 84.3 deg, a horizontal
+    part under 0.1); NaN for a window of under 2 samples or no specific force."""
     if acc.shape[0] < 2:
-        return False
+        return math.nan
     g0 = window_rests(t, acc, gyr, rest_search_s=rest_search_s)[3]
     f = np.asarray(forward_s, dtype=float)
     den = vec_norm(g0) * vec_norm(f)
-    return bool(den > 0 and abs(float(np.dot(g0, f))) / den > math.sin(math.radians(max_pitch_deg)))
+    return math.degrees(math.asin(min(1.0, abs(float(np.dot(g0, f))) / den))) if den > 0 else math.nan
+
+
+def pitched_from(pitch_deg: float, ref_deg: float | None, *, max_change_deg: float = 45.0) -> bool:
+    """Decision B474: whether a stride's first rest pitch ``pitch_deg`` (:func:`rest_pitch_deg`) differs from
+    ``ref_deg``, the session's first stride's (whose frame B131 judged), by more than ``max_change_deg``: B131's posture
+    (kneeling, crawling: a boot pitched 60-90 deg from its walking rest). B473's absolute 60 deg was not adopted: a
+    real instep mount rests 50 deg pitched on the level and 72 deg on a stair going down (gaitmap), 22 deg from its
+    first stride's."""
+    return ref_deg is not None and math.isfinite(pitch_deg) and abs(pitch_deg - ref_deg) > max_change_deg
 
 
 def foot_levelled(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, forward_s: np.ndarray, *,
@@ -612,16 +620,16 @@ def levelled_units(streams: Streams, t0: float, t1: float, *, available: tuple[s
     return out
 
 
-def stride_pitched(stream, forward_s: np.ndarray, t0: float, t1: float, *, rest_search_s: float) -> bool:
-    """Decision B473: :func:`pitched_rest` of the foot samples of the stride ``[t0, t1]`` (s) read as
+def stride_rest_pitch(stream, forward_s: np.ndarray, t0: float, t1: float, *, rest_search_s: float) -> float:
+    """Decisions B473 / B474: :func:`rest_pitch_deg` of the foot samples of the stride ``[t0, t1]`` (s) read as
     :func:`levelled_units` reads them; ``stream(name)`` -> ``(t, values)`` of a buffered stream (the runtime's ring,
-    ``track --streaming``'s session), so both judge a stride alike. False without foot samples."""
+    ``track --streaming``'s session), so both judge a stride alike. NaN without foot samples."""
     try:
         ta, acc = segment(*stream("fAccelerometer"), t0, t1)
         gyr = resample(ta, *segment(*stream("fGyroscope"), t0, t1)).T
     except KeyError:
-        return False
-    return pitched_rest(ta, acc, gyr, forward_s, rest_search_s=rest_search_s)
+        return math.nan
+    return rest_pitch_deg(ta, acc, gyr, forward_s, rest_search_s=rest_search_s)
 
 
 @functools.lru_cache(maxsize=8)

@@ -90,12 +90,13 @@ from pdrlearn.kernels.window import (
     fill_step_window,
     hole_stride_dz,
     levelled_units,
+    pitched_from,
     posture_warning,
     rest_boundaries,
     segment,
     stride_hole,
     stride_hole_line,
-    stride_pitched,
+    stride_rest_pitch,
 )
 from pdrlearn.runtime.baro_check import BaroCheck
 from pdrlearn.runtime.bundle import Bundle, load_bundle, waist_only_hint
@@ -523,6 +524,7 @@ class Tracker(OwnGuard, FixInput):
     _first_walk = None  # decision E215 (a bare Tracker.__new__ has none)
     _stop_bias = None  # decision E272 (a bare Tracker.__new__ has none)
     _drop_at_w = math.inf  # decision E285 (as _stop_bias)
+    _pitch_ref = None  # decision B474: the first stride's rest pitch (deg), None before it
     _pedal_line: list | None = None  # decision E280: [spans, index in warnings]
     _foot_gaps: list | tuple = ()
     _heading_gaps: list | tuple = ()  # decision E299: the waist gyroscope's gaps over 1 s, the latest 16
@@ -1712,7 +1714,7 @@ class Tracker(OwnGuard, FixInput):
                 continue
             snap = self._before()  # decision E280: what a restart state holds while the stride is held
             try:
-                if self._pitched(t0, t1):  # decision B473: a pitched foot's stride after level ones is B131's posture
+                if self._pitched(t0, t1):  # decision B474: a foot pitched from its first rest is B131's posture
                     raise VerticalAxisError("foot pitched at rest")
                 rec = self._measure(t0, t1)
             except VerticalAxisError:
@@ -1727,12 +1729,16 @@ class Tracker(OwnGuard, FixInput):
         return out
 
     def _pitched(self, t0: float, t1: float) -> bool:
-        """Decision B473: after level strides (B131: the frame was judged fine), whether the foot rests pitched far from
-        level at the window's start (:func:`~pdrlearn.kernels.window.pitched_rest`, ``track --streaming``'s test)."""
-        if not (self.n_steps or self._loops.seen) or "foot" not in self.forward \
-                or not all(n in self._buf for n in ("fAccelerometer", "fGyroscope")):
+        """Decision B474: whether the foot rests at the window's start pitched more than 45 deg from where it rested at
+        the first stride (:func:`~pdrlearn.kernels.window.pitched_from`, ``track --streaming``'s test); the first
+        stride (B131 judges its frame) sets that reference."""
+        if "foot" not in self.forward or not all(n in self._buf for n in ("fAccelerometer", "fGyroscope")):
             return False
-        return stride_pitched(self._stream, self.forward["foot"], t0, t1, rest_search_s=self.rest_search_s)
+        pitch = stride_rest_pitch(self._stream, self.forward["foot"], t0, t1, rest_search_s=self.rest_search_s)
+        if self._pitch_ref is None:
+            self._pitch_ref = pitch if math.isfinite(pitch) else None
+            return False
+        return pitched_from(pitch, self._pitch_ref)
 
     def _turn_in_place(self, t0: float, t1: float) -> bool:
         """Decision L742: whether the foot window ``[t0, t1]`` is a turn on the spot (:func:`~pdrlearn.kernels.spin.
