@@ -10,7 +10,7 @@ import re
 import numpy as np
 import pytest
 
-from pdrlearn.kernels.window import pitched_from, rest_pitch_deg, stride_rest_pitch
+from pdrlearn.kernels.window import level_reference, pitched_from, rest_pitch_deg, stride_rest_pitch
 
 ROOT = __import__("pathlib").Path(__file__).resolve().parents[1]
 FWD = np.array([1.0, 0.0, 0.0])  # the simulator's foot frame: x forward, y up, z right
@@ -29,11 +29,16 @@ def test_the_kernel_reads_the_first_rest_s_pitch(pitch):
     assert rest_pitch_deg(t, acc, gyr, FWD, rest_search_s=0.25) == pytest.approx(abs(pitch), abs=1e-6)
 
 
-def test_a_posture_is_a_pitch_far_from_the_first_stride_s():
+def test_a_posture_is_a_pitch_far_from_the_most_level_rest_so_far():
     assert not pitched_from(80.0, None)  # the first stride: its frame is B131's question
     assert pitched_from(80.0, 5.0) and pitched_from(65.0, 5.0)  # a boot crawling from a level walk
-    assert not pitched_from(72.3, 50.5)  # gaitmap_stairs_down_left: an instep mount on a stair going down (B473's miss)
+    assert not pitched_from(72.3, 49.4)  # gaitmap_stairs_down_left: an instep mount on a stair going down (B473's miss)
     assert not pitched_from(30.0, 0.0) and not pitched_from(float("nan"), 0.0)
+    assert not pitched_from(5.0, 70.0)  # one-sided: a walk after a session's kneeling start is tracked
+    ref = None
+    for p in (70.0, 5.0, float("nan"), 20.0):
+        ref = level_reference(ref, p)
+    assert ref == 5.0 and pitched_from(80.0, ref)  # then the crawl after that walk is the posture
 
 
 def _crawl(session, t0: float, t1: float, pitch_deg: float = 80.0):

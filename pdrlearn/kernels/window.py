@@ -239,12 +239,21 @@ def rest_pitch_deg(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, forwa
 
 
 def pitched_from(pitch_deg: float, ref_deg: float | None, *, max_change_deg: float = 45.0) -> bool:
-    """Decision B474: whether a stride's first rest pitch ``pitch_deg`` (:func:`rest_pitch_deg`) differs from
-    ``ref_deg``, the session's first stride's (whose frame B131 judged), by more than ``max_change_deg``: B131's posture
-    (kneeling, crawling: a boot pitched 60-90 deg from its walking rest). B473's absolute 60 deg was not adopted: a
-    real instep mount rests 50 deg pitched on the level and 72 deg on a stair going down (gaitmap), 22 deg from its
-    first stride's."""
-    return ref_deg is not None and math.isfinite(pitch_deg) and abs(pitch_deg - ref_deg) > max_change_deg
+    """Decision B474: whether a stride's first rest pitch ``pitch_deg`` (:func:`rest_pitch_deg`) is more than
+    ``max_change_deg`` further from horizontal than ``ref_deg``, the most level rest of the strides tracked so far
+    (:func:`level_reference`; the first one's frame B131 judges): B131's posture (kneeling, crawling: a boot pitched
+    60-90 deg from its walking rest). One-sided, so a walk after a session's kneeling start is tracked. B473's absolute
+    60 deg was not adopted: a real instep mount rests 50 deg pitched on the level and 72 deg on a stair going down
+    (gaitmap; at most 29.5 deg from its most level rest in the real foot recordings)."""
+    return ref_deg is not None and math.isfinite(pitch_deg) and pitch_deg - ref_deg > max_change_deg
+
+
+def level_reference(ref_deg: float | None, pitch_deg: float) -> float | None:
+    """Decision B474: :func:`pitched_from`'s reference after a tracked stride whose rest pitch is ``pitch_deg``: the
+    most level one so far (NaN changes nothing)."""
+    if not math.isfinite(pitch_deg):
+        return ref_deg
+    return pitch_deg if ref_deg is None else min(ref_deg, pitch_deg)
 
 
 def foot_levelled(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, forward_s: np.ndarray, *,

@@ -89,6 +89,7 @@ from pdrlearn.kernels.window import (
     available_groups,
     fill_step_window,
     hole_stride_dz,
+    level_reference,
     levelled_units,
     pitched_from,
     posture_warning,
@@ -524,7 +525,7 @@ class Tracker(OwnGuard, FixInput):
     _first_walk = None  # decision E215 (a bare Tracker.__new__ has none)
     _stop_bias = None  # decision E272 (a bare Tracker.__new__ has none)
     _drop_at_w = math.inf  # decision E285 (as _stop_bias)
-    _pitch_ref = None  # decision B474: the first stride's rest pitch (deg), None before it
+    _pitch_ref = None  # decision B474: the most level rest pitch (deg) of the strides so far, None before one
     _pedal_line: list | None = None  # decision E280: [spans, index in warnings]
     _foot_gaps: list | tuple = ()
     _heading_gaps: list | tuple = ()  # decision E299: the waist gyroscope's gaps over 1 s, the latest 16
@@ -1729,16 +1730,16 @@ class Tracker(OwnGuard, FixInput):
         return out
 
     def _pitched(self, t0: float, t1: float) -> bool:
-        """Decision B474: whether the foot rests at the window's start pitched more than 45 deg from where it rested at
-        the first stride (:func:`~pdrlearn.kernels.window.pitched_from`, ``track --streaming``'s test); the first
-        stride (B131 judges its frame) sets that reference."""
+        """Decision B474: whether the foot rests at the window's start pitched more than 45 deg further from level than
+        at the most level rest of the strides so far (:func:`~pdrlearn.kernels.window.pitched_from`, ``track
+        --streaming``'s test); the first stride (B131 judges its frame) starts that reference."""
         if "foot" not in self.forward or not all(n in self._buf for n in ("fAccelerometer", "fGyroscope")):
             return False
         pitch = stride_rest_pitch(self._stream, self.forward["foot"], t0, t1, rest_search_s=self.rest_search_s)
-        if self._pitch_ref is None:
-            self._pitch_ref = pitch if math.isfinite(pitch) else None
-            return False
-        return pitched_from(pitch, self._pitch_ref)
+        if pitched_from(pitch, self._pitch_ref):
+            return True
+        self._pitch_ref = level_reference(self._pitch_ref, pitch)
+        return False
 
     def _turn_in_place(self, t0: float, t1: float) -> bool:
         """Decision L742: whether the foot window ``[t0, t1]`` is a turn on the spot (:func:`~pdrlearn.kernels.spin.
