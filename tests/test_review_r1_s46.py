@@ -144,8 +144,12 @@ def test_the_live_waist_rings_stay_bounded_through_a_long_stand():
             longest[k] = max(longest.get(k, 0), len(r))
     n += len(list(tr.flush()))
     assert n >= 8 and set(longest) >= {"wAccelerometer", "wGyroscope", "wMagneticField", "wBarometer"}
-    # L498's stop of up to 60 s is held (and buffer_s, the look-back); the 600 s stand is not (E289 held 12130)
-    assert max(longest.values()) < 100 * rate
+    # L498's stop of up to 60 s is held (and buffer_s, the look-back); the 600 s stand is not (E289 held 12130) but in
+    # the two rings carried_yaw reads: decision E324 keeps up to 600 s of them for a turn made on the spot (its
+    # long_stop_span bounds them, tests/test_live_stops_s50_e324.py)
+    carried = ("wAccelerometer", "wGyroscope")
+    assert max(v for k, v in longest.items() if k not in carried) < 100 * rate
+    assert max(longest[k] for k in carried) < (600 + 30) * rate
 
 
 # -- minor: L675, L679 ----------------------------------------------------------------------------------------------

@@ -20,7 +20,7 @@ from collections.abc import Callable
 import numpy as np
 
 from pdrlearn.kernels.rotation import rotvec_to_matrix
-from pdrlearn.kernels.stride import WAIST_GAP_S, headed_by_foot, waist_gap_from, yaw_change
+from pdrlearn.kernels.stride import WAIST_GAP_S, headed_by_foot, long_stop_turn, waist_gap_from, yaw_change
 from pdrlearn.kernels.window import TIE_S, interp, segment
 
 #: decision E285: the vertical is the mean specific force over the stride and this many seconds (s) before its start
@@ -74,7 +74,8 @@ def carried_turn(stream: Stream, levelled, heading_source: str, prev_end: float 
                  waist_gap: bool = True) -> tuple[float, float] | None:
     """Decision E285: ``(turn, dyaw)`` of a stride headed by the waist gyroscope: its own turn over ``[t0, t1]`` and
     its heading change with the gap before it (the span L61 / L498's gap yaw covers,
-    :func:`~pdrlearn.kernels.stride.waist_gap_from`, when ``waist_gap``), both by :func:`carried_yaw`; None for a
+    :func:`~pdrlearn.kernels.stride.waist_gap_from`, when ``waist_gap``), both by :func:`carried_yaw` (and E324's
+    :func:`~pdrlearn.kernels.stride.long_stop_turn` before that span); None for a
     foot-headed stride (or no waist samples), which keeps :func:`~pdrlearn.kernels.stride.stride_motion` and
     :func:`~pdrlearn.kernels.stride.stride_gap_yaw`'s. The runtime and ``track --streaming`` call it alike."""
     if headed_by_foot(levelled, heading_source):
@@ -83,4 +84,6 @@ def carried_turn(stream: Stream, levelled, heading_source: str, prev_end: float 
     if s is None:
         return None
     gap, own = s
+    if waist_gap:  # decision E324: a stop over 60 s adds its turn before L498's last second (L296's rest rotation)
+        gap += long_stop_turn(stream, prev_end, t0)
     return own, own + gap

@@ -54,7 +54,17 @@ def stop_yaw_bias(stream: Stream, prev_end: float | None, t0: float) -> float | 
             return None
     if not t0 - prev_end >= STOP_MIN_S:
         return None
-    a, b = max(float(prev_end), float(t0) - LEAD_S - WINDOW_S), float(t0) - LEAD_S
+    read = vertical_rate(stream, max(float(prev_end), float(t0) - LEAD_S - WINDOW_S), float(t0) - LEAD_S)
+    if read is None:
+        return None
+    blocks = block_bias(*read)
+    return None if blocks is None else float(blocks[1][-1])  # the newest block: nearest the walk
+
+
+def vertical_rate(stream: Stream, a: float, b: float) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
+    """Decisions E272 / E324: ``(t, w, still)`` of the waist samples in ``[a, b]`` (s): the gyroscope's rate on the
+    mean specific force's direction (as the gap yaw reads it, L31 / L61) on the accelerometer's clock, and L296's still
+    test (:func:`still_from_magnitudes`); None without the waist accelerometer / gyroscope or with under 3 samples."""
     try:
         ta, acc = segment(*stream("wAccelerometer"), a, b)
         tg, gyr = segment(*stream("wGyroscope"), a, b)
@@ -71,8 +81,7 @@ def stop_yaw_bias(stream: Stream, prev_end: float | None, t0: float) -> float | 
     if not n > 0 or not period > 0:
         return None
     still = still_from_magnitudes(np.sqrt((acc * acc).sum(axis=1)), np.sqrt((g * g).sum(axis=1)), 1.0 / period)
-    blocks = block_bias(ta, g.dot(up / n), still)
-    return None if blocks is None else float(blocks[1][-1])  # the newest block: nearest the walk
+    return ta, g.dot(up / n), still
 
 
 class StopBias:

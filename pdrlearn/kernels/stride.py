@@ -31,7 +31,8 @@ from pdrlearn.kernels import foot_rhythm as FR
 from pdrlearn.kernels.backward import on_the_spot
 from pdrlearn.kernels.contact import MAX_STRIDE_S
 from pdrlearn.kernels.histospline import upsample_block_means
-from pdrlearn.kernels.rest_heading import REST_BIAS_MIN_S
+from pdrlearn.kernels.rest_heading import REST_BIAS_MIN_S, rest_rotation
+from pdrlearn.kernels.stop_bias import vertical_rate
 from pdrlearn.kernels.window import BRIDGE_GAP_S, TIE_S, Levelled, foot_levelled, interp, resample, segment
 
 # -- length-class bounds -------------------------------------------------------------------------------
@@ -496,6 +497,40 @@ def waist_gap_from(prev_end: float | None, t0: float, waist: bool = True) -> flo
     return max(float(prev_end), float(t0) - waist_gap_max_s(prev_end, t0))
 
 
+def long_stop_span(prev_end: float | None, t0: float, *, max_stop_s: float = 600.0) -> tuple[float, float] | None:
+    """Decision E324: the part ``(a, b)`` (s) of the stop between a stride's end ``prev_end`` and the next one's start
+    ``t0`` that :func:`long_stop_turn` measures: a stop over L296's ``REST_BIAS_MIN_S`` (60 s; L498's gap yaw then
+    reads only its last ``GAP_YAW_MAX_S`` = 1 s, L31) from its start, or from ``max_stop_s`` before ``t0`` when longer
+    (the live Tracker keeps that much of the waist's samples: 600 s, 60000 samples a ring at 100 Hz), to that last
+    second; None for a shorter stop (L498 integrates it whole) or none."""
+    if prev_end is None or not float(t0) - float(prev_end) > REST_BIAS_MIN_S:
+        return None
+    return max(float(prev_end), float(t0) - max_stop_s), float(t0) - GAP_YAW_MAX_S
+
+
+def long_stop_turn(stream: Callable[[str], tuple[np.ndarray, np.ndarray]], prev_end: float | None, t0: float, *,
+                   still_margin_s: float = 1.0) -> float:
+    """Decision E324: the waist's turn (rad, CCW) over :func:`long_stop_span` (0 when None, or without waist samples):
+    L296's :func:`~pdrlearn.kernels.rest_heading.rest_rotation` of the vertical rate
+    (:func:`~pdrlearn.kernels.stop_bias.vertical_rate`): the still
+    samples add nothing, the moving ones (a turn on the spot, standing up) their rate less the bias of the still blocks
+    around them, as the offline waist track integrates a rest (W72 / L296), a still sample within ``still_margin_s``
+    of a moving one counted as moving. Before E324 a turn made on the spot more
+    than a second before the first stride after a stop over 60 s was lost (trial s50t1 F1: 15.20 m off on 20 m)."""
+    span = long_stop_span(prev_end, t0)
+    if span is None:
+        return 0.0
+    read = vertical_rate(stream, *span)
+    if read is None:
+        return 0.0
+    t, w, still = read
+    # a still sample within still_margin_s of a moving one is moving: a turn's slow start and end (under the still
+    # test's 0.25 rad/s) is turn, not bias (without it trial s50t1's 90 deg spin after 90 s came out 74 deg)
+    k = max(1, int(round(still_margin_s / float(np.median(np.diff(t))))))
+    near = np.convolve((~still).astype(float), np.ones(2 * k + 1), mode="same") > 0.5
+    return rest_rotation(t, w, still & ~near, *span)
+
+
 def stride_gap_yaw(levelled: Levelled, heading_source: str, stream: Callable[[str], tuple[np.ndarray, np.ndarray]],
                    prev_end: float | None, t0: float, *, foot: bool = True, waist: bool = False) -> float:
     """Decisions L31 / L61: the turn (rad) in the gap between the previous stride's end ``prev_end`` and this
@@ -512,7 +547,7 @@ def stride_gap_yaw(levelled: Levelled, heading_source: str, stream: Callable[[st
     if not waist:
         return 0.0
     return gap_yaw(*stream("wGyroscope"), *stream("wAccelerometer"), prev_end, t0, still_rad_s=WAIST_GAP_STILL_RAD_S,
-                   max_s=waist_gap_max_s(prev_end, t0))  # decision L498
+                   max_s=waist_gap_max_s(prev_end, t0)) + long_stop_turn(stream, prev_end, t0)  # decisions L498, E324
 
 
 def waist_bridge_yaw(stream: Callable[[str], tuple[np.ndarray, np.ndarray]], t0: float, t1: float) -> float:

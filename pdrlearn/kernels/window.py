@@ -209,6 +209,53 @@ def posture_warning(n: int, t0: float, t1: float) -> str:
             "no displacement is counted there and the position holds (decision B131)")
 
 
+def window_rests(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, *, rest_search_s: float) -> tuple:
+    """The rests of a stride's foot window (:func:`foot_levelled`'s reading): ``(|acc|, k0, k1, g0, g1)``, the
+    quietest sample within ``rest_search_s`` of the window's start and of its end and the specific force averaged
+    over +-20 ms around each (decisions: rest reference)."""
+    n = acc.shape[0]
+    fs = (n - 1) / float(t[-1] - t[0]) if n > 1 else 1.0  # mean rate over the step
+    m = max(2, min(int(round(rest_search_s * fs)), n // 4 + 1))
+    an = row_norm(acc)
+    h = max(0, int(round(0.02 * fs)))  # rest specific force averaged over +-20 ms
+    # rest |acc| from the quietest samples, the whole +-h neighbourhood quiet (decisions: rest reference)
+    score = rest_score(an, None if gyr is None else row_norm(gyr), half_width=h)
+    k0 = rest_index(acc, gyr, 0, m, score=score)
+    k1 = rest_index(acc, gyr, n - m, n, score=score)
+    return an, k0, k1, col_mean(acc[max(k0 - h, 0): k0 + h + 1]), col_mean(acc[max(k1 - h, 0): k1 + h + 1])
+
+
+def rest_pitch_deg(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, forward_s: np.ndarray, *,
+                   rest_search_s: float) -> float:
+    """Decisions B473 / B474: how far (deg) the declared forward axis ``forward_s`` points from horizontal at the foot
+    window's first rest (:func:`window_rests`; B131's test in :func:`foot_levelled` is over 84.3 deg, a horizontal
+    part under 0.1); NaN for a window of under 2 samples or no specific force."""
+    if acc.shape[0] < 2:
+        return math.nan
+    g0 = window_rests(t, acc, gyr, rest_search_s=rest_search_s)[3]
+    f = np.asarray(forward_s, dtype=float)
+    den = vec_norm(g0) * vec_norm(f)
+    return math.degrees(math.asin(min(1.0, abs(float(np.dot(g0, f))) / den))) if den > 0 else math.nan
+
+
+def pitched_from(pitch_deg: float, ref_deg: float | None, *, max_change_deg: float = 45.0) -> bool:
+    """Decision B474: whether a stride's first rest pitch ``pitch_deg`` (:func:`rest_pitch_deg`) is more than
+    ``max_change_deg`` further from horizontal than ``ref_deg``, the most level rest of the strides tracked so far
+    (:func:`level_reference`; the first one's frame B131 judges): B131's posture (kneeling, crawling: a boot pitched
+    60-90 deg from its walking rest). One-sided, so a walk after a session's kneeling start is tracked. B473's absolute
+    60 deg was not adopted: a real instep mount rests 50 deg pitched on the level and 72 deg on a stair going down
+    (gaitmap; at most 29.5 deg from its most level rest in the real foot recordings)."""
+    return ref_deg is not None and math.isfinite(pitch_deg) and pitch_deg - ref_deg > max_change_deg
+
+
+def level_reference(ref_deg: float | None, pitch_deg: float) -> float | None:
+    """Decision B474: :func:`pitched_from`'s reference after a tracked stride whose rest pitch is ``pitch_deg``: the
+    most level one so far (NaN changes nothing)."""
+    if not math.isfinite(pitch_deg):
+        return ref_deg
+    return pitch_deg if ref_deg is None else min(ref_deg, pitch_deg)
+
+
 def foot_levelled(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, forward_s: np.ndarray, *,
                   rest_search_s: float, heading: str, t0: float | None = None, frame: bool = False
                   ) -> tuple:
@@ -225,16 +272,7 @@ def foot_levelled(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, forwar
     0 without a gyroscope).
     """
     n = acc.shape[0]
-    fs = (n - 1) / float(t[-1] - t[0]) if n > 1 else 1.0  # mean rate over the step
-    m = max(2, min(int(round(rest_search_s * fs)), n // 4 + 1))
-    an = row_norm(acc)
-    h = max(0, int(round(0.02 * fs)))  # rest specific force averaged over +-20 ms
-    # rest |acc| from the quietest samples, the whole +-h neighbourhood quiet (decisions: rest reference)
-    score = rest_score(an, None if gyr is None else row_norm(gyr), half_width=h)
-    k0 = rest_index(acc, gyr, 0, m, score=score)
-    k1 = rest_index(acc, gyr, n - m, n, score=score)
-    g0 = col_mean(acc[max(k0 - h, 0): k0 + h + 1])
-    g1 = col_mean(acc[max(k1 - h, 0): k1 + h + 1])
+    an, k0, k1, g0, g1 = window_rests(t, acc, gyr, rest_search_s=rest_search_s)
     r0 = gravity_rotation(g0)
     ref = (r0 @ forward_s)[:2]  # the attitude at k0 is r0 exactly
     if vec_norm(ref) < 0.1:
@@ -589,6 +627,18 @@ def levelled_units(streams: Streams, t0: float, t1: float, *, available: tuple[s
         a, g = waist_levelled(wacc, wgyr, forward["waist"])
         out["waist"] = (tw, a, g, None, float("nan"))
     return out
+
+
+def stride_rest_pitch(stream, forward_s: np.ndarray, t0: float, t1: float, *, rest_search_s: float) -> float:
+    """Decisions B473 / B474: :func:`rest_pitch_deg` of the foot samples of the stride ``[t0, t1]`` (s) read as
+    :func:`levelled_units` reads them; ``stream(name)`` -> ``(t, values)`` of a buffered stream (the runtime's ring,
+    ``track --streaming``'s session), so both judge a stride alike. NaN without foot samples."""
+    try:
+        ta, acc = segment(*stream("fAccelerometer"), t0, t1)
+        gyr = resample(ta, *segment(*stream("fGyroscope"), t0, t1)).T
+    except KeyError:
+        return math.nan
+    return rest_pitch_deg(ta, acc, gyr, forward_s, rest_search_s=rest_search_s)
 
 
 @functools.lru_cache(maxsize=8)

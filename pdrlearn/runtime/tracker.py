@@ -63,6 +63,7 @@ from pdrlearn.kernels.stride import (
     headed_by_foot,
     impossible_stride_one,
     impossible_stride_warning,
+    long_stop_span,
     no_length_bounds_warning,
     placement_offset,
     pre_l59_fallback,
@@ -89,12 +90,15 @@ from pdrlearn.kernels.window import (
     available_groups,
     fill_step_window,
     hole_stride_dz,
+    level_reference,
     levelled_units,
+    pitched_from,
     posture_warning,
     rest_boundaries,
     segment,
     stride_hole,
     stride_hole_line,
+    stride_rest_pitch,
 )
 from pdrlearn.runtime.baro_check import BaroCheck
 from pdrlearn.runtime.bundle import Bundle, load_bundle, waist_only_hint
@@ -527,6 +531,7 @@ class Tracker(OwnGuard, FixInput):
     _first_walk = None  # decision E215 (a bare Tracker.__new__ has none)
     _stop_bias = None  # decision E272 (a bare Tracker.__new__ has none)
     _drop_at_w = math.inf  # decision E285 (as _stop_bias)
+    _pitch_ref = None  # decision B474: the most level rest pitch (deg) of the strides so far, None before one
     _pedal_line: list | None = None  # decision E280: [spans, index in warnings]
     _foot_gaps: list | tuple = ()
     _heading_gaps: list | tuple = ()  # decision E299: the waist gyroscope's gaps over 1 s, the latest 16
@@ -687,7 +692,8 @@ class Tracker(OwnGuard, FixInput):
         #: decision E232: L145's foot-vs-barometer check (a foot track pushed a barometer, run's line at flush)
         self._baro = (BaroCheck(baro) if baro is not None and "foot" in self.units and self.stream_checks
                       else None)
-        self._posture: list | None = None  # decision B131: [first s, last s, steps, index in warnings]
+        #: decision B131: [first s, last s, steps, index in warnings, the line last logged (B473)]
+        self._posture: list | None = None
         self._turn_tally: list | None = None  # decisions C89 / C94: [TurnTally, index of its line in warnings]
         self._model_args = (*check_tasks(self.bundle, tasks, methods), units, step_graph)  # decisions B137, B139
         if self._session_length is not None:  # decision C131: the classes C117's median needs, or one line
@@ -1745,6 +1751,8 @@ class Tracker(OwnGuard, FixInput):
                 continue
             snap = self._before()  # decision E280: what a restart state holds while the stride is held
             try:
+                if self._pitched(t0, t1):  # decision B474: a foot pitched from its first rest is B131's posture
+                    raise VerticalAxisError("foot pitched at rest")
                 rec = self._measure(t0, t1)
             except VerticalAxisError:
                 if not (self.n_steps or self._loops.seen):  # decision B131: the session starts so: the frame
@@ -1756,6 +1764,18 @@ class Tracker(OwnGuard, FixInput):
                 raise DataError(self._no_gravity(t0, t1)) from None
             out += self._release(self._loops.add(rec[3], (rec, snap)))
         return out
+
+    def _pitched(self, t0: float, t1: float) -> bool:
+        """Decision B474: whether the foot rests at the window's start pitched more than 45 deg further from level than
+        at the most level rest of the strides so far (:func:`~pdrlearn.kernels.window.pitched_from`, ``track
+        --streaming``'s test); the first stride (B131 judges its frame) starts that reference."""
+        if "foot" not in self.forward or not all(n in self._buf for n in ("fAccelerometer", "fGyroscope")):
+            return False
+        pitch = stride_rest_pitch(self._stream, self.forward["foot"], t0, t1, rest_search_s=self.rest_search_s)
+        if pitched_from(pitch, self._pitch_ref):
+            return True
+        self._pitch_ref = level_reference(self._pitch_ref, pitch)
+        return False
 
     def _turn_in_place(self, t0: float, t1: float) -> bool:
         """Decision L742: whether the foot window ``[t0, t1]`` is a turn on the spot (:func:`~pdrlearn.kernels.spin.
@@ -1812,10 +1832,15 @@ class Tracker(OwnGuard, FixInput):
     def _log_pedal(self) -> None:
         """Decision E280: at a flush (the end of a recording) L611's line is logged as it stands, once (again when a
         later flush changed it), so the log has ``track --streaming``'s whole line, not its first stride's."""
-        p = self._pedal_line
-        if p is not None and self.warnings[p[1]] != p[2]:
-            p[2] = self.warnings[p[1]]
-            log.warning("bundle %s: %s", self.bundle.path, p[2])
+        self._log_widened(self._pedal_line, 1, 2)
+        self._log_widened(self._posture, 3, 4)  # decision B473: B131's line as it stands (the whole posture)
+
+    def _log_widened(self, p: list | None, at: int, logged: int) -> None:
+        """Decisions E280 / B473: log the warning ``self.warnings[p[at]]`` of a line widened in place unless it is
+        ``p[logged]``, the one last logged (then noted there)."""
+        if p is not None and self.warnings[p[at]] != p[logged]:
+            p[logged] = self.warnings[p[at]]
+            log.warning("bundle %s: %s", self.bundle.path, p[logged])
 
     def _check_unpushed(self, t0: float, t1: float) -> None:
         """Decision B140: with no ``sensors=`` declared, a sensor a task's model reads that nothing has pushed by
@@ -1843,13 +1868,13 @@ class Tracker(OwnGuard, FixInput):
         frame was fine is a posture (kneeling, crawling), not a wrong meta.json: the step is skipped (the position
         holds) and one warning says when; later such steps widen its span and count."""
         if self._posture is None:
-            self._posture = [t0, t1, 0, len(self.warnings)]
+            self._posture = [t0, t1, 0, len(self.warnings), None]
             self.warnings.append("")
         p = self._posture
         p[1], p[2] = max(p[1], t1), p[2] + 1
         self.warnings[p[3]] = posture_warning(p[2], p[0], p[1])
-        if p[2] == 1:
-            log.warning("bundle %s: %s", self.bundle.path, self.warnings[p[3]])
+        if p[2] == 1:  # the first at once; decision B473: the whole span again at a flush (_log_pedal)
+            self._log_widened(p, 3, 4)
 
     def _note_turn_tally(self, label, length_m: float, turn_rad: float) -> None:
         """Decisions C89 / C94: the classifier's length class (before C88) against the stride's measured length."""
@@ -2546,6 +2571,10 @@ class Tracker(OwnGuard, FixInput):
         elif prev_end is not None and self.waist_gap_yaw and "waist" in self.units \
                 and waist_gap_max_s(prev_end, self._latest) > GAP_YAW_MAX_S:  # decision L498: a stop up to 60 s
             keep_from = min(keep_from, prev_end - _LOOK_BACK_S)  # keeps its samples for the waist's gap yaw
+        if prev_end is not None and carry and self.waist_gap_yaw:  # decision E324: a stop over 60 s keeps the waist's
+            span = long_stop_span(prev_end, self._latest)  # samples (up to 600 s of them) for L296's rest rotation
+            if span is not None:
+                waist_from = min(waist_from, span[0] - _LOOK_BACK_S)
         if self._stop_bias is not None and (prev_end is not None or "wAccelerometer" in self._buf):  # decision E272:
             # a stop's last KEEP_S seconds (E286: also the waist's rest before the first stride)
             start = -math.inf if prev_end is None else prev_end

@@ -20,6 +20,7 @@ acceleration, the M3 rules, heading from the integrated vertical rate), so that
 from __future__ import annotations
 
 import logging
+import math
 from pathlib import Path
 from types import SimpleNamespace
 
@@ -87,10 +88,13 @@ from pdrlearn.kernels.window import (
     TASK_COLUMNS,
     available_groups,
     hole_stride_dz,
+    level_reference,
     levelled_units,
+    pitched_from,
     posture_warning,
     stride_hole,
     stride_hole_line,
+    stride_rest_pitch,
 )
 from pdrlearn.orient import WaistHeading, unit_data, wrap_angle
 from pdrlearn.orient._kernels import fit_horizontal_hard_iron, level_axes
@@ -2199,6 +2203,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     across, ref = drop_strides(session, table, in_gap, min_gap_s=BRIDGE_GAP_S + GAP_TOL_S), None  # E230
     neighbour = bool(drop_neighbour)  # decisions E101, L549
     stop = KSB.StopBias() if "waist" in forward else None  # decision E272 (the runtime's: the waist unit tracked)
+    pitch_ref = None  # decision B474: the most level rest pitch (deg) of the strides so far
     for i, (t0, t1) in enumerate(strides):
         prev = float(strides[i - 1, 1]) if i else None
         if in_gap[i]:  # decision L91: the waist's turn from the previous stride's end, else 0 (L90)
@@ -2207,6 +2212,11 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                                                                       else float(t0)), float(t1))
             continue
         try:
+            pitch = (stride_rest_pitch(streams.__getitem__, forward["foot"], float(t0), float(t1),  # decision B474:
+                                       rest_search_s=rest_search_s) if "foot" in forward else math.nan)  # the runtime's
+            if pitched_from(pitch, pitch_ref):  # a foot pitched far from the most level rest so far: B131's posture
+                raise VerticalAxisError("foot pitched at rest")
+            pitch_ref = level_reference(pitch_ref, pitch)  # the first stride (B131 judges its frame) starts it
             lev = levelled_units(streams, float(t0), float(t1), available=available, forward=forward,  # E36: a
                                  rest_search_s=rest_search_s, heading=step_heading, bridge_gaps=True)  # short gap
         except VerticalAxisError:  # = 1 interval; decision B131: after level strides, a posture (the runtime's)
