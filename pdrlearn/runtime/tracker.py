@@ -37,6 +37,7 @@ from pdrlearn.kernels.align import MAX_CLOCK_DRIFT
 from pdrlearn.kernels.altitude_check import judged_terrain
 from pdrlearn.kernels.backward import signed_chord
 from pdrlearn.kernels.bayes import DEFAULT_MIN_CONFIDENCE, SIGMA_REL, check_rules, confident_one
+from pdrlearn.kernels.clipping import clipped_axes
 from pdrlearn.kernels.contact import force_at, stride_contact, stride_times
 from pdrlearn.kernels.counter_wrap import live_wrap
 from pdrlearn.kernels.distance import (
@@ -48,6 +49,7 @@ from pdrlearn.kernels.distance import (
 )
 from pdrlearn.kernels.fixes import wrap_angle
 from pdrlearn.kernels.frames import DIRECTIONS
+from pdrlearn.kernels.gait_range import running_stride
 from pdrlearn.kernels.gaps import MIN_GAP_S, drop_stride_disp, streamed_drops_line
 from pdrlearn.kernels.order import first_out_of_order, repeated, repeats_dropped_line
 from pdrlearn.kernels.stride import (
@@ -103,7 +105,7 @@ from pdrlearn.kernels.window import (
 from pdrlearn.runtime.baro_check import BaroCheck
 from pdrlearn.runtime.bundle import Bundle, load_bundle, waist_only_hint
 from pdrlearn.runtime.classify import StepGraph, TaskClassifier
-from pdrlearn.runtime.clip_watch import ClipWatch
+from pdrlearn.runtime.clip_watch import ClipWatch, full_scales
 from pdrlearn.runtime.clocks import SENSORS as CLOCK_SENSORS
 from pdrlearn.runtime.clocks import ClockCheck, offset_remedy, waist_on_foot_clock
 from pdrlearn.runtime.domain import DomainLog
@@ -280,6 +282,10 @@ class Step:
     #: decision E319: the stride's displacement to the left of the foot's facing at its start (m; negative to the
     #: right; NaN on a gap or posture row): a side step's side (steps.csv travel left / right)
     lateral_m: float = math.nan
+    #: decision E325: why the stride is not reliable, decided when it is emitted: ``"clipped"`` (a foot IMU sample
+    #: inside it is clipped, B77 / B311 / B456's kernel), ``"running"`` (L95 / W144's "looks like running" on the
+    #: stride's own cadence and speed); () for a reliable stride, a gap row or a zeroed (L94) stride
+    flags: tuple[str, ...] = ()
 
     def to_dict(self) -> dict:
         """The step as one row of a steps table: the classes under their steps.csv columns (``terrain``,
@@ -560,6 +566,7 @@ class Tracker(OwnGuard, FixInput):
     _domain: DomainLog | None = None  # decision E105 (a bare Tracker.__new__ scores nothing)
     _frozen_foot: FrozenFootWatch | None = None  # decision B213 (a bare Tracker.__new__ watches nothing)
     _clip: ClipWatch | None = None  # decision E303 (likewise)
+    _flag_scales: dict | None = None  # decision E325 (likewise: no clipped flag)
     _rates: RateWatch | None = None  # decision E309 (likewise)
     _rate_log: list | tuple = ()  # decision E309: the rate changes found (a bare Tracker.__new__ has none)
     _warn_ood: float | None = None
@@ -859,6 +866,8 @@ class Tracker(OwnGuard, FixInput):
         #: ``pdrlearn run`` said them when it read the session)
         self._clip = (ClipWatch(self.used_sensors, full_scale, waist="waist" in self.units)
                       if check_input and self.stream_checks else None)
+        #: decision E325: the declared full scales each stride's clipped flag is judged at (None: ``check_input=False``)
+        self._flag_scales = full_scales(full_scale) if check_input else None
         #: decision E309: B457's sustained sample-rate change of each IMU stream, said once per change (the kernel of
         #: read_session, B460); None as ``_clip``
         self._rates = (RateWatch(self.used_sensors, limit=self._drop_limit) if check_input and self.stream_checks
@@ -1940,6 +1949,8 @@ class Tracker(OwnGuard, FixInput):
             d = float(stride_times((prev[0], step.start_s), (prev[1], step.end_s), (prev[2], step.event_s))[1])
             if d == d:  # a missing value stays the one math.nan (steps compare equal as dicts, E21/E24's tests)
                 step.stride_time_s = d
+        if prev is not None and not step.impossible and self._running(step, prev):  # decision E325
+            step.flags = (*step.flags, "running")
         self._kept = (step.end_s, step.heading_rad, (step.x, step.y, step.z),  # L97: a zeroed stride ends none
                       (step.start_s, step.end_s, math.nan if step.impossible else step.event_s))
         self._row_gaps = [g for g in self._row_gaps if g[1] > step.end_s]
@@ -2197,7 +2208,8 @@ class Tracker(OwnGuard, FixInput):
         """Decision E280: what :meth:`process_step` reads from the samples and the strides before (classes,
         displacement, turns, E272's bias, the contact), with L611's row (:class:`~pdrlearn.kernels.pedal.LiveLoops`);
         :meth:`_apply` places it once its verdict is known. ``("gap", t0, t1, row, gap_s, bridge_yaw)`` for a stride
-        across a foot gap (E30), else ``("stride", t0, t1, row, lev, classes, proba, disp, dyaw, turn, event_s)``."""
+        across a foot gap (E30), else ``("stride", t0, t1, row, lev, classes, proba, disp, dyaw, turn, event_s,
+        clipped)`` (``clipped``: decision E325's flag)."""
         spec = self._spec
         if spec is not None and spec[0] == (t0, t1):  # computed ahead (decision E24): from the same data?
             self._spec = None
@@ -2291,7 +2303,7 @@ class Tracker(OwnGuard, FixInput):
                    True)
         event_s = self._contact(t0, t1, prev_ic) if self.contacts else math.nan
         self._contacts = (before + [(t0, event_s)])[-2:]
-        return ("stride", t0, t1, row, lev, classes, proba, disp, dyaw, turn, event_s)
+        return ("stride", t0, t1, row, lev, classes, proba, disp, dyaw, turn, event_s, self._clipped(t0, t1))
 
     def _apply(self, rec: tuple, pedal: bool = False) -> Step | None:
         """Decision E280: place a measured stride (:meth:`_measure`): the rules, heading, position and the Step. A
@@ -2303,7 +2315,7 @@ class Tracker(OwnGuard, FixInput):
             self._heights.append(None, 0.0, 0.0)  # decision E47: no class, 0 m (as --streaming's)
             x, y, z = self.position.tolist()
             return Step(t0, t1, {}, {}, 0.0, 0.0, self.heading, x, y, z, gap_s=gap)
-        _, t0, t1, _, lev, classes, proba, disp, dyaw, turn, event_s = rec
+        _, t0, t1, _, lev, classes, proba, disp, dyaw, turn, event_s, clipped = rec
         if pedal:  # decision L611, as track --streaming: no row, 0 m, no class; the turn kept
             self.heading += dyaw
             self._heights.append(None, float(disp[2]), 0.0)
@@ -2391,7 +2403,35 @@ class Tracker(OwnGuard, FixInput):
                     turn_angle_rad=turn, impossible=impossible,
                     pivot_rad=float(np.angle(np.exp(1j * (dyaw - turn)))),  # decision L106
                     sideways=self._side_rows.decided,  # decision L243
-                    lateral_m=self._side_rows.lateral)  # decision E319
+                    lateral_m=self._side_rows.lateral,  # decision E319
+                    flags=("clipped",) if clipped and not impossible else ())  # decision E325
+
+    def _clipped(self, t0: float, t1: float) -> bool:
+        """Decision E325: a foot accelerometer or gyroscope sample of the stride ``[t0, t1]`` is clipped
+        (:func:`~pdrlearn.kernels.clipping.clipped_axes` on the stride's buffered samples: B77 / B311, or B456 at the
+        declared full scale); False with ``check_input=False``."""
+        if self._flag_scales is None:
+            return False
+        for name, kind in (("fAccelerometer", "accelerometer"), ("fGyroscope", "gyroscope")):
+            ring = self._buf.get(name)
+            if ring is None:
+                continue
+            t, v = ring.view()
+            i0, i1 = int(t.searchsorted(t0, side="left")), int(t.searchsorted(t1, side="right"))
+            hit, _ = clipped_axes(v[i0:i1, :3], kind, self._flag_scales.get(name))
+            if hit.any():
+                return True
+        return False
+
+    @staticmethod
+    def _running(step: Step, prev: tuple) -> bool:
+        """Decision E325: L95 / W144's running rule (:func:`~pdrlearn.kernels.gait_range.running_stride`) on the
+        emitted ``step``'s IC-to-IC stride time (E51), else the time from the previous emitted stride's start (``prev``:
+        its start, end, IC) to its own (L66 / L80's kernel with the starts as the events)."""
+        d = step.stride_time_s
+        if d != d:
+            d = float(stride_times((prev[0], step.start_s), (prev[1], step.end_s), (prev[0], step.start_s))[1])
+        return running_stride(step.length_m, d)
 
     def _swing_hole(self, t0: float, t1: float) -> float:
         """Decision L674: the longest hole (s) in the foot accelerometer / gyroscope input times of the stride

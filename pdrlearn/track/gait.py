@@ -29,6 +29,15 @@ import pandas as pd
 # decision E49: one implementation (numpy only), shared with the streaming runtime, which gives each stride its
 # stride time as it emits it
 from pdrlearn.kernels.contact import MAX_STRIDE_S, TOUCH_S, stride_times  # noqa: F401
+from pdrlearn.kernels.gait_range import (  # noqa: F401  (decision E325: the lean kernels, re-exported)
+    CADENCE_RANGE_SPM,
+    RUNNING_FIRST_SPEED_MPS,
+    SPEED_RANGE_MPS,
+    fast_gait,
+    gait_ranges,
+    range_side,
+    reference_leg_m,
+)
 
 # decision E320: cadence / speed and the finite median, numpy only, shared with the lean runtime's gait values
 from pdrlearn.kernels.gait_values import cadence_speed, median_finite
@@ -647,12 +656,6 @@ def trimmed_gait_summary(steps: pd.DataFrame, cadence_from: str | None = None) -
     return out
 
 
-#: decision L95: the gait the pipelines are validated on is walking - the simulator's users at 100-118
-#: steps/min x its speed factors (83-137 steps/min, docs/simulator.md), 0.7-2.1 m/s; the real recordings at
-#: 98-110 steps/min, 0.95-1.26 m/s (L66, W70). A session whose median cadence (steps/min) or speed (m/s) lies
-#: outside these bounds (the validated ranges with a margin; the adult walk-run transition is ~2 m/s) gets one
-#: warning line from `pdrlearn track`.
-CADENCE_RANGE_SPM, SPEED_RANGE_MPS = (70.0, 160.0), (0.5, 2.5)
 #: decision L123: the speed L95 judges is the straight strides' median (L79) when there are at least this many; a
 #: stride turning on the spot covers little ground at a walking cadence (the trial's 360-deg spins: median 0.16
 #: m/s over all strides, 0.73 m/s straight, distance +0.81 %)
@@ -679,31 +682,6 @@ def leg_length(meta: dict | None) -> dict:
     return {}
 
 
-def reference_leg_m() -> float:
-    """Decision L148: the leg length L95's adult range holds for: the waist pipelines' default adult (1.70 m x
-    0.53 = 0.901 m), so a session without a body measure keeps L95's range exactly."""
-    from pdrlearn.waist.params import DEFAULT_HEIGHT_M, LEG_PER_HEIGHT
-
-    return DEFAULT_HEIGHT_M * LEG_PER_HEIGHT
-
-
-def gait_ranges(leg_m: float | None) -> tuple[tuple[float, float], tuple[float, float]]:
-    """Decision L148: L95's cadence (steps/min) and speed (m/s) ranges for a walker with leg length ``leg_m`` (m;
-    None = the adult range). Dynamic similarity (Hof 1996, "Scaling gait data to body size", Gait & Posture
-    4:222-223): walkers of leg lengths L and L0 walk alike at equal dimensionless step frequency f / sqrt(g / L) and
-    speed v / sqrt(g L), so the bounds scale as cadence x sqrt(L0 / L) and speed x sqrt(L / L0), L0 =
-    :func:`reference_leg_m`."""
-    if leg_m is None or not np.isfinite(leg_m) or leg_m <= 0:
-        return CADENCE_RANGE_SPM, SPEED_RANGE_MPS
-    k = float(np.sqrt(reference_leg_m() / leg_m))  # Hof 1996: f ~ sqrt(g / L), v ~ sqrt(g L)
-    return ((CADENCE_RANGE_SPM[0] * k, CADENCE_RANGE_SPM[1] * k), (SPEED_RANGE_MPS[0] / k, SPEED_RANGE_MPS[1] / k))
-
-
-#: decision W178: a cadence above L95's range at a judged speed of at least this (m/s, the adult L95 scale; scaled
-#: with the leg as the speed range, L148) names running first: at 160 steps/min it is a 0.56 m step, no shuffle (the
-#: simulated festinating walks of W100 read 0.6-0.7 m/s on the uncalibrated waist), while the uncalibrated waist reads
-#: fast-cadence walks short (the session-27 trial: 1.95 m/s at 200 steps/min for a true 3.33 m/s)
-RUNNING_FIRST_SPEED_MPS = 1.5
 #: decision L195: a bout is judged for L95's range with at least this many strides (L123's minimum for a speed)
 BOUT_RANGE_MIN_STRIDES = MIN_STRAIGHT_FOR_RANGE
 
@@ -718,19 +696,6 @@ def _finite(v) -> float | None:
 def _leg(summary: dict) -> float | None:
     leg = _finite(summary.get("leg_length_m"))
     return leg if leg is not None and leg > 0 else None
-
-
-def range_side(cad: float | None, speed: float | None, leg_m: float | None) -> str | None:
-    """Decisions L95 / L148: ``"fast"`` when the cadence (steps/min) or the speed (m/s) is above the leg-scaled
-    walking range (:func:`gait_ranges`), ``"slow"`` when one is below it (and none above), None inside it or with
-    neither figure. The one test of the range for the session (:func:`gait_range_warning`) and each bout
-    (:func:`bout_range_flags`, decision L195)."""
-    cad_range, speed_range = gait_ranges(leg_m)
-    if (cad is not None and cad > cad_range[1]) or (speed is not None and speed > speed_range[1]):
-        return "fast"
-    if (cad is not None and cad < cad_range[0]) or (speed is not None and speed < speed_range[0]):
-        return "slow"
-    return None
 
 
 #: decision L492: what L95's fast line (and W100's short-step line on the lower back) adds when meta.json gives no
@@ -770,22 +735,6 @@ def race_walk_case(summary: dict, info: dict, gait: str) -> bool:
     """Decision W549: a running-first ``gait`` (W178) on an uncalibrated ``waist-pendulum`` track."""
     pipeline = str(summary.get("pipeline") or info.get("pipeline") or "")
     return gait == "running_first" and pipeline == "waist-pendulum" and info.get("params_source") == "defaults"
-
-
-def fast_gait(cad: float | None, speed: float | None, leg_m: float | None, other_speed: float | None = None) -> str:
-    """The :data:`FAST_GAITS` key of a gait above L95's range. Decision W144: "looks like running" needs the speed
-    above the range (or no cadence); a fast cadence at a walking speed is short fast steps or running. Decision
-    L197: with no speed judged (a walk of stairs or slopes, L179), ``other_speed`` (the gait speed) above the range
-    says running. Decision W178: a fast cadence at :data:`RUNNING_FIRST_SPEED_MPS` or more (leg-scaled) names
-    running first."""
-    _, speed_range = gait_ranges(leg_m)
-    k = speed_range[1] / SPEED_RANGE_MPS[1]  # L148's speed scale of this leg
-    if (speed is not None and speed > speed_range[1]) or cad is None or \
-            (speed is None and other_speed is not None and other_speed > speed_range[1]):  # W144, L197
-        return "running"
-    if speed is not None and speed >= RUNNING_FIRST_SPEED_MPS * k:  # decision W178
-        return "running_first"
-    return "short_fast"
 
 
 def _validated(summary: dict, leg: float | None) -> str:
