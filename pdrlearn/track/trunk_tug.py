@@ -4,8 +4,8 @@ docs/decisions/waist.md).
 A PLASYS track follows the foot, which does not see the trunk; W418 runs the waist-pendulum pipeline on the session's
 lower-back unit alone (what ``track --units waist`` runs; W428: only as far as these need) and keeps its transfers,
 walking contacts and yaw-rate turns in the foot track's ``info`` (``transfers``, ``trunk_contacts``,
-``trunk_yaw_turns``; W586: and its posture runs, ``trunk_postures``, the track's standing / sitting / lying split). W419: the TUG's chair transfers and seat-to-seat rules then read the waist, its turns and step
-count the foot.
+``trunk_yaw_turns``; W586: and its posture runs, ``trunk_postures``, the track's standing / sitting / lying split).
+W419: the TUG's chair transfers and seat-to-seat rules then read the waist, its turns and step count the foot.
 """
 
 from __future__ import annotations

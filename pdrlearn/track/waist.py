@@ -1984,7 +1984,8 @@ def trunk_events(session: Session) -> TrackResult:
     """Decision W428: what W418's two-unit TUG reads of ``session``'s lower-back unit, as the default offline
     waist-pendulum track (``get_pipeline("waist-pendulum")(session)``, its defaults and PARAMS.json-free options)
     reads it: ``info["transfers"]`` (W182 / W245 / W278's rows, None without an upright: W277), ``info["postures"]``
-    (W222's runs, the same track's; W586: the two-unit track's posture split), ``info["yaw_turns"]`` (L210) and ``steps``' ``start_s``, ``end_s``, ``event_s`` (the contacts after every veto and B11's gap cut).
+    (W222's runs, the same track's; W586: the two-unit track's posture split), ``info["yaw_turns"]`` (L210) and
+    ``steps``' ``start_s``, ``end_s``, ``event_s`` (the contacts after every veto and B11's gap cut).
     The same :func:`track_waist` code stopped there: no step length, heading, altitude, ride or plausibility check
     is computed, no trajectory is made, and the track's own warning lines are not logged (W418 keeps none of the inner
     track's)."""
