@@ -110,15 +110,21 @@ def test_a_lower_back_track_splits_its_time_and_periods_add_up(sat):
     assert win["sitting_time_s"] == pytest.approx(5.0, abs=0.5) and win["standing_time_s"] < 0.5
 
 
-def test_a_foot_track_says_the_split_needs_the_lower_back(sat, capsys):
-    root, _ = sat
+def test_a_foot_track_splits_by_the_lower_backs_postures_w586(sat, capsys):
+    """Decision W586 (was W427: no split in a foot track): a foot track of a session with a lower-back unit splits
+    its time by that unit's posture runs, outside the foot's walking; the periods add up to the summary."""
+    root, seated = sat
     out = root / "foot"
     assert main(["track", "--no-plot", str(root / "walk"), "--out", str(out), "--pipeline", "plasys", "--per",
                  "30s"]) == 0
-    assert "needs the lower-back unit" in capsys.readouterr().out
+    assert "the lower-back unit's trunk tilt and transfers, outside the foot's walking" in capsys.readouterr().out
     summary = json.loads((out / "summary.json").read_text())
-    assert all(summary[k] is None for k in POSTURE_KEYS)
-    assert pd.read_csv(out / "periods.csv")[list(POSTURE_KEYS)].isna().all().all()
+    assert summary["sitting_time_s"] == pytest.approx(seated, abs=1.0) and summary["lying_time_s"] == 0.0
+    parts = summary["time_walking_s"] + sum(summary[k] for k in POSTURE_KEYS)
+    assert parts == pytest.approx(summary["time_span_s"], abs=1e-6)
+    per = pd.read_csv(out / "periods.csv")
+    for k in POSTURE_KEYS:
+        assert per[k].sum() == pytest.approx(summary[k], abs=1e-3)
 
 
 def test_a_non_finite_up_direction_is_unknown_not_standing_w234():

@@ -27,6 +27,7 @@ def test_summary_info_leaves_out_the_listed_rows_and_nothing_else():
     assert set(SUMMARY_INFO_LEFT_OUT) == {"transfers", "freezes", "flights", "postures", "yaw_turns", "rides",
                                           "rest_bias_rests",  # L306: the radius's clock, not a summary value
                                           "trunk_contacts", "trunk_yaw_turns",
+                                          "trunk_postures",  # W586: the two-unit track's posture runs
                                           "wb_scores",  # W493: wb_scores.csv's rows
                                           "window_cut_wbs",  # W499: the reference WBs a --window cut
                                           "waist_gap_turns"}  # L701 / L702: turns.csv's rest-gap rows

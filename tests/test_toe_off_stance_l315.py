@@ -47,8 +47,8 @@ def test_track_toe_off_warns_on_an_early_toe_off(walk, tmp_path, capsys, monkeyp
     assert main(["track", "--no-plot", str(walk), "--toe-off", "--out", str(tmp_path / "b")]) == 0
     cap = capsys.readouterr()
     assert "toe-off: median stance" in cap.err and "L315" in cap.err
-    # L316: this session has a lower-back unit, so the foot track's posture line says to track it
-    assert "not the posture times; for the split, pdrlearn track DIR --pipeline waist-pendulum" in cap.out
+    # L316 / W586: this session has a lower-back unit, so the foot track's posture line is that unit's split
+    assert "posture: standing" in cap.out and "decisions W222, W586" in cap.out
     assert "a foot unit sees no trunk" not in cap.out
 
 

@@ -640,7 +640,8 @@ def posture_line(summary: dict, waist_unit: bool = False, tug_from_waist: bool =
     track of a session that has a lower-back unit (``waist_unit``) is told to track that unit instead; W427: this
     track reads that unit's chair transfers and TUG already (W418), not its posture times. Decision W431: only when it
     did (``tug_from_waist``: the track holds the waist's contacts); a ``--streaming`` or ``--units foot`` track did
-    not, and says it has no TUG."""
+    not, and says it has no TUG. Decision W586: a foot track that read the unit (offline) has the split, from the
+    unit's posture runs, and says so."""
     if summary.get("standing_time_s") is None and waist_unit and not tug_from_waist:
         return ("posture: no standing / sitting / lying split in this foot track - it needs the lower-back unit's "
                 "trunk tilt, and this track did not read that unit's chair transfers either, so it has no TUG (W418 "
@@ -648,16 +649,19 @@ def posture_line(summary: dict, waist_unit: bool = False, tug_from_waist: bool =
                 "waist-pendulum (decisions W222, L316, W431)")
     if summary.get("standing_time_s") is None and waist_unit:
         return ("posture: no standing / sitting / lying split in this foot track - it needs the lower-back unit's "
-                "trunk tilt, and this track takes only the chair transfers and TUG from that unit (W418), not the "
-                "posture times; for the split, pdrlearn track DIR --pipeline waist-pendulum (decisions W222, L316, "
+                "trunk tilt, and this track's reading of that unit gave no posture runs (W418, W586: see the chair "
+                "transfers' note); for the split, pdrlearn track DIR --pipeline waist-pendulum (decisions W222, L316, "
                 "W427)")
     if summary.get("standing_time_s") is None:
         return ("posture: no standing / sitting / lying split - it needs the lower-back unit's trunk tilt in an "
                 "offline `pdrlearn track` (a foot unit sees no trunk; `run` of a waist bundle has no posture runs; "
                 "decisions W222, E145)")
+    # decision W586: a foot track with the lower-back unit splits by that unit's posture runs (W418's inner track)
+    source = ("the lower-back unit's trunk tilt and transfers, outside the foot's walking, decisions W222, W586"
+              if waist_unit else "trunk tilt and transfers, decision W222")
     return (f"posture: standing {summary['standing_time_s']:.1f} s, sitting {summary['sitting_time_s']:.1f} s, "
             f"lying {summary['lying_time_s']:.1f} s, unknown {summary['unknown_time_s']:.1f} s (besides walking; "
-            "trunk tilt and transfers, decision W222)")
+            f"{source})")
 
 
 def _few_straight(summary: dict) -> str:

@@ -1780,6 +1780,7 @@ SUMMARY_INFO_LEFT_OUT = {
     "rest_bias_rests": "the position radius's clock (decision L306)",
     "rides": "rides.csv (decision L377)",
     "trunk_contacts": "the lower-back contacts a two-unit TUG is timed on (decision W418)",
+    "trunk_postures": "the lower-back posture runs behind a two-unit track's posture time keys (decision W586)",
     "trunk_yaw_turns": "the lower-back turns of a two-unit TUG's turn-to-sit (decisions W307, W418)",
     "waist_gap_turns": "turns.csv's rows of n_rows 0 on a foot track: the lower back's turn in a rest gap (L701)",
     "wb_scores": "wb_scores.csv (decision W493)",

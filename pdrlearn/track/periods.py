@@ -166,6 +166,15 @@ def posture_intervals(postures, busy: np.ndarray) -> dict[str, np.ndarray] | Non
     return out
 
 
+def track_postures(info: dict):
+    """Decision W222: the posture runs a track's time splits by - a lower-back track's ``info["postures"]``; decision
+    W586: on a foot + lower-back track the lower-back unit's own runs (``info["trunk_postures"]``, read by W418 /
+    W428's inner waist-pendulum work, the runs a waist-only track of that unit has), split outside the foot's walking;
+    None without a lower back."""
+    own = info.get("postures")
+    return own if own is not None else info.get("trunk_postures")
+
+
 @dataclass(frozen=True)
 class Timeline:
     """A whole-session track's time (decision L275): its walking pieces and data gaps (disjoint, s of the session's
@@ -254,7 +263,7 @@ def time_accounting(result, session, unit: str | None = None, window: tuple[floa
     steps = result.steps
     if unit is None:
         unit = "waist" if "unit" in steps and len(steps) and (steps["unit"] == "waist").all() else "foot"
-    timeline = Timeline.of(steps, unit_gaps(session, unit), result.info.get("postures"))
+    timeline = Timeline.of(steps, unit_gaps(session, unit), track_postures(result.info))
     return time_summary(timeline, *(window if window is not None else held_span(session, unit)))
 
 
@@ -475,7 +484,7 @@ def interval_rows(result, session, starts, ends, closed, *, unit: str | None, bo
 
     steps = result.steps.sort_values("start_s", kind="stable").reset_index(drop=True) if len(result.steps) \
         else result.steps
-    timeline = Timeline.of(steps, unit_gaps(session, unit), result.info.get("postures"))
+    timeline = Timeline.of(steps, unit_gaps(session, unit), track_postures(result.info))
     mid = 0.5 * (steps["start_s"].to_numpy(float) + steps["end_s"].to_numpy(float)) if len(steps) else np.zeros(0)
     length = steps["length_m"].abs().to_numpy(float) if len(steps) else np.zeros(0)
     climbs = climb_times(steps, result.info, storey_height_m)

@@ -4,8 +4,8 @@ docs/decisions/waist.md).
 A PLASYS track follows the foot, which does not see the trunk; W418 runs the waist-pendulum pipeline on the session's
 lower-back unit alone (what ``track --units waist`` runs; W428: only as far as these need) and keeps its transfers,
 walking contacts and yaw-rate turns in the foot track's ``info`` (``transfers``, ``trunk_contacts``,
-``trunk_yaw_turns``). W419: the TUG's chair transfers and seat-to-seat rules then read the waist, its turns and step
-count the foot.
+``trunk_yaw_turns``; W586: and its posture runs, ``trunk_postures``, the track's standing / sitting / lying split).
+W419: the TUG's chair transfers and seat-to-seat rules then read the waist, its turns and step count the foot.
 """
 
 from __future__ import annotations
@@ -22,7 +22,8 @@ FOOT, WAIST = "foot", "waist"
 
 def add_trunk_transfers(result, session) -> None:
     """Decision W418: put the lower-back unit's chair transfers (W182), walking contacts and yaw-rate turns into a
-    foot track ``result``'s ``info`` (``transfers``, ``trunk_contacts``, ``trunk_yaw_turns``), read by a
+    foot track ``result``'s ``info`` (``transfers``, ``trunk_contacts``, ``trunk_yaw_turns``; W586: the posture runs,
+    ``trunk_postures``), read by a
     waist-pendulum track of ``session``'s waist unit alone (W428: :func:`~pdrlearn.track.waist.trunk_events`, that
     track's code stopped once these are known); nothing when the session has no lower-back unit. A
     waist unit that cannot be tracked leaves ``info["trunk_note"]`` (one line naming the command) instead."""
@@ -44,6 +45,8 @@ def add_trunk_transfers(result, session) -> None:
         result.info["trunk_note"] = ("no chair transfers from the lower-back unit (its track read none: is "
                                      "wAccelerometer frozen or unplugged?); a TUG needs them: "
                                      f"pdrlearn track {session.where} --units waist (W418, W427)")
+    # decision W586: the lower back's posture runs (W222, the waist-only track's own), for the posture split
+    result.info["trunk_postures"] = waist.info.get("postures")
     cols = [c for c in ("start_s", "end_s", "event_s") if c in waist.steps]
     result.info["trunk_contacts"] = waist.steps[cols].to_dict("records")
     result.info["trunk_yaw_turns"] = waist.info.get("yaw_turns")

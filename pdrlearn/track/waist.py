@@ -1320,9 +1320,10 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
     warnings.extend(gap_warnings(gaps))
     steps = cut_steps_at_gaps(steps, gaps)
     if trunk_only:  # decision W428: what W418's TUG reads; the rest of the track (lengths, headings, altitude) is not
-        transfers = _postures_transfers(pimu, steps, transfers, upright_source, fixed_up, o, warnings)[1]
+        postures, transfers = _postures_transfers(pimu, steps, transfers, upright_source, fixed_up, o, warnings)
         return TrackResult(steps=steps[["start_s", "end_s", "event_s"]].copy(), trajectory=pd.DataFrame(),
                            info={"transfers": None if transfers is None else transfers.to_dict("records"),
+                                 "postures": postures,  # decision W586: the two-unit track's posture split
                                  "yaw_turns": mark_carried(yaw, carried)})  # decisions L210, W488, as below
     # W338: phone only (W336 reads a foot unit; W547: not one --units left out); W339: measured, an opt-in option
     if o["rhythm_warning"] and not session.placement_streams("foot"):
@@ -1982,8 +1983,9 @@ def _no_walking(session: Session, pipeline: str, p: WaistParams, o: dict, warnin
 def trunk_events(session: Session) -> TrackResult:
     """Decision W428: what W418's two-unit TUG reads of ``session``'s lower-back unit, as the default offline
     waist-pendulum track (``get_pipeline("waist-pendulum")(session)``, its defaults and PARAMS.json-free options)
-    reads it: ``info["transfers"]`` (W182 / W245 / W278's rows, None without an upright: W277), ``info["yaw_turns"]``
-    (L210) and ``steps``' ``start_s``, ``end_s``, ``event_s`` (the contacts after every veto and B11's gap cut).
+    reads it: ``info["transfers"]`` (W182 / W245 / W278's rows, None without an upright: W277), ``info["postures"]``
+    (W222's runs, the same track's; W586: the two-unit track's posture split), ``info["yaw_turns"]`` (L210) and
+    ``steps``' ``start_s``, ``end_s``, ``event_s`` (the contacts after every veto and B11's gap cut).
     The same :func:`track_waist` code stopped there: no step length, heading, altitude, ride or plausibility check
     is computed, no trajectory is made, and the track's own warning lines are not logged (W418 keeps none of the inner
     track's)."""
