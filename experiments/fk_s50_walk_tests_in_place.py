@@ -26,7 +26,8 @@ def row(folder: Path) -> str:
     def num(v):
         return "none" if v is None else f"{v:.2f}"
 
-    return (f"{folder.name}: range line {'none' if line is None else repr(line[:70])}; 10mw {num(walk['ten_m_walk_time_s'])} s "
+    said = "none" if line is None else repr(line[:70])
+    return (f"{folder.name}: range line {said}; 10mw {num(walk['ten_m_walk_time_s'])} s "
             f"trials {walk['n_ten_m_walk_trials']}; t25fw {num(t25['t25fw_time_s'])} s")
 
 
