@@ -265,7 +265,8 @@ def free_recording_note(steps: pd.DataFrame, max_bout_m: float, timed_m: float) 
     for n, (a, b) in enumerate(bout_rows(steps), start=1):
         n_stair, metres = flight_strides(steps.iloc[a:b]), float(length[a:b].sum())
         if n_stair or metres > max_bout_m:
-            what = (f"a climb of {n_stair} ramp or stair stride(s) (L179, L438; {_climb_tables(steps, a, b)})"
+            what = (f"a climb of {n_stair} ramp or stair stride(s) (L179, L438; {_climb_tables(steps, a, b)}; a walk "
+                    "test is walked on a level walkway, L434)"
                     if n_stair else f"{metres:.0f} m of walking (over {max_bout_m:g} m, L552)")
             return (f"walking bout {n} holds {what}: a mission or a free walk, not a walk-test recording, so none of "
                     f"its walks is timed as a {timed_m:g} m walk test with no walkway declared (decision L779) - "
