@@ -52,7 +52,7 @@ def test_walk_tests_only_on_a_test_like_recording_l779():
     mission = _recording((16.0, 1.0, 0.0), (3.0, 0.3, 0.34), (16.0, 1.0, 0.0))  # a flight of 10 stair strides
     got, t25 = ten_metre_walk(mission), t25fw(mission)
     assert got["ten_m_walk_time_s"] is None and got["n_ten_m_walk_trials"] == 0 and t25["t25fw_time_s"] is None
-    assert "walking bout 2 holds a climb" in got["ten_m_walk_note"] and "L779" in t25["t25fw_note"]
+    assert "walking bout 2 holds a stair flight" in got["ten_m_walk_note"] and "L779" in t25["t25fw_note"]
     before = ten_metre_walk(mission, any_recording=True)  # the rule before L779 timed the first level pass
     assert before["ten_m_walk_time_s"] == pytest.approx(10.0) and before["n_ten_m_walk_trials"] == 2
     declared = ten_metre_walk(mission, (2.0, 10.0, 2.0))  # a declared walkway is timed as before

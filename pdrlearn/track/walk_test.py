@@ -18,7 +18,7 @@ import pandas as pd
 from pdrlearn.kernels.turn_length import STRAIGHT_MAX_RAD
 from pdrlearn.track.clinical import TURN_COUNT_MIN_DEG, _is_lower_back, bout_rows
 from pdrlearn.track.flags import flag_values
-from pdrlearn.track.stair_flights import flight_strides
+from pdrlearn.track.stair_flights import flight_spans, flight_strides
 
 #: decision L312: the acceleration and the deceleration zone (m) a 10MWT leaves out on each side (Bohannon 1997:
 #: a 14 m walkway, the middle 10 m timed; 2 m each side is the common protocol, the seeds give none)
@@ -257,16 +257,19 @@ def _timed_pieces(steps: pd.DataFrame, zone_m: float, timed_m: float, decel_m: f
 def free_recording_note(steps: pd.DataFrame, max_bout_m: float, timed_m: float) -> str | None:
     """Decision L779 (our rule, no document gives one): the note refusing a whole recording's automatic walk tests
     (no walkway declared) when it does not look like a walk test: one of its walking bouts holds a stair flight
-    (L438's :func:`flight_strides`: 2 or more stair strides in a row, |dz_m| >= 0.10 m, L179; a walk test is walked
-    on a level walkway, L434) or is longer than ``max_bout_m`` (L552's march) - a mission or a free walk, whose level
+    (L779 amended: a flight of stairs.csv, :func:`pdrlearn.track.stair_flights.flight_spans` - L438's runs of 2 or
+    more stair strides, |dz_m| >= 0.10 m, without L443's ramp climbs; a walk test is walked on a level walkway,
+    L434) or is longer than ``max_bout_m`` (L552's march) - a mission or a free walk, whose level
     corridors would read as walkway passes (trial s50t1 F7: "10 m walk test 5.85 s" on every mission). None when
     the recording looks like a walk test."""
     length = np.abs(np.nan_to_num(steps["length_m"].to_numpy(float)))
+    flights = flight_spans(steps) if "dz_m" in steps else []  # L779 amended: stairs.csv's flights (L443: no ramp)
     for n, (a, b) in enumerate(bout_rows(steps), start=1):
-        n_stair, metres = flight_strides(steps.iloc[a:b]), float(length[a:b].sum())
+        n_stair = sum(max(0, min(b, f1) - max(a, f0)) for f0, f1, _ in flights)
+        metres = float(length[a:b].sum())
         if n_stair or metres > max_bout_m:
-            what = (f"a climb of {n_stair} ramp or stair stride(s) (L179, L438; {_climb_tables(steps, a, b)}; a walk "
-                    "test is walked on a level walkway, L434)"
+            what = (f"a stair flight of {n_stair} stair stride(s) (stairs.csv, L438; a walk test is walked on a level "
+                    "walkway, L434)"
                     if n_stair else f"{metres:.0f} m of walking (over {max_bout_m:g} m, L552)")
             return (f"walking bout {n} holds {what}: a mission or a free walk, not a walk-test recording, so none of "
                     f"its walks is timed as a {timed_m:g} m walk test with no walkway declared (decision L779) - "
