@@ -27,7 +27,9 @@ def test_a_level_walk_is_timed_and_one_with_stairs_is_not_l434():
         assert "stair stride" in out[f"{key}_note"] and "L434" in out[f"{key}_note"]
     # stairs after the timed span leave the test timed: 6 level strides are 7.8 m
     late = _walk(np.r_[np.zeros(6), np.full(6, -0.34)])
-    assert t25fw(late)["t25fw_time_s"] is not None
+    assert t25fw(late, any_recording=True)["t25fw_time_s"] is not None
+    assert t25fw(late, walkway=True)["t25fw_time_s"] is not None  # decision L779: a declared walkway, as before
+    assert t25fw(late)["t25fw_time_s"] is None  # L779: a recording with a flight is no walk-test recording
 
 
 def test_one_drifting_stride_is_no_flight_and_the_walk_is_timed_l438():

@@ -36,6 +36,31 @@ from pdrlearn.cli.gaplines import GapLines
 from pdrlearn.decision_refs import decision_ref
 
 
+def bundle_refusal(model_dir: Path) -> str | None:
+    """Decision L780: ``export``'s one line when ``model_dir`` is an exported runtime bundle (such as the shipped
+    ``models/plasys-sim-default``, a 20 Hz bundle): what it is (its rate), that ``run`` replays sessions through it,
+    and the commands that make a bundle of one's own (train a model, then export it); None for anything else (the
+    model directory's own checks follow)."""
+    import json
+
+    from pdrlearn.decision_refs import decision_ref
+
+    mf = Path(model_dir) / "manifest.json"
+    try:
+        manifest = json.loads(mf.read_text())
+    except (OSError, ValueError):
+        return None
+    if not isinstance(manifest, dict) or manifest.get("schema") != "pdrlearn-bundle":
+        return None
+    rate = (manifest.get("sampling") or {}).get("rate_hz")
+    rate = f"a {float(rate):.4g} Hz " if isinstance(rate, (int, float)) else "a "
+    return (f"export {model_dir}: {rate}runtime bundle, exported already (an exported runtime bundle, not a model "
+            f"directory): nothing to export. Replay sessions through it with 'pdrlearn run {model_dir} SESSION'; "
+            "for a bundle of your own, train a model on your labelled sessions (e.g. the calibration exercises) "
+            "and export that: 'pdrlearn train SESSION... --out models/u1', then 'pdrlearn export models/u1 --out "
+            f"bundles/u1' (README 'Workflow'; {decision_ref('L780')})")
+
+
 def export(
     model_dir: Path = typer.Argument(..., help=f"Model directory written by 'pdrlearn train' ({PICKLE_HELP}), or a "
                                      "waist calibration "
@@ -95,6 +120,9 @@ def export(
     if frame is not None:
         raise DataError(f"export --frame: only for a waist calibration; {model_dir} is a model directory, whose "
                         "bundle records its training sessions' frames")
+    refused = bundle_refusal(model_dir)  # decision L780: a runtime bundle is exported already
+    if refused:
+        raise DataError(refused)
     meths = [m.strip() for m in methods.split(",") if m.strip()] if methods else None
     bounds = None
     if length_bounds:

@@ -771,10 +771,27 @@ def _mostly_stairs(summary: dict) -> bool:
     return stairs >= MIN_STRAIGHT_FOR_RANGE and stairs >= (summary.get("n_straight_strides") or 0)
 
 
-def _judged(summary: dict) -> tuple[float | None, float | None, str]:
-    """L95's figures of a summary: the median cadence and the judged speed with its name (L123, L179)."""
+def steps_in_place(summary: dict, in_place_stride_m: float = 0.10) -> bool:
+    """Decision L778 (our rule, no document gives one): L123's straight strides are steps in place - a shuffle or
+    a march on the spot, no straight walking - when their median stride (``median_speed_straight_mps`` x the
+    stride time 120 / ``median_cadence_spm``) is under ``in_place_stride_m`` (0.10 m: an eighth of the shortest
+    stride L95's range holds, 0.5 m/s at 70 steps/min = 0.86 m; trial s50t1 F7's shuffle: 0.01 m/s at 93
+    steps/min, 0.02 m). False when either figure is unknown."""
+    speed, cad = _finite(summary.get("median_speed_straight_mps")), _finite(summary.get("median_cadence_spm"))
+    if speed is None or cad is None or cad <= 0:
+        return False
+    return speed * 120.0 / cad < in_place_stride_m  # the stride time is 120 / cadence (L176)
+
+
+def _judged(summary: dict, in_place_stride_m: float | None = 0.10) -> tuple[float | None, float | None, str]:
+    """L95's figures of a summary: the median cadence and the judged speed with its name (L123, L179). Decision
+    L778: straight strides that are steps in place (:func:`steps_in_place`, ``in_place_stride_m``; None: the rule
+    before L778) have no walking speed to judge: the cadence alone is."""
     speed, what_speed = summary.get("median_speed_mps"), "speed"
     straight = summary.get("median_speed_straight_mps")
+    if _straight_judged(summary) and in_place_stride_m is not None and steps_in_place(summary, in_place_stride_m):
+        # decision L778: a shuffle on the spot is no slow walk; its cadence is still judged
+        return _finite(summary.get("median_cadence_spm")), None, what_speed
     if _straight_judged(summary):
         speed, what_speed = straight, "straight-walking speed"
     elif _stair_walk(summary):

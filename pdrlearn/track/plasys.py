@@ -773,11 +773,17 @@ def windowed_disagreement(m_fwd: np.ndarray, m_left: np.ndarray, psi: np.ndarray
 
 
 def compass_check(session: Session, strides: pd.DataFrame, psi: np.ndarray,
-                  keep: np.ndarray, *, windowed: bool | None = None) -> tuple[str | None, dict | None]:
+                  keep: np.ndarray, *, windowed: bool | None = None, lengths: np.ndarray | None = None,
+                  in_place_stride_m: float | None = 0.10) -> tuple[str | None, dict | None]:
     """Decision L182: (a warning line or None, ``info.compass_check``) for a track whose heading reads the waist
     compass: the median |angle| (:func:`~pdrlearn.orient._kernels.compass_disagreement`) of the ``keep`` strides
     (straight, outside foot gaps) against the foot's relative heading ``psi`` (rad), with at least
-    :data:`HARD_IRON_MIN_STRIDES` of them; (None, None) without a waist magnetometer or enough strides."""
+    :data:`HARD_IRON_MIN_STRIDES` of them; (None, None) without a waist magnetometer or enough strides. Decision
+    W589: a stride whose horizontal travel ``lengths`` (m) is under ``in_place_stride_m`` (L778's steps in place)
+    is left out - ``psi`` is its travel direction, and a 1-3 cm shuffle's direction is no heading (None: the rule
+    before W589)."""
+    if lengths is not None and in_place_stride_m is not None:  # decision W589
+        keep = np.asarray(keep, bool) & (np.nan_to_num(np.asarray(lengths, float)) >= in_place_stride_m)
     level = stride_level_field(session, strides, keep)
     if level is None or int(level[2].sum()) < HARD_IRON_MIN_STRIDES:
         return None, None
@@ -1638,7 +1644,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             # decision L182: straight strides (L79), no foot gap; L656: none W415 classes side or backward
             kinds = disp_kind_labels(disp, fd.yaw_change_)
             compass_line, compass_info = compass_check(work, strides, relative,
-                                                       straight & ~np.isin(kinds, ("side", "backward")))
+                                                       straight & ~np.isin(kinds, ("side", "backward")),
+                                                       lengths=np.hypot(disp[:, 0], disp[:, 1]))  # W589
         warnings += [compass_line] if compass_line else []
         fallback = (hsrc == "fused" and compass_line is not None
                     and (COMPASS_GYRO_FALLBACK if compass_fallback is None else compass_fallback))

@@ -18,7 +18,7 @@ import pandas as pd
 from pdrlearn.kernels.turn_length import STRAIGHT_MAX_RAD
 from pdrlearn.track.clinical import TURN_COUNT_MIN_DEG, _is_lower_back, bout_rows
 from pdrlearn.track.flags import flag_values
-from pdrlearn.track.stair_flights import flight_strides
+from pdrlearn.track.stair_flights import flight_spans, flight_strides
 
 #: decision L312: the acceleration and the deceleration zone (m) a 10MWT leaves out on each side (Bohannon 1997:
 #: a 14 m walkway, the middle 10 m timed; 2 m each side is the common protocol, the seeds give none)
@@ -224,16 +224,22 @@ def pass_rows(steps: pd.DataFrame, a: int, b: int) -> list[tuple[int, int]]:
 
 
 def _timed_pieces(steps: pd.DataFrame, zone_m: float, timed_m: float, decel_m: float, max_bout_m: float | None = None,
-                  passes: bool = True, ramps=None, short_share: float = 0.0) -> list[tuple[str, object]]:
+                  passes: bool = True, ramps=None, short_share: float = 0.0,
+                  any_recording: bool = False) -> list[tuple[str, object]]:
     """Decision L673: ``(name, _time_bout's result)`` of each piece a walk test times: with ``passes`` each straight
     pass of a walking bout (:func:`pass_rows`, "walking bout N pass P"), else each bout ("walking bout N"). A bout
     whose passes are all too short is judged whole for its note only (L313's: a walk that turns inside its first
     metres; review R2 finding 2: not when a pass is a near miss, :data:`RUN_OUT_M` short, whose L349 note stays, and
     never timed whole, so a pass is timed or refused by itself, whatever follows it), and a bout longer than
     ``max_bout_m`` stays whole for L552 to refuse (a march's legs are no walkway's passes). Decision L679: ``ramps``
-    as :func:`_time_bout`'s; decision C193: ``short_share`` too."""
+    as :func:`_time_bout`'s; decision C193: ``short_share`` too. Decision L779: with no walkway declared
+    (``max_bout_m`` set, L552) a recording that does not look like a walk test (:func:`free_recording_note`) is
+    one refused piece, unless ``any_recording`` (the rule before L779)."""
     out = []
     length = np.abs(np.nan_to_num(steps["length_m"].to_numpy(float)))
+    free = free_recording_note(steps, max_bout_m, timed_m) if max_bout_m is not None and not any_recording else None
+    if free:  # decision L779: a mission or a free walk is no walk-test recording
+        return [("the recording", free)]
     for n, (a, b) in enumerate(bout_rows(steps), start=1):
         split = passes and (max_bout_m is None or length[a:b].sum() <= max_bout_m)
         parts = pass_rows(steps, a, b) if split else [(a, b)]
@@ -246,6 +252,29 @@ def _timed_pieces(steps: pd.DataFrame, zone_m: float, timed_m: float, decel_m: f
             got = [(f"walking bout {n}", whole)] if isinstance(whole, str) else got  # its refusal only
         out += got
     return out
+
+
+def free_recording_note(steps: pd.DataFrame, max_bout_m: float, timed_m: float) -> str | None:
+    """Decision L779 (our rule, no document gives one): the note refusing a whole recording's automatic walk tests
+    (no walkway declared) when it does not look like a walk test: one of its walking bouts holds a stair flight
+    (L779 amended: a flight of stairs.csv, :func:`pdrlearn.track.stair_flights.flight_spans` - L438's runs of 2 or
+    more stair strides, |dz_m| >= 0.10 m, without L443's ramp climbs; a walk test is walked on a level walkway,
+    L434) or is longer than ``max_bout_m`` (L552's march) - a mission or a free walk, whose level
+    corridors would read as walkway passes (trial s50t1 F7: "10 m walk test 5.85 s" on every mission). None when
+    the recording looks like a walk test."""
+    length = np.abs(np.nan_to_num(steps["length_m"].to_numpy(float)))
+    flights = flight_spans(steps) if "dz_m" in steps else []  # L779 amended: stairs.csv's flights (L443: no ramp)
+    for n, (a, b) in enumerate(bout_rows(steps), start=1):
+        n_stair = sum(max(0, min(b, f1) - max(a, f0)) for f0, f1, _ in flights)
+        metres = float(length[a:b].sum())
+        if n_stair or metres > max_bout_m:
+            what = (f"a stair flight of {n_stair} stair stride(s) (stairs.csv, L438; a walk test is walked on a level "
+                    "walkway, L434)"
+                    if n_stair else f"{metres:.0f} m of walking (over {max_bout_m:g} m, L552)")
+            return (f"walking bout {n} holds {what}: a mission or a free walk, not a walk-test recording, so none of "
+                    f"its walks is timed as a {timed_m:g} m walk test with no walkway declared (decision L779) - "
+                    "give track --ten-m-walk ACCEL,TIMED,DECEL to time a walkway in it")
+    return None
 
 
 def _bout_limit(zones) -> float | None:
@@ -284,7 +313,7 @@ def _ramp_note(steps: pd.DataFrame, a: int, k: int, need: float, timed_m: float,
 
 
 def ten_metre_walk(steps: pd.DataFrame, zones: tuple[float, float, float] | None = None,
-                   calibrated: bool = False, ramps=None) -> dict:
+                   calibrated: bool = False, ramps=None, any_recording: bool = False) -> dict:
     """Decision L312: :data:`KEYS` of a tracked step table: the first walking bout (L104's bouts,
     :func:`pdrlearn.track.clinical.bout_rows`) whose path reaches ZONE_M + TIMED_M + ZONE_M = 14 m is timed over
     its middle 10 m (module docstring); ``ten_m_walk_note`` says why there is no time (decision L313: a walk shorter
@@ -295,17 +324,19 @@ def ten_metre_walk(steps: pd.DataFrame, zones: tuple[float, float, float] | None
     Decision L552: without ``zones`` a bout over :data:`WALKWAY_BOUT_MAX_M` is not timed. Decision L649:
     ``calibrated`` (a lower-back track with ``calibrate``'s parameters) times the lower back when the walkway has an
     acceleration zone (:func:`lower_back_note`). Decision L679: ``ramps`` (:func:`ramp_numbers`) a bout whose
-    walkway holds a ramp's row is not timed; ``ten_m_walk_declared`` says whether ``zones`` declared the walkway."""
+    walkway holds a ramp's row is not timed; ``ten_m_walk_declared`` says whether ``zones`` declared the walkway.
+    Decision L779: without ``zones`` a bout holding a stair flight is not timed (``any_recording``: the rule before)."""
     accel, timed, decel = zones or (ZONE_M, TIMED_M, ZONE_M)
     short = declared_short_share(steps, zones, calibrated)  # decisions C193, C205: a declared walkway only
     more = LOWER_BACK_SHORT_NOTE if zones and calibrated and _is_lower_back(steps) else ""  # decision C205
     out = timed_walk(steps, accel, timed, KEYS, lower_back_note(accel, timed, calibrated),
                      lambda longest, need: short_walk_note(longest, need, (accel, timed, decel)) + more, decel_m=decel,
-                     max_bout_m=_bout_limit(zones), passes=True, ramps=ramps, short_share=short)  # decision L673
-    trials = ten_metre_walk_trials(steps, zones, calibrated, ramps=ramps)
+                     max_bout_m=_bout_limit(zones), passes=True, ramps=ramps, short_share=short,  # decision L673
+                     any_recording=any_recording)  # decision L779
+    trials = ten_metre_walk_trials(steps, zones, calibrated, ramps=ramps, any_recording=any_recording)
     out["n_ten_m_walk_trials"] = len(trials)  # decision L524
     missed = _near_misses(steps, accel + timed + decel, lower_back_note(accel, timed, calibrated) is None,
-                          _bout_limit(zones), ramps)  # review R2 finding 1: L552's march stays whole here too
+                          _bout_limit(zones), ramps, any_recording)  # review R2 finding 1: L552's march stays whole
     missed = [(n, m) for n, m in missed if not _short_ok(m, accel, timed, accel + timed + decel, short)]  # C193
     if out["ten_m_walk_time_s"] is not None and missed:  # decision L524: a trial lost to L349's few cm is said
         out["ten_m_walk_note"] = "; ".join(filter(None, [out["ten_m_walk_note"], (  # L535's note kept before it
@@ -326,26 +357,27 @@ TRIAL_KEYS = ("n_ten_m_walk_trials", "ten_m_walk_max_speed_mps", "ten_m_walk_zon
 
 
 def ten_metre_walk_trials(steps: pd.DataFrame, zones: tuple[float, float, float] | None = None,
-                          calibrated: bool = False, ramps=None) -> pd.DataFrame:
+                          calibrated: bool = False, ramps=None, any_recording: bool = False) -> pd.DataFrame:
     """Decision L524: ``ten_m_walk_trials.csv``: every walking bout timed as L312 times the first one (its
     acceleration zone, timed metres, deceleration zone reached, straight, level, every length known; L313's
     refusals skip a bout), one row each (:data:`TRIAL_COLUMNS`: ``start_s`` / ``end_s`` where the path passes the
     timed stretch's start and end). A self-selected and a fast trial in one recording are two rows. Decision L649:
-    ``calibrated`` as :func:`ten_metre_walk`'s; decision L679: ``ramps`` too."""
+    ``calibrated`` as :func:`ten_metre_walk`'s; decision L679: ``ramps`` too; decision L779: ``any_recording`` too."""
     accel, timed, decel = zones or (ZONE_M, TIMED_M, ZONE_M)
     rows = []
     lower_back_ok = lower_back_note(accel, timed, calibrated) is None  # decision L649
     if len(steps) and {"start_s", "end_s", "length_m"} <= set(steps.columns) and (
             lower_back_ok or not _is_lower_back(steps)):
         for _, got in _timed_pieces(steps, accel, timed, decel, _bout_limit(zones), ramps=ramps,  # L552; L673; L679
-                                    short_share=declared_short_share(steps, zones, calibrated)):  # C193, C205
+                                    short_share=declared_short_share(steps, zones, calibrated),  # C193, C205
+                                    any_recording=any_recording):  # L779
             if isinstance(got, tuple):
                 rows.append((len(rows) + 1, got[0], got[1], got[1] - got[0], timed / (got[1] - got[0])))
     return pd.DataFrame(rows, columns=list(TRIAL_COLUMNS))
 
 
 def _near_misses(steps: pd.DataFrame, need: float, lower_back_ok: bool = False, max_bout_m: float | None = None,
-                 ramps=None) -> list[tuple[str, float]]:
+                 ramps=None, any_recording: bool = False) -> list[tuple[str, float]]:
     """Decisions L349, L524: (its name, tracked metres) of each walking bout (L673: pass) short of ``need`` by less than
     :data:`RUN_OUT_M` - a walk of the walkway's length that tracked a few cm short (L649: on the lower back only when
     ``lower_back_ok``). ``max_bout_m`` and ``ramps`` as :func:`_timed_pieces`' (review R2 finding 1: a march over
@@ -353,24 +385,26 @@ def _near_misses(steps: pd.DataFrame, need: float, lower_back_ok: bool = False, 
     if not len(steps) or not {"start_s", "end_s", "length_m"} <= set(steps.columns) or (
             _is_lower_back(steps) and not lower_back_ok):
         return []
-    got = _timed_pieces(steps, 0.0, need, 0.0, max_bout_m, ramps=ramps)  # decision L673: per pass
+    got = _timed_pieces(steps, 0.0, need, 0.0, max_bout_m, ramps=ramps, any_recording=any_recording)  # L673; L779
     return [(n, m) for n, m in got if isinstance(m, float) and need - RUN_OUT_M <= m < need]
 
 
-def t25fw(steps: pd.DataFrame, walkway: bool = False, calibrated: bool = False, ramps=None) -> dict:
+def t25fw(steps: pd.DataFrame, walkway: bool = False, calibrated: bool = False, ramps=None,
+          any_recording: bool = False) -> dict:
     """Decision L387: :data:`T25FW_KEYS` of a tracked step table: the timed 25-foot walk from a standing start - the
     first walking bout whose path reaches :data:`T25FW_M` is timed from its first row's start to where its path
     passes 7.62 m (no zone: the test starts from standing, L312's kernel with a zone of 0 m); a shorter, turning or
     lower-back walk is not timed (L313's rules), ``t25fw_note`` says why. Decision L552: unless ``walkway`` (a
     walkway declared, ``track --ten-m-walk``) a bout over :data:`WALKWAY_BOUT_MAX_M` is not timed. Decision L649: a
     calibrated lower back is not timed either (from standing it reads fast), its note says so. Decision L679:
-    ``ramps`` (:func:`ramp_numbers`): a walk on a ramp is not timed."""
+    ``ramps`` (:func:`ramp_numbers`): a walk on a ramp is not timed. Decision L779: unless ``walkway``, a bout
+    holding a stair flight is not timed (``any_recording``: the rule before)."""
     return timed_walk(steps, 0.0, T25FW_M, T25FW_KEYS,
                       lower_back_note(0.0, T25FW_M, calibrated, what="the timed 25-foot walk"),
                       lambda longest, need: (f"no walking bout of {need:g} m (25 ft, from standing; the longest "
                                              f"{math.floor(longest * 100.0 + 1e-6) / 100.0:.2f} m; decision L387): "
                                              "a shorter walk is not timed"), max_bout_m=_bout_limit(walkway),
-                      ramps=ramps)
+                      ramps=ramps, any_recording=any_recording)  # decision L779
 
 
 def _climb_tables(steps: pd.DataFrame, a: int, b: int) -> str:
@@ -455,7 +489,7 @@ def _time_bout(steps: pd.DataFrame, a: int, b: int, zone_m: float, timed_m: floa
 
 def timed_walk(steps: pd.DataFrame, zone_m: float, timed_m: float, keys: tuple[str, str, str], lower_back_note: str,
                short_note, decel_m: float | None = None, max_bout_m: float | None = None,
-               passes: bool = False, ramps=None, short_share: float = 0.0) -> dict:
+               passes: bool = False, ramps=None, short_share: float = 0.0, any_recording: bool = False) -> dict:
     """Decisions L312, L387: ``keys`` (time, speed, note) of the first walking bout whose path reaches ``zone_m`` +
     ``timed_m`` + ``decel_m`` (default ``zone_m``; L522), timed over the ``timed_m`` after its first ``zone_m``
     (L313's refusals, :func:`_time_bout`; ``short_note(longest, need)`` the note of a walk too short). Decision L535:
@@ -464,7 +498,8 @@ def timed_walk(steps: pd.DataFrame, zone_m: float, timed_m: float, keys: tuple[s
     console and clinical.md said "not timed" beside ten_m_walk_trials.csv's timed trials). Decision L552: a bout
     over ``max_bout_m`` is refused; decision L679: a bout on a ramp of ``ramps`` too. Decision L673: ``passes``
     (the 10 m walk) times each straight pass of a bout (:func:`pass_rows`) as a bout of its own. Decision C193:
-    ``short_share`` (a declared walkway's) times a pass a little short (:func:`_short_ok`), its note says so."""
+    ``short_share`` (a declared walkway's) times a pass a little short (:func:`_short_ok`), its note says so.
+    Decision L779: ``any_recording`` as :func:`_timed_pieces`'."""
     time_key, speed_key, note_key = keys
     out = dict.fromkeys(keys)
     decel_m = zone_m if decel_m is None else decel_m
@@ -475,7 +510,8 @@ def timed_walk(steps: pd.DataFrame, zone_m: float, timed_m: float, keys: tuple[s
         out[note_key] = lower_back_note
         return out
     longest, refused = 0.0, None
-    for n, got in _timed_pieces(steps, zone_m, timed_m, decel_m, max_bout_m, passes, ramps, short_share):  # L673
+    for n, got in _timed_pieces(steps, zone_m, timed_m, decel_m, max_bout_m, passes, ramps, short_share,  # L673
+                                any_recording):  # L779
         if isinstance(got, float):
             longest = max(longest, got)
             continue
