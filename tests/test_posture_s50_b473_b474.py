@@ -98,5 +98,6 @@ def test_the_live_tracker_skips_the_whole_crawl_as_track_streaming_does(crawled,
 def test_stride_rest_pitch_reads_the_buffered_streams(crawled):
     s, (a, b) = crawled
     stream = {n: (st.t, st.values) for n, st in s.streams.items()}.__getitem__
-    assert stride_rest_pitch(stream, FWD, a + 5.0, a + 6.2, rest_search_s=0.25) > 70.0
+    assert stride_rest_pitch(stream, FWD, a + 5.4, a + 6.6, rest_search_s=0.25) > 70.0  # at a rest (B474 amended)
+    assert np.isnan(stride_rest_pitch(stream, FWD, a + 5.0, a + 6.2, rest_search_s=0.25))  # starts mid-drag: no rest
     assert stride_rest_pitch(stream, FWD, 3.0, 4.2, rest_search_s=0.25) < 20.0

@@ -25,6 +25,7 @@ from pdrlearn.kernels.stats import (
 )
 from pdrlearn.kernels.strapdown import CONING_COEF  # decision L35 (L626: shared with the offline strapdown)
 from pdrlearn.kernels.turn import integrated_yaw, unwrapped_turn  # decision L690
+from pdrlearn.kernels.units import STANDARD_GRAVITY  # thesis ch.4.2.1.1
 
 #: Sensor groups and their channels, in the order of :data:`CHANNELS` (after ``t_s``).
 GROUPS: dict[str, tuple[str, ...]] = {
@@ -226,13 +227,23 @@ def window_rests(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, *, rest
 
 
 def rest_pitch_deg(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, forward_s: np.ndarray, *,
-                   rest_search_s: float) -> float:
+                   rest_search_s: float, still_rad_s: float = 0.25, still_acc: float = 0.3) -> float:
     """Decisions B473 / B474: how far (deg) the declared forward axis ``forward_s`` points from horizontal at the foot
     window's first rest (:func:`window_rests`; B131's test in :func:`foot_levelled` is over 84.3 deg, a horizontal
-    part under 0.1); NaN for a window of under 2 samples or no specific force."""
+    part under 0.1); NaN for a window of under 2 samples or no specific force, and (B474 amended, session 50 FM)
+    when that rest is no rest: its +-20 ms mean rate over ``still_rad_s`` or its specific force further than
+    ``still_acc`` (m/s^2) from 1 g (L296's still test's 0.25 rad/s and 0.3 m/s^2): a window starting mid-swing (a
+    limp's first fragment) or on a turning pedal is no posture."""
     if acc.shape[0] < 2:
         return math.nan
-    g0 = window_rests(t, acc, gyr, rest_search_s=rest_search_s)[3]
+    _, k0, _, g0, _ = window_rests(t, acc, gyr, rest_search_s=rest_search_s)
+    if abs(vec_norm(g0) - STANDARD_GRAVITY) > still_acc:  # decision B474 (amended): not at rest (L296's 0.3 m/s^2)
+        return math.nan
+    if gyr is not None:  # decision B474 (amended): L296's 0.25 rad/s over the rest's +-20 ms
+        fs = (acc.shape[0] - 1) / float(t[-1] - t[0])
+        h = max(0, int(round(0.02 * fs)))
+        if float(row_norm(gyr[max(k0 - h, 0): k0 + h + 1]).mean()) > still_rad_s:
+            return math.nan
     f = np.asarray(forward_s, dtype=float)
     den = vec_norm(g0) * vec_norm(f)
     return math.degrees(math.asin(min(1.0, abs(float(np.dot(g0, f))) / den))) if den > 0 else math.nan
