@@ -84,7 +84,8 @@ def test_align_units_gives_the_transfers_the_aligned_waist_w430(tug_offset, tmp_
     from pdrlearn.cli import main
 
     assert main(["track", str(tug_offset), "--align-units", "--no-plot", "--out", str(tmp_path / "al")]) == 0
-    assert "takes only the chair transfers and TUG from that unit (W418)" in capsys.readouterr().out
+    # W586 (session 50): the track now has the unit's posture split and says it is read from that unit
+    assert "the lower-back unit's trunk tilt and transfers, outside the foot's walking" in capsys.readouterr().out
     offset = json.loads((tmp_path / "al" / "summary.json").read_text())["info"]["unit_alignment"]["offset_s"]
     assert main(["track", str(tug_offset), "--clock-offset", repr(offset), "--no-plot", "--out",
                  str(tmp_path / "co")]) == 0

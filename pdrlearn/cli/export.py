@@ -47,7 +47,7 @@ def bundle_refusal(model_dir: Path) -> str | None:
 
     mf = Path(model_dir) / "manifest.json"
     try:
-        manifest = json.loads(mf.read_text())
+        manifest = json.loads(mf.read_text(encoding="utf-8"))
     except (OSError, ValueError):
         return None
     if not isinstance(manifest, dict) or manifest.get("schema") != "pdrlearn-bundle":

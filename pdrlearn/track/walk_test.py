@@ -259,18 +259,16 @@ def free_recording_note(steps: pd.DataFrame, max_bout_m: float, timed_m: float) 
     (no walkway declared) when it does not look like a walk test: one of its walking bouts holds a stair flight
     (L779 amended: a flight of stairs.csv, :func:`pdrlearn.track.stair_flights.flight_spans` - L438's runs of 2 or
     more stair strides, |dz_m| >= 0.10 m, without L443's ramp climbs; a walk test is walked on a level walkway,
-    L434) or is longer than ``max_bout_m`` (L552's march) - a mission or a free walk, whose level
-    corridors would read as walkway passes (trial s50t1 F7: "10 m walk test 5.85 s" on every mission). None when
+    L434) - a mission or a free walk, whose level corridors would read as walkway passes (trial s50t1 F7: "10 m walk
+    test 5.85 s" on every mission). A bout longer than ``max_bout_m`` is L552's alone (it is not timed, the
+    recording's other bouts are: review R2 finding 1; L779's ">100 m" clause was dropped at the merge). None when
     the recording looks like a walk test."""
-    length = np.abs(np.nan_to_num(steps["length_m"].to_numpy(float)))
     flights = flight_spans(steps) if "dz_m" in steps else []  # L779 amended: stairs.csv's flights (L443: no ramp)
     for n, (a, b) in enumerate(bout_rows(steps), start=1):
         n_stair = sum(max(0, min(b, f1) - max(a, f0)) for f0, f1, _ in flights)
-        metres = float(length[a:b].sum())
-        if n_stair or metres > max_bout_m:
+        if n_stair:
             what = (f"a stair flight of {n_stair} stair stride(s) (stairs.csv, L438; a walk test is walked on a level "
-                    "walkway, L434)"
-                    if n_stair else f"{metres:.0f} m of walking (over {max_bout_m:g} m, L552)")
+                    "walkway, L434)")
             return (f"walking bout {n} holds {what}: a mission or a free walk, not a walk-test recording, so none of "
                     f"its walks is timed as a {timed_m:g} m walk test with no walkway declared (decision L779) - "
                     "give track --ten-m-walk ACCEL,TIMED,DECEL to time a walkway in it")
