@@ -71,13 +71,14 @@ def carried_yaw(stream: Stream, lo: float, t0: float, t1: float) -> tuple[float,
 
 
 def carried_turn(stream: Stream, levelled, heading_source: str, prev_end: float | None, t0: float, t1: float,
-                 waist_gap: bool = True) -> tuple[float, float] | None:
+                 waist_gap: bool = True, *, stop_turn: float | None = None) -> tuple[float, float] | None:
     """Decision E285: ``(turn, dyaw)`` of a stride headed by the waist gyroscope: its own turn over ``[t0, t1]`` and
     its heading change with the gap before it (the span L61 / L498's gap yaw covers,
     :func:`~pdrlearn.kernels.stride.waist_gap_from`, when ``waist_gap``), both by :func:`carried_yaw` (and E324's
     :func:`~pdrlearn.kernels.stride.long_stop_turn` before that span); None for a
     foot-headed stride (or no waist samples), which keeps :func:`~pdrlearn.kernels.stride.stride_motion` and
-    :func:`~pdrlearn.kernels.stride.stride_gap_yaw`'s. The runtime and ``track --streaming`` call it alike."""
+    :func:`~pdrlearn.kernels.stride.stride_gap_yaw`'s. The runtime and ``track --streaming`` call it alike.
+    ``stop_turn``: that long-stop turn when the caller has it (decision E335: read once per stride)."""
     if headed_by_foot(levelled, heading_source):
         return None
     s = carried_yaw(stream, waist_gap_from(prev_end, t0, waist_gap), t0, t1)
@@ -85,5 +86,5 @@ def carried_turn(stream: Stream, levelled, heading_source: str, prev_end: float 
         return None
     gap, own = s
     if waist_gap:  # decision E324: a stop over 60 s adds its turn before L498's last second (L296's rest rotation)
-        gap += long_stop_turn(stream, prev_end, t0)
+        gap += long_stop_turn(stream, prev_end, t0) if stop_turn is None else stop_turn
     return own, own + gap

@@ -28,35 +28,51 @@ BIAS_MIN_STILL_S = 1.0
 
 
 def rest_rotation(t: np.ndarray, w: np.ndarray, still: np.ndarray, t0: float, t1: float, *,
-                  cum: np.ndarray | None = None) -> float:
+                  cum: np.ndarray | None = None, max_dt_s: float | None = None) -> float:
     """Decision L296: the rotation (rad) of the vertical rate ``w`` (rad/s, at ``t`` s) from ``t0`` to ``t1``:
     W72's integral when the stop lasts up to :data:`REST_BIAS_MIN_S` or has no block with :data:`BIAS_MIN_STILL_S`
     of still samples (``still``, bool per sample); else the sum over its moving samples of the rate less the bias
     (the mean rate of each :data:`BIAS_BLOCK_S` block's still samples, interpolated in time). ``cum``:
-    :func:`pdrlearn.kernels.waist.rate_integral` of ``(t, w)``, for the short stops."""
+    :func:`pdrlearn.kernels.waist.rate_integral` of ``(t, w)``, for the short stops. ``max_dt_s`` (decision E334,
+    E324's long stop; None: every interval counts, as L296's offline and live waist rests): the samples' weights
+    :func:`sample_weights` with a gap in the samples over it adding nothing."""
     if t1 - t0 <= REST_BIAS_MIN_S:
         return integrate_rate(t, w, t0, t1, cum=cum)
     a, b = int(np.searchsorted(t, t0, side="left")), int(np.searchsorted(t, t1, side="right"))
     tt, ww, st = t[a:b], w[a:b], np.asarray(still[a:b], dtype=bool)
-    blocks = block_bias(tt, ww, st)
+    dt = sample_weights(tt, max_dt_s) if len(tt) > 1 else None
+    blocks = block_bias(tt, ww, st, dt=dt)
     if blocks is None:
         return integrate_rate(t, w, t0, t1, cum=cum)
     centres, bias = blocks
-    dt = np.gradient(tt)
     moving = ~st
     return float(np.sum((ww[moving] - np.interp(tt[moving], centres, bias)) * dt[moving]))
 
 
-def block_bias(t: np.ndarray, w: np.ndarray, still: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
+def sample_weights(t: np.ndarray, max_dt_s: float | None = None) -> np.ndarray:
+    """Decisions L296 / E334: each sample's time weight (s) at ``t`` (2 samples or more): half its intervals to its
+    neighbours (``np.gradient``'s). With ``max_dt_s``, an interval longer than it (a gap in the samples) counts as the
+    median interval: a sample at a gap's edge no longer stands for half the gap (review s51r1 F1: a 90 deg spin read
+    718 deg with a waist gap from its end), so a rotation is split at the gap, each side by its own samples."""
+    if max_dt_s is None:
+        return np.gradient(t)
+    d = np.diff(t)
+    d = np.where(d > max_dt_s, np.median(d), d)
+    return np.concatenate((d[:1], 0.5 * (d[:-1] + d[1:]), d[-1:]))
+
+
+def block_bias(t: np.ndarray, w: np.ndarray, still: np.ndarray, *,
+               dt: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray] | None:
     """Decision L296: the gyroscope's bias over a rest's samples ``t`` (s), rates ``w`` (rad/s; (n,) or (n, k)
     axes) and ``still`` (bool per sample): ``(centres, bias)``, the mean time and the mean rate of the still samples
     of each :data:`BIAS_BLOCK_S` block holding :data:`BIAS_MIN_STILL_S` of them (bias (m,) or (m, k)); None when
     there are fewer than 2 samples or no such block. Shared by the waist's rests (:func:`rest_rotation`) and the
-    foot's (decision L476, ``FootDisplacement(rest_bias=...)``)."""
+    foot's (decision L476, ``FootDisplacement(rest_bias=...)``). ``dt``: the samples' weights (s;
+    :func:`sample_weights`, its default)."""
     st = np.asarray(still, dtype=bool)
     if len(t) < 2:
         return None
-    dt = np.gradient(t)
+    dt = np.gradient(t) if dt is None else dt
     block = np.floor((t - t[0]) / BIAS_BLOCK_S).astype(np.int64)
     n_still = np.bincount(block, weights=st * dt)
     ok = n_still >= BIAS_MIN_STILL_S

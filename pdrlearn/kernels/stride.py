@@ -525,21 +525,28 @@ def long_stop_turn(stream: Callable[[str], tuple[np.ndarray, np.ndarray]], prev_
         return 0.0
     t, w, still = read
     # a still sample within still_margin_s of a moving one is moving: a turn's slow start and end (under the still
-    # test's 0.25 rad/s) is turn, not bias (without it trial s50t1's 90 deg spin after 90 s came out 74 deg)
-    k = max(1, int(round(still_margin_s / float(np.median(np.diff(t))))))
-    near = np.convolve((~still).astype(float), np.ones(2 * k + 1), mode="same") > 0.5
-    return rest_rotation(t, w, still & ~near, *span)
+    # test's 0.25 rad/s) is turn, not bias (without it trial s50t1's 90 deg spin after 90 s came out 74 deg).
+    # Decision E334: "within" by time (+ half the median interval: the sample count's window on a regular clock),
+    # so a waist dropout (fewer samples than the window) no longer breaks it (review s51r1 F1: a ValueError)
+    moving = t[~still]
+    reach = still_margin_s + 0.5 * float(np.median(np.diff(t)))
+    j = np.searchsorted(moving, t - reach, side="left")  # the first moving sample not before t - reach
+    near = (j < len(moving)) & (moving[np.minimum(j, len(moving) - 1)] <= t + reach) if len(moving) else ~still
+    # decision E334: a gap in the waist samples over WAIST_GAP_S adds nothing (each side by its own samples)
+    return rest_rotation(t, w, still & ~near, *span, max_dt_s=WAIST_GAP_S)
 
 
 def stride_gap_yaw(levelled: Levelled, heading_source: str, stream: Callable[[str], tuple[np.ndarray, np.ndarray]],
-                   prev_end: float | None, t0: float, *, foot: bool = True, waist: bool = False) -> float:
+                   prev_end: float | None, t0: float, *, foot: bool = True, waist: bool = False,
+                   stop_turn: float | None = None) -> float:
     """Decisions L31 / L61: the turn (rad) in the gap between the previous stride's end ``prev_end`` and this
     stride's start ``t0`` (s), by the unit that heads the stride (:func:`stride_motion`): the foot's pivot
     (:func:`gap_yaw` of ``fGyroscope`` / ``fAccelerometer``, L31) when ``foot`` and the stride is headed by the
     foot; the waist's turn (the same :func:`gap_yaw` of ``wGyroscope`` / ``wAccelerometer``, not gated:
     :data:`WAIST_GAP_STILL_RAD_S`, L61) when ``waist`` and the stride is headed by the waist gyroscope; else 0.
     ``stream(name)`` -> ``(t, values)`` of a whole buffered stream (offline: the session's; the runtime: its
-    ring buffer), so ``track --streaming`` and ``pdrlearn run`` call the same code."""
+    ring buffer), so ``track --streaming`` and ``pdrlearn run`` call the same code. ``stop_turn``: E324's
+    :func:`long_stop_turn` when the caller has it (decision E335: read once per stride), else read here."""
     if prev_end is None or not t0 > prev_end:
         return 0.0
     if headed_by_foot(levelled, heading_source):
@@ -547,7 +554,8 @@ def stride_gap_yaw(levelled: Levelled, heading_source: str, stream: Callable[[st
     if not waist:
         return 0.0
     return gap_yaw(*stream("wGyroscope"), *stream("wAccelerometer"), prev_end, t0, still_rad_s=WAIST_GAP_STILL_RAD_S,
-                   max_s=waist_gap_max_s(prev_end, t0)) + long_stop_turn(stream, prev_end, t0)  # decisions L498, E324
+                   max_s=waist_gap_max_s(prev_end, t0)) + (  # decisions L498, E324
+        long_stop_turn(stream, prev_end, t0) if stop_turn is None else stop_turn)
 
 
 def waist_bridge_yaw(stream: Callable[[str], tuple[np.ndarray, np.ndarray]], t0: float, t1: float) -> float:

@@ -210,15 +210,23 @@ def posture_warning(n: int, t0: float, t1: float) -> str:
             "no displacement is counted there and the position holds (decision B131)")
 
 
+def rest_half_width(t: np.ndarray) -> tuple[float, int]:
+    """A foot window's mean rate (Hz; 1 for a single sample) and the half width (samples) of the +-20 ms its rest
+    specific force and rate are averaged over (:func:`window_rests`, :func:`rest_pitch_deg`; decisions: rest
+    reference, B474)."""
+    n = len(t)
+    fs = (n - 1) / float(t[-1] - t[0]) if n > 1 else 1.0  # mean rate over the step
+    return fs, max(0, int(round(0.02 * fs)))
+
+
 def window_rests(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, *, rest_search_s: float) -> tuple:
     """The rests of a stride's foot window (:func:`foot_levelled`'s reading): ``(|acc|, k0, k1, g0, g1)``, the
     quietest sample within ``rest_search_s`` of the window's start and of its end and the specific force averaged
     over +-20 ms around each (decisions: rest reference)."""
     n = acc.shape[0]
-    fs = (n - 1) / float(t[-1] - t[0]) if n > 1 else 1.0  # mean rate over the step
+    fs, h = rest_half_width(t)
     m = max(2, min(int(round(rest_search_s * fs)), n // 4 + 1))
     an = row_norm(acc)
-    h = max(0, int(round(0.02 * fs)))  # rest specific force averaged over +-20 ms
     # rest |acc| from the quietest samples, the whole +-h neighbourhood quiet (decisions: rest reference)
     score = rest_score(an, None if gyr is None else row_norm(gyr), half_width=h)
     k0 = rest_index(acc, gyr, 0, m, score=score)
@@ -240,8 +248,7 @@ def rest_pitch_deg(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, forwa
     if abs(vec_norm(g0) - STANDARD_GRAVITY) > still_acc:  # decision B474 (amended): not at rest (L296's 0.3 m/s^2)
         return math.nan
     if gyr is not None:  # decision B474 (amended): L296's 0.25 rad/s over the rest's +-20 ms
-        fs = (acc.shape[0] - 1) / float(t[-1] - t[0])
-        h = max(0, int(round(0.02 * fs)))
+        h = rest_half_width(t)[1]
         if float(row_norm(gyr[max(k0 - h, 0): k0 + h + 1]).mean()) > still_rad_s:
             return math.nan
     f = np.asarray(forward_s, dtype=float)
@@ -265,6 +272,25 @@ def level_reference(ref_deg: float | None, pitch_deg: float) -> float | None:
     if not math.isfinite(pitch_deg):
         return ref_deg
     return pitch_deg if ref_deg is None else min(ref_deg, pitch_deg)
+
+
+class PitchReference:
+    """Decisions B474 / B475: the most level first-rest pitch (deg) of the strides tracked so far, and the test of
+    each new stride against it, one mechanism for the live ``Tracker`` and ``track --streaming``. :meth:`pitched`
+    reads the stride's pitch (:func:`stride_rest_pitch`): True when it is more than ``max_change_deg`` further from
+    level than :attr:`deg` (:func:`pitched_from`: B131's posture); else the stride updates :attr:`deg`
+    (:func:`level_reference`; None before the first, whose frame B131 judges)."""
+
+    def __init__(self, *, max_change_deg: float = 45.0) -> None:
+        self.max_change_deg = max_change_deg
+        self.deg: float | None = None
+
+    def pitched(self, stream, forward_s: np.ndarray, t0: float, t1: float, *, rest_search_s: float) -> bool:
+        pitch = stride_rest_pitch(stream, forward_s, t0, t1, rest_search_s=rest_search_s)
+        if pitched_from(pitch, self.deg, max_change_deg=self.max_change_deg):
+            return True
+        self.deg = level_reference(self.deg, pitch)
+        return False
 
 
 def foot_levelled(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray | None, forward_s: np.ndarray, *,

@@ -66,6 +66,7 @@ from pdrlearn.kernels.stride import (
     impossible_stride_one,
     impossible_stride_warning,
     long_stop_span,
+    long_stop_turn,
     no_length_bounds_warning,
     placement_offset,
     pre_l59_fallback,
@@ -87,20 +88,18 @@ from pdrlearn.kernels.window import (
     GROUPS,
     TASK_COLUMNS,
     WINDOW_HEADINGS,
+    PitchReference,
     _fill_channels,
     _unit_grid,
     available_groups,
     fill_step_window,
     hole_stride_dz,
-    level_reference,
     levelled_units,
-    pitched_from,
     posture_warning,
     rest_boundaries,
     segment,
     stride_hole,
     stride_hole_line,
-    stride_rest_pitch,
 )
 from pdrlearn.runtime.baro_check import BaroCheck
 from pdrlearn.runtime.bundle import Bundle, load_bundle, waist_only_hint
@@ -537,7 +536,7 @@ class Tracker(OwnGuard, FixInput):
     _first_walk = None  # decision E215 (a bare Tracker.__new__ has none)
     _stop_bias = None  # decision E272 (a bare Tracker.__new__ has none)
     _drop_at_w = math.inf  # decision E285 (as _stop_bias)
-    _pitch_ref = None  # decision B474: the most level rest pitch (deg) of the strides so far, None before one
+    _pitch_ref: PitchReference | None = None  # decisions B474 / B475 (a bare Tracker.__new__ makes one at its first)
     _pedal_line: list | None = None  # decision E280: [spans, index in warnings]
     _foot_gaps: list | tuple = ()
     _heading_gaps: list | tuple = ()  # decision E299: the waist gyroscope's gaps over 1 s, the latest 16
@@ -1780,11 +1779,9 @@ class Tracker(OwnGuard, FixInput):
         --streaming``'s test); the first stride (B131 judges its frame) starts that reference."""
         if "foot" not in self.forward or not all(n in self._buf for n in ("fAccelerometer", "fGyroscope")):
             return False
-        pitch = stride_rest_pitch(self._stream, self.forward["foot"], t0, t1, rest_search_s=self.rest_search_s)
-        if pitched_from(pitch, self._pitch_ref):
-            return True
-        self._pitch_ref = level_reference(self._pitch_ref, pitch)
-        return False
+        if self._pitch_ref is None:
+            self._pitch_ref = PitchReference()
+        return self._pitch_ref.pitched(self._stream, self.forward["foot"], t0, t1, rest_search_s=self.rest_search_s)
 
     def _turn_in_place(self, t0: float, t1: float) -> bool:
         """Decision L742: whether the foot window ``[t0, t1]`` is a turn on the spot (:func:`~pdrlearn.kernels.spin.
@@ -2277,14 +2274,17 @@ class Tracker(OwnGuard, FixInput):
                 dyaw += stride_gap_yaw(lev, self.heading_source, self._stream, prev, t0, foot=False,
                                        waist=self.waist_gap_yaw)
         else:  # decisions L31 / L61: the heading unit's turn between strides (track --streaming's call)
+            stop = (long_stop_turn(self._stream, prev, t0) if self.waist_gap_yaw  # decision E335: E324's turn, read
+                    and not headed_by_foot(lev, self.heading_source) else None)  # once for both calls below
             if self._spun is not None and headed_by_foot(lev, self.heading_source):  # decision L742: the foot's
                 dyaw += self._spun[0]  # turn in place before it, and its pivot after that (track --streaming's)
                 dyaw += stride_gap_yaw(lev, self.heading_source, self._stream, _spin.foot_gap_start(prev, self._spun),
                                        t0)
             else:
-                dyaw += stride_gap_yaw(lev, self.heading_source, self._stream, prev, t0, waist=self.waist_gap_yaw)
+                dyaw += stride_gap_yaw(lev, self.heading_source, self._stream, prev, t0, waist=self.waist_gap_yaw,
+                                       stop_turn=stop)
             started = _carried_yaw.carried_turn(self._stream, lev, self.heading_source, prev, t0, t1,
-                                                 self.waist_gap_yaw)  # decision E285 (track --streaming's call)
+                                                 self.waist_gap_yaw, stop_turn=stop)  # E285 (track --streaming's)
             if started is not None:
                 turn, dyaw = started
         if self._stop_bias is not None and not headed_by_foot(lev, self.heading_source):  # decision E272

@@ -20,7 +20,6 @@ acceleration, the M3 rules, heading from the integrated vertical rate), so that
 from __future__ import annotations
 
 import logging
-import math
 from pathlib import Path
 from types import SimpleNamespace
 
@@ -86,15 +85,13 @@ from pdrlearn.kernels.window import (
     GAP_TOL_S,
     GROUP_STREAMS,
     TASK_COLUMNS,
+    PitchReference,
     available_groups,
     hole_stride_dz,
-    level_reference,
     levelled_units,
-    pitched_from,
     posture_warning,
     stride_hole,
     stride_hole_line,
-    stride_rest_pitch,
 )
 from pdrlearn.orient import WaistHeading, unit_data, wrap_angle
 from pdrlearn.orient._kernels import fit_horizontal_hard_iron, level_axes
@@ -2210,7 +2207,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     across, ref = drop_strides(session, table, in_gap, min_gap_s=BRIDGE_GAP_S + GAP_TOL_S), None  # E230
     neighbour = bool(drop_neighbour)  # decisions E101, L549
     stop = KSB.StopBias() if "waist" in forward else None  # decision E272 (the runtime's: the waist unit tracked)
-    pitch_ref = None  # decision B474: the most level rest pitch (deg) of the strides so far
+    pitch_ref = PitchReference()  # decisions B474 / B475: the most level rest pitch of the strides so far
     for i, (t0, t1) in enumerate(strides):
         prev = float(strides[i - 1, 1]) if i else None
         if in_gap[i]:  # decision L91: the waist's turn from the previous stride's end, else 0 (L90)
@@ -2219,11 +2216,9 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                                                                       else float(t0)), float(t1))
             continue
         try:
-            pitch = (stride_rest_pitch(streams.__getitem__, forward["foot"], float(t0), float(t1),  # decision B474:
-                                       rest_search_s=rest_search_s) if "foot" in forward else math.nan)  # the runtime's
-            if pitched_from(pitch, pitch_ref):  # a foot pitched far from the most level rest so far: B131's posture
-                raise VerticalAxisError("foot pitched at rest")
-            pitch_ref = level_reference(pitch_ref, pitch)  # the first stride (B131 judges its frame) starts it
+            if "foot" in forward and pitch_ref.pitched(streams.__getitem__, forward["foot"], float(t0), float(t1),
+                                                       rest_search_s=rest_search_s):  # decision B474 (the runtime's):
+                raise VerticalAxisError("foot pitched at rest")  # far from the most level rest so far: B131's posture
             lev = levelled_units(streams, float(t0), float(t1), available=available, forward=forward,  # E36: a
                                  rest_search_s=rest_search_s, heading=step_heading, bridge_gaps=True)  # short gap
         except VerticalAxisError:  # = 1 interval; decision B131: after level strides, a posture (the runtime's)
@@ -2249,7 +2244,10 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         frame[i] = KSW.step_frame(lev)  # decision E124: the step frame's direction from the foot's facing
         foot_turn[i] = KSW.foot_turn(lev)  # decision L400
         foot_headed[i] = SK.headed_by_foot(lev, heading)
-        if i and prev < t0 and overlaps_any(prev, float(t0), imu_gaps):  # L90: no foot pivot over a foot gap;
+        pause = bool(i and prev < t0 and overlaps_any(prev, float(t0), imu_gaps))
+        stop_turn = (SK.long_stop_turn(streams.__getitem__, prev, float(t0)) if waist_gap_yaw  # decision E335: E324's
+                     and not foot_headed[i] and not pause else None)  # turn read once for both calls below (runtime's)
+        if pause:  # L90: no foot pivot over a foot gap;
             if bridged:  # L91: the waist's turn over the whole pause
                 dyaw[i] += SK.waist_bridge_yaw(streams.__getitem__, prev, float(t0))
             elif not foot_headed[i]:  # L61's waist look-back is measured, kept
@@ -2260,9 +2258,10 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                                                       foot_gap_start(prev, spun[i]), float(t0))
         elif i:  # decisions L31 / L61: the heading unit's turn between strides (the runtime's call)
             dyaw[i] += SK.stride_gap_yaw(lev, heading, streams.__getitem__, prev, float(t0),
-                                         foot=gap_yaw, waist=waist_gap_yaw)
-        if not (i and prev < t0 and overlaps_any(prev, float(t0), imu_gaps)):  # decision E285 (the runtime's call)
-            started = KCY.carried_turn(streams.__getitem__, lev, heading, prev, float(t0), float(t1), waist_gap_yaw)
+                                         foot=gap_yaw, waist=waist_gap_yaw, stop_turn=stop_turn)
+        if not pause:  # decision E285 (the runtime's call)
+            started = KCY.carried_turn(streams.__getitem__, lev, heading, prev, float(t0), float(t1), waist_gap_yaw,
+                                       stop_turn=stop_turn)
             if started is not None:
                 turn[i], dyaw[i] = started
         if stop is not None and not foot_headed[i]:  # decision E272: the bias read at the last stop, as the runtime
