@@ -69,5 +69,6 @@ if __name__ == "__main__":
     for units, rs in pooled.items():
         if rs:
             share = [r["share"] for r in rs]
+            ratio, rms = np.median([r["sigma_rms"] for r in rs]), np.median([r["rms"] for r in rs])
             print(f"{kind} {units}: mean share {np.mean(share):.3f}, min {np.min(share):.3f}, median sigma / RMS "
-                  f"{np.median([r['sigma_rms'] for r in rs]):.2f}, median RMS {np.median([r['rms'] for r in rs]):.2f} m")
+                  f"{ratio:.2f}, median RMS {rms:.2f} m")

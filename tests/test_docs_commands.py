@@ -288,6 +288,7 @@ def _validators() -> dict[tuple[str, str], object]:
     from pdrlearn.steps.detectors import DETECTORS, get_detector
     from pdrlearn.track.affected_side import check_affected_side
     from pdrlearn.track.altitude import ALTITUDES
+    from pdrlearn.track.at_times import check_forward, times_argument
     from pdrlearn.track.base import PIPELINES
     from pdrlearn.track.bouts import BOUT_PRESETS
     from pdrlearn.track.clock import PER_ALIGNS, TIME_ORIGINS
@@ -363,6 +364,8 @@ def _validators() -> dict[tuple[str, str], object]:
         ("run", "length_reference"): _one_of(LENGTH_REFERENCES),  # decision C117
         **{(c, "length_reference"): _one_of(LENGTH_REFERENCES) for c in ("track", "track-all")},  # decision C126
         ("run", "units"): _one_of(BODY_UNITS, listed=True),
+        ("run", "at_times"): lambda v: (check_forward(times_argument(v)[0]["t"].astype(float), v)  # decision E332
+                                        if "," in v else None),
         ("export", "units"): _one_of(EXPORT_UNITS),  # decision E218
         ("train", "boundaries"): _one_of(BOUNDARIES),
         ("train", "cv_groups"): _one_of(CV_GROUPS),  # decision C29

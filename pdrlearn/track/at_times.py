@@ -43,9 +43,9 @@ def read_times(path: Path) -> pd.DataFrame:
     table.columns = [str(c).strip() for c in table.columns]
     given = [c for c in TIME_COLUMNS if c in table.columns]
     if len(given) != 1 or not len(table):
-        raise DataError(f"--at-times {path}: needs exactly one column t or t_s (seconds from the session's start) or time "
-                        f"(ISO 8601 date-times) and at least one row; it has columns {', '.join(table.columns)} and "
-                        f"{len(table)} row(s)")
+        raise DataError(f"--at-times {path}: needs exactly one column t or t_s (seconds from the session's start) or "
+                        f"time (ISO 8601 date-times) and at least one row; it has columns {', '.join(table.columns)} "
+                        f"and {len(table)} row(s)")
     col = given[0]
     if col == "t_s":  # decision E332: the seconds under run's checkpoint name, the same as t
         table, col = table.rename(columns={"t_s": "t"}), "t"
