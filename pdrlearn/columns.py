@@ -1758,8 +1758,13 @@ TRAJECTORY: tuple[Column, ...] = (
 AT_TIMES: tuple[Column, ...] = (
     ("t", "s", "number", "the given time on the session's clock (a time column of the file: less the recording "
                          "start), in the file's order"),
+    ("stride_end_s", "s", "number", "`run --at-times` only (decision E332), the second column: the time of the "
+                                    "streamed trajectory.csv row held at t - the end of the last stride the live "
+                                    "track had placed by t; x, y, z, pos_sigma_m, z_rides and floor are that row's, "
+                                    "not interpolated; empty before the first stride (the start row)"),
     ("x", "m", "number", "trajectory.csv's x at t: linear between its rows; the start's before its first row (the "
-                         "standstill before the first stride), its last row's after its last"),
+                         "standstill before the first stride), its last row's after its last (`run --at-times`: "
+                         "the row at stride_end_s, E332)"),
     ("y", "m", "number", "trajectory.csv's y at t, as x"),
     ("z", "m", "number", "trajectory.csv's z at t, as x"),
     ("lat", "deg", "number", "trajectory.csv's lat at t, as x; only when the track has lat/lon"),
@@ -2027,7 +2032,10 @@ NOTES = {"steps.csv": "Lower-back tracks (waist-pendulum, waist-pll): one row pe
                            "another layout (README, Data format).",
          "at_times.csv": "`pdrlearn track DIR --at-times FILE` (decision L638): one row per time of FILE (a CSV "
                          "with a column t, seconds from the session's start, or time, ISO 8601), in its order: "
-                         "trajectory.csv's numeric columns there (a floor column: its row at or before t).",
+                         "trajectory.csv's numeric columns there (a floor column: its row at or before t). "
+                         "`pdrlearn run ... --at-times FILE|T1,T2,...` (decision E332; a column t_s or t, or a comma "
+                         "list, in increasing order): the streamed row at or before each time, held, with "
+                         "stride_end_s.",
          "detections.csv": "`pdrlearn steps --out FILE` (any name): one row per detection, times in s since the "
                            "session's first sample; the columns after confidence depend on the detector; "
                            "`score-steps` reads the same layout (event_s, and start_s / end_s for a foot table).",

@@ -259,6 +259,16 @@ def _one_of(choices, *, case=True, listed=False):
     return check
 
 
+def _at_times_value(value: str) -> None:
+    """Decision E332: `run --at-times`' value in a doc: a .csv file's name, or a comma list of seconds in order."""
+    from pdrlearn.track.at_times import check_forward, times_argument
+
+    if value.endswith(".csv"):
+        return
+    table, label = times_argument(value)  # a file name not written .csv: "no such file"
+    check_forward(table["t"].astype(float), label)
+
+
 def _validators() -> dict[tuple[str, str], object]:
     """(command, parameter name) -> a function that raises on a value the command refuses, from the lists the
     commands check against (so a renamed choice fails here as it would for the user)."""
@@ -363,6 +373,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("run", "length_reference"): _one_of(LENGTH_REFERENCES),  # decision C117
         **{(c, "length_reference"): _one_of(LENGTH_REFERENCES) for c in ("track", "track-all")},  # decision C126
         ("run", "units"): _one_of(BODY_UNITS, listed=True),
+        ("run", "at_times"): _at_times_value,  # decision E332
         ("export", "units"): _one_of(EXPORT_UNITS),  # decision E218
         ("train", "boundaries"): _one_of(BOUNDARIES),
         ("train", "cv_groups"): _one_of(CV_GROUPS),  # decision C29

@@ -4,6 +4,7 @@ steps in place; L780 `export` of a runtime bundle says what it is and how to mak
 
 from __future__ import annotations
 
+import inspect
 from pathlib import Path
 
 import numpy as np
@@ -13,7 +14,7 @@ import pytest
 from pdrlearn.cli.export import bundle_refusal
 from pdrlearn.track import plasys
 from pdrlearn.track.gait import gait_range_warning, steps_in_place
-from pdrlearn.track.walk_test import t25fw, ten_metre_walk, ten_metre_walk_trials
+from pdrlearn.track.walk_test import free_recording_note, t25fw, ten_metre_walk, ten_metre_walk_trials
 
 SHUFFLE = {"median_cadence_spm": 92.7, "median_speed_straight_mps": 0.0137, "n_straight_strides": 36,
            "median_speed_mps": 0.0099, "gait_speed_mps": 0.34, "leg_length_m": 0.85}  # trial s50t1 shuffle_u17330
@@ -60,6 +61,20 @@ def test_walk_tests_only_on_a_test_like_recording_l779():
     # a bout over L552's 100 m is L552's alone: not timed, the recording's walkway pass still is (review R2 F1)
     long_walk = _recording((16.0, 1.0, 0.0), (120.0, 1.0, 0.0))
     assert ten_metre_walk(long_walk)["ten_m_walk_time_s"] == pytest.approx(10.0)
+
+
+def test_free_recording_note_reads_no_bout_length_l781():
+    """L781 (session 51, I4): L779's note takes no ``max_bout_m`` (its >100 m clause was dropped at session 50's
+    merge, the argument was unused); a level recording with a bout over 100 m is no mission for it, L552 refuses
+    that bout alone."""
+    assert "max_bout_m" not in inspect.signature(free_recording_note).parameters
+    long_walk = _recording((16.0, 1.0, 0.0), (120.0, 1.0, 0.0))
+    assert free_recording_note(long_walk, 10.0) is None
+    trials = ten_metre_walk_trials(long_walk)
+    assert len(trials) == 1 and "far longer than a walkway" in ten_metre_walk(_recording((120.0, 1.0, 0.0)))[
+        "ten_m_walk_note"]
+    mission = _recording((16.0, 1.0, 0.0), (3.0, 0.3, 0.34))
+    assert "walking bout 2 holds a stair flight" in free_recording_note(mission, 10.0)
 
 
 def test_compass_check_leaves_out_steps_in_place_w589(monkeypatch):

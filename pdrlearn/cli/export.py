@@ -401,6 +401,12 @@ def run(
                                        "foot = the foot's attitude change from rest to rest; waist-gyro = the waist "
                                        "gyroscope always, on a vertical carried by it (decision E289). On "
                                        "stop-and-turn sessions (VR, rehab) try foot too (docs/deploying.md)."),
+    at_times: str = typer.Option(None, "--at-times", metavar="FILE|T1,T2,...",
+                                 help="Checkpoint times: a CSV with a column t_s (or t: seconds on the session's "
+                                 "clock; or time: ISO 8601) or a comma list of seconds, in increasing order: "
+                                 "OUT/at_times.csv gives the position the live track showed at each - the streamed "
+                                 "row of the last stride ended by then, not interpolated (x, y, z, pos_sigma_m, "
+                                 "floor when known; decision E332). Needs --out and SESSION_DIR."),
 ) -> None:
     """Replay a recorded session (or a Bluetooth capture) through the streaming runtime.
 
@@ -476,6 +482,17 @@ def run(
 
         stair_grade_pct = check_stair_grade(stair_grade)  # decision L469, as `track`: before any output
         plot = check_no_plot("run", no_plot, dpi)  # decisions L533, B413: before any output
+        at_table = at_label = None
+        if at_times is not None:  # decision E332: checked before any output or replay
+            if out is None:
+                raise DataError(f"run: --at-times {at_times} writes OUT/at_times.csv, which only --out writes; add "
+                                "--out FOLDER")
+            if protocol is not None:
+                raise DataError(f"run: --at-times {at_times} needs a session's clock, known before the replay; the "
+                                f"--protocol capture {protocol} has none: replay a session folder (SESSION_DIR)")
+            from pdrlearn.track.at_times import times_argument
+
+            at_table, at_label = times_argument(at_times)
         if dpi is not None and out is None:  # decision L70: it would be ignored
             raise DataError(f"run: --dpi {dpi} sets the resolution of path.png, which only --out writes; add --out "
                             "FOLDER or drop --dpi")
@@ -503,7 +520,8 @@ def run(
                                                          ("--length-reference", length_reference != "model"),
                                                          ("--heading-source", heading_source != "auto"),  # E285
                                                          ("--stair-grade", stair_grade is not None),
-                                                         ("--gait", gait_other is not None))  # decision E311
+                                                         ("--gait", gait_other is not None),  # decision E311
+                                                         ("--at-times", at_times is not None))  # decision E332
                                           if v]
             if given:
                 raise DataError(f"run: {', '.join(given)} is for a foot-unit bundle; {bundle_dir} is a waist-only "
@@ -525,6 +543,7 @@ def run(
         bundle = load_bundle(bundle_dir)  # verified before any output
         methods = bundle.choose_methods(method) if method is not None else None  # decision E52, before any work
         steps, lat, protocol_stats, session = [], [], None, None  # session: ground truth (a capture has none)
+        at_t = None  # decision E332: --at-times in session seconds
         from pdrlearn.runtime.latency import DataLatency
 
         data_lat = DataLatency()  # decision E288: the steps' data latency (a capture's pushes: not measured)
@@ -624,6 +643,12 @@ def run(
             from pdrlearn.track.belt import check_belt_keys, session_where
 
             check_belt_keys(session.meta, session_where(session))  # decisions L454, B365: as track, before tracking
+            if at_table is not None:  # decision E332: the times inside the recording, in order, before the replay
+                from pdrlearn.track.at_times import check_forward, times_in_session
+                from pdrlearn.track.clock import recording_start
+
+                at_t = check_forward(times_in_session(at_table, at_label, session,
+                                                      recording_start(session.meta, session.where)), at_label)
             from pdrlearn.io.plasys import unit_ends
 
             ends_read = session._unit_ends_uncut or unit_ends(session.streams)  # decision B267: before any cut
@@ -767,7 +792,8 @@ def run(
         if out is not None:  # decision E157: the push times in run.json, not summary.json
             _write(out, result, summary, session, source, dpi=dpi, record=record(latency_ms_per_step=_latency(lat),
                    data_latency_ms=data_lat.report(None if protocol is not None else chunk_s)),  # decision E288
-                   bouts=table, with_ele=start_ele, redact=redact, plot=plot, gait=gait)  # decision L533
+                   bouts=table, with_ele=start_ele, redact=redact, plot=plot, gait=gait,  # decision L533
+                   at_times=at_t)  # decision E332
         if as_json:
             shown = redacted(json_safe(summary), redact)
             if gait is not None:  # decision E311: gait_summary.json's object, not in summary.json
@@ -1219,7 +1245,7 @@ def as_written(result) -> None:
 
 def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: int | None = None,
            record: dict, bouts, with_ele: bool = False, redact: tuple[str, ...] | None = None,
-           plot: bool = True, gait: dict | None = None) -> None:
+           plot: bool = True, gait: dict | None = None, at_times=None) -> None:
     """steps.csv, trajectory.csv, bouts.csv (L124), turns.csv (L200), path.png (not with ``plot`` false: ``--no-plot``,
     decision L533), summary.json and run.json
     (``record``, decision L122) as ``track`` writes them (same names, columns, number format, ``track``'s figure),
@@ -1228,7 +1254,9 @@ def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: i
     recording start gets track's clock columns and summary ``recording_start`` (L298); a capture has no meta.json and
     no clock start, so none. Decision L363: with lat/lon (``--start``) also track's track.gpx and track.geojson
     (``with_ele``: ``--start LAT,LON,ALT`` gave the altitude). ``redact``: decision E176's paths, written as
-    <redacted> in every text file before the folder is moved into place."""
+    <redacted> in every text file before the folder is moved into place. ``at_times`` (decision E332): session
+    seconds whose live positions (:func:`pdrlearn.track.at_times.live_positions` of the written trajectory) go to
+    at_times.csv."""
     import json
 
     from pdrlearn.atomic import atomic_directory
@@ -1253,6 +1281,10 @@ def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: i
 
         traj = with_ride_column(traj, result.info)  # decisions L623, E293: as track's trajectory.csv
         write_table_csv(traj, tmp / "trajectory.csv")
+        if at_times is not None:  # decision E332: the position the live track showed at each checkpoint time
+            from pdrlearn.track.at_times import live_positions
+
+            write_table_csv(live_positions(traj, at_times, start), tmp / "at_times.csv")
         # L124 (E98), L200, L202: bouts.csv, turns.csv ... as track; E144: its clock columns
         tables = event_tables(result, bouts, start=start)
         for name, table in tables.items():

@@ -48,7 +48,7 @@ def position_covariance(length_m: np.ndarray, heading_rad: np.ndarray, t_end_s: 
                         displacement_rel: float, heading_walk_rad: float, bias_rps: float,
                         point_m: float, path_rel: float = 0.0, path_diffusion_m2: float = 0.0,
                         extent_heading_rad: float = 0.0, extent_return_rad: float = 0.0,
-                        held_var_m2: np.ndarray | None = None) -> np.ndarray:
+                        held_var_m2: np.ndarray | None = None, heading_offset_rad: float = 0.0) -> np.ndarray:
     """Covariance (m^2) of the horizontal position after each stride, shape (N, 2, 2).
 
     Parameters
@@ -66,6 +66,8 @@ def position_covariance(length_m: np.ndarray, heading_rad: np.ndarray, t_end_s: 
     extent_return_rad : sd of the bounded heading error on the part of the extent the track has come back from (rad;
         decision L241).
     held_var_m2 : per-stride per-axis variance added at the stride and kept after it (m^2; decision E127).
+    heading_offset_rad : sd of a heading error held the same from the start (rad; decision E331): it moves the
+        position by delta C_k, so P_k += delta^2 C_k C_k^T.
     """
     L = np.asarray(length_m, float)
     psi = np.asarray(heading_rad, float)
@@ -92,6 +94,8 @@ def position_covariance(length_m: np.ndarray, heading_rad: np.ndarray, t_end_s: 
         P = P + (extent_heading_rad * extent)[:, None, None] ** 2 * eye
     if extent_return_rad:  # decision L241: what a heading error held the same (on |D_k|) would not give
         P = P + (extent_return_rad ** 2 * np.maximum(extent ** 2 - dist ** 2, 0.0))[:, None, None] * eye
+    if heading_offset_rad:  # decision E331: one heading error from the first stride on, along C_k
+        P = P + heading_offset_rad ** 2 * outer(C, C)
     if held_var_m2 is not None:  # decision E127: a held position's missed displacement, kept by later strides
         held = np.asarray(held_var_m2, float)
         if held.shape != L.shape:

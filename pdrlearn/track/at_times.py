@@ -22,8 +22,8 @@ import pandas as pd
 
 from pdrlearn.errors import DataError
 
-#: decision L638: the columns the times file may give (one of them)
-TIME_COLUMNS = ("t", "time")
+#: decision L638: the columns the times file may give (one of them; decision E332: ``t_s``, read as ``t``)
+TIME_COLUMNS = ("t", "t_s", "time")
 #: decision L638: trajectory columns that are not a place to interpolate (the times; L623's ride index of a line)
 NOT_POSITIONS = ("t", "time", "ride")
 
@@ -43,10 +43,12 @@ def read_times(path: Path) -> pd.DataFrame:
     table.columns = [str(c).strip() for c in table.columns]
     given = [c for c in TIME_COLUMNS if c in table.columns]
     if len(given) != 1 or not len(table):
-        raise DataError(f"--at-times {path}: needs exactly one column t (seconds from the session's start) or time "
-                        f"(ISO 8601 date-times) and at least one row; it has columns {', '.join(table.columns)} and "
-                        f"{len(table)} row(s)")
+        raise DataError(f"--at-times {path}: needs exactly one column t or t_s (seconds from the session's start) or "
+                        f"time (ISO 8601 date-times) and at least one row; it has columns {', '.join(table.columns)} "
+                        f"and {len(table)} row(s)")
     col = given[0]
+    if col == "t_s":  # decision E332: the seconds under run's checkpoint name, the same as t
+        table, col = table.rename(columns={"t_s": "t"}), "t"
     if col == "t":
         t = pd.to_numeric(table["t"].str.strip(), errors="coerce").to_numpy(float)
         bad = np.flatnonzero(~np.isfinite(t))
@@ -54,6 +56,40 @@ def read_times(path: Path) -> pd.DataFrame:
             raise DataError(f"--at-times {path}: row {int(bad[0]) + 2} t {table['t'].iloc[bad[0]]!r} is not a finite "
                             "number of seconds; fix that row")
     return table[[col]].copy()
+
+
+def times_argument(text: str) -> tuple[pd.DataFrame, str]:
+    """Decision E332: ``run --at-times``'s value read before any replay: a times file (:func:`read_times`), or, when no
+    such file exists, a comma list of seconds (``60,125.5,300``). Returns the times table and the words naming it in
+    an error line (the file, or the list quoted)."""
+    text = str(text).strip()
+    items = [x.strip() for x in text.split(",")]
+    if Path(text).is_file() or not all(items) or not all(_is_number(x) for x in items):
+        if not Path(text).is_file() and "," in text:
+            raise DataError(f"--at-times {text!r}: neither a file nor a comma list of seconds (an item "
+                            f"{next(x for x in items if not _is_number(x))!r} is no number); give e.g. 60,125.5,300 "
+                            "or a CSV with a column t_s")
+        return read_times(Path(text)), text
+    return pd.DataFrame({"t": items}), f"'{text}'"
+
+
+def _is_number(text: str) -> bool:
+    try:
+        return bool(np.isfinite(float(text)))
+    except ValueError:
+        return False
+
+
+def check_forward(t, path="--at-times") -> np.ndarray:
+    """Decision E332: the times ``t`` (s) in increasing order (equal ones allowed), or one line naming the first
+    row before its predecessor (a live track is read forward; ``run --at-times``)."""
+    t = np.asarray(t, dtype=float)
+    back = np.flatnonzero(np.diff(t) < 0)
+    if back.size:
+        k = int(back[0]) + 1
+        raise DataError(f"--at-times {path}: time {k + 1} ({t[k]:.3f} s) comes before time {k} ({t[k - 1]:.3f} s); "
+                        "the live position is read forward in time - sort the times (decision E332)")
+    return t
 
 
 def session_seconds(times: pd.DataFrame, path, start: datetime | None, where: str) -> np.ndarray:
@@ -123,6 +159,27 @@ def positions_at(trajectory: pd.DataFrame, t: np.ndarray, span: tuple[float, flo
             out[c] = v[ok][idx]
         else:  # np.interp holds the first / last row outside them: the start pose, the last position
             out[c] = np.interp(t, rt[ok], v[ok])
+    return out
+
+
+def live_positions(trajectory: pd.DataFrame, t, start: datetime | None = None) -> pd.DataFrame:
+    """Decision E332: ``run --at-times``' table: per time ``t`` (s, increasing), the streamed ``trajectory``'s row at
+    or before it - the position a live device showed then, held, not interpolated (the stride ending after ``t`` was
+    not known yet) - with ``stride_end_s``, that row's time (the start row before the first stride); its numeric
+    columns but the times and L623's ride index; ``time`` (L298's form) with a recording start."""
+    from pdrlearn.track.clock import clock_texts
+
+    t = np.asarray(t, dtype=float)
+    tr = trajectory.sort_values("t", kind="stable").reset_index(drop=True)
+    rt = tr["t"].to_numpy(float)
+    idx = np.clip(np.searchsorted(rt, t + 1e-9, side="right") - 1, 0, max(len(tr) - 1, 0))
+    out = pd.DataFrame({"t": t, "stride_end_s": np.where(t + 1e-9 >= rt[0], rt[idx], np.nan) if len(rt) else np.nan})
+    for c in tr.columns:
+        if c in NOT_POSITIONS or not pd.api.types.is_numeric_dtype(tr[c]) or pd.api.types.is_bool_dtype(tr[c]):
+            continue
+        out[c] = tr[c].to_numpy()[idx]
+    if start is not None:
+        out["time"] = clock_texts(start, out["t"])
     return out
 
 

@@ -51,9 +51,11 @@ SIGMA_PARAMS: dict[str, dict[str, float]] = {
     # L128's plasys-foot constants, as before L150 (uncalibrated, too large)
     "plasys-foot-streaming": {"displacement_rel": 0.0021, "heading_walk_rad": 0.062, "bias_rps": 0.0,
                               "point_m": 0.068},
-    # plasys --streaming with a waist unit: the waist gyroscope's heading (L99; L150)
+    # plasys --streaming with a waist unit: the waist gyroscope's heading (L99; L150). Decision E331: its heading is
+    # held off the walking direction from the first stride on (users 17870-17883: RMS 0.04674 rad, -2.10 to -3.18
+    # deg), a constant offset term, rounded up
     "plasys-streaming": {"displacement_rel": 0.029, "heading_walk_rad": 0.0070, "bias_rps": 0.00051,
-                         "point_m": 5.1e-174},
+                         "point_m": 5.1e-174, "heading_offset_rad": 0.047},
     # decision L267: plasys offline after L226's fallback (L182 judged the compass disturbed): the heading is the
     # waist gyroscope's, as the streamed one, so its radius is the streamed regime's (not fitted on its own)
     "plasys-gyro-fallback": {"displacement_rel": 0.029, "heading_walk_rad": 0.0070, "bias_rps": 0.00051,

@@ -237,7 +237,7 @@ def _timed_pieces(steps: pd.DataFrame, zone_m: float, timed_m: float, decel_m: f
     one refused piece, unless ``any_recording`` (the rule before L779)."""
     out = []
     length = np.abs(np.nan_to_num(steps["length_m"].to_numpy(float)))
-    free = free_recording_note(steps, max_bout_m, timed_m) if max_bout_m is not None and not any_recording else None
+    free = free_recording_note(steps, timed_m) if max_bout_m is not None and not any_recording else None
     if free:  # decision L779: a mission or a free walk is no walk-test recording
         return [("the recording", free)]
     for n, (a, b) in enumerate(bout_rows(steps), start=1):
@@ -254,15 +254,15 @@ def _timed_pieces(steps: pd.DataFrame, zone_m: float, timed_m: float, decel_m: f
     return out
 
 
-def free_recording_note(steps: pd.DataFrame, max_bout_m: float, timed_m: float) -> str | None:
+def free_recording_note(steps: pd.DataFrame, timed_m: float) -> str | None:
     """Decision L779 (our rule, no document gives one): the note refusing a whole recording's automatic walk tests
     (no walkway declared) when it does not look like a walk test: one of its walking bouts holds a stair flight
     (L779 amended: a flight of stairs.csv, :func:`pdrlearn.track.stair_flights.flight_spans` - L438's runs of 2 or
     more stair strides, |dz_m| >= 0.10 m, without L443's ramp climbs; a walk test is walked on a level walkway,
     L434) - a mission or a free walk, whose level corridors would read as walkway passes (trial s50t1 F7: "10 m walk
-    test 5.85 s" on every mission). A bout longer than ``max_bout_m`` is L552's alone (it is not timed, the
-    recording's other bouts are: review R2 finding 1; L779's ">100 m" clause was dropped at the merge). None when
-    the recording looks like a walk test."""
+    test 5.85 s" on every mission). A bout's length plays no part (decision L781): a bout longer than L552's
+    ``max_bout_m`` is L552's alone (:func:`_time_bout` refuses it, the recording's other bouts are timed: review R2
+    finding 1; L779's ">100 m" clause was dropped at the merge). None when the recording looks like a walk test."""
     flights = flight_spans(steps) if "dz_m" in steps else []  # L779 amended: stairs.csv's flights (L443: no ramp)
     for n, (a, b) in enumerate(bout_rows(steps), start=1):
         n_stair = sum(max(0, min(b, f1) - max(a, f0)) for f0, f1, _ in flights)
