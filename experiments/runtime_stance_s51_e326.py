@@ -6,7 +6,8 @@ and stance / swing symmetry indices against E311's `run --gait`, offline `gait` 
 
 Sessions go to $OUT (default /tmp/e326), a left and a right foot of one walk each (`simulate --route "stand:2,
 straight:20, stand:2" --seed 1 --foot left|right --user-seed U`): 17860-17863 100 Hz, 17864-17865 50 Hz,
-17866-17867 `--stance-time-asymmetry 0.3 --longer-stance-side left` (100 Hz), 17868-17869 `--speed slow` (100 Hz).
+17866-17867 `--stance-time-asymmetry 0.15 --longer-stance-side left` (E326's 0.3 is refused by the simulator:
+below 0.2) (100 Hz), 17868-17869 `--speed slow` (100 Hz).
 Per foot: lean = `pdrlearn.runtime.__main__.replay(units="foot", contacts=True, gait=True)` (numpy only), E311 =
 `cli.run_gait.streamed_foot_track`'s table, offline = `track.bilateral.offline_foot_track`'s (`--toe-off`), truth =
 the session's steps.csv (`ic_ms`, `tc_ms`). Strides matched by IC (|dIC| <= 20 ms; the truth's within 60 ms, TRUTH_TOL_S)."""
@@ -43,7 +44,7 @@ def setup(u: int) -> tuple[str, list[str]]:
     if k in (4, 5):
         return "50 Hz", ["--rate", "50"]
     if k in (6, 7):
-        return "longer stance left", ["--rate", "100", "--stance-time-asymmetry", "0.3", "--longer-stance-side", "left"]
+        return "longer stance left", ["--rate", "100", "--stance-time-asymmetry", "0.15", "--longer-stance-side", "left"]
     if k in (8, 9):
         return "slow", ["--rate", "100", "--speed", "slow"]
     return "100 Hz", ["--rate", "100"]
