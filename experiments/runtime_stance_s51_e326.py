@@ -10,7 +10,8 @@ straight:20, stand:2" --seed 1 --foot left|right --user-seed U`): 17860-17863 10
 below 0.2) (100 Hz), 17868-17869 `--speed slow` (100 Hz).
 Per foot: lean = `pdrlearn.runtime.__main__.replay(units="foot", contacts=True, gait=True)` (numpy only), E311 =
 `cli.run_gait.streamed_foot_track`'s table, offline = `track.bilateral.offline_foot_track`'s (`--toe-off`), truth =
-the session's steps.csv (`ic_ms`, `tc_ms`). Strides matched by IC (|dIC| <= 20 ms; the truth's within 60 ms, TRUTH_TOL_S)."""
+the session's steps.csv (`ic_ms`, `tc_ms`). Strides matched by IC (|dIC| <= 20 ms; the truth's within 60 ms,
+TRUTH_TOL_S)."""
 
 import json
 import logging
@@ -44,7 +45,8 @@ def setup(u: int) -> tuple[str, list[str]]:
     if k in (4, 5):
         return "50 Hz", ["--rate", "50"]
     if k in (6, 7):
-        return "longer stance left", ["--rate", "100", "--stance-time-asymmetry", "0.15", "--longer-stance-side", "left"]
+        return "longer stance left", ["--rate", "100", "--stance-time-asymmetry", "0.15",
+                                      "--longer-stance-side", "left"]
     if k in (8, 9):
         return "slow", ["--rate", "100", "--speed", "slow"]
     return "100 Hz", ["--rate", "100"]
@@ -145,8 +147,8 @@ def report(name: str, pool: dict) -> None:
     for k, what in (("dst", "stance"), ("dsw", "swing")):
         v = np.abs(pool[k]) * 1000
         if len(v):
-            print(f"vs {name}: median |d {what} time| ms", round(float(np.median(v)), 3), "max", round(float(v.max()), 3),
-                  "mean d ms", round(1000 * float(np.mean(pool[k])), 3), "n", len(v))
+            print(f"vs {name}: median |d {what} time| ms", round(float(np.median(v)), 3), "max",
+                  round(float(v.max()), 3), "mean d ms", round(1000 * float(np.mean(pool[k])), 3), "n", len(v))
     if pool["dpct"]:
         v = np.abs(pool["dpct"])
         print(f"vs {name}: per foot |d median stance %| max", round(float(v.max()), 4), "median",

@@ -96,7 +96,8 @@ def test_double_support_and_the_stance_swing_indices_e327():
     assert got["stance_time_s_left"] == pytest.approx(0.6) and got["stance_time_s_right"] == pytest.approx(0.7)
     assert got["stance_time_s_si_pct"] == pytest.approx(symmetry_index_pct(0.6, 0.7))
     assert got["swing_time_s_si_pct"] == pytest.approx(symmetry_index_pct(0.4, 0.3))
-    assert got["si_withheld"] is None and got["n_support_cycles"] == 2 * 13 - 1  # L317: the cycle into the last contact left out
+    assert got["si_withheld"] is None
+    assert got["n_support_cycles"] == 2 * 13 - 1  # L317: the cycle into the bout's last contact left out
     # gait's own cycle table (pandas) on the same contacts: the same per-cycle double support (one kernel)
     ev = [pd.DataFrame({"ic_s": ic, "tc_s": ic - d, "length_m": 1.4}) for ic, d in ((left_ic, 0.4), (right_ic, 0.3))]
     cyc = cycle_table(merged_contacts(*ev))
