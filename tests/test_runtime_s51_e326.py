@@ -4,7 +4,6 @@ symmetry indices by ``gait``'s per-cycle kernel (``pdrlearn.kernels.gait_values.
 
 from __future__ import annotations
 
-import logging
 import math
 
 import numpy as np
@@ -13,15 +12,12 @@ import pytest
 
 from pdrlearn.kernels.gait_values import cycle_support, stance_swing, symmetry_index_pct
 from pdrlearn.kernels.toeoff import LiveToeOff, toe_off_times
-from pdrlearn.runtime import Tracker
 from pdrlearn.runtime.gait import StrideGait, gait_summary, support_measures
 from pdrlearn.runtime.tracker import Step
-from pdrlearn.sim import UserProfile, simulate_path
-from pdrlearn.sim.route import parse_route
 from pdrlearn.track.bilateral import cycle_table, merged_contacts
 from pdrlearn.track.gait import streamed_gait_columns
 from tests.lean_helpers import ROOT
-from tests.runtime_helpers import replay
+from tests.runtime_helpers import gait_replay
 
 BUNDLE = ROOT / "models" / "plasys-sim-default"
 
@@ -111,18 +107,8 @@ def test_double_support_and_the_stance_swing_indices_e327():
 
 @pytest.fixture(scope="module")
 def streamed():
-    s = simulate_path(parse_route("stand:2, straight:10, stand:2"), UserProfile.from_seed(5126), speed="normal",
-                      rate_hz=50.0, seed=1, scenario="route")
-    foot = {n: st for n, st in s.streams.items() if n in ("fAccelerometer", "fGyroscope")}
-    s.streams = foot
-    logging.disable(logging.WARNING)
-    try:
-        tr = Tracker(BUNDLE, units=("foot",), sensors=list(foot), contacts=True, gait=True,
-                     input_rates_hz={n: 50.0 for n in foot})
-        steps = replay(tr, s, chunk_s=1.0)
-    finally:
-        logging.disable(logging.NOTSET)
-    return s, tr, steps
+    imu = ("fAccelerometer", "fGyroscope")  # no insoles: the contact is the accelerometer's impact
+    return gait_replay(BUNDLE, 5126, "stand:2, straight:10, stand:2", keep=imu.__contains__)
 
 
 def test_the_tracker_gives_runs_stance_and_swing_e326(streamed):
