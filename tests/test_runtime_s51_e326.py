@@ -52,6 +52,9 @@ def test_live_toe_off_is_the_offline_kernel_stride_by_stride_e326():
         np.testing.assert_allclose(got, off, atol=2e-4)
         np.testing.assert_allclose(got, true, atol=0.01)  # the push-off's dip, not the swing
         assert abs(live.votes) == 12  # every stride voted the same way (relative to the kept axis)
+    bad = gyr[:40].copy()
+    bad[5] = np.nan
+    assert np.isnan(LiveToeOff().stride(t[:40], bad, 0.0, 0.3, 0.25))  # a stride's NaN sample: no toe-off, no raise
 
 
 def _step(t0, t1, ic, length=1.4):

@@ -177,9 +177,12 @@ class LiveToeOff:
 
     def stride(self, t, gyr, start_s: float, end_s: float, event_s: float) -> float:
         """The toe-off (s) of the stride ``[start_s, end_s]`` with IC ``event_s`` from its samples ``t`` (N,) s,
-        ``gyr`` (N, 3) rad/s (NaN when none can be had)."""
-        t, gyr = check_gyro(t, gyr)
-        if len(t) < 3:
+        ``gyr`` (N, 3) rad/s (NaN when none can be had, and for samples :func:`check_gyro` would refuse: a stream's
+        stride never stops the tracker)."""
+        t, gyr = np.asarray(t, dtype=float), np.asarray(gyr, dtype=float)
+        if gyr.shape != (len(t), 3):
+            raise ValueError(f"LiveToeOff.stride: gyr must be (N, 3) with N = len(t) = {len(t)}, got {gyr.shape}")
+        if len(t) < 3 or not (np.isfinite(t).all() and np.isfinite(gyr).all()) or np.any(np.diff(t) <= 0):
             return np.nan
         a, c = stride_windows(t, [start_s], [end_s], [event_s])
         i, j = int(a[0]), int(c[0])
