@@ -12,7 +12,7 @@ import pytest
 
 from pdrlearn.kernels.gait_values import cycle_support, stance_swing, symmetry_index_pct
 from pdrlearn.kernels.toeoff import LiveToeOff, toe_off_times
-from pdrlearn.runtime.gait import StrideGait, gait_summary, support_measures
+from pdrlearn.runtime.gait import StrideGait, bout_end_rows, gait_summary, support_measures
 from pdrlearn.runtime.tracker import Step
 from pdrlearn.track.bilateral import cycle_table, merged_contacts
 from pdrlearn.track.gait import streamed_gait_columns
@@ -130,3 +130,10 @@ def test_the_tracker_gives_runs_stance_and_swing_e326(streamed):
     assert 50.0 < tr.gait_summary()["median_stance_pct"] < 70.0
     assert not tr._toe_offs  # every measured stride's toe-off was handed to the log
     assert math.isfinite(tr.gait_summary(tr)["double_support_pct"] or math.nan) is False  # one foot twice: no cycle
+
+
+def test_the_bout_ends_are_the_first_and_last_contact_in_time_e327():
+    """Two feet's rows concatenated (left, then right): the bout's ends are its earliest and latest contacts, not its
+    first and last rows (the right foot's 1.0 s and the left foot's 3.5 s here)."""
+    ends = bout_end_rows([1.5, 2.5, 3.5, 1.0, 2.0, 3.0], np.ones(6, bool))
+    assert np.flatnonzero(ends).tolist() == [2, 3]

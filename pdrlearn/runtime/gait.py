@@ -126,9 +126,11 @@ def bout_end_rows(event_s, valid, max_stride_s: float = MAX_STRIDE_S) -> np.ndar
     is not - a gap row, a guarded stride - ends a bout, as a stop does): a bout ends where the next contact comes
     more than ``max_stride_s`` (L79's stop, :data:`~pdrlearn.kernels.contact.MAX_STRIDE_S`) after it."""
     bouts = bout_ids(event_s, valid, max_stride_s)
+    ev = np.asarray(event_s, dtype=float)
     out = np.zeros(len(bouts), bool)
     for k in set(bouts[bouts > 0].tolist()):
         rows = np.flatnonzero(bouts == k)
+        rows = rows[np.argsort(ev[rows], kind="stable")]  # the bout's first and last contact in time
         out[[rows[0], rows[-1]]] = True
     return out
 
