@@ -282,6 +282,29 @@ def holed_chunks(session, chunk_s: float, hole=None, sensors=None):
         yield chunk
 
 
+def gait_replay(bundle, seed: int, route: str, *, rate_hz: float = 50.0, keep=lambda name: name.startswith("f")):
+    """Decisions E320 / E326: a simulated walk (user ``seed``, ``route`` at ``rate_hz``) with only the foot streams
+    ``keep`` takes, replayed in 1 s chunks through a foot-only ``Tracker(contacts=True, gait=True)`` of ``bundle``
+    (warnings silenced): ``(session, tracker, steps)``."""
+    import logging
+
+    from pdrlearn.runtime import Tracker
+    from pdrlearn.sim import UserProfile, simulate_path
+    from pdrlearn.sim.route import parse_route
+
+    s = simulate_path(parse_route(route), UserProfile.from_seed(seed), speed="normal", rate_hz=rate_hz, seed=1,
+                      scenario="route")
+    s.streams = {n: st for n, st in s.streams.items() if keep(n)}
+    logging.disable(logging.WARNING)
+    try:
+        tr = Tracker(bundle, units=("foot",), sensors=list(s.streams), contacts=True, gait=True,
+                     input_rates_hz={n: rate_hz for n in s.streams})
+        steps = replay(tr, s, chunk_s=1.0)
+    finally:
+        logging.disable(logging.NOTSET)
+    return s, tr, steps
+
+
 def time_chunks(session, chunk_s: float, prefix: str = ""):
     """``(t0, {sensor: (t, values)})`` per ``chunk_s`` slice of ``session`` (slices of whole sample indices from the
     foot accelerometer's first time: no sample in two slices), the streams whose name starts with ``prefix``."""

@@ -4,7 +4,6 @@ simulated walk (test user 17149, the shipped bundle) streamed once; the rest on 
 
 from __future__ import annotations
 
-import logging
 import math
 
 import numpy as np
@@ -16,30 +15,17 @@ from pdrlearn.kernels.gait_values import cadence_speed, side_pair
 from pdrlearn.runtime import Tracker
 from pdrlearn.runtime.gait import STRIDE_COLUMNS, StrideGait, bout_end_rows, gait_summary
 from pdrlearn.runtime.tracker import Step
-from pdrlearn.sim import UserProfile, simulate_path
-from pdrlearn.sim.route import parse_route
 from pdrlearn.track.gait import gait_summary as offline_summary
 from pdrlearn.track.gait import streamed_gait_columns
 from tests.lean_helpers import ROOT
-from tests.runtime_helpers import replay
+from tests.runtime_helpers import gait_replay
 
 BUNDLE = ROOT / "models" / "plasys-sim-default"
 
 
 @pytest.fixture(scope="module")
 def streamed():
-    s = simulate_path(parse_route("stand:2, straight:12, stand:2"), UserProfile.from_seed(17149), speed="normal",
-                      rate_hz=50.0, seed=1, scenario="route")
-    foot = {n: st for n, st in s.streams.items() if n.startswith("f")}
-    s.streams = foot
-    logging.disable(logging.WARNING)
-    try:
-        tr = Tracker(BUNDLE, units=("foot",), sensors=list(foot), contacts=True, gait=True,
-                     input_rates_hz={n: 50.0 for n in foot})
-        steps = replay(tr, s, chunk_s=1.0)
-    finally:
-        logging.disable(logging.NOTSET)
-    return tr, steps
+    return gait_replay(BUNDLE, 17149, "stand:2, straight:12, stand:2")[1:]
 
 
 def test_the_strides_equal_runs_steps_table(streamed):

@@ -80,6 +80,7 @@ from pdrlearn.kernels.stride import (
     waist_gap_from,
     waist_gap_max_s,
 )
+from pdrlearn.kernels.toeoff import LiveToeOff
 from pdrlearn.kernels.window import (
     BOUNDARIES,
     BRIDGE_GAP_S,
@@ -521,7 +522,9 @@ class Tracker(OwnGuard, FixInput):
     gait : decision E320: keep every returned stride's gait values (:class:`pdrlearn.runtime.gait.StrideGait`,
         numpy only; needs ``contacts=True``: a stride time is initial contact to initial contact):
         :meth:`gait_strides` per stride, :meth:`gait_summary` the session's (with the other foot's tracker, the
-        symmetry indices). Not carried over by ``restart_state`` / ``resume``.
+        symmetry indices). Not carried over by ``restart_state`` / ``resume``. Decision E326: each stride's toe-off
+        (L73's kernel on its buffered foot gyroscope, :class:`~pdrlearn.kernels.toeoff.LiveToeOff`), so the strides
+        have stance / swing times; decision E327: with the other foot, double support and their symmetry indices.
     """
 
     _one_at_a_time = "push/flush/add_fix"  # decisions E231, E256: the calls one_call_at_a_time guards
@@ -582,6 +585,7 @@ class Tracker(OwnGuard, FixInput):
     _starts: StartClocks | None = None
     _repeats: RepeatedLines | None = None
     _gait_log: StrideGait | None = None  # decision E320 (a bare Tracker.__new__: none kept)
+    _toe_off: LiveToeOff | None = None  # decision E326 (likewise)
 
     def __init__(
         self,
@@ -826,6 +830,8 @@ class Tracker(OwnGuard, FixInput):
             raise DataError(f"gait={gait!r}: give True (with contacts=True: a stride time is initial contact to "
                             "initial contact, decisions E49, L66) or False")
         self._gait_log = StrideGait() if gait else None
+        self._toe_off = LiveToeOff() if gait else None  # decision E326: each stride's toe-off (L73)
+        self._toe_offs: dict[tuple[float, float], float] = {}
         self._spec: tuple | None = None
         self._trims = 0
         #: decisions E30, E31: the gaps the current push opens ``(sensor, last sample before, first after)`` (s), the
@@ -1312,7 +1318,7 @@ class Tracker(OwnGuard, FixInput):
         if self._carry:  # decision L134: the steps the restart state's samples completed come first
             steps, self._carry = [*self._carry, *steps], []
         if self._gait_log is not None:  # decision E320
-            self._gait_log.add(steps)
+            self._log_gait(steps)
         return steps
 
     def _refuse_out_of_range(self, checked: dict, fast: dict) -> None:
@@ -1438,6 +1444,24 @@ class Tracker(OwnGuard, FixInput):
         if isinstance(other, Tracker):
             other = other._gait()
         return gait_summary(self._gait(), other)
+
+    def _log_gait(self, steps: list[Step]) -> None:
+        """Decisions E320 / E326: the returned ``steps`` to the gait log with the toe-offs :meth:`_measure` read."""
+        self._gait_log.add(steps, [self._toe_offs.pop((st.start_s, st.end_s), math.nan) for st in steps])
+        if steps:  # a stride measured and not returned (L611's pedal stroke) is no longer wanted
+            last = max(st.end_s for st in steps)
+            self._toe_offs = {k: v for k, v in self._toe_offs.items() if k[1] > last}
+
+    def _stride_toe_off(self, t0: float, t1: float, event_s: float) -> float:
+        """Decision E326: the toe-off (s) of the stride ``[t0, t1]`` with contact ``event_s`` by L73's kernel on the
+        buffered foot gyroscope from the toe-off tracker's ``pad_s`` before ``t0`` (NaN without the gyroscope)."""
+        ring = self._buf.get("fGyroscope")
+        if ring is None or not event_s == event_s:
+            return math.nan
+        t, v = ring.view()
+        i0 = int(t.searchsorted(t0 - self._toe_off.pad_s, side="left"))
+        i1 = int(t.searchsorted(t1, side="right"))
+        return float(self._toe_off.stride(t[i0:i1], v[i0:i1, :3], t0, t1, event_s))
 
     def _gait(self) -> StrideGait:
         if self._gait_log is None:
@@ -1731,7 +1755,7 @@ class Tracker(OwnGuard, FixInput):
         if self._carry:  # decision L134
             steps, self._carry = [*self._carry, *steps], []
         if self._gait_log is not None:  # decision E320
-            self._gait_log.add(steps)
+            self._log_gait(steps)
         return steps
 
     def _process_ready(self, force: bool = False) -> list[Step]:
@@ -2303,6 +2327,8 @@ class Tracker(OwnGuard, FixInput):
                    True)
         event_s = self._contact(t0, t1, prev_ic) if self.contacts else math.nan
         self._contacts = (before + [(t0, event_s)])[-2:]
+        if self._toe_off is not None and (t0, t1) not in self._toe_offs:  # decision E326 (once per stride)
+            self._toe_offs[(t0, t1)] = self._stride_toe_off(t0, t1, event_s)
         return ("stride", t0, t1, row, lev, classes, proba, disp, dyaw, turn, event_s, self._clipped(t0, t1))
 
     def _apply(self, rec: tuple, pedal: bool = False) -> Step | None:

@@ -39,14 +39,14 @@ from pdrlearn.decision_refs import decision_ref
 from pdrlearn.errors import DataError
 
 # decision E320: the sides' means and indices, numpy only, shared with the lean runtime's gait summary
-from pdrlearn.kernels.gait_values import mean_finite, side_pair
+from pdrlearn.kernels.gait_values import cycle_support, mean_finite, side_pair
 from pdrlearn.kernels.nearest import nearest_index
 from pdrlearn.kernels.turn_length import STRAIGHT_MAX_RAD
 from pdrlearn.track.clinical import CV_MIN_STRIDES, bout_rows, symmetry_index_pct  # noqa: F401
 from pdrlearn.track.contact_quality import comparability_warning, impact_sharpness
 from pdrlearn.track.flags import flag_values
 from pdrlearn.track.foot_heights import height_warning
-from pdrlearn.track.gait_flight import cycle_flights, flight_after, flight_warning
+from pdrlearn.track.gait_flight import flight_after, flight_warning
 from pdrlearn.track.step_anchors import (
     anchor_rows,
     drift_bound_pct,
@@ -463,7 +463,7 @@ def cycle_table(both: pd.DataFrame) -> pd.DataFrame:
     toe-off inside the cycle, NaN without one), ``double_support_pct`` and ``single_support_pct`` (module
     docstring; NaN where a toe-off is missing or the cycle has a flight; decision L736: a hand-over within
     ``TOUCH_S`` is 0 % double support), (decision L729) ``flight_time_s``
-    (:func:`pdrlearn.track.gait_flight.cycle_flights`: the time with neither foot on the ground after a toe-off
+    (:func:`pdrlearn.kernels.gait_values.cycle_flights`: the time with neither foot on the ground after a toe-off
     that came before the other foot's contact, 0 in walking order, NaN without both toe-offs in their strides) and
     ``flight_after`` (the foot whose toe-off started it, "both", or None) and (decision L538) ``kind``
     (:func:`joined_kind` of the foot's next contact and the other foot's contact inside the cycle)."""
@@ -477,14 +477,8 @@ def cycle_table(both: pd.DataFrame) -> pd.DataFrame:
             if bout[a] != bout[b] or b - a != 2:  # L262: exactly one IC of the other foot inside: it alternated
                 continue
             T = t[b] - t[a]
-            ds = ss = stance = math.nan
-            ic_f, tc_o, ic_o, tc_f, ic_next = t[a], tc[a + 1], t[a + 1], tc[b], t[b]
-            if ic_f < tc_f < ic_next:  # decision L327: the foot's own IC to its toe-off, one unit's clock
-                stance = tc_f - ic_f
-            fl = cycle_flights(ic_f, tc_o, ic_o, tc_f, ic_next)  # decision L729: a toe-off before the contact
-            if fl == (0.0, 0.0):  # Perry & Burnfield 2010's event order; L736: a hand-over on one instant is one
-                ds = 100.0 * (max(tc_o - ic_f, 0.0) + max(tc_f - ic_o, 0.0)) / T  # of 0 % double support
-                ss = 100.0 * (ic_o - tc_o) / T
+            # decisions L327, L729, L736: the shared per-cycle kernel (E327: the lean summary's too)
+            stance, ds, ss, fl = cycle_support(t[a], tc[a + 1], t[a + 1], tc[b], t[b])
             after = flight_after(s, side[a + 1], *fl) if math.isfinite(fl[0]) else None
             kind = joined_kind(kinds[[b]], kinds[[a + 1]])[0]  # decision L538
             rows.append((s, int(bout[a]), t[a], t[b], T, stance, ds, ss, fl[0] + fl[1], after, kind))

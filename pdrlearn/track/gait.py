@@ -40,7 +40,7 @@ from pdrlearn.kernels.gait_range import (  # noqa: F401  (decision E325: the lea
 )
 
 # decision E320: cadence / speed and the finite median, numpy only, shared with the lean runtime's gait values
-from pdrlearn.kernels.gait_values import cadence_speed, median_finite
+from pdrlearn.kernels.gait_values import cadence_speed, median_finite, stance_swing  # noqa: F401  (E326: re-exported)
 
 # decision L79: a stride turning less than STRAIGHT_MAX_RAD (|turn_angle_rad|) is straight for
 # ``median_speed_straight_mps``: 15 deg, above the straight-pass strides' -10..+11 deg and below the turnaround
@@ -92,22 +92,6 @@ def swing_times(t: np.ndarray, stance: np.ndarray, i0: np.ndarray, i1: np.ndarra
         if len(moving):
             out[k] = t[a + moving[-1]] - t[a + moving[0]] + dt
     return out
-
-
-def stance_swing(start_s, end_s, event_s, tc_s, stride_s, valid=None) -> tuple[np.ndarray, ...]:
-    """Decision L73: (tc, stance, swing, stance_pct), each (B,). ``tc`` is ``tc_s`` where it lies inside its
-    stride window before the stride's own IC (``event_s``, itself inside the window) on a ``valid`` row, else
-    NaN; swing = IC - tc; stance = ``stride_s`` (IC to IC, L66) - swing = tc - the previous stride's IC, kept
-    only when positive; stance_pct = 100 x stance / ``stride_s``."""
-    st, en, ev, tc, sd = (np.asarray(v, dtype=float) for v in (start_s, end_s, event_s, tc_s, stride_s))
-    ok = np.isfinite(tc) & np.isfinite(ev) & (tc >= st) & (tc < ev) & (ev <= en)
-    if valid is not None:
-        ok &= np.asarray(valid, dtype=bool)
-    tc = np.where(ok, tc, np.nan)
-    swing = ev - tc
-    stance = sd - swing
-    stance = np.where(stance > 0, stance, np.nan)
-    return tc, stance, swing, 100.0 * stance / sd
 
 
 def cycle_starts(event_s, stride_s) -> np.ndarray:

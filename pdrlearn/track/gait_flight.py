@@ -11,25 +11,10 @@ flights after one foot's toe-off only, the other hand-over's double support long
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from pdrlearn.decision_refs import decision_ref
-from pdrlearn.kernels.contact import TOUCH_S
-
-
-def cycle_flights(ic_f: float, tc_o: float, ic_o: float, tc_f: float, ic_next: float) -> tuple[float, float]:
-    """Decision L729 (pure kernel): the flight times (s) of one gait cycle of foot F - after the other foot's
-    toe-off ``tc_o`` until F's contact ``ic_f``, and after F's toe-off ``tc_f`` until the other's contact ``ic_o``
-    (0 where the hand-over overlaps); NaN, NaN when a toe-off is missing or outside its own stride (``tc_o`` after
-    ``ic_o`` or more than a cycle before it; ``tc_f`` not between ``ic_f`` and ``ic_next``)."""
-    T = ic_next - ic_f
-    if not all(map(math.isfinite, (ic_f, tc_o, ic_o, tc_f, ic_next))) or not (
-            ic_o - T < tc_o < ic_o and ic_f < tc_f < ic_next):
-        return math.nan, math.nan
-    gaps = (ic_f - tc_o, ic_o - tc_f)  # a hand-over within TOUCH_S (two events of one instant) is no flight
-    return tuple(g if g > TOUCH_S else 0.0 for g in gaps)
+from pdrlearn.kernels.gait_values import cycle_flights  # noqa: F401  (decision E327: moved there, re-exported)
 
 
 def flight_after(side: str, other: str, after_other: float, after_own: float) -> str | None:
