@@ -29,8 +29,7 @@ def slow():
 
 
 def test_w442_contacts_withhold_the_cadence_and_step_times_w476(slow):
-    # W592: W591's shortest step counts this walk (slow_min_step "slow"); W476 is pinned with W113's alone
-    r = track_waist(slow, pipeline="waist-pendulum", slow_min_step=False)
+    r = track_waist(slow, pipeline="waist-pendulum")
     assert r.info["step_count_unusable"] is True  # measured: 77 contacts, the pelvic gyro 31 steps
     sm = r.summary(slow)
     assert all(sm[k] is None for k in WITHHELD_STEP_KEYS), {k: sm[k] for k in WITHHELD_STEP_KEYS}
@@ -64,12 +63,7 @@ def test_pll_line_words_direction_and_judges_by_the_pelvic_gyro_w477():
     assert "W477" not in pll_missed_steps_message(10, 40, 3.0, 12.0)  # no gyroscope: W208's line
 
 
-def test_pll_track_line_names_the_pelvic_count_w477(slow, monkeypatch):
-    from pdrlearn.track import waist as track_waist_module
-
-    # W489 judges W208 on the pendulum track's kept contacts, which W592's default now counts right on this walk:
-    # W477's wording is pinned on the pendulum as it read before W592 (W113's shortest step alone)
-    monkeypatch.setitem(track_waist_module.OPTION_DEFAULTS, "slow_min_step", False)
+def test_pll_track_line_names_the_pelvic_count_w477(slow):
     r = track_waist(slow, pipeline="waist-pll")
     line, = [w for w in r.info["warnings"] if "W208" in w]
     assert "decision W477" in line and "read short" not in line

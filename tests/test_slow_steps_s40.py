@@ -97,9 +97,8 @@ def test_slow_walk_counts_near_the_truth_with_the_rhythm_veto_w440():
     assert OPTION_DEFAULTS["pelvic_rhythm_veto"] is False  # W440: its rule (c) was not met (Test11's step F1 fell)
     s = _slow(10882, 0.15 + 0.25 * 14 / 19, 60 / (40 + 30 * 2 / 19), 10.0)  # as experiments/waist_slow_steps_s40.py
     true = int((s.extras["ics"]["kind"] == "walk").sum())
-    # W592: W591's shortest step (the default) counts this walk already; W440's veto is pinned on W113's alone
-    on = track_waist(s, pipeline="waist-pendulum", pelvic_rhythm_veto="slow", slow_min_step=False)
-    off = track_waist(s, pipeline="waist-pendulum", pelvic_rhythm_veto=False, slow_min_step=False)
+    on = track_waist(s, pipeline="waist-pendulum", pelvic_rhythm_veto="slow")
+    off = track_waist(s, pipeline="waist-pendulum", pelvic_rhythm_veto=False)
     assert len(off.steps) > 2 * true, (len(off.steps), true)
     assert abs(len(on.steps) - true) <= 0.25 * true, (len(on.steps), true)
     assert on.info["n_rhythm_contacts"] == len(off.steps) - len(on.steps)
@@ -113,8 +112,7 @@ def test_tiny_slow_steps_are_named_uncountable_w442():
     rhythm: W98's line names the steps as too small or slow to count, with both counts."""
     from pdrlearn.track.waist import track_waist
 
-    r = track_waist(_slow(10895, 0.10, 2.0, 3.0), pipeline="waist-pendulum", pelvic_rhythm_veto="slow",
-                    slow_min_step=False)  # W592: W442 pinned on W113's shortest step alone
+    r = track_waist(_slow(10895, 0.10, 2.0, 3.0), pipeline="waist-pendulum", pelvic_rhythm_veto="slow")
     lines = [w for w in r.info["warnings"] if "decision W442" in w]
     assert len(lines) == 1, r.info["warnings"]
     assert r.info["step_count_unusable"] is True

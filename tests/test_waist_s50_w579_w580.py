@@ -65,7 +65,7 @@ def test_a_calibrated_track_of_uncountable_contacts_judges_the_pelvic_gyro_w579(
     def w211(cadence):
         p = WaistParams(leg_m=0.9, source="calibrated", pipeline="waist-pendulum",
                         gait={"median_cadence_spm": cadence, "speed_mps": 0.17})
-        r = track_waist(s, pipeline="waist-pendulum", params=p, slow_min_step=False)  # W592: W476 as before
+        r = track_waist(s, pipeline="waist-pendulum", params=p)
         assert r.info["step_count_unusable"] is True
         return [w for w in r.info["warnings"] if "W211" in w]
 

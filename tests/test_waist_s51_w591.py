@@ -1,6 +1,6 @@
 """Decisions W590 / W591 (session 51, I2, issue 8): a slow shuffler's lower back counts extra contacts because W113's
-shortest step stops at W16's 0.3 s (and reads a harmonic below ~50 steps/min); ``slow_min_step="slow"`` (the default since
-W592) takes the shortest step from the pelvic gyro's median step when it is slower than 70 steps/min."""
+shortest step stops at W16's 0.3 s (and reads a harmonic below ~50 steps/min); ``slow_min_step="slow"`` (an option:
+W593 withdrew W592's default) takes the shortest step from the pelvic gyro's median step below 70 steps/min."""
 
 from __future__ import annotations
 
@@ -46,10 +46,9 @@ def test_the_option_is_a_checked_choice_and_named_where_it_does_nothing_w591(shu
     from pdrlearn.track.waist import OPTION_DEFAULTS, ignored_options_line, track_waist
 
     o = dict(OPTION_DEFAULTS, slow_min_step="slow")
-    assert ignored_options_line(o, "waist-pll", False, "ahe", False, True) is None  # the default is not named (W301)
-    line = ignored_options_line(o, "waist-pll", False, "ahe", False, True, explicit={"slow_min_step"})
+    line = ignored_options_line(o, "waist-pll", False, "ahe", False, True)
     assert line is not None and 'slow_min_step="slow" applies to the offline waist-pendulum' in line
     assert ignored_options_line(o, "waist-pendulum", False, "gyro", False, True) is None
-    assert OPTION_DEFAULTS["slow_min_step"] == "slow"  # W592: adopted by W591's rule
+    assert OPTION_DEFAULTS["slow_min_step"] is False  # W593: W592's default withdrawn (L647's walk split a bout)
     with pytest.raises(DataError, match="slow_min_step 'fast' is not one of false, \"slow\" \\(decisions W591\\)"):
         track_waist(shuffle, pipeline="waist-pendulum", slow_min_step="fast")

@@ -30,18 +30,11 @@ def slow_folder(tmp_path_factory):
     return write_session(s, tmp_path_factory.mktemp("w480") / "slow")
 
 
-def _w113_params(tmp_path):
-    """W592: W591's shortest step (the default) counts this walk; W476 / W480 are pinned on W113's alone."""
-    path = tmp_path / "w113.json"
-    path.write_text(json.dumps({"leg_m": 0.9, "options": {"slow_min_step": False}}), encoding="utf-8")
-    return path
-
-
 def test_bouts_csv_gives_no_contact_cadence_when_the_step_count_is_withheld(slow_folder, tmp_path, caplog):
     out = tmp_path / "t"
     with caplog.at_level(logging.WARNING):
         res = CliRunner().invoke(app, ["track", str(slow_folder), "--pipeline", "waist-pendulum", "--out", str(out),
-                                       "--no-plot", "--params", str(_w113_params(tmp_path))])
+                                       "--no-plot"])
     assert res.exit_code == 0, res.output
     summary = json.loads((out / "summary.json").read_text(encoding="utf-8"))
     assert summary["step_count_withheld"] and summary["median_cadence_spm"] is None  # W476 fired

@@ -710,8 +710,9 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    # (starts) only when the loop is locked at them; W368: "walk-end" adopted; W373: "walk-edges"
                    "foot_rest_veto": True,  # W336: the contacts while the foot unit makes no stride (W337 adopted)
                    "pelvic_rhythm_veto": False,  # W440: measured, not adopted (Test11's step F1 fell); an option
-                   # W591 / W592 (adopted): the shortest step from the pelvic gyro's step below 70 steps/min
-                   "slow_min_step": RHYTHM_SLOW,
+                   # W591: the shortest step from the pelvic gyro's step below 70 steps/min; W592's rule was met,
+                   # W593 withdrew the default (a turn's closing step lost on L647's walk): an option
+                   "slow_min_step": False,
                    "rhythm_warning": False,  # W338: phone-only stride-rhythm warning; W339: not met, opt-in
                    "trunk_rhythm_veto": False,  # W550: runs without a step rhythm (trunk jerks); measured, not adopted
                    # W565 / W566: a sliding belt unit said and corrected; W571: not on the walking upright alone;
@@ -1020,8 +1021,8 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
     slow_min_step : offline waist-pendulum with its own detector: ``"slow"`` = where the session's pelvic-gyro median
         step (W475) is slower than 70 steps/min and counts at least 10 steps, the contact detector's shortest step is
         0.75 x that step instead of W113's (at most 0.3 s): a slow gait's second vertical maximum inside a step is no
-        contact (decisions W590, W591, :func:`pdrlearn.waist.pelvic_rhythm.slow_shortest_step_s`); default
-        ``"slow"`` (W592: adopted by W591's rule), False = W113's shortest step alone
+        contact (decisions W590, W591, :func:`pdrlearn.waist.pelvic_rhythm.slow_shortest_step_s`); default False
+        (W593: W592 met W591's rule, but the closing step before a slow walker's turn was lost and a bout split)
     pll_edge_lock : waist-pll with its own detector (the live tracker ignores it): the first and the last PLL peak of
         a run of peaks that pass the activity gate count only when the loop is locked at them (phase error within
         45 deg over the period ending at the peak; decision W356, W345's diagnosis: a free-running peak at a bout's
