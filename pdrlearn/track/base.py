@@ -331,6 +331,8 @@ def get_pipeline(name: str) -> Pipeline:
       ``gentle_rest_bias`` (decision W544: W543's test less W105's rate at rest, offline),
       ``pelvic_rhythm_veto`` (decision W440, off; ``"slow"``: only below 70 steps/min -- a
       contact sooner than 0.6 of the pelvic gyroscope's local step period is dropped),
+      ``slow_min_step`` (decisions W591-W593, off; ``"slow"``: below 70 steps/min the offline waist-pendulum's
+      shortest step is 0.75 of the pelvic gyroscope's median step),
       ``max_tilt_deg`` (decision W102, off: a trunk-tilt gate on the contacts), ``sit_veto`` (decision W104:
       no contact around a sit-to-stand's trunk-flexion peak; ``"rhythm"``: W109, sparing left/right step pairs;
       ``"alternation"``: W180, also an undecided contact between two same-side contacts of its sequence;

@@ -112,6 +112,7 @@ from pdrlearn.waist.pelvic_rhythm import (
     pelvic_step_period_s,
     read_once,
     rhythm_keep,
+    slow_shortest_step_s,
 )
 from pdrlearn.waist.plausibility import (
     ALTERNATION_MIN,
@@ -709,6 +710,9 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    # (starts) only when the loop is locked at them; W368: "walk-end" adopted; W373: "walk-edges"
                    "foot_rest_veto": True,  # W336: the contacts while the foot unit makes no stride (W337 adopted)
                    "pelvic_rhythm_veto": False,  # W440: measured, not adopted (Test11's step F1 fell); an option
+                   # W591: the shortest step from the pelvic gyro's step below 70 steps/min; W592's rule was met,
+                   # W593 withdrew the default (a turn's closing step lost on L647's walk): an option
+                   "slow_min_step": False,
                    "rhythm_warning": False,  # W338: phone-only stride-rhythm warning; W339: not met, opt-in
                    "trunk_rhythm_veto": False,  # W550: runs without a step rhythm (trunk jerks); measured, not adopted
                    # W565 / W566: a sliding belt unit said and corrected; W571: not on the walking upright alone;
@@ -753,6 +757,9 @@ SCOPED_OPTIONS = {
                     lambda pl, rt, m, det, stops: not rt),
     "pelvic_rhythm_veto": ("the offline waist tracks (W440: the pelvic rhythm is read over the whole recording)",
                            lambda pl, rt, m, det, stops: not rt),
+    "slow_min_step": ("the offline waist-pendulum with its own contact detector (W591: the pelvic rhythm is read over "
+                      "the whole recording)",
+                      lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt and not det),
     "trunk_rhythm_veto": ("the offline waist tracks (W550: a run is judged after its last contact)",
                           lambda pl, rt, m, det, stops: not rt),
     "mount_drift": ("the offline waist tracks (W565 / W566: the bouts' uprights are read over the whole recording)",
@@ -799,7 +806,7 @@ FLAG_OPTIONS = tuple(k for k, v in OPTION_DEFAULTS.items()
                      if isinstance(v, bool) and k not in ("sit_veto", "pause_steps", "vault_veto", "stairs_length",
                                                           "parity_fill", "stand_veto", "contact_model", "fast_fill",
                                                           "cadence_law", "pll_edge_lock", "turn_bridge",
-                                                          "pelvic_rhythm_veto", "mount_drift"))
+                                                          "pelvic_rhythm_veto", "mount_drift", "slow_min_step"))
 FLAG_RULES = {k: Rule("flag", ints=True) for k in FLAG_OPTIONS}  # B199: 0 / 1 pass (B206's shared check)
 #: the values of the ``sit_veto`` option: off, W104's veto, W109's veto sparing left/right step pairs, W180's
 #: sparing also an undecided contact between two same-side contacts of its sequence, W184's sparing instead an
@@ -825,6 +832,8 @@ CADENCE_LAW_VALUES = (False, True, CADENCE_LAW_STEADY)
 TURN_BRIDGE_VALUES = (False, True, TURN_BRIDGE_SIDE)
 #: decision W440: ``pelvic_rhythm_veto`` - False, True (at every cadence) or "slow" (below 70 steps/min only)
 PELVIC_RHYTHM_VALUES = (False, True, RHYTHM_SLOW)
+#: decision W591: ``slow_min_step`` - False or "slow" (the shortest step from the pelvic gyro's step below 70 steps/min)
+SLOW_MIN_STEP_VALUES = (False, RHYTHM_SLOW)
 #: the options with more than two values and the decisions that define them (one refusal line for each)
 CHOICE_OPTIONS = {"sit_veto": (SIT_VETO_VALUES, "W104, W109, W180, W184"),
                   "vault_veto": (VAULT_VETO_VALUES, "W119, W127"),
@@ -837,6 +846,7 @@ CHOICE_OPTIONS = {"sit_veto": (SIT_VETO_VALUES, "W104, W109, W180, W184"),
                   "pll_edge_lock": (EDGE_LOCK_VALUES, "W356, W358, W367, W372"),
                   "turn_bridge": (TURN_BRIDGE_VALUES, "W374, W384"),
                   "pelvic_rhythm_veto": (PELVIC_RHYTHM_VALUES, "W440"),
+                  "slow_min_step": (SLOW_MIN_STEP_VALUES, "W591"),
                   # W576: "standing", the line only when the quiet standing moved with the walking upright
                   "mount_drift": ((False, True, "standing"), "W565, W571, W576")}
 
@@ -902,7 +912,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
                 fast_fill: bool | str | None = None, ap_above_mean: bool | None = None,
                 foot_rest_veto: bool | None = None, pll_edge_lock: bool | str | None = None,
                 turn_bridge: bool | str | None = None, pelvic_rhythm_veto: bool | str | None = None,
-                gate: bool = False) -> TrackResult:
+                slow_min_step: bool | str | None = None, gate: bool = False) -> TrackResult:
     """Run a waist pipeline (``"waist-pll"`` or ``"waist-pendulum"``) on ``session``.
 
     Parameters
@@ -1008,6 +1018,11 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
         before it extends over it; decision W440, :mod:`pdrlearn.waist.pelvic_rhythm`): a very slow gait's extra
         contacts (W79); ``"slow"``: only where that period is slower than 70 steps/min (L95's range); True: at
         every cadence (lowered the real daily-activity recordings' step F1, W440)
+    slow_min_step : offline waist-pendulum with its own detector: ``"slow"`` = where the session's pelvic-gyro median
+        step (W475) is slower than 70 steps/min and counts at least 10 steps, the contact detector's shortest step is
+        0.75 x that step instead of W113's (at most 0.3 s): a slow gait's second vertical maximum inside a step is no
+        contact (decisions W590, W591, :func:`pdrlearn.waist.pelvic_rhythm.slow_shortest_step_s`); default False
+        (W593: W592 met W591's rule, but the closing step before a slow walker's turn was lost and a bout split)
     pll_edge_lock : waist-pll with its own detector (the live tracker ignores it): the first and the last PLL peak of
         a run of peaks that pass the activity gate count only when the loop is locked at them (phase error within
         45 deg over the period ending at the peak; decision W356, W345's diagnosis: a free-running peak at a bout's
@@ -1104,6 +1119,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "freeze_veto": freeze_veto, "freeze_index": freeze_index, "pause_ride": pause_ride,
              "foot_rest_veto": foot_rest_veto,  # W336
              "pelvic_rhythm_veto": pelvic_rhythm_veto,  # W440
+             "slow_min_step": slow_min_step,  # W591
              "pll_edge_lock": pll_edge_lock,  # W356
              "rhythm_warning": None,  # W338 / W339: a PARAMS.json option only
              "trunk_rhythm_veto": None,  # W550: a PARAMS.json option only
@@ -1193,7 +1209,11 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
         steps = detector_steps(det, session, imu, thr if gate else None)  # W473: gated at the track's threshold
         method = heading or ("gyro" if pipeline == "waist-pendulum" else "ahe")
     elif pipeline == "waist-pendulum":
-        det = _contact_detector(o, thr, realtime).detect(imu)
+        min_step = None
+        if o["slow_min_step"] and not realtime:  # decision W591: the pelvic gyro's slow step, read once (W485)
+            pelvic = [read_once(None, session)]
+            min_step = slow_shortest_step_s(pelvic[0])
+        det = _contact_detector(o, thr, realtime, min_step_s=min_step).detect(imu)
         steps = det.steps_
         method = heading or "gyro"
     else:
@@ -1836,10 +1856,12 @@ def _calibration_gait(steps: pd.DataFrame, p: WaistParams, pipeline: str, gait_c
     return cadence / float(ref), line, calibration_covers(p.gait, cadence, n)
 
 
-def _contact_detector(o: dict, thr: float, realtime: bool) -> InitialContactDetector:
+def _contact_detector(o: dict, thr: float, realtime: bool, *, min_step_s: float | None = None
+                      ) -> InitialContactDetector:
     """The waist-pendulum pipeline's contact detector under the track's options ``o`` and motion-gate threshold
-    ``thr`` (one construction for the track and W139's pendulum reading, so an option cannot be left out: E102)."""
-    return InitialContactDetector(realtime=realtime, walk_threshold=thr, max_step_s=MAX_STEP_S,
+    ``thr`` (one construction for the track and W139's pendulum reading, so an option cannot be left out: E102);
+    ``min_step_s``: the shortest step (None: W113's; W591's ``slow_min_step`` gives the pelvic gyro's)."""
+    return InitialContactDetector(realtime=realtime, walk_threshold=thr, max_step_s=MAX_STEP_S, min_step_s=min_step_s,
                                   rhythm=bool(o["rhythm"]), contact_shift=bool(o["contact_shift"]),
                                   realtime_shift=bool(o["realtime_contact_shift"]),  # W166: an option
                                   weak_fill=bool(o["weak_fill"]), side_at_contact=bool(o["side_at_contact"]),  # W235

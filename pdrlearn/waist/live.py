@@ -126,6 +126,7 @@ LIVE_UNAPPLIED_OPTIONS = ("stairs_climb", "max_tilt_deg", "sit_veto", "vault_vet
                           "contact_model",  # W203: its features read the recording's medians
                           "freeze_veto",  # W214: the freeze index's 4 s window looks 2 s ahead
                           "pelvic_rhythm_veto",  # W440: the pelvic rhythm's window looks 3 s ahead
+                          "slow_min_step",  # W591: the pelvic gyro's median step over the whole recording
                           "foot_rest_veto",  # W336: a foot rest is judged over its whole run of contacts
                           "rhythm_warning",  # W338: a chunk of 16 contacts is judged after its last one
                           "trunk_rhythm_veto",  # W550: a run is judged after its last contact

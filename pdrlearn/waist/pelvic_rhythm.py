@@ -16,6 +16,8 @@ import pandas as pd
 
 from pdrlearn.errors import DataError
 from pdrlearn.io import Session
+from pdrlearn.kernels.waist import SHORTEST_STEP_FRAC
+from pdrlearn.waist.plausibility import STEP_COUNT_MIN
 
 #: decision W440: a contact sooner than this fraction of the local pelvic step period after the previous contact of
 #: its walking sequence is an extra contact (a priori: above half a period, so a doubled count is caught, and far
@@ -81,6 +83,20 @@ def remember(det, session: Session, gyro_s: np.ndarray | None) -> None:
     import weakref
 
     det.pelvic_steps_read_ = (weakref.ref(session), gyro_s)
+
+
+def slow_shortest_step_s(gyro_s: np.ndarray | None, min_steps: int = STEP_COUNT_MIN) -> float | None:
+    """Decision W591 (``slow_min_step``): the offline contact detector's shortest step (s) for a session whose
+    pelvic-gyro steps are ``gyro_s`` (s): W113's fraction (0.75) of their median step (:func:`median_step_period`,
+    W475) when that step is at least :data:`SLOW_PERIOD_S` (slower than L95's 70 steps/min) and the pelvic gyro counts
+    at least ``min_steps`` (W99's 10); None otherwise (W113's own shortest step, at most W16's 0.3 s, stands). A slow
+    step's own vertical bounce is small (W79) and the heel strike's maxima inside it are no contacts (W590)."""
+    if gyro_s is None or np.asarray(gyro_s).size < min_steps:
+        return None
+    period = median_step_period(gyro_s)
+    if not np.isfinite(period) or period < SLOW_PERIOD_S:
+        return None
+    return SHORTEST_STEP_FRAC * period  # W113's fraction, without W16's cap
 
 
 def local_step_period(gyro_s: np.ndarray, at_s: np.ndarray, window_s: float = RHYTHM_WINDOW_S,
