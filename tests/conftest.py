@@ -90,3 +90,46 @@ def external_session(name: str) -> Path:
     if got is None or not (got[0] / name).is_dir():
         pytest.skip(f"{d} absent: run `pdrlearn fetch {source} --out datasets/external`")
     return got[0] / name
+
+
+
+def pytest_collection(session):
+    """Decision D56: in a fresh clone both xdist workers rewrote the asserts of all ~1000 test files side by side
+    (~18 CPU s each, session 42's measure), each missing the other's cache as they went in the same order. The second
+    worker now first rewrites the files from the last one backwards into pytest's cache (:func:`rewrite_backwards`)
+    until it meets one the first worker (going forwards) has cached, so each file is rewritten once; the modules are
+    imported later by the ordinary collection, in its order. Nothing happens in a serial run, with ``--assert=plain``
+    or without bytecode caches (``PYTHONDONTWRITEBYTECODE``: the Makefile unsets it, session 47)."""
+    import os
+    import sys
+
+    if os.environ.get("PYTEST_XDIST_WORKER") == "gw1" and not sys.dont_write_bytecode:
+        rewrite_backwards(session.config, sorted(Path(__file__).resolve().parent.glob("test_*.py")))
+    return None  # the collection itself is pytest's
+
+
+def rewrite_backwards(config, files: list[Path]) -> list[Path]:
+    """Write pytest's assert-rewritten cache of ``files`` from the last one backwards, stopping at the first one
+    already cached (and valid); the files written, in that order. Nothing with ``--assert=plain`` or a pytest
+    without these (private) helpers: its own collection rewrites as before."""
+    try:
+        from _pytest.assertion import rewrite
+    except ImportError:
+        return []
+    state = config.stash.get(rewrite.assertstate_key, None)
+    needed = ("get_cache_dir", "PYC_TAIL", "_read_pyc", "try_makedirs", "_rewrite_test", "_write_pyc")
+    if state is None or getattr(state, "mode", None) != "rewrite" or not all(hasattr(rewrite, n) for n in needed):
+        return []
+    written = []
+    for fn in reversed(files):
+        cache = rewrite.get_cache_dir(fn)
+        pyc = cache / (fn.name[:-3] + rewrite.PYC_TAIL)
+        if rewrite._read_pyc(fn, pyc) is not None or not rewrite.try_makedirs(cache):
+            break  # the first worker was here: the rest is cached (or the folder is read-only)
+        try:
+            source_hash, co = rewrite._rewrite_test(fn, config)
+        except SyntaxError:  # the collection reports it
+            continue
+        if rewrite._write_pyc(state, co, source_hash, pyc):
+            written.append(fn)
+    return written

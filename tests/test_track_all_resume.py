@@ -56,6 +56,28 @@ def reference(study, tmp_path_factory) -> Path:
     return out
 
 
+@pytest.fixture(scope="module")
+def tracked(study, tmp_path_factory) -> tuple[Path, Path]:
+    """A copy of the study and its uninterrupted run, made once for the tests that each tracked such a copy first
+    (decision D54): ``(root, out)``, read-only (:func:`first_run` hands each test its own state)."""
+    base = tmp_path_factory.mktemp("tracked")
+    root, out = base / "study", base / "o"
+    shutil.copytree(study, root)
+    assert _run(root, "--out", out)[0] == 1
+    return root, out
+
+
+@pytest.fixture
+def first_run(study, tracked, tmp_path) -> tuple[Path, Path]:
+    """:func:`tracked`'s copy of the study restored (an earlier test edited it; it stays at its path, which the
+    sessions' resume keys hold) and a copy of its run in ``tmp_path / "o"``: the state a test's own first run left."""
+    root, out = tracked
+    shutil.rmtree(root)
+    shutil.copytree(study, root)
+    shutil.copytree(out, tmp_path / "o")
+    return root, tmp_path / "o"
+
+
 def _files(folder: Path) -> dict[str, bytes]:
     """Every file of a batch output but run.json (its times differ run to run, decision C18)."""
     return {p.relative_to(folder).as_posix(): p.read_bytes() for p in sorted(folder.rglob("*"))
@@ -92,10 +114,8 @@ def test_a_killed_batch_resumes_and_writes_the_uninterrupted_tables(study, refer
     assert not list(tmp_path.glob(".o.*"))  # the interrupted run's folder went into OUT
 
 
-def test_resume_tracks_again_what_changed_or_is_incomplete(study, tmp_path):
-    root, out = tmp_path / "study", tmp_path / "o"
-    shutil.copytree(study, root)
-    assert _run(root, "--out", out)[0] == 1
+def test_resume_tracks_again_what_changed_or_is_incomplete(first_run):
+    root, out = first_run
     before = (out / "sessions.csv").read_bytes()
     rc, _, err = _run(root, "--out", out)  # without --resume an existing output is refused, as before
     assert rc == 2 and "--force" in err
@@ -113,13 +133,11 @@ def test_resume_tracks_again_what_changed_or_is_incomplete(study, tmp_path):
     assert "(6 reused" in stdout  # --jobs is not part of a session's output
 
 
-def test_resume_says_why_a_session_was_tracked_again_as_gait_all_c135(study, tmp_path):
+def test_resume_says_why_a_session_was_tracked_again_as_gait_all_c135(first_run):
     """Cohort C135: track-all's line of a session whose record was found but not reused names what changed, in
     gait-all's words (C116: ``recomputed, input files changed: left meta.json since the earlier run``), through the
     one check both commands share."""
-    root, out = tmp_path / "study", tmp_path / "o"
-    shutil.copytree(study, root)
-    assert _run(root, "--out", out)[0] == 1
+    root, out = first_run
     meta = root / "a" / "S0" / "v1" / "meta.json"
     meta.write_text(meta.read_text() + "\n")  # the same meaning, other bytes
     (out / "b" / "S1" / "v2" / "steps.csv").unlink()
