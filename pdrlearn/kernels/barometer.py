@@ -449,6 +449,21 @@ def climb_mask(proposed: np.ndarray, start_h: np.ndarray, end_h: np.ndarray, noi
     return runs_mask(len(np.asarray(proposed).ravel()), climb_runs(proposed, start_h, end_h, noise_sd))
 
 
+def slope_climbs(runs: list[tuple[int, int, float]], length_m, heading_rad, *,
+                 slope_travel_m: float | None = 40.0) -> list[bool]:
+    """Decision W596: for each W108 climb of ``runs`` (:func:`climb_runs`), whether it is a trail slope, not stairs:
+    its steps added as vectors (``length_m`` along ``heading_rad``, each step's; a relative heading will do) end more
+    than ``slope_travel_m`` (m) from where the climb began. A stair flight rises at most a storey between landings
+    (~18 risers: ~14 m of steps read at 0.8 m) and a stairwell turns at each landing; a trail's climb goes on for
+    tens to hundreds of metres (trial s51t1: 160-416 steps, 30-37 m high). ``slope_travel_m`` None: no climb is a
+    slope (W108's climbs all stairs, as before W596)."""
+    length = np.abs(np.asarray(length_m, dtype=float).ravel())
+    heading = np.asarray(heading_rad, dtype=float).ravel()
+    if slope_travel_m is None:
+        return [False] * len(runs)
+    return [bool(abs(np.nansum(length[a:b] * np.exp(1j * heading[a:b]))) > slope_travel_m) for a, b, _ in runs]
+
+
 def runs_mask(n: int, runs: list[tuple[int, int, float]]) -> np.ndarray:
     """The mask over ``n`` steps of the rows ``first:stop`` of ``runs`` (:func:`climb_runs`)."""
     out = np.zeros(int(n), dtype=bool)
