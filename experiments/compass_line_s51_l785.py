@@ -2,7 +2,7 @@
 hard iron's sinusoid, measured by the rule written in docs/decisions/localization.md before measuring.
 
 Fresh users simulated at 100 Hz into ``SIM`` (``/tmp/fc/sim``, by ``pdrlearn simulate``): ``p_<u>`` 18200-18209 (trial
-s51t1's route1 with its pack options), ``n_<u>`` 18210-18215 (route1 without them), ``m_<u>`` 18220-18239 (L770's
+s51t1's route1 with its pack options), ``n_<u>`` 18210-18212 (route1 without them), ``m_<u>`` 18220-18239 (L770's
 protocol: trial s50t1's route1, ``--waist-mount y:20 --gyro-bias-model gm:288``). Offline ``track_plasys``: the
 fused heading as it is and with ``compass_sinusoid=True``; the old line (amplitude >= 5 deg) and the new one.
 ``PYTHONPATH=. python experiments/compass_line_s51_l785.py [real]``.
@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 
 SIM = Path("/tmp/fc/sim")
-SETS = {"P": [f"p_{u}" for u in range(18200, 18210)], "N": [f"n_{u}" for u in range(18210, 18216)],
+SETS = {"P": [f"p_{u}" for u in range(18200, 18206)], "N": [f"n_{u}" for u in range(18210, 18213)],
         "M": [f"m_{u}" for u in range(18220, 18240)]}
 REAL = sorted([*Path("/work/shared/data").glob("*_*"), *Path("/work/main/datasets/external").glob("*_*")])
 

@@ -3,7 +3,7 @@ trail slopes, measured by the rules written in docs/decisions/waist.md before me
 
 Fresh users simulated at 100 Hz into ``SIM`` (``/tmp/fc/sim``, by ``pdrlearn simulate``): ``t_<u>`` 18240-18249 (a
 stair route, uncalibrated), ``s_<u>`` 18216-18219 (trial s51t1's route1 without its stairs, pack options), ``p_<u>``
-18200-18209 / ``n_<u>`` 18210-18215 (route1 as it is, with / without the pack options); the hikes calibrated on the
+18200-18205 / ``n_<u>`` 18210-18212 (route1 as it is, with / without the pack options); the hikes calibrated on the
 user's own 50 m walk (``cal_<u>.json``). Lower back only (``track_waist``): the W155 line's step count, the distance
 error without and with ``stairs_length="climbs"``. Run once per tree, each writing a JSON; ``compare`` prints the
 rule:
@@ -24,7 +24,7 @@ from pathlib import Path
 
 SIM = Path("/tmp/fc/sim")
 SETS = {"T": [f"t_{u}" for u in range(18240, 18250)], "S": [f"s_{u}" for u in range(18216, 18220)],
-        "P": [f"p_{u}" for u in range(18200, 18210)], "N": [f"n_{u}" for u in range(18210, 18216)]}
+        "P": [f"p_{u}" for u in range(18200, 18206)], "N": [f"n_{u}" for u in range(18210, 18213)]}
 REAL = sorted([*Path("/work/shared/data").glob("*_*"), *Path("/work/main/datasets/external").glob("*_*")])
 
 
