@@ -1,7 +1,7 @@
 """Decision L785 (session 51, FC): L770's compass line advises ``compass_sinusoid`` only where its fit looks like a
 hard iron's sinusoid, measured by the rule written in docs/decisions/localization.md before measuring.
 
-Fresh users simulated at 100 Hz into ``SIM`` (``/tmp/fc/sim``, by ``pdrlearn simulate``): ``p_<u>`` 18200-18209 (trial
+Fresh users simulated at 100 Hz into ``SIM`` (``/tmp/fc/sim``, by ``pdrlearn simulate``): ``p_<u>`` 18200-18205 (trial
 s51t1's route1 with its pack options), ``n_<u>`` 18210-18212 (route1 without them), ``m_<u>`` 18220-18239 (L770's
 protocol: trial s50t1's route1, ``--waist-mount y:20 --gyro-bias-model gm:288``). Offline ``track_plasys``: the
 fused heading as it is and with ``compass_sinusoid=True``; the old line (amplitude >= 5 deg) and the new one.
