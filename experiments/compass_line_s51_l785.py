@@ -5,11 +5,12 @@ Fresh users simulated at 100 Hz into ``SIM`` (``/tmp/fc/sim``, by ``pdrlearn sim
 s51t1's route1 with its pack options), ``n_<u>`` 18210-18212 (route1 without them), ``m_<u>`` 18220-18239 (L770's
 protocol: trial s50t1's route1, ``--waist-mount y:20 --gyro-bias-model gm:288``). Offline ``track_plasys``: the
 fused heading as it is and with ``compass_sinusoid=True``; the old line (amplitude >= 5 deg) and the new one.
-``PYTHONPATH=. python experiments/compass_line_s51_l785.py [real]``.
+``PYTHONPATH=. python experiments/compass_line_s51_l785.py [real | SET ...]`` (SET: P, N, M; each track cached).
 """
 
 from __future__ import annotations
 
+import json
 import logging
 import sys
 from pathlib import Path
@@ -37,14 +38,22 @@ def measure(folder: Path) -> dict:
             "line": [w for w in plain.info["warnings"] if "L770" in w]}
 
 
-def main_sim() -> None:
+def main_sim(only: list[str]) -> None:
+    """The tracks of the sets ``only`` (all when empty); each track's numbers cached in ``SIM / "l785.json"``."""
+    cache_path = SIM / "l785.json"
+    cache = json.loads(cache_path.read_text()) if cache_path.exists() else {}
     rows = {}
     for name, folders in SETS.items():
+        if only and name not in only:
+            continue
         for f in folders:
             if not (SIM / f / "meta.json").exists():
                 print(f"{f}: not simulated")
                 continue
-            r = measure(SIM / f)
+            if f not in cache:
+                cache[f] = measure(SIM / f)
+                cache_path.write_text(json.dumps(cache))
+            r = cache[f]
             rows.setdefault(name, []).append(r)
             amp = "None" if r["amp"] is None else f"{r['amp']:.2f}"
             res = "None" if r["resid"] is None else f"{r['resid']:.2f}"
@@ -67,18 +76,12 @@ def main_sim() -> None:
 
 
 def main_real() -> None:
-    for folder in REAL:
-        if not (folder / "meta.json").exists():
-            continue
-        try:
-            r = measure(folder)
-        except Exception as exc:  # a lower-back-only or foot-only recording: say why, go on
-            print(f"{folder.name}: not tracked by plasys ({type(exc).__name__}: {str(exc)[:90]})")
-            continue
-        print(f"{folder.name}: fused {r['fused']} option {r['option']} m; fit {r['amp']} residual {r['resid']}; "
-              f"lines {len(r['line'])}")
+    """The real recordings: only one with a foot unit and a waist compass has a fused heading (L770 (a3))."""
+    for folder in (f for f in REAL if (f / "meta.json").exists()):
+        both = (folder / "fGyroscope.csv").exists() and (folder / "wMagneticField.csv").exists()
+        print(f"{folder.name}: " + (f"both units: {measure(folder)}" if both else "not both units: no fused heading"))
 
 
 if __name__ == "__main__":
     logging.disable(logging.WARNING)
-    (main_real if sys.argv[1:] == ["real"] else main_sim)()
+    main_real() if sys.argv[1:] == ["real"] else main_sim(sys.argv[1:])

@@ -1923,7 +1923,8 @@ def compass_sinusoid_line(amplitude_deg: float | None, residual_deg: float | Non
                 "uncalibrated hard-iron offset), and the fused heading carries it: the way out and the way back are "
                 "turned differently, so a walk back to its start does not close; --params '{\"compass_sinusoid\": "
                 "true}' takes it off (40 simulated 6-min missions: median final error 2.41 -> 1.40 m, the foot alone "
-                f"3.08 m), `--units foot` tracks the foot alone, relative to the start ({decision_ref('L707', 'L770')})")
+                "3.08 m), `--units foot` tracks the foot alone, relative to the start "
+                f"({decision_ref('L707', 'L770')})")
     resid = "" if residual_deg is None else f", {residual_deg:.1f} deg left unexplained"
     return (f"the waist compass's heading differs from the foot's by more than an uncalibrated hard iron explains (a "
             f"fit of +-{amplitude_deg:.1f} deg along the walking direction{resid}; a hard iron's fit is at most "

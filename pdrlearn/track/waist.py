@@ -430,10 +430,10 @@ def stairs_length_message(climbs: np.ndarray, length_m: np.ndarray, tread_m: np.
     halves = int((c & (tread < STAIR_TREAD_M)).sum())
     slopes = (f", {slope_steps} steps of climbs that travel over 40 m left out as trail slopes, decision W596"
               if slope_steps else "")
-    return (f"{n} steps are on stairs (barometric climbs of 1.5 m or more, decision W108{slopes}) and read {read:.1f} m "
-            "horizontally as level steps: the waist step-length models measure the body's step, not the tread, so "
-            "these steps read long (two storeys up and down, calibrated, simulated: +64 % waist-pendulum, +90 % "
-            "waist-pll; an uncalibrated track whose level steps read short may still read short in total: "
+    return (f"{n} steps are on stairs (barometric climbs of 1.5 m or more, decision W108{slopes}) and read "
+            f"{read:.1f} m horizontally as level steps: the waist step-length models measure the body's step, not the "
+            "tread, so these steps read long (two storeys up and down, calibrated, simulated: +64 % waist-pendulum, "
+            "+90 % waist-pll; an uncalibrated track whose level steps read short may still read short in total: "
             "calibrate first, pdrlearn calibrate)"
             + (f"; {halves} of them climb under {STEP_TO_STEP_MAX_RISE_M:.2f} m per step, half a riser: a "
                "step-to-step climb (both feet on each stair, as with a prosthesis or a painful knee), whose steps "
