@@ -8,8 +8,8 @@ user's own 50 m walk (``cal_<u>.json``). Lower back only (``track_waist``): the 
 error without and with ``stairs_length="climbs"``. Run once per tree, each writing a JSON; ``compare`` prints the
 rule:
 
-    PYTHONPATH=/work/main python experiments/stairs_line_s51_w596.py run main.json
-    PYTHONPATH=. python experiments/stairs_line_s51_w596.py run new.json
+    PYTHONPATH=/work/main python experiments/stairs_line_s51_w596.py run main.json [SET ...]
+    PYTHONPATH=. python experiments/stairs_line_s51_w596.py run new.json [SET ...]
     PYTHONPATH=. python experiments/stairs_line_s51_w596.py compare main.json new.json
 """
 
@@ -30,7 +30,7 @@ REAL = sorted([*Path("/work/shared/data").glob("*_*"), *Path("/work/main/dataset
 
 def _count(res) -> int:
     lines = [w for w in res.info["warnings"] if "steps are on stairs" in w]
-    return int(re.match(r"(\d+) steps are on stairs", lines[0].split(": ", 1)[-1]).group(1)) if lines else 0
+    return int(re.search(r"(\d+) steps are on stairs", lines[0]).group(1)) if lines else 0
 
 
 def measure(folder: Path, params: Path | None) -> dict:
@@ -54,27 +54,21 @@ def measure(folder: Path, params: Path | None) -> dict:
     return out
 
 
-def run(path: str) -> None:
+def run(path: str, *only: str) -> None:
+    """The tracks of the sets ``only`` (T, S, P, N, real; all when empty) into the JSON ``path`` (kept rows not
+    redone)."""
     logging.disable(logging.WARNING)
-    rows = {}
-    for name, folders in SETS.items():
-        for f in folders:
-            if not (SIM / f / "meta.json").exists():
-                print(f"{f}: not simulated")
-                continue
-            cal = None if name == "T" else SIM / f"cal_{f.split('_')[1]}.json"
-            rows[f] = measure(SIM / f, cal)
-            print(f, rows[f], flush=True)
-    for d in REAL:
-        if not (d / "wBarometer.csv").exists() and not (d / "meta.json").exists():
+    rows = json.loads(Path(path).read_text()) if Path(path).exists() else {}
+    todo = [(name, SIM / f) for name, folders in SETS.items() for f in folders if not only or name in only]
+    todo += [("real", d) for d in REAL if (d / "wBarometer.csv").exists() and (not only or "real" in only)]
+    for name, folder in todo:
+        key = ("real:" if name == "real" else "") + folder.name
+        if key in rows or not (folder / "meta.json").exists():
             continue
-        try:
-            rows["real:" + d.name] = measure(d, None)
-        except Exception as exc:  # no lower-back unit: say why, go on
-            print(f"{d.name}: not tracked ({type(exc).__name__}: {str(exc)[:80]})")
-            continue
-        print(d.name, rows["real:" + d.name], flush=True)
-    Path(path).write_text(json.dumps(rows, indent=1))
+        cal = None if name in ("T", "real") else SIM / f"cal_{folder.name.split('_')[1]}.json"
+        rows[key] = measure(folder, cal)
+        print(key, rows[key], flush=True)
+        Path(path).write_text(json.dumps(rows, indent=1))
 
 
 def compare(main_path: str, new_path: str) -> None:
