@@ -1,4 +1,5 @@
-"""Decisions W596 / W597 (trial s51t1 F2): a W108 climb that travels more than 40 m is a trail slope, not stairs:
+"""Decisions W596 / W597 (trial s51t1 F2): a W108 climb that travels more than 40 m (or rises under 0.07 m per step)
+is a trail slope, not stairs:
 W155's stairs line does not count it and ``stairs_length: "climbs"`` (W156) does not bound it."""
 
 from __future__ import annotations
@@ -23,6 +24,10 @@ def test_a_climb_that_travels_over_40_m_is_a_slope_a_stairwell_is_not():
     assert slope_climbs([(0, 34, 5.8), (0, 34, 5.8)], np.full(34, 1.5), np.tile(u_turns, 1)) == [False, False]
     assert slope_climbs(straight, lengths, np.zeros(200), slope_travel_m=None) == [False]  # before W596
     assert slope_climbs(straight, lengths, np.zeros(200), slope_travel_m=150.0) == [False]
+    gentle = [(0, 30, 1.8)]  # candidate B: a rate-limit fragment of a gentle slope, 0.06 m per step, 21 m
+    assert slope_climbs(gentle, lengths, np.zeros(200)) == [True]
+    assert slope_climbs(gentle, lengths, np.zeros(200), stair_min_rise_m=None) == [False]
+    assert slope_climbs([(0, 40, 3.4)], lengths, np.zeros(200), slope_travel_m=None) == [False]  # step to step
 
 
 @pytest.fixture(scope="module")
@@ -48,7 +53,7 @@ def test_the_stairs_line_counts_the_flight_not_the_slope(hill):
     lines = [w for w in plain.info["warnings"] if "steps are on stairs" in w]
     assert len(lines) == 1 and "W596" in lines[0]
     n = int(re.search(r"(\d+) steps are on stairs", lines[0]).group(1))
-    left = int(re.search(r"(\d+) steps of climbs that travel over 40 m", lines[0]).group(1))
+    left = int(re.search(r"(\d+) steps of climbs that travel over 40 m or rise under", lines[0]).group(1))
     assert 12 <= n <= 24 and left >= 40  # the 17-step flight, not the 60 m slope at 25 %
     assert n + left == int(plain.steps["climb"].sum())  # the steps column keeps W108's climbs
 

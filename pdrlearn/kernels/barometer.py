@@ -450,18 +450,21 @@ def climb_mask(proposed: np.ndarray, start_h: np.ndarray, end_h: np.ndarray, noi
 
 
 def slope_climbs(runs: list[tuple[int, int, float]], length_m, heading_rad, *,
-                 slope_travel_m: float | None = 40.0) -> list[bool]:
+                 slope_travel_m: float | None = 40.0, stair_min_rise_m: float | None = 0.07) -> list[bool]:
     """Decision W596: for each W108 climb of ``runs`` (:func:`climb_runs`), whether it is a trail slope, not stairs:
     its steps added as vectors (``length_m`` along ``heading_rad``, each step's; a relative heading will do) end more
     than ``slope_travel_m`` (m) from where the climb began. A stair flight rises at most a storey between landings
     (~18 risers: ~14 m of steps read at 0.8 m) and a stairwell turns at each landing; a trail's climb goes on for
-    tens to hundreds of metres (trial s51t1: 160-416 steps, 30-37 m high). ``slope_travel_m`` None: no climb is a
-    slope (W108's climbs all stairs, as before W596)."""
+    tens to hundreds of metres (trial s51t1: 160-416 steps, 30-37 m high). W596's candidate B: also a climb that
+    rises under ``stair_min_rise_m`` (m) per step - under half of L39's lowest riser (0.15 m), which a step-to-step
+    stair climb (W433) still rises; a gentle slope's climb found at W91's 0.1 m/s rate limit rises ~0.05-0.06 m per
+    step. None (either): that test is not made (both None: W108's climbs all stairs, as before W596)."""
     length = np.abs(np.asarray(length_m, dtype=float).ravel())
     heading = np.asarray(heading_rad, dtype=float).ravel()
-    if slope_travel_m is None:
-        return [False] * len(runs)
-    return [bool(abs(np.nansum(length[a:b] * np.exp(1j * heading[a:b]))) > slope_travel_m) for a, b, _ in runs]
+    travel = np.inf if slope_travel_m is None else slope_travel_m
+    rise = -np.inf if stair_min_rise_m is None else stair_min_rise_m
+    return [bool(abs(np.nansum(length[a:b] * np.exp(1j * heading[a:b]))) > travel or abs(h) / (b - a) < rise)
+            for a, b, h in runs]
 
 
 def runs_mask(n: int, runs: list[tuple[int, int, float]]) -> np.ndarray:
