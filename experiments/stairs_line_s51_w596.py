@@ -67,6 +67,8 @@ def run(path: str, *only: str) -> None:
         if key in rows or not (folder / "meta.json").exists():
             continue
         cal = None if name in ("T", "real") else SIM / f"cal_{folder.name.split('_')[1]}.json"
+        if cal is not None and not cal.exists():  # a hike whose calibration is not written yet: not measured
+            continue
         rows[key] = measure(folder, cal)
         print(key, rows[key], flush=True)
         Path(path).write_text(json.dumps(rows, indent=1))
