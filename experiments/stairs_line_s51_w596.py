@@ -25,6 +25,7 @@ from pathlib import Path
 SIM = Path("/tmp/fc/sim")
 SETS = {"T": [f"t_{u}" for u in range(18240, 18250)], "S": [f"s_{u}" for u in range(18216, 18220)],
         "S2": [f"s_{u}" for u in range(18206, 18210)],  # candidate B's fresh slope users
+        "S3": [f"s_{u}" for u in range(18213, 18216)],  # candidate C's
         "P": [f"p_{u}" for u in range(18200, 18206)], "N": [f"n_{u}" for u in range(18210, 18213)]}
 REAL = sorted([*Path("/work/shared/data").glob("*_*"), *Path("/work/main/datasets/external").glob("*_*")])
 
@@ -91,20 +92,24 @@ def compare(main_path: str, new_path: str) -> None:
     warned_t = sum(main[k]["off"]["line_steps"] > 0 for k in sets["T"])
     s2 = sum(new[k]["off"]["line_steps"] > 0 for k in sets["S"])
     s2b = sum(new[k]["off"]["line_steps"] > 0 for k in sets["S2"])
+    s2c = sum(new[k]["off"]["line_steps"] > 0 for k in sets["S3"])
     pn = sets["P"] + sets["N"]
     s3 = sum(new[k]["off"]["line_steps"] > 60 for k in pn)
     s4 = sum(new[k]["off"]["line_steps"] != main[k]["off"]["line_steps"] for k in real)
     print(f"(s1) T: warned on main {warned_t} of {len(sets['T'])}; changed count or lost line {s1}")
-    print(f"(s2) S: lines {s2} of {len(sets['S'])}; S2 (candidate B's fresh slopes): lines {s2b} of {len(sets['S2'])}")
+    print(f"(s2) S: lines {s2} of {len(sets['S'])}; S2 (candidate B's fresh slopes): lines {s2b} of {len(sets['S2'])}; "
+          f"S3 (C's): lines {s2c} of {len(sets['S3'])}")
     print(f"(s3) P+N: lines over 60 steps {s3} of {len(pn)} (lines {sum(new[k]['off']['line_steps'] > 0 for k in pn)})")
     print(f"(s4) real: line changed on {s4} of {len(real)}")
     c1 = sum(abs(new[k]["climbs"]["distance_m"] - main[k]["climbs"]["distance_m"]) > 0.01 for k in sets["T"])
     c2 = sum(abs(new[k]["climbs"]["distance_m"] - new[k]["off"]["distance_m"]) > 1e-9 for k in sets["S"])
     c2b = sum(abs(new[k]["climbs"]["distance_m"] - new[k]["off"]["distance_m"]) > 1e-9 for k in sets["S2"])
+    c2c = sum(abs(new[k]["climbs"]["distance_m"] - new[k]["off"]["distance_m"]) > 1e-9 for k in sets["S3"])
     c3 = sum(abs(abs(new[k]["climbs"]["err_pct"]) - abs(new[k]["off"]["err_pct"])) > 1.5 for k in pn)
     c4 = sum(abs(new[k]["climbs"]["distance_m"] - main[k]["climbs"]["distance_m"]) > 0.01 for k in real)
     print(f"(c1) T: option distance changed over 0.01 m on {c1} of {len(sets['T'])}")
-    print(f"(c2) S: option changed a length on {c2} of {len(sets['S'])}; S2: on {c2b} of {len(sets['S2'])}")
+    print(f"(c2) S: option changed a length on {c2} of {len(sets['S'])}; S2: on {c2b} of {len(sets['S2'])}; "
+          f"S3: on {c2c} of {len(sets['S3'])}")
     print(f"(c3) P+N: option's |error| off by over 1.5 points on {c3} of {len(pn)}")
     print(f"(c4) real: option distance changed on {c4} of {len(real)}")
 

@@ -398,19 +398,19 @@ def _climb_runs(baro, steps: pd.DataFrame) -> list[tuple[int, int, float]]:
 STAIRS_WARN_MIN_STEPS = 8
 
 
-def stair_runs(runs: list[tuple[int, int, float]], steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, *,
-               slope_travel_m: float | None = 40.0,
-               stair_min_rise_m: float | None = 0.07) -> list[tuple[int, int, float]]:
+def stair_runs(runs: list[tuple[int, int, float]], steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, baro,
+               **slope) -> list[tuple[int, int, float]]:
     """Decision W596: W108's climbs ``runs`` of ``steps`` less the trail slopes
-    (:func:`pdrlearn.kernels.barometer.slope_climbs`), each step along the lower back's gyro heading at its middle
-    (the vertical rate less the bias, integrated: W43's integral, relative to the start) with its model length."""
+    (:func:`pdrlearn.kernels.barometer.slope_climbs`, its keywords ``slope``), each step along the lower back's gyro
+    heading at its middle (the vertical rate less the bias, integrated: W43's integral, relative to the start) with
+    its model length, the barometer ``baro``'s altitude at each step's start and end."""
     if not runs:
         return []
     mid = 0.5 * (steps["start_s"].to_numpy(float) + steps["end_s"].to_numpy(float))
     yaw = np.interp(mid, imu.t, K.rate_integral(imu.t, imu.w_z - p.gyro_bias_rps))
-    slope = slope_climbs(runs, steps["length_m"].to_numpy(float), yaw, slope_travel_m=slope_travel_m,
-                         stair_min_rise_m=stair_min_rise_m)
-    return [r for r, s in zip(runs, slope, strict=True) if not s]
+    _, _, start_h, end_h = _stair_proposals(baro, steps)
+    flags = slope_climbs(runs, steps["length_m"].to_numpy(float), yaw, start_h, end_h, **slope)
+    return [r for r, s in zip(runs, flags, strict=True) if not s]
 
 
 def stairs_length_message(climbs: np.ndarray, length_m: np.ndarray, tread_m: np.ndarray | None = None, *,
@@ -430,8 +430,8 @@ def stairs_length_message(climbs: np.ndarray, length_m: np.ndarray, tread_m: np.
     read = float(np.abs(np.asarray(length_m, dtype=float)[c]).sum())
     capped = float(np.minimum(np.abs(np.asarray(length_m, dtype=float)[c]), tread[c]).sum())
     halves = int((c & (tread < STAIR_TREAD_M)).sum())
-    slopes = (f", {slope_steps} steps of climbs that travel over 40 m or rise under 0.07 m per step left out as "
-              "trail slopes, decision W596"
+    slopes = (f", {slope_steps} steps of climbs that travel over 40 m or lie on a slope left out as trail slopes, "
+              "decision W596"
               if slope_steps else "")
     return (f"{n} steps are on stairs (barometric climbs of 1.5 m or more, decision W108{slopes}) and read "
             f"{read:.1f} m horizontally as level steps: the waist step-length models measure the body's step, not the "
@@ -1357,7 +1357,7 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
     baro = usable_barometer(session, warnings)  # decision B188: an impossible pressure change is not read
     runs = _climb_runs(baro, steps)  # W108's climbs (W433: a single unproposed step inside bridged), for W155
     climbs = runs_mask(len(steps), runs)
-    stair_climbs = runs_mask(len(steps), stair_runs(runs, steps, imu, p))  # W596: no trail slope
+    stair_climbs = runs_mask(len(steps), stair_runs(runs, steps, imu, p, baro))  # W596: no trail slope
     stairs = climbs if bool(o["stairs_climb"]) else _stairs_steps(baro, steps, False)
     tread = np.where(step_to_step_mask(len(steps), runs), 0.5 * STAIR_TREAD_M, STAIR_TREAD_M)  # W433: half a tread
     if not bool(o["stairs_length"]):  # W155: a counted stair climb read at level-walking step lengths says so
