@@ -1,5 +1,8 @@
 """Decisions W596 / W597 (session 51, FC): W155's stairs line and W156's ``stairs_length: "climbs"`` leave out the
-trail slopes, measured by the rules written in docs/decisions/waist.md before measuring.
+trail slopes, measured by the rules written in docs/decisions/waist.md before measuring. None was adopted: the
+candidates' code is in the branch's history, A at commit 8266541a, B at 0b93c3a8, C at 0e9728a3
+(``pdrlearn.kernels.barometer.slope_climbs`` and ``pdrlearn.track.waist.stair_runs``); run this script on one of
+those trees to repeat a candidate's numbers (at a later tree the "new" run reads the pipeline as it is).
 
 Fresh users simulated at 100 Hz into ``SIM`` (``/tmp/fc/sim``, by ``pdrlearn simulate``): ``t_<u>`` 18240-18249 (a
 stair route, uncalibrated), ``s_<u>`` 18216-18219 (trial s51t1's route1 without its stairs, pack options), ``p_<u>``

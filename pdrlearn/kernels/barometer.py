@@ -449,44 +449,6 @@ def climb_mask(proposed: np.ndarray, start_h: np.ndarray, end_h: np.ndarray, noi
     return runs_mask(len(np.asarray(proposed).ravel()), climb_runs(proposed, start_h, end_h, noise_sd))
 
 
-def slope_climbs(runs: list[tuple[int, int, float]], length_m, heading_rad, start_h=None, end_h=None, *,
-                 slope_travel_m: float | None = 40.0, flank_steps: int = 20, flank_min_steps: int = 6,
-                 flank_min_rise_m: float | None = 0.03) -> list[bool]:
-    """Decision W596 (candidate C): for each W108 climb of ``runs`` (:func:`climb_runs`), whether it is a trail
-    slope, not stairs. (A) Its steps added as vectors (``length_m`` along ``heading_rad``, each step's; a relative
-    heading will do) end more than ``slope_travel_m`` (m) from where the climb began: a stair flight rises at most a
-    storey between landings (~18 risers: ~14 m of steps read at 0.8 m) and a stairwell turns at each landing; a
-    trail's climb goes on for tens to hundreds of metres (trial s51t1: 160-416 steps, 30-37 m high). (C) The steps
-    just before or just after it that lie in no climb (up to ``flank_steps``, contiguous, at least
-    ``flank_min_steps`` of them) change the altitude (``start_h`` / ``end_h``: each step's at its start / end, m) in
-    the climb's direction by at least ``flank_min_rise_m`` per step: a slope's fragment (its rate hovering at W91's
-    limit) is entered from and left onto the same slope, a stair flight from and onto a level floor or landing.
-    ``slope_travel_m`` / ``flank_min_rise_m`` None (or no altitudes): that test is not made (both: W108's climbs all
-    stairs, as before W596)."""
-    length = np.abs(np.asarray(length_m, dtype=float).ravel())
-    heading = np.asarray(heading_rad, dtype=float).ravel()
-    travel = np.inf if slope_travel_m is None else slope_travel_m
-    in_climb = runs_mask(len(length), runs)
-    out = []
-    for a, b, h in runs:
-        slope = bool(abs(np.nansum(length[a:b] * np.exp(1j * heading[a:b]))) > travel)
-        if not slope and flank_min_rise_m is not None and start_h is not None and end_h is not None:
-            for lo, hi in ((_flank(in_climb, a, -1, flank_steps), a), (b, _flank(in_climb, b - 1, 1, flank_steps))):
-                if hi - lo >= flank_min_steps:
-                    slope |= bool(np.sign(h) * (end_h[hi - 1] - start_h[lo]) / (hi - lo) >= flank_min_rise_m)
-        out.append(slope)
-    return out
-
-
-def _flank(in_climb: np.ndarray, edge: int, step: int, most: int) -> int:
-    """Decision W596: the far end of the run of steps next to ``edge`` (before it: ``step`` -1, the first row; after
-    it: +1, the stop row) outside any climb, at most ``most`` long."""
-    j = edge
-    while 0 <= j + step < len(in_climb) and not in_climb[j + step] and abs(j + step - edge) <= most:
-        j += step
-    return j if step < 0 else j + 1
-
-
 def runs_mask(n: int, runs: list[tuple[int, int, float]]) -> np.ndarray:
     """The mask over ``n`` steps of the rows ``first:stop`` of ``runs`` (:func:`climb_runs`)."""
     out = np.zeros(int(n), dtype=bool)

@@ -32,7 +32,6 @@ from pdrlearn.kernels.barometer import (  # decision W91's constants and test, s
     STAIRS_RATE_WINDOW_S,
     STEP_TO_STEP_MAX_RISE_M,
     runs_mask,
-    slope_climbs,
     stairs_rate_test,
     step_to_step_mask,
 )
@@ -398,30 +397,15 @@ def _climb_runs(baro, steps: pd.DataFrame) -> list[tuple[int, int, float]]:
 STAIRS_WARN_MIN_STEPS = 8
 
 
-def stair_runs(runs: list[tuple[int, int, float]], steps: pd.DataFrame, imu: WaistIMU, p: WaistParams, baro,
-               **slope) -> list[tuple[int, int, float]]:
-    """Decision W596: W108's climbs ``runs`` of ``steps`` less the trail slopes
-    (:func:`pdrlearn.kernels.barometer.slope_climbs`, its keywords ``slope``), each step along the lower back's gyro
-    heading at its middle (the vertical rate less the bias, integrated: W43's integral, relative to the start) with
-    its model length, the barometer ``baro``'s altitude at each step's start and end."""
-    if not runs:
-        return []
-    mid = 0.5 * (steps["start_s"].to_numpy(float) + steps["end_s"].to_numpy(float))
-    yaw = np.interp(mid, imu.t, K.rate_integral(imu.t, imu.w_z - p.gyro_bias_rps))
-    _, _, start_h, end_h = _stair_proposals(baro, steps)
-    flags = slope_climbs(runs, steps["length_m"].to_numpy(float), yaw, start_h, end_h, **slope)
-    return [r for r, s in zip(runs, flags, strict=True) if not s]
-
-
-def stairs_length_message(climbs: np.ndarray, length_m: np.ndarray, tread_m: np.ndarray | None = None, *,
-                          slope_steps: int = 0) -> str | None:
+def stairs_length_message(climbs: np.ndarray, length_m: np.ndarray, tread_m: np.ndarray | None = None) -> str | None:
     """Decision W155's one warning line of a track whose steps ``climbs`` (W108's climb mask: steps inside a
     barometric climb of at least half a storey) are :data:`STAIRS_WARN_MIN_STEPS` or more while the option
     ``stairs_length`` is off: their lengths ``length_m`` are read as level steps (the trial's two storeys up and down:
     +64 % distance on waist-pendulum, +90 % on waist-pll, calibrated; +3.9 % with the option). ``tread_m``: each
     step's bound (decision W433: half the tread on a step-to-step climb; None: :data:`STAIR_TREAD_M` everywhere),
-    and the line names the step-to-step steps. None otherwise. ``slope_steps``: the steps of W108's climbs left out as
-    trail slopes (decision W596; ``climbs`` is then the stair climbs only), named in the line when any."""
+    and the line names the step-to-step steps. None otherwise. Decision W596: the barometer cannot tell a trail's
+    slope from stairs (three candidates measured, none adopted), so the line says to leave the option off on a walk
+    up trail slopes (trial s51t1: a hike's -0.57 % read -31.10 % with it)."""
     c = np.asarray(climbs, dtype=bool)
     n = int(c.sum())
     if n < STAIRS_WARN_MIN_STEPS:
@@ -430,13 +414,10 @@ def stairs_length_message(climbs: np.ndarray, length_m: np.ndarray, tread_m: np.
     read = float(np.abs(np.asarray(length_m, dtype=float)[c]).sum())
     capped = float(np.minimum(np.abs(np.asarray(length_m, dtype=float)[c]), tread[c]).sum())
     halves = int((c & (tread < STAIR_TREAD_M)).sum())
-    slopes = (f", {slope_steps} steps of climbs that travel over 40 m or lie on a slope left out as trail slopes, "
-              "decision W596"
-              if slope_steps else "")
-    return (f"{n} steps are on stairs (barometric climbs of 1.5 m or more, decision W108{slopes}) and read "
-            f"{read:.1f} m horizontally as level steps: the waist step-length models measure the body's step, not the "
-            "tread, so these steps read long (two storeys up and down, calibrated, simulated: +64 % waist-pendulum, "
-            "+90 % waist-pll; an uncalibrated track whose level steps read short may still read short in total: "
+    return (f"{n} steps are on stairs (barometric climbs of 1.5 m or more, decision W108) and read {read:.1f} m "
+            "horizontally as level steps: the waist step-length models measure the body's step, not the tread, so "
+            "these steps read long (two storeys up and down, calibrated, simulated: +64 % waist-pendulum, +90 % "
+            "waist-pll; an uncalibrated track whose level steps read short may still read short in total: "
             "calibrate first, pdrlearn calibrate)"
             + (f"; {halves} of them climb under {STEP_TO_STEP_MAX_RISE_M:.2f} m per step, half a riser: a "
                "step-to-step climb (both feet on each stair, as with a prosthesis or a painful knee), whose steps "
@@ -446,7 +427,10 @@ def stairs_length_message(climbs: np.ndarray, length_m: np.ndarray, tread_m: np.
             f"{STAIR_TREAD_M:.2f} m tread " + ("(half of it step to step) " if halves else "") +
             "(decision W91): \"options\": {\"stairs_length\": \"climbs\"} in the PARAMS.json (--params), or "
             f"stairs_length=\"climbs\", bounds these steps ({capped:.1f} m here; decision W156), true also the "
-            "steps of shorter barometric changes (decision W155)")
+            "steps of shorter barometric changes (decision W155); but if the walk climbed trail slopes, not "
+            "stairs, these climbs are slopes walked at full step length, which the barometer cannot tell from "
+            "stairs, and the option would cut them to the tread (trial hikes: -0.6 % -> -31 %): leave it off there "
+            "(decision W596)")
 
 
 def _fill_nan_headings(h: np.ndarray, fallback: float) -> np.ndarray:
@@ -1357,16 +1341,14 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
     baro = usable_barometer(session, warnings)  # decision B188: an impossible pressure change is not read
     runs = _climb_runs(baro, steps)  # W108's climbs (W433: a single unproposed step inside bridged), for W155
     climbs = runs_mask(len(steps), runs)
-    stair_climbs = runs_mask(len(steps), stair_runs(runs, steps, imu, p, baro))  # W596: no trail slope
     stairs = climbs if bool(o["stairs_climb"]) else _stairs_steps(baro, steps, False)
     tread = np.where(step_to_step_mask(len(steps), runs), 0.5 * STAIR_TREAD_M, STAIR_TREAD_M)  # W433: half a tread
     if not bool(o["stairs_length"]):  # W155: a counted stair climb read at level-walking step lengths says so
-        line = stairs_length_message(stair_climbs, steps["length_m"].to_numpy(float), tread,
-                                     slope_steps=int((climbs & ~stair_climbs).sum()))  # W596
+        line = stairs_length_message(climbs, steps["length_m"].to_numpy(float), tread)
         if line:
             warnings.append(line)
     if bool(o["stairs_length"]):  # W91's candidate: the horizontal length of a stair step is at most the tread
-        bounded = stair_climbs if o["stairs_length"] == "climbs" else stairs  # W156: W108's climbs; W597: no slope
+        bounded = climbs if o["stairs_length"] == "climbs" else stairs  # W156: only W108's climbs
         steps = steps.assign(length_m=np.where(bounded, np.minimum(steps["length_m"].to_numpy(float), tread),
                                                steps["length_m"].to_numpy(float)))
     still_mask = functools.cache(lambda: _still_samples(imu))  # L296's still samples: the IMU's own (W285, W354)
