@@ -1665,7 +1665,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
             if compass_sinusoid:  # L770 (candidate A, an option): the compass's hard-iron sinusoid off before L17
                 head = head - sinus
             else:  # L770 (candidate B, adopted): the line when its amplitude reaches 5 deg
-                line = compass_sinusoid_line(sinus_info.pop("compass_sinusoid_deg"))
+                line = compass_sinusoid_line(sinus_info.pop("compass_sinusoid_deg"),
+                                             sinus_info.pop("compass_sinusoid_residual_deg"))  # L785
                 warnings += [line] if line else []
             head = fuse_by_segment(relative, head, strides["start_s"].to_numpy(float),
                                    strides["end_s"].to_numpy(float), foot_gaps, tau_s=fused_tau_s,
@@ -1887,30 +1888,48 @@ def _foot_ramps_option(res: TrackResult, foot_ramps: bool) -> TrackResult:
 
 def _compass_sinusoid(relative, head, strides: pd.DataFrame, straight, *, info_out: dict) -> np.ndarray:
     """Decision L770: the waist heading's direction sinusoid per stride (rad) on L471's walking clock, its amplitude
-    (deg, or None when the gates refuse) in ``info_out["compass_sinusoid_deg"]``."""
+    (deg, or None when the gates refuse) in ``info_out["compass_sinusoid_deg"]`` and the fit's residual SD (deg,
+    decision L785) in ``info_out["compass_sinusoid_residual_deg"]``."""
     from pdrlearn.kernels.compass_sinusoid import direction_sinusoid
 
     clock = walking_clock(strides["start_s"].to_numpy(float), strides["end_s"].to_numpy(float))
-    sinus, amp = direction_sinusoid(relative, head, clock, straight,  # L84's gates
-                                    min_strides=HARD_IRON_MIN_STRIDES, max_resultant=HARD_IRON_MAX_RESULTANT)
+    sinus, amp, resid = direction_sinusoid(relative, head, clock, straight,  # L84's gates
+                                           min_strides=HARD_IRON_MIN_STRIDES, max_resultant=HARD_IRON_MAX_RESULTANT,
+                                           with_residual=True)  # L785
     info_out["compass_sinusoid_deg"] = None if amp is None else float(np.degrees(amp))
+    info_out["compass_sinusoid_residual_deg"] = None if resid is None else float(np.degrees(resid))
     return sinus
 
 
-def compass_sinusoid_line(amplitude_deg: float | None, *, min_deg: float = 5.0) -> str | None:
+def compass_sinusoid_line(amplitude_deg: float | None, residual_deg: float | None = None, *, min_deg: float = 5.0,
+                          max_deg: float = 12.0, max_residual_deg: float = 6.0) -> str | None:
     """Decision L770 (candidate B, adopted by its rule): the warning of a fused track whose waist compass reads a
     heading error that follows the walking direction (:func:`_compass_sinusoid`'s amplitude ``amplitude_deg``, deg)
     of ``min_deg`` or more (L708's bound: 5 deg moves a track sideways by 8.7 % of the distance); None under it or
-    when the walk turned too little to see it."""
+    when the walk turned too little to see it. Decision L785: the line advises ``compass_sinusoid`` only where L770
+    measured its gain - an amplitude of at most ``max_deg`` (L770's fits: 2.4-11.5 deg) and a fit residual
+    ``residual_deg`` (deg; None: not judged) of at most ``max_residual_deg`` (L770's missions 3.5-5.0 deg); else it
+    says the difference is not a hard iron's sinusoid and does not advise the option (trial s51t1: a 26-75 min hike's
+    foot drift read as +-57.7 / +-130.8 deg, the option 205.6 -> 1277.96 m, 82.55 -> 3276.62 m)."""
     if amplitude_deg is None or not amplitude_deg >= min_deg:
         return None
     from pdrlearn.decision_refs import decision_ref
 
-    return (f"the waist compass's heading error follows the walking direction by +-{amplitude_deg:.1f} deg (an "
-            "uncalibrated hard-iron offset), and the fused heading carries it: the way out and the way back are "
-            "turned differently, so a walk back to its start does not close; --params '{\"compass_sinusoid\": true}' "
-            "takes it off (40 simulated 6-min missions: median final error 2.41 -> 1.40 m, the foot alone 3.08 m), "
-            f"`--units foot` tracks the foot alone, relative to the start ({decision_ref('L707', 'L770')})")
+    if amplitude_deg <= max_deg and (residual_deg is None or residual_deg <= max_residual_deg):
+        return (f"the waist compass's heading error follows the walking direction by +-{amplitude_deg:.1f} deg (an "
+                "uncalibrated hard-iron offset), and the fused heading carries it: the way out and the way back are "
+                "turned differently, so a walk back to its start does not close; --params '{\"compass_sinusoid\": "
+                "true}' takes it off (40 simulated 6-min missions: median final error 2.41 -> 1.40 m, the foot alone "
+                "3.08 m), `--units foot` tracks the foot alone, relative to the start "
+                f"({decision_ref('L707', 'L770')})")
+    resid = "" if residual_deg is None else f", {residual_deg:.1f} deg left unexplained"
+    return (f"the waist compass's heading differs from the foot's by more than an uncalibrated hard iron explains (a "
+            f"fit of +-{amplitude_deg:.1f} deg along the walking direction{resid}; a hard iron's fit is at most "
+            f"{max_deg:g} deg with at most {max_residual_deg:g} deg left): on a long walk this is mostly the foot "
+            "gyroscope's own drift and the trunk's motion, which the fused heading already takes from the compass, "
+            "so --params '{\"compass_sinusoid\": true}' is not advised here (it would turn the track: trial hikes "
+            "205.6 -> 1277.96 m); keep the fused heading and check the position with fixes (`track --fixes`) "
+            f"({decision_ref('L770', 'L785')})")
 
 
 def fuse_by_segment(relative: np.ndarray, absolute: np.ndarray, start_s: np.ndarray, end_s: np.ndarray,

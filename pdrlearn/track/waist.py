@@ -404,7 +404,9 @@ def stairs_length_message(climbs: np.ndarray, length_m: np.ndarray, tread_m: np.
     ``stairs_length`` is off: their lengths ``length_m`` are read as level steps (the trial's two storeys up and down:
     +64 % distance on waist-pendulum, +90 % on waist-pll, calibrated; +3.9 % with the option). ``tread_m``: each
     step's bound (decision W433: half the tread on a step-to-step climb; None: :data:`STAIR_TREAD_M` everywhere),
-    and the line names the step-to-step steps. None otherwise."""
+    and the line names the step-to-step steps. None otherwise. Decision W596: the barometer cannot tell a trail's
+    slope from stairs (three candidates measured, none adopted), so the line says to leave the option off on a walk
+    up trail slopes (trial s51t1: a hike's -0.57 % read -31.10 % with it)."""
     c = np.asarray(climbs, dtype=bool)
     n = int(c.sum())
     if n < STAIRS_WARN_MIN_STEPS:
@@ -426,7 +428,10 @@ def stairs_length_message(climbs: np.ndarray, length_m: np.ndarray, tread_m: np.
             f"{STAIR_TREAD_M:.2f} m tread " + ("(half of it step to step) " if halves else "") +
             "(decision W91): \"options\": {\"stairs_length\": \"climbs\"} in the PARAMS.json (--params), or "
             f"stairs_length=\"climbs\", bounds these steps ({capped:.1f} m here; decision W156), true also the "
-            "steps of shorter barometric changes (decision W155)")
+            "steps of shorter barometric changes (decision W155); but if the walk climbed trail slopes, not "
+            "stairs, these climbs are slopes walked at full step length, which the barometer cannot tell from "
+            "stairs, and the option would cut them to the tread (trial hikes: -0.6 % -> -31 %): leave it off there "
+            "(decision W596)")
 
 
 def _fill_nan_headings(h: np.ndarray, fallback: float) -> np.ndarray:
