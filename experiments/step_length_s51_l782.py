@@ -14,6 +14,7 @@ logging.disable(logging.WARNING)
 import numpy as np  # noqa: E402
 
 import pdrlearn.track.bilateral as bil  # noqa: E402
+from step_length_s50_l760 import fmt, pair_rows  # noqa: E402
 
 
 def pair_numbers(folder: Path) -> dict:
@@ -26,19 +27,10 @@ def pair_numbers(folder: Path) -> dict:
             "line": any("have no step length" in x or "no step length:" in x for x in res["warnings"])}
 
 
-def _f(v):
-    return "-" if v is None else f"{v:.2f}"
-
-
 def main(paths: list[str]) -> None:
-    rows = []
-    for p in paths:
-        folder = Path(p)
-        r = pair_numbers(folder)
-        r["name"] = "/".join(folder.parts[-2:])
-        rows.append(r)
-        print(f"{r['name']:12s} true {_f(r['true'])} SI {_f(r['si'])} steps with a length {r['n']} passes "
-              f"{r['passes']} line {r['line']}", flush=True)
+    rows = pair_rows(paths, pair_numbers, lambda r: (
+        f"{r['name']:12s} true {fmt(r['true'])} SI {fmt(r['si'])} steps with a length {r['n']} passes "
+        f"{r['passes']} line {r['line']}"))
     for kinds in (("stop",), ("mix",), ("stop", "mix"), ("turn",)):
         sel = [r for r in rows if r["name"].split("/")[-1] in kinds]
         if not sel:
