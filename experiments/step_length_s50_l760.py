@@ -45,15 +45,27 @@ def _f(v):
     return "-" if v is None else f"{v:.2f}"
 
 
-def main(paths: list[str]) -> None:
+def fmt(v) -> str:
+    """A number to 2 decimals, "-" for None (shared with step_length_s51_l782.py)."""
+    return _f(v)
+
+
+def pair_rows(paths: list[str], numbers, line) -> list[dict]:
+    """Each pair folder's ``numbers(folder)`` with its ``name`` (PUSER/WALK), printed as ``line(row)`` as it comes."""
     rows = []
     for p in paths:
         folder = Path(p)
-        r = pair_numbers(folder)
+        r = numbers(folder)
         r["name"] = "/".join(folder.parts[-2:])
         rows.append(r)
-        print(f"{r['name']:16s} true {_f(r['true'])} L310 {_f(r['old'])} L760 {_f(r['new'])} passes {r['passes']} "
-              f"bound {_f(r['bound'])} flagged {r['flag']}", flush=True)
+        print(line(r), flush=True)
+    return rows
+
+
+def main(paths: list[str]) -> None:
+    rows = pair_rows(paths, pair_numbers, lambda r: (
+        f"{r['name']:16s} true {_f(r['true'])} L310 {_f(r['old'])} L760 {_f(r['new'])} passes {r['passes']} "
+        f"bound {_f(r['bound'])} flagged {r['flag']}"))
     err = {m: np.array([abs(r[m] - r["true"]) if None not in (r[m], r["true"]) else np.nan for r in rows])
            for m in ("old", "new")}
     for walk in ("2mwt", "10m", "ret"):

@@ -50,6 +50,7 @@ from pdrlearn.track.gait_flight import flight_after, flight_warning
 from pdrlearn.track.step_anchors import (
     anchor_rows,
     drift_bound_pct,
+    lost_rows,
     pass_bound_pct,
     pass_corrected,
     pass_starts,
@@ -628,6 +629,22 @@ def unanchored_warning(walk: dict, steps: pd.DataFrame, reach: float = 0.0) -> s
     return UNANCHORED_NOTE
 
 
+def lost_steps_warning(at: np.ndarray, lost: np.ndarray) -> str | None:
+    """Decision L783: one line when L760's passes left steps with a measured length without one (``lost``, rows of
+    the step table, :func:`pdrlearn.track.step_anchors.lost_rows`; ``at`` the steps' landing times, s): how many,
+    when, and why; None when none were."""
+    lost = np.asarray(lost, int)
+    if not len(lost):
+        return None
+    runs = np.split(lost, np.flatnonzero(np.diff(lost) > 1) + 1)
+    spans = ", ".join(f"{at[r[0]]:.1f}-{at[r[-1]]:.1f} s" for r in runs)
+    return (f"bilateral gait: {len(lost)} of the walk's {len(at)} steps have no step length (at {spans}): the two foot "
+            "tracks' relative drift is known only on a pass with the feet side by side at both of its ends - a "
+            "standing start, a stop or a turn on the spot that ends with the feet together, and a closing step "
+            f"before the next turn or stop or at the end ({decision_ref('L783', topic='localization')}); the "
+            "step-length measures are of the other steps only")
+
+
 def drift_warning(walk: dict, *, max_pct: float = 2.0) -> str | None:
     """Decision L761: one line when the walk's step-length symmetry index is given and the tracks' drift bound
     (``step_length_si_drift_pct``, :func:`pdrlearn.track.step_anchors.drift_bound_pct`) exceeds ``max_pct`` points
@@ -790,7 +807,8 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
         cols = [both[c].to_numpy(float) for c in ("x_m", "y_m", "dir_rad")]
         side = both["side"].to_numpy()
         short = short_strides(side, both["length_m"].to_numpy(float), share=CLOSING_STRIDE_SHARE)
-        starts = pass_starts(ck, side, both["ic_s"].to_numpy(float), *cols, short, k, raw, anchors)
+        starts = pass_starts(ck, side, both["ic_s"].to_numpy(float), *cols, short, k, raw, anchors,
+                             bout=both["bout"].to_numpy())  # decision L782: a pass after a stop
         steps["step_length_m"] = pass_corrected(steps["side"].to_numpy(), raw, steps["ic_s"].to_numpy(float),
                                                 anchors, starts, opened=opening_step(both),
                                                 start=float(both["ic_s"].iloc[0]))
@@ -808,6 +826,8 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
     elif scale is not None:  # decision L310: the closing step brought the feet side by side: the anchor, no length
         steps.loc[steps.index[-1], "step_length_m"] = np.nan
     steps = known_step_lengths(steps, step_lengths)  # decision L540: the labels' own step lengths
+    lost = (lost_rows(raw, steps["step_length_m"].to_numpy(float), anchors) if passes is not None
+            else np.zeros(0, int))  # decision L783: steps L760 left without a length
     toe_off = bool(np.isfinite(both["tc_s"]).any())
     basis, *masks = headline_masks(both, steps, cycles)  # decision L538
     bouts = []
@@ -839,6 +859,7 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
     for line in (clock_offset_warning(walk), flight_warning(walk, cycles[masks[2]]),  # L729: the headline's
                  stance_warning(walk) if "event_s" in left_steps else None,
                  unanchored_warning(walk, steps, bend) if np.isfinite(both["x_m"]).any() else None,
+                 lost_steps_warning(steps["ic_s"].to_numpy(float), lost),  # decision L783
                  drift_warning(walk)):  # decision L761
         if line is not None:  # L285 judges a track's toe-off, not a label table's
             log.warning(line)

@@ -6,7 +6,9 @@ brings the feet side by side again - a closing step before a turn or a stop - th
 closing step is the left track's offset against the right one along the walk (truth: 0). L310 read the walk's last
 closing step as a relative scale; a walk of several passes (a corridor's 180 deg turns) moves that offset at each
 turn, which no scale describes (trial s50t2: 0.2 m jumps, a 14 % asymmetry read 40 %). Pure functions on the
-merged contacts' arrays (:func:`pdrlearn.track.bilateral.merged_contacts`)."""
+merged contacts' arrays (:func:`pdrlearn.track.bilateral.merged_contacts`). Decision L782: a pass after a stop
+starts where the feet stood side by side (:func:`pass_starts`); L783: :func:`lost_rows`, the steps left without a
+length."""
 from __future__ import annotations
 
 import numpy as np
@@ -48,19 +50,26 @@ def short_strides(side: np.ndarray, stride: np.ndarray, *, share: float = 0.75) 
 
 def pass_starts(kinds: np.ndarray, both_side: np.ndarray, ic: np.ndarray, x: np.ndarray, y: np.ndarray,
                 d: np.ndarray, short: np.ndarray, k: np.ndarray, length: np.ndarray,
-                anchors: np.ndarray) -> list[tuple[int, float, float] | None]:
+                anchors: np.ndarray, *, bout: np.ndarray | None = None) -> list[tuple[int, float, float] | None]:
     """Decision L760: for each pass after the first (the steps after anchor p - 1), where the feet stood side by
     side before it: a turn on the spot (the simulator's ``turn:180``) ends with the feet together, so the last
     contact j of L538's ``turn`` kind before the pass's first step with a length and the other foot's contact
     before it (j - 1) are the pair, when the other foot's next stride (j + 1) opens from standing (``short``,
     :func:`short_strides`). Returns per pass ``(row of the pass's first step with a length, offset m of the left
     track against the right along the opening stride's direction, the pair's time ic[j])`` or None (no such pair:
-    that pass has no step length)."""
+    that pass has no step length). Decision L782: with ``bout`` (the merged contacts' bout numbers), a pass with no
+    turn contact before it whose first step lies in a later bout than the anchor (the walker stopped with the feet
+    side by side and went on) takes the anchor's landing contact as j, and the time of the new bout's first contact
+    ic[j + 1] (a foot track does not drift while it stands, as the first pass starts at the walk's first contact)."""
     n = len(kinds)
     out: list[tuple[int, float, float] | None] = []
     for a in anchors[:-1]:
         rows = np.flatnonzero(np.isfinite(length[a + 1:])) + a + 1
         turns = [] if not len(rows) else np.flatnonzero(kinds[k[a] + 1:k[rows[0]] + 1] == "turn") + k[a] + 1
+        stop = bool(bout is not None and len(rows) and not len(turns) and k[a] + 1 < n
+                and bout[k[rows[0]]] != bout[k[a]])  # decision L782: a stop, not a turn, before the pass
+        if stop:
+            turns = [k[a]]
         if not len(turns) or not 1 <= turns[-1] < n - 1:
             out.append(None)
             continue
@@ -75,7 +84,7 @@ def pass_starts(kinds: np.ndarray, both_side: np.ndarray, ic: np.ndarray, x: np.
             continue
         u /= np.linalg.norm(u)
         gap = (x[j - 1] - x[j]) * u[0] + (y[j - 1] - y[j]) * u[1]  # foot at j - 1 minus the foot at j
-        out.append((int(rows[0]), float(gap if both_side[j - 1] == "left" else -gap), float(ic[j])))
+        out.append((int(rows[0]), float(gap if both_side[j - 1] == "left" else -gap), float(ic[j + 1 if stop else j])))
     return out
 
 
@@ -134,3 +143,12 @@ def drift_bound_pct(first_offset_m: float | None, mean_step_m: float | None) -> 
     if first_offset_m is None or mean_step_m is None or not np.isfinite(first_offset_m) or not mean_step_m > 0:
         return None
     return float(100.0 * abs(first_offset_m) / mean_step_m)
+
+
+def lost_rows(raw: np.ndarray, corrected: np.ndarray, anchors: np.ndarray) -> np.ndarray:
+    """Decision L783: the rows of a step table that had a measured length (``raw``) but got none from
+    :func:`pass_corrected` (``corrected``): a pass without a known start, steps after the last anchor or in a turn
+    before a pass; the anchors themselves (the feet side by side, no step) are not among them."""
+    lost = np.isfinite(np.asarray(raw, float)) & ~np.isfinite(np.asarray(corrected, float))
+    lost[np.asarray(anchors, int)] = False
+    return np.flatnonzero(lost)

@@ -1851,9 +1851,11 @@ def _calibration_gait(steps: pd.DataFrame, p: WaistParams, pipeline: str, gait_c
     calibrated, a params file without ``gait``, or fewer than ten steps), the one calibration line under the options
     (:func:`~pdrlearn.waist.plausibility.calibration_line`: W140's, else W211's; None: neither fires) and W227's
     verdict whether the calibration's cadence range covers this walk
-    (:func:`~pdrlearn.waist.plausibility.calibration_covers`; None: not judged)."""
+    (:func:`~pdrlearn.waist.plausibility.calibration_covers`; None: not judged). Decision W594: with ``pelvic``
+    (W579: the contacts are no step count) the ratio and W227's verdict read the pelvic gyro's cadence and count too,
+    as W211's line does."""
     ref = (p.gait or {}).get("median_cadence_spm") if p.source == "calibrated" else None
-    cadence, n = median_cadence(steps["frequency_hz"].to_numpy(float))
+    cadence, n = median_cadence(steps["frequency_hz"].to_numpy(float)) if pelvic is None else pelvic  # W594
     if not ref or cadence is None or n < PLAUSIBILITY_MIN_PAIRS:
         return None, None, None
     line = calibration_line(p.gait, cadence, n, p.pipeline or pipeline, gait_check=gait_check,

@@ -323,7 +323,8 @@ def ten_metre_walk(steps: pd.DataFrame, zones: tuple[float, float, float] | None
     ``calibrated`` (a lower-back track with ``calibrate``'s parameters) times the lower back when the walkway has an
     acceleration zone (:func:`lower_back_note`). Decision L679: ``ramps`` (:func:`ramp_numbers`) a bout whose
     walkway holds a ramp's row is not timed; ``ten_m_walk_declared`` says whether ``zones`` declared the walkway.
-    Decision L779: without ``zones`` a bout holding a stair flight is not timed (``any_recording``: the rule before)."""
+    Decision L779: without ``zones`` a recording with a stair flight in any of its walking bouts has none of its walk
+    tests timed (:func:`free_recording_note`; ``any_recording``: the rule before)."""
     accel, timed, decel = zones or (ZONE_M, TIMED_M, ZONE_M)
     short = declared_short_share(steps, zones, calibrated)  # decisions C193, C205: a declared walkway only
     more = LOWER_BACK_SHORT_NOTE if zones and calibrated and _is_lower_back(steps) else ""  # decision C205
@@ -395,8 +396,9 @@ def t25fw(steps: pd.DataFrame, walkway: bool = False, calibrated: bool = False, 
     lower-back walk is not timed (L313's rules), ``t25fw_note`` says why. Decision L552: unless ``walkway`` (a
     walkway declared, ``track --ten-m-walk``) a bout over :data:`WALKWAY_BOUT_MAX_M` is not timed. Decision L649: a
     calibrated lower back is not timed either (from standing it reads fast), its note says so. Decision L679:
-    ``ramps`` (:func:`ramp_numbers`): a walk on a ramp is not timed. Decision L779: unless ``walkway``, a bout
-    holding a stair flight is not timed (``any_recording``: the rule before)."""
+    ``ramps`` (:func:`ramp_numbers`): a walk on a ramp is not timed. Decision L779: unless ``walkway``, a recording
+    with a stair flight in any of its walking bouts has none of its walk tests timed (:func:`free_recording_note`;
+    ``any_recording``: the rule before)."""
     return timed_walk(steps, 0.0, T25FW_M, T25FW_KEYS,
                       lower_back_note(0.0, T25FW_M, calibrated, what="the timed 25-foot walk"),
                       lambda longest, need: (f"no walking bout of {need:g} m (25 ft, from standing; the longest "
