@@ -648,6 +648,9 @@ SESSIONS: tuple[Column, ...] = (
                                            "without 4 step intervals"),
     ("turn_steps_missed", "count", "integer", "the steps the stepless_turns imply (each turn's 5-95 % duration over "
                                               "the walk's median step time, W283), not in n_steps (W331)"),
+    ("n_steps_with_turns", "count", "integer", "n_steps + turn_steps_missed: the detected steps and the turning steps "
+                                               "on the spot W331 estimates (W603); null where turn_steps_missed is "
+                                               "(a foot track) or the step count is withheld (W476)"),
     ("turn_sign_agreement", "fraction", "number", "reference turns whose tracked turn has the same sign (L42)"),
     ("walking_speed_mps", "m/s", "number", "distance / walking time without the pauses (L110)"),
     ("walking_time_no_pauses_s", "s", "number", "walking time without the pauses inside it (L110)"),
@@ -1016,6 +1019,9 @@ PERIODS: tuple[Column, ...] = (
                                           "reads 360, L690; L691); 0 without a turn"),
     ("median_stance_pct", "%", "number", "--toe-off only: the period's median stance share of the stride, the "
                                          "summary's rule (L73; L725); empty without toe-off columns"),
+    ("n_steps_with_turns", "count", "integer", "n_steps + the steps of W331's stepless turns whose midpoint lies in "
+                                               "the period (W603; sums to the summary's); empty on a foot track or "
+                                               "where the step count is withheld (W476)"),
     ("distance_corridor_m", "m", "number", "--corridor on the lower back only: distance_m x the summary's "
                                            "walk_test_scale, the step lengths put on the corridor's scale (W563); "
                                            "the walked path, cone arcs included, so a little over the corridor's "
