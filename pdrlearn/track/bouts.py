@@ -216,9 +216,9 @@ def step_terms(ic: np.ndarray, filled: np.ndarray, *, inner: bool) -> tuple[floa
     contact): the step intervals between consecutive contacts, less those a walker's turn fills (``filled``, one per
     interval; decision C180) and, with ``inner`` (decision W602), less the bout's first and last interval - the lower
     back reads a bout's first contact late and its closing one early (the edge steps read 0.39-0.46 s where the inner
-    ones read 0.51-0.57 s), so its cadence is taken from the second contact to the last-but-one, and the intervals either
-    side of a turn-filled one (the edges of the walking stretches the turn joins) are left out too. ``(0.0, 0)`` when no
-    interval is left (a bout of fewer than 4 contacts under ``inner``)."""
+    ones read 0.51-0.57 s), so its cadence is taken from the second contact to the last-but-one, and the intervals
+    either side of a turn-filled one (the edges of the walking stretches the turn joins) are left out too.
+    ``(0.0, 0)`` when no interval is left (a bout of fewer than 4 contacts under ``inner``)."""
     step = np.diff(np.asarray(ic, dtype=float))
     gap = np.asarray(filled, dtype=bool)
     keep = np.isfinite(step) & ~gap
