@@ -10,6 +10,9 @@ Real part (`--external`): each mobgap lower-back recording tracked once (waist-p
 bouts (default rule) with edge_steps "all" and "inner"; each detected bout overlapping an INDIP WB (bouts.csv level
 wb) by >= 50 % of the WB is compared with the WB's cadence_spm.
 
+W604's short-bout routes: `--route SEED` prints one (40 bouts of 2-8 steps, half followed by a turn on the spot, stands
+of 4-15 s) for `pdrlearn simulate --route`.
+
 Run: PYTHONPATH=. .venv/bin/python experiments/bout_cadence_s51_w602.py --pairs SIM TRK_BEFORE TRK_AFTER [...]
      [--external datasets/external]   (printed output: experiments/results/bout_cadence_s51_w602.txt)
 """
@@ -106,12 +109,30 @@ def external(root: Path) -> None:
               f"{g.err_pct.median():+.2f} %, median |error| {g.err_pct.abs().median():.2f} %")
 
 
+def short_route(seed: int) -> str:
+    """W604: 40 bouts of 2-8 steps of 0.7 m, half followed by a turn on the spot, stands of 4-15 s."""
+    import random
+
+    r = random.Random(seed)
+    items = ["stand:10"]
+    for _ in range(40):
+        items.append(f"straight:{round(0.7 * r.randint(2, 8), 1)}")
+        if r.random() < 0.5:
+            items.append(f"turn:{r.choice([90, -90, 180])}")
+        items.append(f"stand:{r.randint(4, 15)}")
+    return ", ".join(items)
+
+
 def main() -> None:
     logging.getLogger("pdrlearn").setLevel(logging.ERROR)
     ap = argparse.ArgumentParser()
     ap.add_argument("--pairs", nargs="*", default=[])
     ap.add_argument("--external", type=Path)
+    ap.add_argument("--route", type=int, help="print W604's short-bout route of this seed and stop")
     a = ap.parse_args()
+    if a.route is not None:
+        print(short_route(a.route))
+        return
     if a.pairs:
         simulated(a.pairs)
     if a.external:
