@@ -11,15 +11,7 @@ from pdrlearn.cli.common import count_phrase
 from pdrlearn.report.daily_living import daily_living_lines
 from pdrlearn.track.bouts import detected_bouts, step_terms
 from pdrlearn.waist.turn_steps import stepless_steps, stepless_summary, steps_with_turns
-
-
-def _lower_back(contacts, length=0.6):
-    c = np.asarray(contacts, float)
-    closing = np.r_[np.diff(c) > 2.0, True]
-    nxt = np.r_[c[1:], c[-1]]
-    return pd.DataFrame({"start_s": c, "end_s": np.where(closing, c, nxt), "event_s": c, "unit": "waist",
-                         "length_m": np.where(closing, 0.0, length), "has_next": ~closing, "heading_rad": 0.0})
-
+from tests.test_clinical_s45_c180 import lower_back_steps  # C180's hand-made lower-back step table
 
 #: two bouts as the lower back reads them: 0.5 s steps, the first contact 0.1 s late and the closing one 0.2 s early
 #: (a 6-contact bout, true cadence 120), and a 3-contact bout
@@ -28,7 +20,7 @@ SHORT = [10.1, 10.5, 10.8]
 
 
 def test_a_lower_back_bout_cadence_leaves_its_edge_steps_out_w602():
-    st = _lower_back([*BOUT, *SHORT])
+    st = lower_back_steps([*BOUT, *SHORT], length=0.6)
     before, after = detected_bouts(st, edge_steps="all"), detected_bouts(st)
     # L164 over all steps: 5 intervals in 2.2 s = 136.4 spm; W602: 3 inner intervals in 1.5 s = 120
     assert before["cadence_spm"].iloc[0] == pytest.approx(60 * 5 / 2.2)
