@@ -648,6 +648,9 @@ SESSIONS: tuple[Column, ...] = (
                                            "without 4 step intervals"),
     ("turn_steps_missed", "count", "integer", "the steps the stepless_turns imply (each turn's 5-95 % duration over "
                                               "the walk's median step time, W283), not in n_steps (W331)"),
+    ("n_steps_with_turns", "count", "integer", "n_steps + turn_steps_missed: the detected steps and the turning steps "
+                                               "on the spot W331 estimates (W603); null where turn_steps_missed is "
+                                               "(a foot track) or the step count is withheld (W476)"),
     ("turn_sign_agreement", "fraction", "number", "reference turns whose tracked turn has the same sign (L42)"),
     ("walking_speed_mps", "m/s", "number", "distance / walking time without the pauses (L110)"),
     ("walking_time_no_pauses_s", "s", "number", "walking time without the pauses inside it (L110)"),
@@ -688,7 +691,8 @@ SUBJECTS: tuple[Column, ...] = (
     ("gait_speed_mps", "m/s", "number", "distance_m / walking_time_s, the sessions pooled: sessions.csv's and "
                                         "summary.json's definition, equal to them for one session (W447)"),
     ("cadence_spm", "steps/min", "number", "60 x the bouts' steps between first and last contact / their contact "
-                                           "spans (bouts.csv's cadence, pooled; L164)"),
+                                           "spans (bouts.csv's cadence terms, pooled; L164; lower back: inner steps, "
+                                           "W602)"),
     ("visit_as_written", _ID, "text", "meta.json visit(s) as written, ; -separated (C82)"),
     ("floors_up", "count", "integer", "sessions.csv's floors_up summed over the tracked sessions (a day in parts "
                                       "adds up); empty when one of them has none (C108)"),
@@ -797,12 +801,17 @@ BOUTS: tuple[Column, ...] = (
     ("speed_mps", "m/s", "number", "distance_m / duration_s (speed_m_s before E98)"),
     ("stride_length_m", "m", "number", "mean stride length: foot distance_m / n_strides; lower back 2 x "
                                        "distance_m / (n_steps - 1), 2 x the mean step (L166)"),
-    ("contact_span_s", "s", "number", "first initial contact to the last (L164); with --corridor less the gaps its "
-                                      "stepless cone turns fill (C182: their steps were not detected, W331)"),
-    ("n_step_intervals", "count", "integer", "steps between those contacts: contacts - 1 (foot: 2 per stride; L164); "
-                                             "with --corridor less the cone turns' gaps (C182)"),
+    ("contact_span_s", "s", "number", "first initial contact to the last (L164); on the lower back from the second "
+                                      "contact to the last-but-one (W602: its edge contacts are read inward; under "
+                                      "4 contacts 0); with --corridor less the gaps its stepless cone turns fill "
+                                      "(C182: their steps were not detected, W331) and, on the lower back, the "
+                                      "steps beside them"),
+    ("n_step_intervals", "count", "integer", "steps between those contacts: contacts - 1 (foot: 2 per stride; L164; "
+                                             "lower back: contacts - 3, W602); with --corridor less the cone turns' "
+                                             "gaps (C182)"),
     ("cadence_spm", "steps/min", "number", "60 x n_step_intervals / contact_span_s (L164); empty on a lower-back "
-                                           "track whose contacts are no step count (step_count_withheld, W480)"),
+                                           "track whose contacts are no step count (step_count_withheld, W480) and "
+                                           "on a lower-back bout of under 4 contacts (W602)"),
     ("longest_contact_gap_s", "s", "number", "longest time between two consecutive contacts in the bout; may "
                                              "exceed --bout-break-s under --bout-rule pdrlearn (L163; with "
                                              "--corridor a stepless cone turn's gap, which ends no bout: C182), "
@@ -1010,6 +1019,9 @@ PERIODS: tuple[Column, ...] = (
                                           "reads 360, L690; L691); 0 without a turn"),
     ("median_stance_pct", "%", "number", "--toe-off only: the period's median stance share of the stride, the "
                                          "summary's rule (L73; L725); empty without toe-off columns"),
+    ("n_steps_with_turns", "count", "integer", "n_steps + the steps of W331's stepless turns whose midpoint lies in "
+                                               "the period (W603; sums to the summary's); empty on a foot track or "
+                                               "where the step count is withheld (W476)"),
     ("distance_corridor_m", "m", "number", "--corridor on the lower back only: distance_m x the summary's "
                                            "walk_test_scale, the step lengths put on the corridor's scale (W563); "
                                            "the walked path, cone arcs included, so a little over the corridor's "

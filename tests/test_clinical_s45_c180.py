@@ -23,7 +23,7 @@ def _yaw(a, b, deg=180.0, **extra):
     return {"start_s": a, "end_s": b, "peak_s": 0.5 * (a + b), "angle_deg": deg, "peak_dps": 60.0, **extra}
 
 
-def _lower_back(contacts, length=0.3):
+def lower_back_steps(contacts, length=0.3):
     """A lower-back step table: one row per contact, the contact before a gap of over 2 s (and the last) closing."""
     c = np.asarray(contacts, float)
     closing = np.r_[np.diff(c) > 2.0, True]
@@ -55,9 +55,9 @@ def test_the_kernel_fills_a_gap_with_a_turn_and_no_rest_nor_sit():
 
 
 def test_a_stepless_turn_keeps_one_bout_whose_cadence_leaves_the_turn_out():
-    st = _lower_back(CONTACTS)
+    st = lower_back_steps(CONTACTS)
     gaps = TurnGaps.of({"yaw_turns": [TURN]})
-    plain, merged = detected_bouts(st), detected_bouts(st, turn_gaps=gaps)
+    plain, merged = detected_bouts(st, edge_steps="all"), detected_bouts(st, turn_gaps=gaps, edge_steps="all")
     assert len(plain) == 2 and len(merged) == 1
     b = merged.iloc[0]
     assert (b["start_s"], b["end_s"], b["duration_s"]) == (0.0, 47.0, 47.0)  # the turn's time is walking time
@@ -65,6 +65,8 @@ def test_a_stepless_turn_keeps_one_bout_whose_cadence_leaves_the_turn_out():
     assert b["n_step_intervals"] == 40 and b["contact_span_s"] == pytest.approx(40.0)  # the 7 s gap left out
     assert b["cadence_spm"] == pytest.approx(60.0)  # today's two bouts' cadence, not 41 steps / 47 s
     assert plain["cadence_spm"].tolist() == pytest.approx([60.0, 60.0])
+    inner = detected_bouts(st, turn_gaps=gaps).iloc[0]  # W602: the edge steps, and those beside the turn, are out
+    assert (inner["n_step_intervals"], inner["contact_span_s"]) == (36, pytest.approx(36.0))
     assert turn_filled(st, turn_gaps=gaps).sum() == 1 and not turn_filled(st).any()
     c0, c1 = clinical_summary(st), clinical_summary(st, turn_gaps=gaps)
     assert (c0["n_walking_bouts"], c0["n_pauses"]) == (2, 1) and (c1["n_walking_bouts"], c1["n_pauses"]) == (1, 0)
@@ -73,7 +75,7 @@ def test_a_stepless_turn_keeps_one_bout_whose_cadence_leaves_the_turn_out():
 
 
 def test_a_rest_beside_the_turn_still_ends_the_bout():
-    st = _lower_back([*np.arange(0.0, 21.0), *np.arange(37.0, 58.0)])  # 16 s gap: the turn and a 10 s stand
+    st = lower_back_steps([*np.arange(0.0, 21.0), *np.arange(37.0, 58.0)])  # 16 s gap: the turn and a 10 s stand
     assert len(detected_bouts(st, turn_gaps=TurnGaps.of({"yaw_turns": [TURN]}))) == 2
 
 

@@ -23,8 +23,10 @@ def test_turn_totals_split_by_side_and_sum_signed():
 
 
 def test_the_columns_come_last_w448s_way():
-    assert PERIOD_COLUMNS[-4:-1] == ("n_turns_left", "n_turns_right", "net_rotation_deg")  # L725's stance % last
-    assert PERIOD_COLUMNS.index("n_sit_to_stand") == len(PERIOD_COLUMNS) - 5
+    # L725's stance %, then W603's n_steps_with_turns last
+    assert PERIOD_COLUMNS[-5:-2] == ("n_turns_left", "n_turns_right", "net_rotation_deg")
+    assert PERIOD_COLUMNS[-2:] == ("median_stance_pct", "n_steps_with_turns")
+    assert PERIOD_COLUMNS.index("n_sit_to_stand") == len(PERIOD_COLUMNS) - 6
 
 
 @pytest.fixture(scope="module")

@@ -54,7 +54,7 @@ def test_periods_and_segments_give_the_stance_too_l725():
     from pdrlearn.track.periods import PERIOD_COLUMNS, interval_gait
     from pdrlearn.track.segments import segment_columns
 
-    assert PERIOD_COLUMNS[-1] == segment_columns()[-1] == "median_stance_pct"
+    assert PERIOD_COLUMNS[-2] == segment_columns()[-2] == "median_stance_pct"  # W603: n_steps_with_turns last
     st = _strides([1.0] * 6, [1.0] * 6, stance=[58.0, 60.0, 62.0, 64.0, 66.0, 68.0])
     assert interval_gait(st, np.arange(6) >= 2)["median_stance_pct"] == pytest.approx(65.0)
     assert interval_gait(st, np.zeros(6, bool))["median_stance_pct"] is None

@@ -528,7 +528,9 @@ def count_phrase(summary: dict) -> str:
     if summary.get("n_steps_counts") == "strides of the tracked foot":
         both = summary.get("n_steps_both_feet")
         return f"{n} strides of the tracked foot" + (f" (~{both} steps)" if both is not None else "")
-    return f"{n} steps"
+    turned = summary.get("n_steps_with_turns")  # decision W603: W331's turning steps on the spot beside them
+    return f"{n} steps" + (f" (~{turned} with the turning steps on the spot, W603)" if turned is not None
+                           and turned != n else "")
 
 
 def walk_line(summary: dict) -> str | None:

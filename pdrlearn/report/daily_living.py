@@ -12,8 +12,9 @@ import pandas as pd
 from pdrlearn.report.build import STEPS_COLUMN, step_count_columns
 from pdrlearn.waist.plausibility import withheld_steps_text
 
-#: decision W448: a recording this long (s) or longer gets the block (a supervised test lasts minutes)
-DAILY_MIN_S = 3600.0
+#: decision W448: a recording this long (s) or longer gets the block (a supervised test lasts minutes); decision
+#: C254: from 30 min (five 6-minute walks), not 1 h - a 59-min shift got none
+DAILY_MIN_S = 1800.0
 #: decision W448: a walking bout this long (s) or longer is counted apart (Mobilise-D style long bouts)
 LONG_BOUT_S = 30.0
 #: decision W448: the steps per period are listed when periods.csv has at most this many rows (a day of hours)
@@ -78,6 +79,7 @@ def daily_living_lines(summary: dict, folder: Path) -> list[str]:
             text += f"{approx}{int(steps)} steps ({3600 * steps / float(span):.0f} per hour"
             text += f", {86400 * steps / float(span):.0f} per day" if float(span) >= 86400 else ""
             text += "; 2 per stride of the tracked foot)" if approx else ")"
+            text += with_turns_text(summary.get("n_steps_with_turns"), steps, span)  # decision W603
         walking = summary.get("walking_time_s")
         if walking is not None:
             text += f"; walking {float(walking) / 60:.1f} min"
@@ -107,5 +109,19 @@ def daily_living_lines(summary: dict, folder: Path) -> list[str]:
         src = "periods.csv, ~2 per stride of the tracked foot" if _estimated(summary) else "periods.csv"
         counts = ("not given: the lower back's contacts are no step count (W476, C246)" if withheld  # C246
                   else ", ".join("-" if pd.isna(v) else f"{v:.0f}" for v in n))
+        turned = pd.to_numeric(periods["n_steps_with_turns"], errors="coerce") if (
+            "n_steps_with_turns" in periods and not withheld) else None
+        if turned is not None and turned.notna().any() and not turned.fillna(n).equals(n.astype(float)):
+            counts += "; with the turning steps on the spot (W603): " + ", ".join(
+                "-" if pd.isna(v) else f"{v:.0f}" for v in turned)
         lines.append(f"- Steps{per} ({src}): {counts}")
     return lines
+
+
+def with_turns_text(with_turns, steps, span) -> str:
+    """Decision W603: the daily-living line's clause giving ``n_steps_with_turns`` (the detected ``steps`` and W331's
+    turning steps on the spot) per hour of ``span`` s; "" when not given or no step was added."""
+    if with_turns is None or pd.isna(with_turns) or pd.isna(steps) or int(with_turns) == int(steps):
+        return ""
+    return (f"; ~{int(with_turns)} steps ({3600 * float(with_turns) / float(span):.0f} per hour) with the turning "
+            "steps on the spot the lower back does not detect (W331's estimate, W603)")

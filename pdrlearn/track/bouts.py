@@ -206,6 +206,28 @@ def cadence_spm(n_step_intervals: float, span_s: float) -> float:
     return 60.0 * n_step_intervals / span_s if span_s > 0 else np.nan
 
 
+#: decision W602: bouts.csv's cadence terms over a lower-back bout's inner steps ("inner", the default) or all
+#: its steps (L164's first to last contact, "all"); a foot track's bouts always take all
+EDGE_STEPS = ("inner", "all")
+
+
+def step_terms(ic: np.ndarray, filled: np.ndarray, *, inner: bool) -> tuple[float, int]:
+    """L164's cadence terms ``(span_s, n_step_intervals)`` of one bout's contact times ``ic`` (s, in order; NaN: no
+    contact): the step intervals between consecutive contacts, less those a walker's turn fills (``filled``, one per
+    interval; decision C180) and, with ``inner`` (decision W602), less the bout's first and last interval - the lower
+    back reads a bout's first contact late and its closing one early (the edge steps read 0.39-0.46 s where the inner
+    ones read 0.51-0.57 s), so its cadence is taken from the second contact to the last-but-one, and the intervals
+    either side of a turn-filled one (the edges of the walking stretches the turn joins) are left out too.
+    ``(0.0, 0)`` when no interval is left (a bout of fewer than 4 contacts under ``inner``)."""
+    step = np.diff(np.asarray(ic, dtype=float))
+    gap = np.asarray(filled, dtype=bool)
+    keep = np.isfinite(step) & ~gap
+    if inner and len(keep):
+        keep[0] = keep[-1] = False
+        keep &= ~np.r_[gap[1:], False] & ~np.r_[False, gap[:-1]]  # the stretches either side of a turn end there
+    return float(step[keep].sum()), int(keep.sum())
+
+
 def contact_times(st: pd.DataFrame) -> np.ndarray:
     """Each row's initial contact (``event_s``, else - absent or NaN - ``start_s``); the bouts' cut and the freeze
     checks (W395, W397) read a step's time alike."""
@@ -293,7 +315,7 @@ def track_bouts(result, session, rule: BoutRule | None = None) -> pd.DataFrame:
 
 def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session: str | None = None,
                    subject: str | None = None, visit: str | None = None, leg_m: float | None = None,
-                   withhold_cadence: bool = False, turn_gaps=None) -> pd.DataFrame:
+                   withhold_cadence: bool = False, turn_gaps=None, edge_steps: str = "inner") -> pd.DataFrame:
     """One row per detected walking bout of a track's step table (:data:`BOUT_COLUMNS`, module docstring).
 
     ``session`` / ``subject`` / ``visit``: the session's name and meta.json's subject (decision L165) and visit
@@ -334,11 +356,16 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
     Decision C180: ``turn_gaps`` (a lower-back track's :class:`~pdrlearn.track.turn_gaps.TurnGaps`,
     ``rule.turn_gaps(result.info)``): under the ``rhythm`` gap an interval a walker's turn fills ends no bout; the bout
     keeps its time (duration, speed, ``longest_contact_gap_s``) but ``contact_span_s`` / ``n_step_intervals`` and so
-    ``cadence_spm`` leave it out (its turning steps were not detected, W331)."""
+    ``cadence_spm`` leave it out (its turning steps were not detected, W331). Decision W602: ``edge_steps``
+    ``"inner"`` (the default) takes a lower-back bout's ``contact_span_s`` / ``n_step_intervals`` (and so its cadence)
+    from its second contact to its last-but-one (:func:`step_terms`; fewer than 4 contacts: 0 / 0, no cadence);
+    ``"all"`` from its first to its last (L164 as before). A foot track's bouts take all."""
     from pdrlearn.track.evaluate import travel_masks
     from pdrlearn.track.gait import bout_range_flags
 
     rule = rule or BoutRule()
+    if edge_steps not in EDGE_STEPS:
+        raise ValueError(f"edge_steps={edge_steps!r}: give one of {', '.join(EDGE_STEPS)} (decision W602)")
     out = BoutsTable(columns=list(BOUT_COLUMNS))
     if not len(steps) or "start_s" not in steps:
         return out
@@ -346,7 +373,7 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
     foot = is_foot_table(st)
     if rule.trim_edges:  # decision W495: each bout's edge contacts left out
         return edge_trimmed(st, rule, session=session, subject=subject, visit=visit, leg_m=leg_m,
-                            withhold_cadence=withhold_cadence, turn_gaps=turn_gaps)
+                            withhold_cadence=withhold_cadence, turn_gaps=turn_gaps)  # W602: edges already cut
     gap_len = data_gap_lengths(st)  # decision L269: a bout's own (shorter) data gaps, summed as data_gap_s
     gap = gap_len > 0
     length = st["length_m"].abs().to_numpy(float) if "length_m" in st else np.zeros(len(st))
@@ -375,10 +402,10 @@ def detected_bouts(steps: pd.DataFrame, rule: BoutRule | None = None, *, session
         c = ic[a:b][np.isfinite(ic[a:b])]
         span = float(c[-1] - c[0]) if len(c) >= 2 else 0.0
         intervals = (2 if foot else 1) * max(len(c) - 1, 0)
-        if filled[a:b - 1].any():  # decision C180: the turn-filled intervals are out of the cadence's terms
-            step = np.diff(ic[a:b])
-            keep = ~filled[a:b - 1] & np.isfinite(step)
-            span, intervals = float(step[keep].sum()), (2 if foot else 1) * int(keep.sum())
+        inner = edge_steps == "inner" and not foot  # decision W602: a lower-back bout's edge steps are out
+        if inner or filled[a:b - 1].any():  # decision C180: the turn-filled intervals are out of the cadence's terms
+            span, intervals = step_terms(ic[a:b], filled[a:b - 1], inner=inner)
+            intervals *= 2 if foot else 1
         n_len = n_strides if foot else n_steps - 1  # L166: a foot row is a stride; a lower-back row a step
         rows.append({"session": session, "subject": subject, "visit": visit, "bout": len(rows) + 1, "start_s": t0,
                      "end_s": t1,
@@ -442,7 +469,7 @@ def edge_trimmed(st: pd.DataFrame, rule: BoutRule, **keys) -> pd.DataFrame:
         sub.loc[last, "length_m"] = 0.0
         if "has_next" in sub:
             sub.loc[last, "has_next"] = False
-        parts.append(detected_bouts(sub, inner, **keys))
+        parts.append(detected_bouts(sub, inner, **keys, edge_steps="all"))  # W602: its edges are already cut
     parts = [p for p in parts if len(p)]
     if not parts:
         return BoutsTable(columns=list(BOUT_COLUMNS))

@@ -760,6 +760,11 @@ def _basic(result: TrackResult, out: dict) -> None:
     # decision W331: a lower-back track's turns on the spot that hold no step, and the steps they imply
     out.update(stepless_summary(result.steps["event_s"] if "event_s" in result.steps else [],
                                 result.info.get("yaw_turns")))
+    from pdrlearn.waist.turn_steps import steps_with_turns
+
+    # decision W603: the steps with W331's turning steps on the spot, beside n_steps (which stays the detected ones)
+    out["n_steps_with_turns"] = steps_with_turns(out.get("n_steps"), out.get("turn_steps_missed"),
+                                                 bool(result.info.get("step_count_unusable")))
     from pdrlearn.track.grade import add_grade, grade_summary, info_stair_grade, track_ramps
     from pdrlearn.track.walk_test import ramp_numbers, t25fw, ten_metre_walk
 

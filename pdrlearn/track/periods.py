@@ -62,7 +62,8 @@ PERIOD_COLUMNS = ("session", "subject", "visit", "period", "start_s", "end_s", "
                   "n_backward_strides", "n_side_strides", "data_gap", "position_sigma_end_m",
                   *POSITION_KEYS, "n_sit_to_stand",  # decision W448: after the columns before it, kept in place
                   "n_turns_left", "n_turns_right", "net_rotation_deg",  # decision L691: W448's way, last
-                  "median_stance_pct")  # decision L725: splits.csv's, here too (trial T1: segments.csv had none)
+                  "median_stance_pct",  # decision L725: splits.csv's, here too (trial T1: segments.csv had none)
+                  "n_steps_with_turns")  # decision W603: W448's way, last
 #: decision L277: ``--per`` units (s); decision B305: no "m" (every distance the tool prints is in metres)
 PER_UNITS = {"s": 1.0, "min": 60.0, "h": 3600.0}
 PER_USAGE = "give --per a period such as 1h, 30min, 15min or 3600 (seconds)"
@@ -504,6 +505,12 @@ def interval_rows(result, session, starts, ends, closed, *, unit: str | None, bo
     travel = travel_masks(steps)  # decision L484: the backward / side strides of the summary's counts
     starts_s, stops_s = (steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float)) if len(steps) \
         else (np.zeros(0), np.zeros(0))
+    from pdrlearn.waist.turn_steps import stepless_steps, steps_with_turns
+
+    # decision W603: W331's stepless turns' steps, each in the interval holding its midpoint (None: not judged)
+    stepless = stepless_steps(steps["event_s"] if "event_s" in steps else [], result.info.get("yaw_turns"))
+    turn_mid, turn_n = (np.array([t for t, _ in stepless], float), np.array([n for _, n in stepless], int)) \
+        if stepless else (np.zeros(0), np.zeros(0, int))
     rows = []
     for a, b, last in zip(starts, ends, closed, strict=True):
         a, b, last = float(a), float(b), bool(last)
@@ -530,6 +537,8 @@ def interval_rows(result, session, starts, ends, closed, *, unit: str | None, bo
         j = int(np.searchsorted(tt, b + 1e-9, side="right")) - 1
         row["position_sigma_end_m"] = float(sigma[j]) if sigma is not None and j >= 0 else None
         row.update(period_displacement(traj, starts_s, stops_s, a, b, last=last))  # L514, L528
+        row["n_steps_with_turns"] = steps_with_turns(row["n_steps"], None if stepless is None else int(
+            turn_n[inside(turn_mid)].sum()), withheld)  # decision W603
         if withheld:  # decisions W476, C246, C247: the contacts are no step count, nor their cadence or strides
             row.update(dict.fromkeys(PERIOD_WITHHELD_KEYS))
         rows.append(row)

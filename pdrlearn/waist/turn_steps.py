@@ -97,14 +97,33 @@ def stepless_summary(event_s, yaw_turns) -> dict:
     """Decision W331: summary.json's ``stepless_turns`` (turns of :func:`stepless_turns`) and
     ``turn_steps_missed`` (their D / T steps, rounded, summed); both None without yaw-rate turns (a foot track) or
     without a walk step time to judge them by."""
-    if yaw_turns is None:
+    turns = stepless_steps(event_s, yaw_turns)
+    if turns is None:
         return {"stepless_turns": None, "turn_steps_missed": None}
+    return {"stepless_turns": len(turns), "turn_steps_missed": int(sum(n for _, n in turns))}
+
+
+def stepless_steps(event_s, yaw_turns) -> list[tuple[float, int]] | None:
+    """Decisions W331 / W603: ``(midpoint_s, steps)`` of each stepless turn (:func:`stepless_turns`; its 5-95 %
+    span's middle and its D / T steps, rounded) - the steps ``turn_steps_missed`` sums and periods.csv's
+    ``n_steps_with_turns`` places; None where W331 cannot judge (no yaw-rate turns: a foot track; too few step
+    intervals)."""
+    if yaw_turns is None:
+        return None
     ev = np.asarray(event_s, dtype=float)
     gaps = np.diff(np.sort(ev[np.isfinite(ev)]))
     if int(((gaps > 0) & (gaps < STEP_GAP_MAX_S)).sum()) < MIN_INTERVALS:
-        return {"stepless_turns": None, "turn_steps_missed": None}
-    turns = stepless_turns(event_s, yaw_turns)
-    return {"stepless_turns": len(turns), "turn_steps_missed": int(sum(round(t["expected"]) for t in turns))}
+        return None
+    return [(0.5 * (t["start_s"] + t["end_s"]), int(round(t["expected"]))) for t in stepless_turns(event_s, yaw_turns)]
+
+
+def steps_with_turns(n_steps: int | None, turn_steps: int | None, withheld: bool = False) -> int | None:
+    """Decision W603: ``n_steps_with_turns``, the detected steps and W331's turning steps on the spot
+    (``turn_steps``) together; None where W331 could not judge (``turn_steps`` None) or W476 withheld the step
+    count (``withheld``)."""
+    if n_steps is None or turn_steps is None or withheld:
+        return None
+    return int(n_steps) + int(turn_steps)
 
 
 def stepless_turns_warning(event_s, yaw_turns) -> str | None:
