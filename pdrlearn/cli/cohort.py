@@ -760,8 +760,9 @@ REPEATED_HELP = ("Each subject's sessions are repeated recordings of one conditi
                  "group, mean / sd / n subjects), and no changes.csv (decisions C257, C258).")
 
 
-METRICS_HELP = ("The sessions.csv measures changes.csv compares, comma-separated (default: the clinical tests' "
-                "walk_test_distance_m, fatigue_index, tug_time_s, ten_m_walk_speed_mps, t25fw_time_s where a "
+METRICS_HELP = ("The sessions.csv measures changes.csv compares and groups.csv summarises (C256), comma-separated "
+                "(default: the clinical tests' walk_test_distance_m, fatigue_index, tug_time_s, "
+                "ten_m_walk_speed_mps, t25fw_time_s where a "
                 "session has them, decision C177, then distance_error_pct, "
                 "gait_speed_mps, median_cadence_spm, median_stride_length_m), e.g. gait_speed_mps,median_cadence_spm,"
                 "median_stride_time_s,stride_time_cv_pct,median_stride_length_m; each gets its baseline, change and "
@@ -1045,7 +1046,8 @@ def track_all(
     the one-line error of a failed session, and the fields of its summary.json (input_dir, distance_m,
     distance_error_pct, gait_speed_mps, median_cadence_spm, ...; input_dir relative to ROOT). OUT/groups.csv
     has per group n_tracked, n_failed and the n, mean, sd, median and 95 % t-interval of the mean of the
-    distance error, gait speed, cadence and stride length. With sessions whose meta.json names a subject and
+    distance error, gait speed, cadence and stride length (and of each --metrics measure, C256). With sessions
+    whose meta.json names a subject and
     two or more visits, OUT/changes.csv has per subject each visit's change from the baseline visit (a subject
     without both visits listed with why) and OUT/changes_summary.csv the mean change with its paired 95 %
     t-interval (decisions C22, C23): spellings of one visit (BL, Baseline, baseline) are one visit, --visit-map FILE
@@ -1059,7 +1061,9 @@ def track_all(
     cannot be tracked is reported as failed (exit 1). Progress: one line per session on stderr; each warning is said
     once per batch, with the sessions it concerns. --resume reuses the sessions an interrupted (killed, Ctrl-C) or
     earlier run tracked from the same input files, options, model and code, tracks the rest, and writes the tables an
-    uninterrupted run writes (decision C41).
+    uninterrupted run writes (decision C41). --repeated: each subject's sessions are repeated recordings (shifts,
+    days): OUT/subjects_pooled.csv and OUT/groups_pooled.csv pool them per subject, per session and per hour, and no
+    changes.csv is written (decisions C257, C258).
 
     Exit code 0 when every session was tracked, 1 when some failed (listed in sessions.csv), 2 on bad input,
     when every session failed, or when the disk fills or OUT cannot be written (the batch stops at once, B151):
