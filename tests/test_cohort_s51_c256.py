@@ -121,3 +121,11 @@ def test_track_all_repeated_writes_the_pooled_tables_and_no_changes_c256_c257(st
     gp = pd.read_csv(out / "groups_pooled.csv")
     assert gp["n_subjects"].tolist() == [2] and gp.loc[0, "distance_m_per_h_n"] == 2
     assert json.loads((out / "run.json").read_text())["options"]["repeated"] is True
+
+
+def test_repeated_without_subjects_is_one_line_before_tracking_c257(tmp_path, capsys):
+    (tmp_path / "study" / "s1").mkdir(parents=True)
+    (tmp_path / "study" / "s1" / "meta.json").write_text(json.dumps({"visit": "shift1"}))
+    assert main(["track-all", str(tmp_path / "study"), "--out", str(tmp_path / "o"), "--repeated"]) == 2
+    assert "--repeated pools each subject's sessions" in capsys.readouterr().err
+    assert not (tmp_path / "o").exists()
