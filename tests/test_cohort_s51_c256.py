@@ -129,3 +129,14 @@ def test_repeated_without_subjects_is_one_line_before_tracking_c257(tmp_path, ca
     assert main(["track-all", str(tmp_path / "study"), "--out", str(tmp_path / "o"), "--repeated"]) == 2
     assert "--repeated pools each subject's sessions" in capsys.readouterr().err
     assert not (tmp_path / "o").exists()
+
+
+def test_repeated_batch_still_warns_an_id_in_two_groups_c257(caplog):
+    from pdrlearn.cli.cohort import _pooled
+
+    s = _shifts()
+    s.loc[s["path"] == "wA/A/s3", "group"] = "wB"  # A's third shift filed under the other ward
+    with caplog.at_level(logging.WARNING, logger="pdrlearn"):
+        pooled, groups = _pooled(s, None)
+    assert any("decision C32" in r.getMessage() for r in caplog.records)
+    assert pooled.set_index("subject").loc["A", "group"] == "wA; wB" and "wA; wB" in groups["group"].tolist()

@@ -1313,8 +1313,13 @@ GROUP_BY_CHOICES = (*LABEL_GROUP_BY, "visit")
 
 def _pooled(sessions: pd.DataFrame, visit_map: dict[str, str] | None):
     """Decisions C257, C258: subjects_pooled.csv and groups_pooled.csv of a ``--repeated`` batch."""
-    from pdrlearn.repeated import pooled_groups, pooled_subjects
+    import logging
 
+    from pdrlearn.repeated import pooled_groups, pooled_subjects
+    from pdrlearn.visits import label_warnings
+
+    for line in label_warnings(sessions, visit_map):  # C28, C32, C33: a subject's id pools its sessions here too
+        logging.getLogger("pdrlearn.cli").warning("%s", line)
     pooled = pooled_subjects(sessions, visit_map)
     return pooled, pooled_groups(pooled)
 
