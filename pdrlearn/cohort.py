@@ -610,6 +610,12 @@ def t_interval(mean, sd, n):
 GROUP_METRICS = ("distance_error_pct", "gait_speed_mps", "median_cadence_spm", "median_stride_length_m")
 
 
+def group_measures(metrics=None) -> tuple[str, ...]:
+    """Decision C256: groups.csv's measures - C12's four (:data:`GROUP_METRICS`, first: the columns written before
+    keep their places), then each ``track-all --metrics`` measure not among them, in the order given."""
+    return tuple(dict.fromkeys((*GROUP_METRICS, *(metrics or ()))))
+
+
 #: decision C202: groups.csv's group of a session naming no visit under ``track-all --group-by visit``
 NO_VISIT_GROUP = "(no visit)"
 
@@ -646,17 +652,29 @@ def group_table(sessions, metrics: Sequence[str] = GROUP_METRICS, by: str | None
     out["n_tracked"] = [int((ok_label == g).sum()) for g in groups]
     # decision B389: a skipped split part at rest is neither tracked nor failed
     out["n_failed"] = [int(((label == g) & (sessions["status"] == "failed")).sum()) for g in groups]
-    for m in metrics:
-        if m not in ok or not pd.to_numeric(ok[m], errors="coerce").notna().any():
+    return describe_groups(out, ok, ok_label, metrics)
+
+
+def describe_groups(out, rows, labels, metrics):
+    """``out`` (one row per group, its ``group`` column in the order wanted) with, for each of ``metrics`` that has a
+    value in some of ``rows`` (a DataFrame; ``labels`` its rows' groups), ``<metric>_n`` (rows with a value),
+    ``_mean``, ``_sd`` (sample standard deviation, n - 1), ``_median`` and the 95 % t-interval of the mean
+    ``_ci95_low`` / ``_ci95_high`` (decision C20) - groups.csv's statistics (C12), shared by groups_pooled.csv's
+    over subjects (decision C258). Each metric once, in the order given."""
+    import pandas as pd
+
+    groups, cols = out["group"].tolist(), {}
+    for m in dict.fromkeys(metrics):
+        if m not in rows or not pd.to_numeric(rows[m], errors="coerce").notna().any():
             continue
-        stats = (pd.to_numeric(ok[m], errors="coerce").groupby(ok_label)
+        stats = (pd.to_numeric(rows[m], errors="coerce").groupby(labels)
                  .agg(["count", "mean", "std", "median"]).reindex(groups))
         n = stats["count"].fillna(0).astype(int).to_numpy()
-        out[f"{m}_n"] = n
+        cols[f"{m}_n"] = n
         for s, name in (("mean", "mean"), ("std", "sd"), ("median", "median")):
-            out[f"{m}_{name}"] = stats[s].to_numpy()
-        out[f"{m}_ci95_low"], out[f"{m}_ci95_high"] = t_interval(stats["mean"], stats["std"], n)  # decision C20
-    return out
+            cols[f"{m}_{name}"] = stats[s].to_numpy()
+        cols[f"{m}_ci95_low"], cols[f"{m}_ci95_high"] = t_interval(stats["mean"], stats["std"], n)  # decision C20
+    return pd.concat([out, pd.DataFrame(cols, index=out.index)], axis=1) if cols else out
 
 
 def groups_text(groups):

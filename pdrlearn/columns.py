@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from pdrlearn.classify.cv_report import CLASS_COLUMN, CV_COLUMNS, LOUO_COLUMNS
 from pdrlearn.cohort import GROUP_METRICS
+from pdrlearn.repeated import POOLED_MEASURES, pooled_kinds
 from pdrlearn.table_names import TABLE_NAMES
 from pdrlearn.track.clinical import TURN_COUNT_MIN_DEG
 from pdrlearn.track.clock import CLOCK_COLUMNS
@@ -662,7 +663,8 @@ GROUPS: tuple[Column, ...] = (
     ("group", _ID, "text", "the group (sessions.csv group)"),
     ("n_tracked", "count", "integer", "sessions of the group tracked"),
     ("n_failed", "count", "integer", "sessions of the group that failed (a skipped split part is not, B389)"),
-    ("{measure}_n", "count", "integer", "sessions with a value of the measure (the sessions.csv column)"),
+    ("{measure}_n", "count", "integer", "sessions with a value of the measure (the sessions.csv column; the four "
+                                        "measures, then each track-all --metrics measure, C256)"),
     ("{measure}_mean", "as the measure", "number", "mean over those sessions (every session of every subject "
                                                    "and visit counted alike: descriptive only)"),
     ("{measure}_sd", "as the measure", "number", "sample standard deviation"),
@@ -721,6 +723,37 @@ SUBJECTS: tuple[Column, ...] = (
                                                  "own session's mean, no stride across two sessions; empty under 9 "
                                                  "degrees of freedom (strides less sessions; C146)"),
     ("pooled_stride_time_cv_reason", _ID, "text", "why pooled_stride_time_cv_pct is empty (C146)"),
+)
+
+#: decision C257: ``track-all --repeated``'s subjects_pooled.csv, one row per subject over all its sessions
+SUBJECTS_POOLED: tuple[Column, ...] = (
+    ("subject", _ID, "text", "meta.json subject (C257)"),
+    ("group", _ID, "text", "the group(s) of the subject's sessions, ; -separated"),
+    ("n_tracked", "count", "integer", "the subject's sessions tracked and pooled (a copy of another counted once)"),
+    ("n_failed", "count", "integer", "its sessions that failed (pooled nowhere)"),
+    ("visits", _ID, "text", "its visits (shifts, days) as changes.csv would name them, ; -separated"),
+    ("paths", _ID, "text", "the session folders"),
+    ("hours_recorded", "h", "number", "the tracked sessions' time_span_s less time_no_data_s, summed: worn time "
+                                      "with data (L275)"),
+    *(col for m in POOLED_MEASURES for col in (
+        (pooled_kinds(m)[0], "as the measure", "number", f"sessions.csv's {m}, the mean over the tracked sessions "
+                                                         "with a value"),
+        (pooled_kinds(m)[1], "measure / h", "number", f"{m} of those sessions summed / their hours_recorded (a "
+                                                      "ratio of totals)"))),
+    ("reason", _ID, "text", "a measure only some sessions have, a copy counted once, a failed session (C257)"),
+)
+
+#: decision C258: ``track-all --repeated``'s groups_pooled.csv, one row per group, the subject as the unit
+GROUPS_POOLED: tuple[Column, ...] = (
+    ("group", _ID, "text", "subjects_pooled.csv's group"),
+    ("n_subjects", "count", "integer", "the group's subjects"),
+    *(col for c in ("hours_recorded", *(k for m in POOLED_MEASURES for k in pooled_kinds(m))) for col in (
+        (f"{c}_n", "count", "integer", f"subjects with a value of subjects_pooled.csv's {c}"),
+        (f"{c}_mean", "as the column", "number", "mean over those subjects (each subject once, C258)"),
+        (f"{c}_sd", "as the column", "number", "sample standard deviation over the subjects"),
+        (f"{c}_median", "as the column", "number", "median over the subjects"),
+        (f"{c}_ci95_low", "as the column", "number", "95 % t-interval of the mean, lower end (C20)"),
+        (f"{c}_ci95_high", "as the column", "number", "95 % t-interval of the mean, upper end"))),
 )
 
 #: decisions C22, C81-C83: track-all's changes.csv, one row per subject and later visit (and test, C174);
@@ -2011,7 +2044,8 @@ COHORT_SUMMARY: tuple[Column, ...] = (
 
 #: every table of the dictionary, in the order shown (named by :data:`pdrlearn.table_names.TABLE_NAMES`, E152)
 TABLES: dict[str, tuple[Column, ...]] = dict(zip(TABLE_NAMES, (
-    SESSIONS, GROUPS, SUBJECTS, CHANGES, CHANGES_SUMMARY, BOUTS, STRIDES, TURNS, PERIODS, SEGMENTS, LAPS,
+    SESSIONS, GROUPS, SUBJECTS, CHANGES, CHANGES_SUMMARY, SUBJECTS_POOLED, GROUPS_POOLED, BOUTS, STRIDES, TURNS,
+    PERIODS, SEGMENTS, LAPS,
     SPLITS,
     DIRECTION_CHANGES, TRANSFERS, TUG_PHASE_TABLE, TUG_TRIAL_TABLE, TEN_M_WALK_TRIAL_TABLE,
     FREEZES, FLIGHTS, RAMPS, RAMP_RUNS, STAIRS, CURBS, RIDES, WB_SCORES, WAIST_STEPS,
@@ -2094,6 +2128,9 @@ def undocumented(table: str, columns) -> list[str]:
     known = expanded(table)
     if table == "strides.csv":  # decision E163: the sessions' own steps.csv columns follow the lead ones
         known = {**expanded("steps.csv"), **expanded("steps.csv (foot)"), **known}
+    if table == "groups.csv":  # decision C256: any sessions.csv number column can be a --metrics measure
+        known.update({f"{name}_{k}": ("", "", "", "") for name, _, kind, _ in SESSIONS if kind in ("number", "integer")
+                      for k in ("n", "mean", "sd", "median", "ci95_low", "ci95_high")})
     if table in ("changes.csv", "gait_changes.csv"):  # decision C81: any sessions.csv number column can be a
         # --metrics measure; cohort C242: gait_changes.csv's, the gait walk's
         from pdrlearn.track.gait_changes import GAIT_CHANGE_MEASURES

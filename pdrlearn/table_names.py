@@ -8,6 +8,7 @@ from __future__ import annotations
 TABLE_NAMES: tuple[str, ...] = ("sessions.csv", "groups.csv", "subjects.csv",
                                 "changes.csv",  # C81
                                 "changes_summary.csv",  # C85
+                                "subjects_pooled.csv", "groups_pooled.csv",  # C257, C258
                                 "bouts.csv",
                                 "strides.csv",  # E163
                                 "turns.csv", "periods.csv",

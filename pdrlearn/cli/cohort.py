@@ -48,6 +48,7 @@ from pdrlearn.cohort import (
     cohort_users,
     find_sessions,
     folder_bytes,
+    group_measures,
     group_table,
     groups_text,
     run_cohort,
@@ -753,8 +754,15 @@ def _changes(sessions: pd.DataFrame, visit_map: dict[str, str] | None = None, me
     return changes, change_summary(changes, by=by)
 
 
-METRICS_HELP = ("The sessions.csv measures changes.csv compares, comma-separated (default: the clinical tests' "
-                "walk_test_distance_m, fatigue_index, tug_time_s, ten_m_walk_speed_mps, t25fw_time_s where a "
+REPEATED_HELP = ("Each subject's sessions are repeated recordings of one condition (shifts, monitoring days), not "
+                 "visits to compare: writes subjects_pooled.csv (per subject, the mean per session and the rate per "
+                 "hour of steps, distance, bouts, walking / standing / sitting time ...) and groups_pooled.csv (per "
+                 "group, mean / sd / n subjects), and no changes.csv (decisions C257, C258).")
+
+
+METRICS_HELP = ("The sessions.csv measures changes.csv compares and groups.csv summarises (C256), comma-separated "
+                "(default: the clinical tests' walk_test_distance_m, fatigue_index, tug_time_s, "
+                "ten_m_walk_speed_mps, t25fw_time_s where a "
                 "session has them, decision C177, then distance_error_pct, "
                 "gait_speed_mps, median_cadence_spm, median_stride_length_m), e.g. gait_speed_mps,median_cadence_spm,"
                 "median_stride_time_s,stride_time_cv_pct,median_stride_length_m; each gets its baseline, change and "
@@ -1017,6 +1025,7 @@ def track_all(
                                  "C174). visit: groups.csv's rows per visit (a condition, e.g. shoe A / B) across "
                                  "subjects, the visit changes.csv pairs (--visit-map applied), not per folder "
                                  "(decision C202)."),
+    repeated: bool = typer.Option(False, "--repeated", help=REPEATED_HELP),  # decisions C257, C258
     redact_paths: bool = _track.REDACT_PATHS_OPT,  # decision E176
     resume: bool = typer.Option(False, "--resume", help=RESUME_HELP),
     jobs: int = typer.Option(1, "--jobs", "-j", min=1, help="Sessions tracked at once: 1 = one after the other "
@@ -1037,7 +1046,8 @@ def track_all(
     the one-line error of a failed session, and the fields of its summary.json (input_dir, distance_m,
     distance_error_pct, gait_speed_mps, median_cadence_spm, ...; input_dir relative to ROOT). OUT/groups.csv
     has per group n_tracked, n_failed and the n, mean, sd, median and 95 % t-interval of the mean of the
-    distance error, gait speed, cadence and stride length. With sessions whose meta.json names a subject and
+    distance error, gait speed, cadence and stride length (and of each --metrics measure, C256). With sessions
+    whose meta.json names a subject and
     two or more visits, OUT/changes.csv has per subject each visit's change from the baseline visit (a subject
     without both visits listed with why) and OUT/changes_summary.csv the mean change with its paired 95 %
     t-interval (decisions C22, C23): spellings of one visit (BL, Baseline, baseline) are one visit, --visit-map FILE
@@ -1051,7 +1061,9 @@ def track_all(
     cannot be tracked is reported as failed (exit 1). Progress: one line per session on stderr; each warning is said
     once per batch, with the sessions it concerns. --resume reuses the sessions an interrupted (killed, Ctrl-C) or
     earlier run tracked from the same input files, options, model and code, tracks the rest, and writes the tables an
-    uninterrupted run writes (decision C41).
+    uninterrupted run writes (decision C41). --repeated: each subject's sessions are repeated recordings (shifts,
+    days): OUT/subjects_pooled.csv and OUT/groups_pooled.csv pool them per subject, per session and per hour, and no
+    changes.csv is written (decisions C257, C258).
 
     Exit code 0 when every session was tracked, 1 when some failed (listed in sessions.csv), 2 on bad input,
     when every session failed, or when the disk fills or OUT cannot be written (the batch stops at once, B151):
@@ -1114,6 +1126,10 @@ def track_all(
     labels = [session_labels(p) for p in found]  # decision C22: meta.json's subject and visit
     tests = [session_test_labels(p) for p in found]  # decision C170: meta.json's test and trial
     _check_group_by(group_by, tests, root, labels, group_depth)  # decisions C171, C202: before any tracking
+    if repeated and not any(isinstance(sub, str) for sub, _ in labels):  # decision C257: before any tracking
+        raise DataError(f"track-all: --repeated pools each subject's sessions, and no session under {root} names a "
+                        "subject in its meta.json (\"subject\"; pdrlearn import --subject, B364; "
+                        f"{decision_ref('C257', topic='cohort')})")
     label_by = group_by if group_by in LABEL_GROUP_BY else None  # decision C202: visit splits groups.csv only
     per_session = [settings] * len(found)
     if params_dir is not None:  # decision C26: each subject's file, all checked and read before any tracking
@@ -1188,8 +1204,13 @@ def track_all(
                 row["params_file"] = st["params_file"]
         _paired_visits(rows, vmap)  # decision C82: sessions.csv's and bouts.csv's visit is changes.csv's
         sessions = _sessions_table(rows)
-        groups = group_table(sessions, by=group_by)  # decision C202: per visit with --group-by visit
-        changes, summary = _changes(sessions, vmap, measures, label_by)  # decision C174: per test with --group-by
+        # decision C202: per visit with --group-by visit; C256: the --metrics measures too
+        groups = group_table(sessions, group_measures(measures), by=group_by)
+        # decision C174: per test with --group-by; C257: none for repeated recordings (shifts, days)
+        changes, summary = (None, None) if repeated else _changes(sessions, vmap, measures, label_by)
+        if changes is not None:
+            _repeated_hint(changes)  # decision C259
+        pooled, pooled_by_group = _pooled(sessions, vmap) if repeated else (None, None)  # decisions C257, C258
         from pdrlearn.visits import subject_totals
 
         # cohort C25: None when no session names a subject (C40: visits; decision C171: and tests, --group-by)
@@ -1221,6 +1242,9 @@ def track_all(
 
             _write_csv_atomic(combined_table(tmp, rows, "periods.csv", PERIOD_COLUMNS), tmp / "periods.csv",
                               pooled=True)
+        if pooled is not None:  # decisions C257, C258
+            _write_csv_atomic(pooled, tmp / "subjects_pooled.csv")
+            _write_csv_atomic(pooled_by_group, tmp / "groups_pooled.csv")
         if changes is not None:  # decisions C22, C23
             _write_csv_atomic(changes, tmp / "changes.csv")
             _write_csv_atomic(summary, tmp / "changes_summary.csv")
@@ -1243,6 +1267,9 @@ def track_all(
                               **({"n_skipped": len(skipped)} if skipped else {}), "run": run,  # decision B389
                               **({"n_reused": len(reused)} if resume else {}),  # cohort C41
                               **({} if subjects is None else {"subjects": subjects.to_dict(orient="records")}),
+                              **({} if pooled is None else {  # decisions C257, C258
+                                  "subjects_pooled": pooled.to_dict(orient="records"),
+                                  "groups_pooled": pooled_by_group.to_dict(orient="records")}),
                               **({} if changes is None else {"changes": changes.to_dict(orient="records"),
                                                              "changes_summary": summary.to_dict(orient="records")})})
         printed = redact_json(printed, forms) if forms else printed  # decision E176
@@ -1254,9 +1281,14 @@ def track_all(
                    "<session>/, sessions.csv, groups.csv, bouts.csv, strides.csv, ramps.csv, "
                    + ("periods.csv, " if settings.get("per_s") is not None else "")
                    + ("" if subjects is None else "subjects.csv, ")
+                   + ("" if pooled is None else "subjects_pooled.csv, groups_pooled.csv, ")  # decision C257
                    + ("" if changes is None else
                                                                "changes.csv, changes_summary.csv, ") + "run.json")
         print(groups_text(groups).to_markdown(index=False))
+        if repeated:  # decision C257: said, so a missing changes.csv is not taken for a fault
+            typer.echo(f"--repeated: each subject's sessions are repeated recordings, pooled in subjects_pooled.csv "
+                       f"(per session and per hour) and groups_pooled.csv (per group, n subjects); no changes.csv "
+                       f"({decision_ref('C257', 'C258', topic='cohort')})")
         if changes is not None:  # decision C23
             from pdrlearn.visits import changes_text
 
@@ -1277,6 +1309,30 @@ def track_all(
 LABEL_GROUP_BY = ("test",)
 #: decisions C171, C202: ``--group-by``'s choices (``visit``: groups.csv's rows per visit, subjects.csv unchanged)
 GROUP_BY_CHOICES = (*LABEL_GROUP_BY, "visit")
+
+
+def _pooled(sessions: pd.DataFrame, visit_map: dict[str, str] | None):
+    """Decisions C257, C258: subjects_pooled.csv and groups_pooled.csv of a ``--repeated`` batch."""
+    import logging
+
+    from pdrlearn.repeated import pooled_groups, pooled_subjects
+    from pdrlearn.visits import label_warnings
+
+    for line in label_warnings(sessions, visit_map):  # C28, C32, C33: a subject's id pools its sessions here too
+        logging.getLogger("pdrlearn.cli").warning("%s", line)
+    pooled = pooled_subjects(sessions, visit_map)
+    return pooled, pooled_groups(pooled)
+
+
+def _repeated_hint(changes: pd.DataFrame) -> None:
+    """Decision C259: the hint that visits named as shifts are compared as visits (``--repeated`` pools them)."""
+    import logging
+
+    from pdrlearn.repeated import repeated_visits_hint
+
+    hint = repeated_visits_hint([*changes["baseline_visit"], *changes["visit"]])
+    if hint:
+        logging.getLogger("pdrlearn.cli").warning("%s", hint)
 
 
 def _check_group_by(group_by: str | None, tests: list[dict], root: Path, labels: list[tuple] = (),

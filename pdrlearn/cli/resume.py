@@ -20,7 +20,8 @@ RECORD = ".track-all-session.json"
 #: options that do not change a session's own output (how the batch runs or is tabled), or that the key holds by
 #: content instead of by name (the model's manifest, the calibration file's bytes)
 KEY_LEAVES_OUT = ("jobs", "group_depth", "visit_map", "metrics", "resume", "params", "params_dir", "model",
-                  "group_by")  # decisions C171, C174: subjects.csv's and changes.csv's rows only
+                  "group_by",  # decisions C171, C174: subjects.csv's and changes.csv's rows only
+                  "repeated")  # decision C257: the pooled tables only
 
 #: cohort C135: what a changed :func:`session_keys` key means, said on the session's line (as C116's pairs)
 SESSION_KEY_CHANGED = "the options, model, calibration file, session folder or pdrlearn's code changed"

@@ -32,7 +32,7 @@ def read_batch(folder: str | Path) -> tuple[pd.DataFrame, pd.DataFrame]:
     sessions.csv, one without track-all's columns or rows, or a groups.csv that does not fit it is one
     :class:`DataError` line naming the file. A folder without groups.csv gets it recomputed from sessions.csv
     (it is a ``groupby`` of it, C12)."""
-    from pdrlearn.cohort import group_labels, group_table
+    from pdrlearn.cohort import group_labels, group_measures, group_table
 
     folder = Path(folder)
     path = folder / "sessions.csv"
@@ -56,8 +56,8 @@ def read_batch(folder: str | Path) -> tuple[pd.DataFrame, pd.DataFrame]:
     by = _run_option(folder, "group_by")  # decision C202: --group-by visit's groups.csv is per visit
     by = by if by == "visit" else None
     gpath = folder / "groups.csv"
-    if not gpath.is_file():
-        return sessions, group_table(sessions, by=by)
+    if not gpath.is_file():  # decision C256: the run's --metrics too, as track-all wrote it
+        return sessions, group_table(sessions, group_measures(run_metrics(folder)), by=by)
     groups = read_table(gpath, text_columns=("group",))  # as sessions.csv's (LABEL_COLUMNS)
     if "n_tracked" not in groups and "n_sessions" in groups:  # decision C19: the column's name before C19
         groups = groups.rename(columns={"n_sessions": "n_tracked"})
@@ -74,10 +74,11 @@ def read_batch(folder: str | Path) -> tuple[pd.DataFrame, pd.DataFrame]:
 
 def batch_tables(sessions: pd.DataFrame, groups: pd.DataFrame, visit_map: dict[str, str] | None = None,
                  metrics: tuple[str, ...] | None = None,
-                 group_by: str | None = None) -> tuple[str, list[tuple[str, pd.DataFrame]]]:
+                 group_by: str | None = None, repeated: bool = False) -> tuple[str, list[tuple[str, pd.DataFrame]]]:
     """The batch section's summary line and tables: per session, per group (``mean ± sd (n)``, as track-all
     prints it), each subject's (and visit's; with ``group_by`` "test", test's: cohort C171) walking totals (cohort
-    C42), the failed sessions with their errors and warnings, the paired changes (visits by ``visit_map``)."""
+    C42), the failed sessions with their errors and warnings, the paired changes (visits by ``visit_map``); with
+    ``repeated`` (the run's ``--repeated``, decision C257) no paired changes but each subject's sessions pooled."""
     from pdrlearn.cohort import groups_text
 
     n, failed = len(sessions), sessions[sessions["status"] == "failed"]
@@ -96,7 +97,22 @@ def batch_tables(sessions: pd.DataFrame, groups: pd.DataFrame, visit_map: dict[s
     if len(failed):
         cols = ["path", "group", "error"] + [c for c in ("warnings",) if c in failed.columns]
         tables.append(("failed sessions", failed[cols].astype(object).fillna("")))
+    if repeated:  # decision C257: repeated recordings are no visits to pair
+        return text, tables + pooled_table(sessions, visit_map)
     return text, tables + change_tables(sessions, visit_map, metrics, group_by)  # decision C174: per test too
+
+
+def pooled_table(sessions: pd.DataFrame, visit_map: dict[str, str] | None = None) -> list[tuple[str, pd.DataFrame]]:
+    """Decision C257: a ``--repeated`` batch's subjects_pooled.csv (recomputed from sessions.csv, as subjects.csv's
+    table is) with its per-hour rates, the columns with a value."""
+    from pdrlearn.repeated import pooled_subjects
+
+    pooled = pooled_subjects(sessions, visit_map)
+    if pooled is None:
+        return []
+    cols = ["subject", "group", "n_tracked", "hours_recorded",
+            *(c for c in pooled.columns if c.endswith("_per_h") and pooled[c].notna().any())]
+    return [("per subject, its repeated sessions pooled (subjects_pooled.csv: per hour recorded)", pooled[cols])]
 
 
 def batch_warnings(sessions: pd.DataFrame) -> list[str]:
@@ -142,6 +158,11 @@ def run_group_by(folder: Path) -> str | None:
     given = _run_option(folder, "group_by")
     # decision C202: --group-by visit splits groups.csv only; subjects.csv and changes.csv are as without it
     return given if isinstance(given, str) and given != "visit" else None
+
+
+def run_repeated(folder: Path) -> bool:
+    """Decision C257: whether the track-all run used ``--repeated`` (OUT/run.json)."""
+    return _run_option(folder, "repeated") is True
 
 
 def run_metrics(folder: Path) -> tuple[str, ...] | None:

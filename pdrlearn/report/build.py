@@ -298,12 +298,13 @@ def _batch_section(folder: Path, root: Path) -> Section:
         read_batch,
         run_group_by,
         run_metrics,
+        run_repeated,
         run_visit_map,
     )
 
     sessions, groups = read_batch(folder)
     text, tables = batch_tables(sessions, groups, run_visit_map(folder), run_metrics(folder),
-                                run_group_by(folder))  # cohort C171
+                                run_group_by(folder), repeated=run_repeated(folder))  # cohort C171, C257
     from pdrlearn.report.batch import pooled_subject_table
 
     tables += pooled_subject_table(folder)  # decision C146
