@@ -24,8 +24,11 @@ ROUTE = "stand:3, " + ", ".join(["straight:30, turn:180"] * 7) + ", straight:30,
 
 
 def _run(pythonpath: str, *args: str) -> None:
+    """``python -m pdrlearn ARGS`` importing ``pdrlearn`` from ``pythonpath`` (run there: ``-m`` puts the working
+    folder first on the path)."""
     env = dict(os.environ, PYTHONPATH=pythonpath)
-    subprocess.run([sys.executable, "-m", "pdrlearn", *args], check=True, capture_output=True, text=True, env=env)
+    subprocess.run([sys.executable, "-m", "pdrlearn", *args], check=True, capture_output=True, text=True, env=env,
+                   cwd=pythonpath)
 
 
 def options(uid: int) -> list[str]:
@@ -48,6 +51,7 @@ def lb_cv(track: Path) -> float | None:
 
 
 def main(out: Path, base: str, first: int, last: int, after: bool) -> None:
+    out, base = out.resolve(), str(Path(base).resolve())
     out.mkdir(parents=True, exist_ok=True)
     rows = []
     for uid in range(first, last + 1):
@@ -58,7 +62,7 @@ def main(out: Path, base: str, first: int, last: int, after: bool) -> None:
             _run(base, "track", str(ses), "--units", "waist", "--out", str(out / f"b{uid}"), "--force")
             print(uid, "before done", flush=True)
             continue
-        _run(str(Path.cwd()), "track", str(ses), "--units", "waist", "--out", str(out / f"a{uid}"), "--force")
+        _run(str(Path(__file__).resolve().parents[1]), "track", str(ses), "--units", "waist", "--out", str(out / f"a{uid}"), "--force")
         truth = true_cv(ses)
         (b, nb), (a, na) = lb_cv(out / f"b{uid}"), lb_cv(out / f"a{uid}")
         rows.append({"user": uid, "speed": "normal" if uid < 18370 else "slow", "true_cv": truth, "before": b,
