@@ -5,8 +5,9 @@ times (7 cone turns), 100 Hz, 18350-18369 ``--speed normal``, 18370-18389 ``--sp
 alternately, ``--step-time-asymmetry 0.2`` when uid % 4 == 3.
 
 Run: PYTHONPATH=. nice python experiments/lower_back_cv_s51_w598.py OUTDIR BASE FIRST LAST [--after]
-(BASE: a folder holding the branch start's ``pdrlearn``, for the "before" tracks; ``--after``: track again with
-this tree into ``a<uid>`` and print the table of both.)
+(BASE: a folder holding the branch start's ``pdrlearn``, for the "before" tracks;
+``--after``: this tree's ``lower_back_cv`` of each "before" track's steps.csv - W598 changes no step, and on the
+trial's five tracks it gave summary.json's values to 1e-12 - and print the table of both.)
 """
 
 from __future__ import annotations
@@ -19,6 +20,8 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
+
+from pdrlearn.track.clinical import lower_back_cv
 
 ROUTE = "stand:3, " + ", ".join(["straight:30, turn:180"] * 7) + ", straight:30, stand:3"
 
@@ -62,9 +65,12 @@ def main(out: Path, base: str, first: int, last: int, after: bool) -> None:
             _run(base, "track", str(ses), "--units", "waist", "--out", str(out / f"b{uid}"), "--force")
             print(uid, "before done", flush=True)
             continue
-        _run(str(Path(__file__).resolve().parents[1]), "track", str(ses), "--units", "waist", "--out", str(out / f"a{uid}"), "--force")
+        if not (out / f"b{uid}" / "summary.json").exists():  # not tracked (yet)
+            continue
         truth = true_cv(ses)
-        (b, nb), (a, na) = lb_cv(out / f"b{uid}"), lb_cv(out / f"a{uid}")
+        b, nb = lb_cv(out / f"b{uid}")
+        after = lower_back_cv(pd.read_csv(out / f"b{uid}" / "steps.csv"))  # the steps are W598's too
+        a, na = after["jitter_free_cv_pct"], after["n_jitter_free_strides"]
         rows.append({"user": uid, "speed": "normal" if uid < 18370 else "slow", "true_cv": truth, "before": b,
                      "n_before": nb, "after": a, "n_after": na, "ratio_before": b / truth if b else np.nan,
                      "ratio_after": a / truth if a else np.nan})

@@ -124,11 +124,13 @@ LOWER_BACK_CV_REASON = (f"not given on the lower back: {LOWER_BACK_CV_INFLATION}
 JITTER_FREE_MIN_STRIDES = 181
 #: decision W558: a walking bout's contacts count from this many (W557's measurement: bouts of 8 contacts or more)
 JITTER_FREE_MIN_CONTACTS = 8
-#: decision W558 (review R2 F4): what JITTER_FREE_MIN_STRIDES counts: the stride intervals t[k+2] - t[k] of each bout
-#: (a bout of n contacts gives n - 6, :func:`jitter_free_cv`), not one foot's strides
+#: decision W558 (review R2 F4): what JITTER_FREE_MIN_STRIDES counts: the stride intervals t[k+2] - t[k] of each run
+#: (W598: a steady straight run of a bout, :func:`steady_runs`; n contacts give n - 6, :func:`jitter_free_cv`), not
+#: one foot's strides
 JITTER_FREE_WALK = (f"a walk of {JITTER_FREE_MIN_STRIDES} stride intervals or more (about "
-                    f"{JITTER_FREE_MIN_STRIDES + 6} steps in one bout; each bout of {JITTER_FREE_MIN_CONTACTS} steps "
-                    "or more gives its steps less 6)")
+                    f"{JITTER_FREE_MIN_STRIDES + 6} steps in one run; each steady straight run of "
+                    f"{JITTER_FREE_MIN_CONTACTS} steps or more, W598: no turn, no extra or missed contact, gives its "
+                    "steps less 6)")
 #: decision L215: the withheld line names the level criterion (L188's |dz_m| < 0.10 m) when it removed more than
 #: this share of the straight strides (the trial's MS walk: 49 of 74 strides over 0.10 m by attitude drift)
 NOT_LEVEL_SHARE = 0.5
