@@ -493,7 +493,8 @@ SESSIONS: tuple[Column, ...] = (
                                              "the level criterion dropped) or contact_scatter (L113, an option), "
                                              "and a reason; L214; on the lower back also jitter_free_cv_pct, the "
                                              "stride-time CV with the contacts' timing jitter taken out, from 181 "
-                                             "stride intervals t[k+2] - t[k] (about 187 steps in one bout), and "
+                                             "stride intervals t[k+2] - t[k] of steady straight runs (W598: no turn, "
+                                             "no extra or missed contact; about 187 steps in one run), and "
                                              "n_jitter_free_strides, those intervals, W558); empty in sessions.csv"),
     ("stride_time_cv_withheld_cause", _ID, "text", "stride_time_cv_withheld's cause: lower_back, too_few_strides or "
                                                    "contact_scatter; empty when the CV is given (L230)"),

@@ -43,7 +43,8 @@ def test_the_summary_gives_it_from_181_strides_w558():
     summary = {"n_steps": 400, "stride_time_cv_withheld": {"cause": "lower_back", **w}}
     cv = w["jitter_free_cv_pct"]
     assert _cv_phrase(summary, None, 10) == (f", stride-time CV {cv:.1f} % with the lower back's contact jitter "
-                                             "taken out (394 stride intervals; docs/decisions/waist.md W558)")
+                                             "taken out (394 stride intervals of steady straight runs; "
+                                             "docs/decisions/waist.md W558, W598)")
     assert spatiotemporal_line(summary, "lower-back unit", stride_given=False) == (
-        f"- Spatiotemporal: stride-time CV {cv:.1f} % (lower back, its contacts' timing jitter taken out, 394 stride "
-        "intervals; W558) (lower-back unit)")
+        f"- Spatiotemporal: stride-time CV {cv:.1f} % (lower back, steady straight runs, its contacts' timing jitter "
+        "taken out, 394 stride intervals; W558, W598) (lower-back unit)")

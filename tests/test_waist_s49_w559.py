@@ -22,7 +22,8 @@ def test_the_lower_back_says_how_far_off_its_cv_would_be_w559():
     # an uncalibrated lower back (no stride length given, C197) still gets the line, with the numbers
     line = spatiotemporal_line(LOWER_BACK, "lower-back unit", stride_given=False)
     assert line == (f"- Spatiotemporal: stride-time CV not given: on the lower back {LOWER_BACK_CV_INFLATION} (W557); "
-                    "a foot unit gives it, a walk of 181 stride intervals or more (about 187 steps in one bout; each "
-                    "bout of 8 steps or more gives its steps less 6) one with the jitter taken out (W558) "
+                    "a foot unit gives it, a walk of 181 stride intervals or more (about 187 steps in one run; each "
+                    "steady straight run of 8 steps or more, W598: no turn, no extra or missed contact, gives its "
+                    "steps less 6) one with the jitter taken out (W558) "
                     "(lower-back unit)")  # review R2 F4: intervals t[k+2] - t[k], not strides (nor ~150 m)
     assert spatiotemporal_line(LOWER_BACK | {"n_steps": 0}, "lower-back unit", stride_given=False) is None

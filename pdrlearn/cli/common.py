@@ -575,7 +575,8 @@ def _cv_phrase(summary: dict, cv: float | None, needed: int) -> str:
                     f"{decision_ref('C247', topic='cohort')})")
         if w.get("jitter_free_cv_pct") is not None:  # decision W558: a long walk's, the contacts' jitter out
             return (f", stride-time CV {w['jitter_free_cv_pct']:.1f} % with the lower back's contact jitter taken out "
-                    f"({w['n_jitter_free_strides']} stride intervals; {decision_ref('W558')})")
+                    f"({w['n_jitter_free_strides']} stride intervals of steady straight runs; "
+                    f"{decision_ref('W558', 'W598')})")
         return (f", no stride-time CV on the lower back ({LOWER_BACK_CV_INFLATION}; "
                 f"{decision_ref('L104', 'W557')}; a foot unit gives it, {JITTER_FREE_WALK} one with the jitter "
                 f"taken out, {decision_ref('W558')})")

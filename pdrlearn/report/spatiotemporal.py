@@ -34,9 +34,9 @@ def _cv_text(summary: dict) -> str | None:
         from pdrlearn.track.clinical import JITTER_FREE_WALK, LOWER_BACK_CV_INFLATION
 
         jf = _number(withheld.get("jitter_free_cv_pct"))
-        if jf is not None:  # decision W558: a long walk's CV with the contacts' timing jitter taken out
-            return (f"stride-time CV {jf:.1f} % (lower back, its contacts' timing jitter taken out, "
-                    f"{withheld.get('n_jitter_free_strides')} stride intervals; W558)")
+        if jf is not None:  # decisions W558, W598: a long walk's CV, steady straight runs, timing jitter taken out
+            return (f"stride-time CV {jf:.1f} % (lower back, steady straight runs, its contacts' timing jitter "
+                    f"taken out, {withheld.get('n_jitter_free_strides')} stride intervals; W558, W598)")
         return (f"stride-time CV not given: on the lower back {LOWER_BACK_CV_INFLATION} (W557); a foot unit "
                 f"gives it, {JITTER_FREE_WALK} one with the jitter taken out (W558)")
     return f"stride-time CV not given ({str(cause).replace('_', ' ')})" if cause else None

@@ -124,11 +124,13 @@ LOWER_BACK_CV_REASON = (f"not given on the lower back: {LOWER_BACK_CV_INFLATION}
 JITTER_FREE_MIN_STRIDES = 181
 #: decision W558: a walking bout's contacts count from this many (W557's measurement: bouts of 8 contacts or more)
 JITTER_FREE_MIN_CONTACTS = 8
-#: decision W558 (review R2 F4): what JITTER_FREE_MIN_STRIDES counts: the stride intervals t[k+2] - t[k] of each bout
-#: (a bout of n contacts gives n - 6, :func:`jitter_free_cv`), not one foot's strides
+#: decision W558 (review R2 F4): what JITTER_FREE_MIN_STRIDES counts: the stride intervals t[k+2] - t[k] of each run
+#: (W598: a steady straight run of a bout, :func:`steady_runs`; n contacts give n - 6, :func:`jitter_free_cv`), not
+#: one foot's strides
 JITTER_FREE_WALK = (f"a walk of {JITTER_FREE_MIN_STRIDES} stride intervals or more (about "
-                    f"{JITTER_FREE_MIN_STRIDES + 6} steps in one bout; each bout of {JITTER_FREE_MIN_CONTACTS} steps "
-                    "or more gives its steps less 6)")
+                    f"{JITTER_FREE_MIN_STRIDES + 6} steps in one run; each steady straight run of "
+                    f"{JITTER_FREE_MIN_CONTACTS} steps or more, W598: no turn, no extra or missed contact, gives its "
+                    "steps less 6)")
 #: decision L215: the withheld line names the level criterion (L188's |dz_m| < 0.10 m) when it removed more than
 #: this share of the straight strides (the trial's MS walk: 49 of 74 strides over 0.10 m by attitude drift)
 NOT_LEVEL_SHARE = 0.5
@@ -1032,26 +1034,52 @@ def jitter_free_cv(bouts: list[np.ndarray]) -> tuple[float, float, int]:
     """Decision W558: ``(raw CV %, corrected CV %, strides)`` of the lower back's strides t[k+2] - t[k] of each
     bout's contact times ``bouts`` (s; each bout's first and last two strides left out): each contact's timing jitter
     e_k adds 2 Var(e) to Var(S) and makes two strides sharing a contact (S_k, S_k+2) covary by -Var(e), so
-    Var(true S) ~ Var(S) + 2 x their lag-2 autocovariance about the pooled mean (a moment estimate; no document).
-    NaN with fewer than 5 strides."""
+    Var(true S) ~ Var(S) + 2 x their lag-2 autocovariance (a moment estimate; no document), W598: the variance about
+    the pooled mean, the autocovariance about each run's own mean. NaN with fewer than 5 strides."""
     strides = [(t[2:] - t[:-2])[2:-2] for t in bouts]
     s = np.concatenate(strides) if strides else np.zeros(0)
     if len(s) < 5:
         return math.nan, math.nan, int(len(s))
     m, v = float(s.mean()), float(s.var(ddof=1))
-    lag = [(x[2:] - m) * (x[:-2] - m) for x in strides if len(x) > 2]
+    # decision W598: the lag-2 term about each run's own mean (about the pooled mean a pace change between runs
+    # added its between-run variance twice more: trial s51t2 P18002 15.1 % for a true 8.8 %)
+    lag = [(x[2:] - x.mean()) * (x[:-2] - x.mean()) for x in strides if len(x) > 2]
     g2 = float(np.concatenate(lag).mean()) if lag else 0.0
     return 100 * math.sqrt(v) / m, 100 * math.sqrt(max(v + 2 * g2, 0.0)) / m, int(len(s))
 
 
-def lower_back_cv(steps: pd.DataFrame, *, turn_gaps=None) -> dict:
-    """Decision W558: the lower back's stride-time CV with its contacts' jitter taken out (:func:`jitter_free_cv`
-    over the contacts of each walking bout of :data:`JITTER_FREE_MIN_CONTACTS` or more, :func:`bout_rows`):
+def steady_runs(t: np.ndarray, breaks: np.ndarray, *, step_band: float = 0.4,
+                min_contacts: int = JITTER_FREE_MIN_CONTACTS) -> list[np.ndarray]:
+    """Decision W598: the steady runs of one walking bout's contact times ``t`` (s, in order): the bout cut at every
+    step interval outside [1 - ``step_band``, 1 + ``step_band``] x the bout's median step interval (an extra contact
+    splits a step, one part at most half of it; a missed one makes two steps of one interval) and at every interval
+    next to a contact of ``breaks`` (True: a turning row); the runs of ``min_contacts`` contacts or more."""
+    t = np.asarray(t, float)
+    if len(t) < min_contacts:
+        return []
+    d = np.diff(t)
+    med = float(np.median(d))
+    brk = np.asarray(breaks, bool)
+    cut = (d < (1.0 - step_band) * med) | (d > (1.0 + step_band) * med) | brk[1:] | brk[:-1]
+    edges = [0, *(np.flatnonzero(cut) + 1).tolist(), len(t)]
+    return [t[a:b] for a, b in zip(edges[:-1], edges[1:], strict=True) if b - a >= min_contacts]
+
+
+def lower_back_cv(steps: pd.DataFrame, *, turn_gaps=None, step_band: float | None = 0.4) -> dict:
+    """Decision W558: the lower back's stride-time CV with its contacts' jitter taken out (:func:`jitter_free_cv`);
+    decision W598: over the steady straight runs (:func:`steady_runs`, ``step_band``; None: W558's whole bouts) of
+    each walking bout (:func:`bout_rows`) of :data:`JITTER_FREE_MIN_CONTACTS` contacts or more:
     ``{"jitter_free_cv_pct": CV or None under JITTER_FREE_MIN_STRIDES stride intervals, "n_jitter_free_strides": n}``
     (n: the stride intervals, :data:`JITTER_FREE_WALK`)."""
     st = steps.sort_values("start_s", kind="stable").reset_index(drop=True)
     t = st["start_s"].to_numpy(float)
-    bouts = [t[a:b] for a, b in bout_rows(st, turn_gaps=turn_gaps) if b - a >= JITTER_FREE_MIN_CONTACTS]
+    turning = (pd.to_numeric(st["turning"], errors="coerce").fillna(0).to_numpy(float) != 0 if "turning" in st
+               else np.zeros(len(st), bool))  # decision W598: steps.csv's turning rows
+    ranges = [(a, b) for a, b in bout_rows(st, turn_gaps=turn_gaps) if b - a >= JITTER_FREE_MIN_CONTACTS]
+    if step_band is None:  # W558 as adopted: each bout one run
+        bouts = [t[a:b] for a, b in ranges]
+    else:
+        bouts = [r for a, b in ranges for r in steady_runs(t[a:b], turning[a:b], step_band=step_band)]
     _, cv, n = jitter_free_cv(bouts)
     return {"jitter_free_cv_pct": cv if n >= JITTER_FREE_MIN_STRIDES and math.isfinite(cv) else None,
             "n_jitter_free_strides": n}

@@ -161,6 +161,7 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
                                   f"test is incomplete; walk_test_duration_s is the {t_end - t0:.0f} s recorded "
                                   "(decision L644)", "L644"))
         out["walk_test_start_s"] = t0
+        rest_from = rest_window_start(st, t0, start)  # decision C253 (``start`` is reused by the laps below)
     out["walk_test_duration_s"] = t_end - t0  # decision L462: the span the distance is over
     warnings_l462 = duration_note(t_end - t0, windowed=span is not None or duration_s is not None)
     if warnings_l462 is not None:
@@ -247,7 +248,7 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
     out["n_laps"] = int(laps["corridor_laps"].sum())
     out["walk_test_distance_m"] = float(laps["distance_m"].sum())
     if duration_s is not None:  # decision C217: the rests inside the timed test's window (L647's rests)
-        found = window_rests(bouts, turns, t0, t_end)
+        found = window_rests(bouts, turns, rest_from, t_end)
         out.update(walk_test_n_rests=len(found), walk_test_rest_time_s=float(sum(r[1] for r in found)),
                    walk_test_rests=[[a - t0, r] for a, r in found])
     walked_end = t_end
@@ -317,6 +318,17 @@ def rests_text(summary: dict) -> str | None:
     listed = ", ".join(f"{r:.0f} s at {clock_text(a)}" for a, r in found)
     total = summary.get("walk_test_rest_time_s") or 0.0
     return f"Rests during the test: {len(found)} ({listed}; {total:.0f} s in all, C217)"
+
+
+def rest_window_start(st: pd.DataFrame, go: float, start: float | str) -> float:
+    """Decision C253: where C217's rests of a timed test are looked for: from "go" when it was given (``start`` a
+    time, a wait after a real "go" is the walker's), else (``"auto"``, L642 / L739, or ``"first-step"``) from the
+    first step at or after "go" - the time between is L739's dating back of the first contact, no standing."""
+    if not isinstance(start, str):
+        return float(go)
+    later = st["start_s"].to_numpy(float)
+    later = later[later >= go]
+    return float(later.min()) if len(later) else float(go)
 
 
 def fatigue_rest_text(summary: dict) -> str | None:
