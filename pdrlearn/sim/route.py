@@ -9,7 +9,7 @@
 | ``curve:DEG:RADIUS[:GAIT]`` | walk an arc turning DEG degrees (> 0 left) of RADIUS metres |
 | ``up:N[:RISE:RUN][:step-to-step[:FOOT]][:PACE]`` / ``down:...`` | N stairs; ``step-to-step``: S80; FOOT leads: S92; |
 | | PACE slow/normal/fast or ``pace=F`` (F x the level step time; S101) |
-| ``slope:M:PCT[:GAIT][:PACE]`` | M metres (horizontal) on a ramp of PCT % (< 0 downhill; S37); PACE as straight's (S121) |
+| ``slope:M:PCT[:GAIT][:PACE]`` | M m (horizontal) on a ramp of PCT % (< 0 downhill; S37); PACE as straight's (S121) |
 | ``backward:N[:direct]`` | N backward steps (N >= 0.25, 0.5: half a step, S89); ``direct``: no stop (S67) |
 | ``turn:DEG`` | turn DEG degrees on the spot (> 0 left) |
 | ``pivot:DEG[:N[:STEP_M]]`` | turn DEG degrees on the spot inside the walk, N steps of STEP_M m (S41) |
