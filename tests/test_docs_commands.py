@@ -275,7 +275,13 @@ def _validators() -> dict[tuple[str, str], object]:
     from pdrlearn.classify.hyper import parse_params
     from pdrlearn.classify.training import CV_GROUPS, METHODS, check_settings
     from pdrlearn.cli.cohort import GROUP_BY_CHOICES, parse_metrics
-    from pdrlearn.cli.simulate import parse_gyro_bias_model, parse_jerk_size, parse_mount, parse_transfer_time
+    from pdrlearn.cli.simulate import (
+        parse_gyro_bias_model,
+        parse_jerk_size,
+        parse_mount,
+        parse_reclip,
+        parse_transfer_time,
+    )
     from pdrlearn.cli.track import COMPASS_CHOICES
     from pdrlearn.columns import TABLES as COLUMN_TABLES
     from pdrlearn.displace.foot import REFERENCE_POINTS
@@ -382,6 +388,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("simulate", "route"): parse_route,
         ("simulate", "waist_mount"): parse_mount,  # AXIS:DEG[,AXIS:DEG] (decision S34)
         ("simulate", "waist_mount_drift"): parse_mount,  # the end mount, AXIS:DEG[,AXIS:DEG] (decision S117)
+        ("simulate", "waist_reclip"): parse_reclip,  # T:AXIS:DEG[,AXIS:DEG] (decision S123)
         ("simulate", "transfer_time"): parse_transfer_time,  # LO:HI seconds (decision S95)
         ("simulate", "gyro_bias_model"): parse_gyro_bias_model,  # walk or gm:TAU (decision S110)
         ("simulate", "trunk_jerk_size"): parse_jerk_size,  # DEG_LO:DEG_HI:CM_LO:CM_HI (decision S114)

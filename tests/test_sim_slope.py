@@ -15,8 +15,10 @@ def test_slope_parses_with_a_signed_grade_and_a_gait():
     assert parse_route("slope:30:5, slope:20:-7.5:long") == [Slope(30.0, 0.05), Slope(20.0, -0.075, gait="long")]
 
 
-@pytest.mark.parametrize(("spec", "message"), [("slope:30", "takes 2 or 3 value"), ("slope:-3:5", "positive"),
-                                               ("slope:30:5:brisk", "gait 'brisk'")])
+@pytest.mark.parametrize(("spec", "message"), [("slope:30", "takes 2 or 3 or 4 value"), ("slope:-3:5", "positive"),
+                                               # decision S121: a slope takes a gait or a pace, as straight (S88)
+                                               ("slope:30:5:brisk", "'brisk' must be a gait"),
+                                               ("slope:30:5:short:brisk", "pace 'brisk' must be one of")])
 def test_a_bad_slope_item_is_one_line(spec, message):
     with pytest.raises(DataError, match=message):
         parse_route(spec)

@@ -168,7 +168,8 @@ def simulate_cmd(
         help="constant (default): the user's pelvis bounce on every step; pendulum: scaled by the inverted "
         "pendulum's rise for each step's length, so short slow steps bounce less (decision S29); population: "
         "the rise that real lower backs' population K (4.587/4) reads as the step, for checking the uncalibrated "
-        "lower back (decision S74).",
+        "lower back (decision S74). A lower-back (waist) study should use population (a nurse trial's "
+        "uncalibrated lower-back distance: -15 % with the default, -1.5 / -2.8 % with it; decision S124).",
     ),
     rocker: str = typer.Option(
         "hermite", "--rocker", help="The simulated heel rocker (initial contact -> foot flat): hermite (default) "
@@ -218,6 +219,18 @@ def simulate_cmd(
         None, "--waist-mount-drift", metavar="AXIS:DEG", help="A waist unit that turns on the belt during the "
         "session: the mount at the end of the recording, in --waist-mount's syntax (e.g. 'y:20'); the unit turns at "
         "a constant rate from --waist-mount (default none) at the first sample to it at the last (decision S117)."),
+    waist_reclip: str | None = typer.Option(
+        None, "--waist-reclip", metavar="T:AXIS:DEG", help="The waist unit re-clipped at once at T s: the mount "
+        "turns within 0.5 s from --waist-mount (default none) to AXIS:DEG[,AXIS:DEG] (--waist-mount's syntax), e.g. "
+        "'1800:z:90'; meta.json knobs.waist_reclip says when and how; not with --waist-mount-drift (decision S123)."),
+    graded_slopes: bool = typer.Option(
+        False, "--graded-slopes", help="Slopes walked with the grade's own gait: the speed x Tobler's hiking "
+        "function (1 on the level, 0.42 at +25 %, 0.59 at -25 %), split evenly between a shorter step and a "
+        "longer step time (default: level steps on every grade; decision S121)."),
+    fatigue: float = typer.Option(
+        0.0, "--fatigue", metavar="PCT", help="Gradual fatigue: the cadence (so the speed) falls linearly over the "
+        "session's steps to (100 - PCT) % of the user's at the last step, the step lengths unchanged; 0-50 "
+        "(default 0; decision S122)."),
     swing_height: float | None = typer.Option(
         None, "--swing-height", metavar="METRES", help="The heel's highest point in a level step's swing (m, "
         f"{SWING_HEIGHT_RANGE_M[0]:g}-{SWING_HEIGHT_RANGE_M[1]:g}; default the user's own, from the toe-off pitch): "
@@ -457,6 +470,13 @@ def simulate_cmd(
     user = with_length_bounds(user, length_bounds)  # decision S98
     user = with_swing_and_sway(user, swing_height, pelvis_sway, pelvis)  # decisions S115, S116
     mount_end = None if waist_mount_drift is None else parse_mount(waist_mount_drift, "--waist-mount-drift")  # S117
+    reclip = None if waist_reclip is None else parse_reclip(waist_reclip)  # decision S123
+    if reclip is not None and mount_end is not None:
+        raise DataError("--waist-reclip (an abrupt re-clip) and --waist-mount-drift (a slow slide) cannot be "
+                        "combined; give one (decisions S117, S123)")
+    if not (math.isfinite(fatigue) and 0.0 <= fatigue <= 50.0):  # decision S122
+        raise DataError(f"--fatigue {fatigue:g}: give the percent the speed falls by over the session, 0 to 50 "
+                        "(e.g. --fatigue 15)")
     custom = _custom_gait(user, speed, step_length, step_time, route)  # decision S30
     replace = check_sim_out(out, force)  # decision B292: --force replaces a session simulate wrote
     knobs = dict(
@@ -483,6 +503,9 @@ def simulate_cmd(
         baro_drift_hpa_per_h=baro_drift,  # decision S85
         waist_mount_deg=mount,
         **({} if mount_end is None else {"waist_mount_end_deg": mount_end}),  # decision S117
+        **({} if reclip is None else {"waist_reclip": reclip}),  # decision S123
+        **({"graded_slopes": True} if graded_slopes else {}),  # decision S121
+        **({"fatigue_pct": fatigue} if fatigue else {}),  # decision S122
         step_time_asymmetry=step_time_asymmetry,
         step_length_asymmetry=step_length_asymmetry,
         stance_time_asymmetry=stance_time_asymmetry,  # decision S94
@@ -659,6 +682,20 @@ def parse_mount(spec: str | None, option: str = "--waist-mount") -> tuple[float,
         vec[MOUNT_AXES[axis.strip().lower()]] = math.radians(angle)
         rot = rot * Rotation.from_rotvec(vec)
     return tuple(round(float(v), 9) for v in math.degrees(1.0) * rot.as_rotvec())
+
+
+def parse_reclip(spec: str) -> tuple[float, tuple[float, float, float]]:
+    """Decision S123: ``--waist-reclip 'T:AXIS:DEG[,AXIS:DEG]'`` -> (T s, the new mount's rotation vector, deg, as
+    :func:`parse_mount`); one line for a malformed value."""
+    head, _, mount = spec.partition(":")
+    try:
+        t_s = float(head)
+    except ValueError:
+        t_s = math.nan
+    if not (math.isfinite(t_s) and t_s > 0) or not mount.strip():
+        raise DataError(f"--waist-reclip {spec!r}: give T:AXIS:DEG, the time (s, > 0) and the new mount in "
+                        "--waist-mount's syntax, e.g. '1800:z:90' or '600:y:20,x:5' (decision S123)")
+    return t_s, parse_mount(mount, "--waist-reclip")
 
 
 #: meta.json's ``source_project`` of a session ``pdrlearn simulate`` wrote (what --force may replace, B292)

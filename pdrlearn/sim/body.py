@@ -180,6 +180,7 @@ def schedule(
     contact: str = "heel",
     feet: dict[str, UserProfile] | None = None,
     short_stance: str | None = None,
+    fatigue_pct: float = 0.0,
 ) -> Events:
     """Assign gait-event times to the footsteps (both feet) and draw per-step swing parameters.
 
@@ -194,6 +195,10 @@ def schedule(
     ``feet`` (decision S119): a foot's own profile (``{"left": ...}``, :func:`pdrlearn.sim.user.side_foot`): the
     steps landing on it take their toe-off pitch, heel-strike pitch and impact speed from it, the other foot's and
     every time from ``user``; no random draw changes, so the other foot's steps are the same to the bit.
+
+    ``fatigue_pct`` (decision S122): the k-th of the n steps takes its step time / (1 - fatigue_pct / 100 x k /
+    (n - 1)): the cadence, so the speed, falls linearly in the step count to (1 - fatigue_pct / 100) x the user's at
+    the last step; the footprints are the planner's (0: no change, bit for bit).
 
     ``rocker``: "hermite" (the foot is flat and still ``LOAD_FRACTION`` of the cycle after the contact) or "smooth"
     (still only ``ROCKER_FRACTION`` after it, decisions S31; the foot-flat event stays at ``LOAD_FRACTION``).
@@ -233,6 +238,8 @@ def schedule(
         d = user.step_time(st.pace or speed, st.gait) * dfac * max(0.7, 1.0 + rng.normal(0.0, cv))
         if st.time_factor != 1.0:  # decision S101: a stair flight's numeric pace (skipped at 1: bit for bit)
             d *= st.time_factor
+        if fatigue_pct:  # decision S122: a linear decline of the cadence over the session's steps (0: bit for bit)
+            d /= 1.0 - fatigue_pct / 100.0 * k / max(1, n - 1)
         if step_time_asymmetry:  # decision S35 (skipped at 0: default sessions bit for bit)
             d *= step_time_factor(st.foot, step_time_asymmetry, affected)
         if st.irregular:

@@ -123,6 +123,21 @@ class Slope:
     length_m: float
     grade: float
     gait: str = "normal"
+    pace: str | None = None  # decision S121: the slope's own pace (as a Straight's, S88), None: the session's
+
+
+def grade_speed_ratio(grade: float) -> float:
+    """Decision S121: the walking speed on a ramp of ``grade`` (rise / run) over the level speed - Tobler's hiking
+    function ``6 exp(-3.5 |g + 0.05|)`` km/h (Tobler 1993, NCGIA technical report 93-1) over its value at 0: 1 on the
+    level, the fastest (1.19) at -5 %, 0.42 at +25 %, 0.59 at -25 %."""
+    return math.exp(-3.5 * (abs(grade + 0.05) - 0.05))  # Tobler 1993's hiking function, normalised to g = 0
+
+
+def graded_step(grade: float) -> tuple[float, float]:
+    """Decision S121: the (step length, step time) factors of a step on a ramp of ``grade``: the speed ratio
+    :func:`grade_speed_ratio` split evenly, ``sqrt r`` and ``1 / sqrt r`` (the even split is a plain assumption)."""
+    root = math.sqrt(grade_speed_ratio(grade))
+    return root, 1.0 / root
 
 
 @dataclass(frozen=True)
@@ -335,6 +350,7 @@ class _Walker:
         self.direction = "forward"
         self.transfers: list[Transfer | Ride | FreezeEpisode | LyingEpisode | SpinEpisode] = []
         self.pushing = False
+        self.graded_slopes = False  # decision S121: a slope's steps with its grade's own length and time
 
     def _heel(self, c: np.ndarray, z: float, psi: float, foot: str) -> np.ndarray:
         side = 1.0 if foot == "left" else -1.0
@@ -487,9 +503,15 @@ class _Walker:
         if not (math.isfinite(seg.grade) and abs(seg.grade) <= MAX_SLOPE_GRADE):
             raise DataError(f"{seg}: grade must be finite and within +-{MAX_SLOPE_GRADE:g} (rise / run)")
         c0, z0, u = self.c.copy(), self.z, _ahead(self.psi)
-        for s, irr in zip(*self._progress(seg.length_m, self.user.step_length(self.speed, seg.gait),
-                                            True), strict=True):
-            self.step(c0 + s * u, z0 + seg.grade * s, self.psi, "walk", gait=seg.gait, irregular=bool(irr))
+        pace = getattr(seg, "pace", None)  # decision S121: a slope's own pace, as a Straight's (S88)
+        if pace is not None and pace not in SPEEDS:
+            raise DataError(f"{seg}: pace must be one of {', '.join(SPEEDS)} (or None: the session's speed)")
+        f_len, f_time = graded_step(seg.grade) if self.graded_slopes else (1.0, 1.0)  # decision S121 (opt-in)
+        nominal = self.user.step_length(pace or self.speed, seg.gait)
+        for s, irr in zip(*self._progress(seg.length_m, nominal * f_len if self.graded_slopes else nominal, True),
+                          strict=True):
+            self.step(c0 + s * u, z0 + seg.grade * s, self.psi, "walk", gait=seg.gait, irregular=bool(irr),
+                      pace=pace, time_factor=f_time)
 
     def backward(self, seg: Backward) -> None:
         reverse = self._reversal() if seg.direct else None  # decision S67
@@ -722,13 +744,15 @@ def plan_footsteps(
     step_length_asymmetry: float = 0.0,
     paretic_side: str = "left",
     transfer_s: tuple[float, float] = TRANSFER_S,
+    graded_slopes: bool = False,
 ) -> tuple[list[Footstep], dict, float, list[Transfer | Ride | FreezeEpisode | LyingEpisode | SpinEpisode]]:
     """Footprints of both feet along ``segments``.
 
     ``step_length_asymmetry``: on level, curved and sloped walking the steps onto the ``paretic_side`` foot (default
     left, decision S55) are 1 + this times the steps onto the other, the segment's length and number of steps
     unchanged (decision S42). ``transfer_s``: the range (s) each sitting-down and standing-up duration is drawn from
-    (decision S95).
+    (decision S95). ``graded_slopes`` (decision S121): a :class:`Slope`'s steps take :func:`graded_step`'s length and
+    time factors for its grade (False: S37's level steps).
 
     Returns
     -------
@@ -743,6 +767,7 @@ def plan_footsteps(
     """
     w = _Walker(user, speed, rng, heading0_rad, irregular_rate, variability, step_length_asymmetry, paretic_side,
                 transfer_s)
+    w.graded_slopes = bool(graded_slopes)  # decision S121
     initial = {f: (h.copy(), y) for f, (h, y) in w.feet.items()}
     handlers = {
         Straight: w.straight,

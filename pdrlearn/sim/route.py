@@ -9,7 +9,7 @@
 | ``curve:DEG:RADIUS[:GAIT]`` | walk an arc turning DEG degrees (> 0 left) of RADIUS metres |
 | ``up:N[:RISE:RUN][:step-to-step[:FOOT]][:PACE]`` / ``down:...`` | N stairs; ``step-to-step``: S80; FOOT leads: S92; |
 | | PACE slow/normal/fast or ``pace=F`` (F x the level step time; S101) |
-| ``slope:M:PCT[:GAIT]`` | walk M metres (horizontal) on a ramp of PCT percent (< 0 downhill; decision S37) |
+| ``slope:M:PCT[:GAIT][:PACE]`` | M m (horizontal) on a ramp of PCT % (< 0 downhill; S37); PACE as straight's (S121) |
 | ``backward:N[:direct]`` | N backward steps (N >= 0.25, 0.5: half a step, S89); ``direct``: no stop (S67) |
 | ``turn:DEG`` | turn DEG degrees on the spot (> 0 left) |
 | ``pivot:DEG[:N[:STEP_M]]`` | turn DEG degrees on the spot inside the walk, N steps of STEP_M m (S41) |
@@ -125,11 +125,10 @@ def _gait(item: str, parts: list[str], at: int) -> str:
     return parts[at]
 
 
-def _straight(item: str, parts: list[str]) -> Straight:
-    """Decision S88: ``straight:M[:GAIT][:PACE]``; a lone third value that is a pace and no gait (``straight:10:fast``)
-    is the pace. A pace outside :data:`SPEEDS` (``run``) is one line naming the paces and that there is no running
-    gait (S48)."""
-    rest = parts[2:]
+def _gait_pace(item: str, rest: list[str]) -> tuple[str, str | None]:
+    """Decisions S88, S121: a walk's trailing ``[:GAIT][:PACE]`` (``straight:`` / ``slope:``); a lone value that is
+    a pace and no gait (``straight:10:fast``) is the pace. A pace outside :data:`SPEEDS` (``run``) is one line naming
+    the paces and that there is no running gait (S48)."""
     if len(rest) == 1 and rest[0] not in GAITS and rest[0] in SPEEDS:
         rest = ["normal", rest[0]]
     pace = rest[1] if len(rest) == 2 else None
@@ -140,7 +139,13 @@ def _straight(item: str, parts: list[str]) -> Straight:
     if len(rest) == 1 and rest[0] not in GAITS:
         raise DataError(f"--route item {item!r}: {rest[0]!r} must be a gait ({', '.join(GAITS)}) or a pace "
                         f"({', '.join(SPEEDS)}; decision S88); the simulator has no running gait (S48)")
-    return Straight(_number(item, parts[1]), gait=_gait(item, ["", "", *rest], 2), pace=pace)
+    return _gait(item, ["", "", *rest], 2), pace
+
+
+def _straight(item: str, parts: list[str]) -> Straight:
+    """Decision S88: ``straight:M[:GAIT][:PACE]`` (:func:`_gait_pace`)."""
+    gait, pace = _gait_pace(item, parts[2:])
+    return Straight(_number(item, parts[1]), gait=gait, pace=pace)
 
 
 def _arity(item: str, parts: list[str], allowed: tuple[int, ...]) -> None:
@@ -238,13 +243,14 @@ def parse_route(spec: str) -> list[Segment]:
                 raise DataError(f"--route item {item!r}: a curve needs a non-zero angle (use straight)")
             segments.append(Curve(math.radians(angle), _number(item, parts[2]), gait=_gait(item, parts, 3)))
         elif kind == "slope":
-            _arity(item, parts, (2, 3))
+            _arity(item, parts, (2, 3, 4))  # decision S121: slope:M:PCT[:GAIT][:PACE]
             pct = _number(item, parts[2], positive=False)
             if not abs(pct) <= 100 * MAX_SLOPE_GRADE:  # decision S56: the route's unit (percent), named
                 raise DataError(f"--route item {item!r}: PCT must be within +-{100 * MAX_SLOPE_GRADE:g} % "
                                 "(S37: a steeper ramp is not walked with level steps)")
             grade = pct / 100.0
-            segments.append(Slope(_number(item, parts[1]), grade, gait=_gait(item, parts, 3)))
+            gait, pace = _gait_pace(item, parts[3:])  # decision S121: a slope takes a pace as a straight (S88)
+            segments.append(Slope(_number(item, parts[1]), grade, gait=gait, pace=pace))
         elif kind in ("up", "down"):
             parts, s2s, lead, pace = _stair_options(item, kind, parts)  # decisions S80, S92, S101
             if len(parts) - 1 not in (1, 3):

@@ -101,6 +101,13 @@ KNOBS: dict[str, object] = {
     # decision S117: the mount at the last sample (a rotation vector, deg, as waist_mount_deg): the unit turns at a
     # constant rate from waist_mount_deg at the first sample; None: a fixed mount
     "waist_mount_end_deg": None,
+    # decision S123: the waist unit re-clipped at once: (t_s, rotation vector deg as waist_mount_deg) - at t_s (foot
+    # clock) the unit turns within 0.5 s from waist_mount_deg to the new mount; None: no re-clip
+    "waist_reclip": None,
+    # decision S121: a slope's steps shortened / lengthened and slowed by its grade (Tobler 1993; False: level steps)
+    "graded_slopes": False,
+    # decision S122: the cadence falls linearly over the session's steps by this percent (0-50; 0: none)
+    "fatigue_pct": 0.0,
     "device_errors": True,  # accelerometer scale factors per unit (the user's own), not per session (S22)
     "pelvis": "model",  # "realistic": roll toward the stance side and a smaller sway, drawn per user (S27)
     "bounce": "constant",  # "pendulum": the pelvis bounce scales with the step length (S29); "population": S74
@@ -153,6 +160,7 @@ KNOBS: dict[str, object] = {
 GAP_UNITS = ("foot", "waist", "both")
 #: knobs meta.json records only when set (default sessions' meta.json as before they existed: S27, S29, S31, S34, S35)
 META_ONLY_WHEN_SET = ("pelvis", "bounce", "waist_mount_deg", "waist_mount_end_deg", "rocker", "contact",
+                      "waist_reclip", "graded_slopes", "fatigue_pct",  # decisions S121-S123
                       "foot_sensor_pos", "foot_sensor_height_m", "foot_mount_roll_deg",
                       "pelvis_height_m", "bounce_scale", "step_time_asymmetry", "step_length_asymmetry",
                       "stance_time_asymmetry", "sit_start_s", "sit_end_s", "instrumented_foot", "paretic_side", "gaps",
@@ -248,7 +256,7 @@ def _check_knobs(knobs: dict) -> dict:
     if unknown:
         raise DataError(f"simulate: unknown option(s) {', '.join(unknown)}; valid: {', '.join(KNOBS)}")
     out = {**KNOBS, **knobs}
-    for k in ("noise", "device_errors"):
+    for k in ("noise", "device_errors", "graded_slopes"):  # S121
         if not isinstance(out[k], bool | np.bool_):
             raise DataError(f"simulate: {k}={out[k]!r} must be True or False")
     if out["pelvis"] not in PELVIS_MODES:
@@ -285,6 +293,11 @@ def _check_knobs(knobs: dict) -> dict:
     out["waist_mount_deg"] = _check_rotvec("waist_mount_deg", out["waist_mount_deg"])
     if out["waist_mount_end_deg"] is not None:  # decision S117
         out["waist_mount_end_deg"] = _check_rotvec("waist_mount_end_deg", out["waist_mount_end_deg"])
+    out["waist_reclip"] = check_reclip(out["waist_reclip"], out["waist_mount_end_deg"])  # decision S123
+    fat = out["fatigue_pct"]  # decision S122
+    if isinstance(fat, bool) or not isinstance(fat, int | float | np.number) or not 0 <= fat <= 50:
+        raise DataError(f"simulate: fatigue_pct={fat!r} must be 0 to 50 (the percent the walking speed falls by over "
+                        "the session; decision S122)")
     out["gaps"] = check_gaps(out["gaps"])  # decisions S83, B370
     out["transfer_s"] = check_transfer_s(out["transfer_s"])  # decision S95
     out["trunk_jerk_rate_hz"], out["trunk_jerk_deg"], out["trunk_jerk_m"] = check_jerk_options(  # decision S114
@@ -449,19 +462,46 @@ def _misalignment(deg: list[float]) -> np.ndarray:
     return Rotation.from_rotvec(np.radians(deg)).as_matrix()
 
 
-def drifting_axes(t: np.ndarray, start_deg, end_deg, inner: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def check_reclip(reclip, mount_end) -> tuple[float, tuple[float, float, float]] | None:
+    """Decision S123: ``waist_reclip`` as ``(t_s, (x, y, z) deg)`` (a time > 0 s and a rotation vector as
+    ``waist_mount_deg``), or None; one line on a bad value or with ``waist_mount_end_deg`` (S117's slide)."""
+    if reclip is None:
+        return None
+    try:
+        t_s, rot = reclip
+        t_s = float(t_s)
+    except (TypeError, ValueError):
+        raise DataError(f"simulate: waist_reclip={reclip!r}: give (t_s, (x, y, z) deg), e.g. (600, (0, 20, 0)) "
+                        "(decision S123)") from None
+    if not (math.isfinite(t_s) and t_s > 0):
+        raise DataError(f"simulate: waist_reclip's time {t_s!r} must be a time > 0 s (decision S123)")
+    if mount_end is not None:
+        raise DataError("simulate: waist_reclip (an abrupt re-clip) and waist_mount_end_deg (a slow slide) cannot be "
+                        "combined; give one (decisions S117, S123)")
+    return t_s, _check_rotvec("waist_reclip", rot)
+
+
+def drifting_axes(t: np.ndarray, start_deg, end_deg, inner: np.ndarray, *, window: tuple[float, float] | None = None
+                  ) -> tuple[np.ndarray, np.ndarray]:
     """Decision S117: a unit whose mount turns at a constant rate from the rotation vector ``start_deg`` (deg, at
     ``t[0]``) to ``end_deg`` (at ``t[-1]``), both about the body axes as ``waist_mount_deg``, on top of ``inner``
     (the user's misalignment @ the declared frame). Returns the per-sample axes ``(n, 3, 3)`` (columns: the unit's
     axes in body coordinates, :func:`_to_sensor`'s ``mis @ frame``) and the turn's own angular rate in the unit's
     axes (rad/s, constant), which its gyroscope adds to the body's: with ``A = R(t) M`` and
-    ``R(t) = R0 exp(s(t) [w]x)``, ``A^T dA/dt = [M^T w ds/dt]x``."""
+    ``R(t) = R0 exp(s(t) [w]x)``, ``A^T dA/dt = [M^T w ds/dt]x``.
+
+    ``window`` (decision S123): the turn runs from ``window[0]`` to ``window[1]`` (s) only - the mount fixed before
+    and after - and the rate returned is per sample ``(n, 3)``, zero outside the window (an abrupt re-clip)."""
     r0 = Rotation.from_rotvec(np.radians(start_deg))
     w = (r0.inv() * Rotation.from_rotvec(np.radians(end_deg))).as_rotvec()  # the turn, in the start mount's axes
-    span = float(t[-1] - t[0]) if len(t) > 1 and t[-1] > t[0] else 1.0
-    s = np.clip((np.asarray(t, float) - t[0]) / span, 0.0, 1.0)
+    t0, t1 = (float(t[0]), float(t[-1])) if window is None else window
+    span = t1 - t0 if len(t) > 1 and t1 > t0 else 1.0
+    s = np.clip((np.asarray(t, float) - t0) / span, 0.0, 1.0)
     axes = (r0 * Rotation.from_rotvec(s[:, None] * w[None, :])).as_matrix() @ inner
-    return axes, (w / span) @ inner
+    rate = (w / span) @ inner
+    if window is not None:
+        rate = rate[None, :] * ((t >= t0) & (t < t1))[:, None]
+    return axes, rate
 
 
 def _to_sensor(v_body: np.ndarray, frame_matrix: np.ndarray, mis: np.ndarray) -> np.ndarray:
@@ -601,6 +641,7 @@ def simulate_path(
         step_length_asymmetry=float(opt["step_length_asymmetry"]),
         paretic_side=str(opt["paretic_side"]),
         transfer_s=opt["transfer_s"],  # decision S95
+        graded_slopes=bool(opt["graded_slopes"]),  # decision S121
     )
     rides = [e for e in transfers if isinstance(e, Ride | VehicleRide)]  # decisions S45 (lifts, escalators), S71
     freezes = [e for e in transfers if isinstance(e, FreezeEpisode)]  # decision S51: trembling in place
@@ -623,7 +664,8 @@ def simulate_path(
                   step_time_asymmetry=float(opt["step_time_asymmetry"]),
                   affected=str(opt["paretic_side"]), stance_time_asymmetry=float(opt["stance_time_asymmetry"]),
                   feet=None if side is None else {str(opt["prosthetic_side"]): side},
-                  short_stance=None if longer is None else next(f for f in FEET if f != longer))
+                  short_stance=None if longer is None else next(f for f in FEET if f != longer),
+                  fatigue_pct=float(opt["fatigue_pct"]))  # decision S122
     total_s = (max(ev.end_s, lead + stand) if steps else lead + stand) + end_pause + stand
     sit_starts = transfer_starts(transfers, ev.rest, lead + stand)  # decision S36
     ride_starts = transfer_starts(rides, ev.rest, lead + stand)  # decision S45: as a transfer's
@@ -753,13 +795,19 @@ def simulate_path(
     waist_mis_deg = (user.waist_misalignment_deg if not any(opt["waist_mount_deg"]) else
                      [round(float(v), 9) for v in np.degrees(Rotation.from_matrix(mis_w).as_rotvec())])
     waist_m = THESIS_WAIST_FRAME.matrix()
-    if opt["waist_mount_end_deg"] is None:
+    if opt["waist_mount_end_deg"] is None and opt["waist_reclip"] is None:
         def to_waist(v: np.ndarray) -> np.ndarray:
             return _to_sensor(v, waist_m, mis_w)
         turn_rate = None
-    else:  # decision S117: the unit turns on the belt during the session
-        axes_w, turn_rate = drifting_axes(t100, opt["waist_mount_deg"], opt["waist_mount_end_deg"],
-                                          _misalignment(user.waist_misalignment_deg) @ waist_m)
+    else:  # decisions S117, S123: the unit turns on the belt during the session, or at once when re-clipped
+        reclip = opt["waist_reclip"]
+        axes_w, turn_rate = drifting_axes(
+            t100, opt["waist_mount_deg"], opt["waist_mount_end_deg"] if reclip is None else reclip[1],
+            _misalignment(user.waist_misalignment_deg) @ waist_m,
+            window=None if reclip is None else (reclip[0], reclip[0] + 0.5))  # S123: a hand's re-clip, 0.5 s (ours)
+        if reclip is not None and not reclip[0] + 0.5 < t100[-1]:
+            raise DataError(f"simulate: waist_reclip at {reclip[0]:g} s does not lie inside the recording (0-"
+                            f"{t100[-1]:.1f} s); re-clip earlier (decision S123)")
 
         def to_waist(v: np.ndarray) -> np.ndarray:
             return np.einsum("ni,nij->nj", v, axes_w)
