@@ -86,3 +86,19 @@ def test_the_t25fw_is_the_mean_of_its_two_trials_c251():
     assert "decision C251" in out["t25fw_note"]
     one = t25fw(steps.iloc[:9])
     assert one["n_t25fw_trials"] == 1 and one["t25fw_time_s"] == pytest.approx(first)
+
+
+def test_the_change_line_names_the_recordings_of_each_measure_c252():
+    from pdrlearn.report.clinical import change_lines
+
+    def row(visit, name, **values):
+        return ("track", name, f"P1/{visit}/{name}", {"subject": "P1", "visit": visit, "pipeline": "plasys", **values})
+
+    rows = [row(v, n, **vals) for v, d, t in (("v1", 247.0, 6.6), ("v2", 213.0, 7.8)) for n, vals in (
+        ("6mwt_left", {"walk_test_distance_m": d}), ("6mwt_right", {"walk_test_distance_m": d + 1.0}),
+        ("t25_right", {"t25fw_time_s": t}))]
+    (line,) = change_lines(rows)
+    assert "walk test distance 248 -> 214 m (-34 m, -14 %) [from 6mwt_left, 6mwt_right; C252]" in line
+    assert "T25FW 6.6 -> 7.8 s (+1.2 s, +18 %) [from t25_right; C252]" in line
+    (alone,) = change_lines([r for r in rows if r[1] == "t25_right"])  # one session a visit: nothing to tell apart
+    assert "C252" not in alone
