@@ -51,7 +51,8 @@ def test_a_t25fw_recording_scores_no_6mwt_c249():
 def test_each_recording_keeps_its_own_test_c249():
     six = {"walk_test_protocol_s": 360.0, "walk_test_distance_m": 246.3, "t25fw_time_s": 8.2, "t25fw_speed_mps": 0.93,
            "t25fw_note": None, "ten_m_walk_time_s": 8.2, "ten_m_walk_speed_mps": 0.93, "ten_m_walk_note": None,
-           "n_ten_m_walk_trials": 10, "ten_m_walk_max_speed_mps": 1.2, "n_t25fw_trials": 1, "t25fw_trial_times_s": [8.2]}
+           "n_ten_m_walk_trials": 10, "ten_m_walk_max_speed_mps": 1.2, "n_t25fw_trials": 1,
+           "t25fw_trial_times_s": [8.2]}
     assert is_walk_test_recording(six)
     _, lines = own_test(six)
     assert six["walk_test_distance_m"] == 246.3
