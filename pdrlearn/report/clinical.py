@@ -316,8 +316,8 @@ def change_lines(rows: list) -> list[str]:
 
 def measure_sources(frame, row, measure: str) -> str:
     """Decision C252: " [from A, B; C252]" - the recordings (their folder names) a changes row's ``measure`` comes
-    from at each visit (``frame``: the patient's sessions, ``path`` and ``visit`` as written), "A -> B" when the two visits'
-    differ; "" when each visit has one session (nothing to tell apart)."""
+    from at each visit (``frame``: the patient's sessions, ``path`` and ``visit`` as written), "A -> B" when the two
+    visits' differ; "" when each visit has one session (nothing to tell apart)."""
     from pathlib import PurePath
 
     names = []
