@@ -157,10 +157,6 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
         # decision L659: a data end within END_TOL_S of the test's end is its end (the full minutes counted, L399's
         # "no step after the last one adds 0 m"); further short, L644's incomplete test
         t_end = float(end) if end is not None and full - float(end) > END_TOL_S else full
-        note = too_short_note(t_end - t0, float(duration_s), min_share)
-        if note:  # decision C249: a T25FW's or a TUG's recording is no 6MWT
-            out["walk_test_start_s"], out["walk_test_duration_s"], out["walk_test_note"] = t0, t_end - t0, note
-            return empty, out, [*warnings, coded(f"corridor walk test: {note}", "C249")]
         if t_end < full:
             warnings.append(coded(f"corridor walk test: the {'window' if span is not None else 'recording'} ends "
                                   f"{t_end - t0:.0f} s after the test's start, before the {duration_s:g} s test: the "
@@ -184,6 +180,10 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
     if note:  # decision L643: no walk test scored
         out["walk_test_note"] = note
         return empty, out, [*(w for w in warnings if "L644" not in w), coded(f"corridor walk test: {note}", "L643")]
+    note = too_short_note(t_end - t0, float(duration_s), min_share) if duration_s is not None else None
+    if note:  # decision C249 (after L643's own note): a T25FW's or a TUG's recording is no 6MWT
+        out["walk_test_note"] = note
+        return empty, out, [*(w for w in warnings if "L644" not in w), coded(f"corridor walk test: {note}", "C249")]
     line = corridor_agreement(tracked, corridor_m, lower_back=_is_lower_back(st))
     if line:
         warnings.append(line)
