@@ -634,12 +634,19 @@ SESSIONS: tuple[Column, ...] = (
     ("ten_m_walk_declared", _ID, "true/false", "true when track --ten-m-walk declared the walkway; false: the 10 m "
                                                "walk and T25FW were found in free walking, no test declared, and "
                                                "the console and clinical.md say so (L679)"),
-    ("t25fw_time_s", "s", "number", "timed 25-foot walk: the time from the first walking bout's start (standing) to "
-                                    "where its path passes 7.62 m, straight (L387); empty on a shorter or turning "
-                                    "walk and on the lower back, calibrated or not (L313, L649); a flying 25-foot "
+    ("t25fw_time_s", "s", "number", "timed 25-foot walk: the time from a walking bout's start (standing; the body's "
+                                    "first step, one step before a foot's first full stride, C250) to where its "
+                                    "path passes 7.62 m, straight (L387); the mean of the first two trials when "
+                                    "two were timed (C251); empty on a shorter or turning "
+                                    "walk and on the lower back, calibrated or not (L313, L649), and on a timed "
+                                    "corridor walk test's recording (C249); a flying 25-foot "
                                     "walk (track --ten-m-walk 1,7.62,3.38) is ten_m_walk_time_s, not this (C206)"),
     ("t25fw_speed_mps", "m/s", "number", "7.62 m / t25fw_time_s (L387)"),
-    ("t25fw_note", _ID, "text", "why there is no t25fw_time_s (L387); empty when there is one"),
+    ("t25fw_note", _ID, "text", "why there is no t25fw_time_s (L387; C249); with two trials timed, that it is their "
+                                "mean (C251)"),
+    ("n_t25fw_trials", "count", "integer", "timed 25-foot walk: the walking bouts from standing timed as the first "
+                                           "(C251); t25fw_time_s is the mean of the first two"),
+    ("t25fw_trial_times_s", "s", "number", "summary.json only (a list): each T25FW trial's time, in order (C251)"),
     ("n_freezes", "count", "integer", "freeze episodes of the tracked unit (freezes.csv): freeze index over 3 with "
                                       "band power, 1 s or longer (W213); null on a lower-back track without the "
                                       "freeze_index option (W216: not measured)"),

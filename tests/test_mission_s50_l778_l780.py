@@ -49,7 +49,8 @@ def _recording(*bouts: tuple[float, float, float]) -> pd.DataFrame:
 def test_walk_tests_only_on_a_test_like_recording_l779():
     level = _recording((16.0, 1.0, 0.0), (16.0, 1.0, 0.0))  # two walkway passes: timed as before
     assert ten_metre_walk(level)["ten_m_walk_time_s"] == pytest.approx(10.0)
-    assert len(ten_metre_walk_trials(level)) == 2 and t25fw(level)["t25fw_time_s"] == pytest.approx(7.62)
+    # C250: a first row as long as the next (a full stride: the unseen foot led) starts the walk half a stride earlier
+    assert len(ten_metre_walk_trials(level)) == 2 and t25fw(level)["t25fw_time_s"] == pytest.approx(7.62 + 0.5)
     mission = _recording((16.0, 1.0, 0.0), (3.0, 0.3, 0.34), (16.0, 1.0, 0.0))  # a flight of 10 stair strides
     got, t25 = ten_metre_walk(mission), t25fw(mission)
     assert got["ten_m_walk_time_s"] is None and got["n_ten_m_walk_trials"] == 0 and t25["t25fw_time_s"] is None

@@ -1291,7 +1291,13 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
                                           start=session_go(o.get("walk_test_start", "auto"), session),  # L642
                                           data_end=session_span(session, unit)[1])  # L644
         summary.update(keys)
-        if keys.get("walk_test_scale") is not None:  # decision W562: the lower back's gait speed, corridor's scale
+        from pdrlearn.track.own_test import is_walk_test_recording, own_test
+
+        laps, own_lines = own_test(summary, laps)  # decision C249: each recording scored for its own test only
+        lines = [*lines, *own_lines]
+        if is_walk_test_recording(summary):  # C249: no ten_m_walk_trials.csv from a 6MWT's passes
+            result.info["walk_test_recording"] = True
+        if summary.get("walk_test_scale") is not None:  # decision W562: the lower back's gait speed, corridor's scale
             from pdrlearn.track.corridor import corridor_gait_speed
 
             summary["gait_speed_corridor_mps"] = corridor_gait_speed(summary)

@@ -304,13 +304,30 @@ def change_lines(rows: list) -> list[str]:
                 continue
             name, unit, k = CHANGE_LINE_MEASURES[m]
             name = walk_names(tracks, row).get(m, name)  # decision C211: the walkway's own name
-            parts.append(change_part(name, unit, k, base, change, row.get(f"{m}_change_pct")))
+            parts.append(change_part(name, unit, k, base, change, row.get(f"{m}_change_pct"))
+                         + measure_sources(frame, row, m))  # decision C252: which recordings
         if row["status"] != "ok":
             parts = [f"not paired ({row['status']}: {row['reason']})"]
         if parts:
             lines.append(f"- Change from baseline ({row['baseline_visit']} -> {row['visit']}, C177): "
                          + "; ".join(parts))
     return lines
+
+
+def measure_sources(frame, row, measure: str) -> str:
+    """Decision C252: " [from A, B; C252]" - the recordings (their folder names) a changes row's ``measure`` comes
+    from at each visit (``frame``: the patient's sessions, ``path`` and ``visit`` as written), "A -> B" when the two
+    visits' differ; "" when each visit has one session (nothing to tell apart)."""
+    from pathlib import PurePath
+
+    names = []
+    for key in ("baseline_visit_as_written", "visit_as_written"):
+        at = frame[frame["visit"].isin(str(row.get(key) or "").split("; "))]
+        names.append((len(at), [PurePath(str(p)).name for p in at.loc[at[measure].notna(), "path"]]))
+    if all(n <= 1 for n, _ in names):
+        return ""
+    (_, b), (_, v) = names
+    return f" [from {', '.join(b)}" + ("" if b == v else f" -> {', '.join(v)}") + "; C252]"
 
 
 def change_part(name: str, unit: str, k: int, base: float, change: float, pct=None) -> str:

@@ -192,14 +192,10 @@ def belt_walk_tests(meta: dict | None, out: dict) -> None:
     v = (meta or {}).get(BELT_KEY)
     if v is None or isinstance(v, bool) or not isinstance(v, int | float):
         return
-    from pdrlearn.track.walk_test import KEYS, T25FW_KEYS
+    from pdrlearn.track.own_test import clear_walkway_tests
 
-    for time_key, speed_key, note_key in (KEYS, T25FW_KEYS):
-        if note_key not in out and time_key not in out:
-            continue
-        out[time_key] = out[speed_key] = None
-        out[note_key] = (f"a treadmill belt (meta.json {BELT_KEY} {float(v):g} m/s): a walkway test times a walk "
-                         "overground, and on the belt the walking speed is the belt's; not timed (decision L445)")
+    clear_walkway_tests(out, f"a treadmill belt (meta.json {BELT_KEY} {float(v):g} m/s): a walkway test times a walk "
+                        "overground, and on the belt the walking speed is the belt's; not timed (decision L445)")
 
 
 def belt_summary(meta: dict | None, summary: dict, where: str, steps: pd.DataFrame | None = None) -> dict:

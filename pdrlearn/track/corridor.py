@@ -122,15 +122,17 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
                   bouts: pd.DataFrame | None = None,
                   span: tuple[float, float] | None = None,
                   duration_s: float | None = None, *, start: float | str = "auto",
-                  data_end: float | None = None, lap_margin: float | None = None
-                  ) -> tuple[pd.DataFrame, dict, list[str]]:
+                  data_end: float | None = None, lap_margin: float | None = None,
+                  min_share: float | None = 0.5) -> tuple[pd.DataFrame, dict, list[str]]:
     """Decisions L383, L384: ``(laps, summary, warnings)`` of a tracked step table walked up and down a corridor of
     ``corridor_m`` metres: laps.csv's rows (:data:`LAP_COLUMNS`), the summary's :data:`KEYS` and the warning lines
     (missed or extra turns, a corridor length far from the tracked laps). ``span``: the test's start and end (s;
     ``track --window``'s), else the first step's start and the last step's end. ``duration_s`` (decision L516,
     ``track --walk-test-duration``): the test runs ``duration_s`` seconds from "go" (inside ``span`` when both are
     given): ``start`` (L642) a time (s), ``"first-step"`` or ``"auto"`` (:func:`go_time`); it ends at ``data_end``
-    (the recording's end) at the latest (L644)."""
+    (the recording's end) at the latest (L644). Decision C249: with ``duration_s``, a recording (or window) holding
+    under ``min_share`` of it after the go is no walk-test recording (:func:`too_short_note`): no walk test is scored
+    (None: L644's incomplete test whatever its length, the rule before)."""
     out = dict.fromkeys(KEYS)
     out["corridor_m"] = float(corridor_m)
     out["walk_test_protocol_s"] = None if duration_s is None else float(duration_s)
@@ -179,6 +181,10 @@ def corridor_laps(steps: pd.DataFrame, turns: pd.DataFrame, corridor_m: float,
     if note:  # decision L643: no walk test scored
         out["walk_test_note"] = note
         return empty, out, [*(w for w in warnings if "L644" not in w), coded(f"corridor walk test: {note}", "L643")]
+    note = too_short_note(t_end - t0, float(duration_s), min_share) if duration_s is not None else None
+    if note:  # decision C249 (after L643's own note): a T25FW's or a TUG's recording is no 6MWT
+        out["walk_test_note"] = note
+        return empty, out, [*(w for w in warnings if "L644" not in w), coded(f"corridor walk test: {note}", "C249")]
     line = corridor_agreement(tracked, corridor_m, lower_back=_is_lower_back(st))
     if line:
         warnings.append(line)
@@ -455,6 +461,17 @@ def go_inside(t0: float, start: float | str, span: tuple[float, float] | None, e
                         "test (decision L661)")
     raise DataError(f"the walk test's start {t0:g} s ({what}) is not before the recording's end ({float(end):.1f} s): "
                     "give the test's 'go' in seconds of the session's clock, inside the recording (decision L661)")
+
+
+def too_short_note(recorded_s: float, duration_s: float, min_share: float | None = 0.5) -> str | None:
+    """Decision C249 (ours): why a recording holding ``recorded_s`` seconds after the go is no recording of a
+    ``duration_s`` s walk test - under ``min_share`` of it (a T25FW's or a TUG's recording beside the visit's 6MWT) -
+    or None (``min_share`` None: never)."""
+    if min_share is None or recorded_s >= min_share * duration_s:
+        return None
+    return (f"not a {walk_test_label(duration_s)} recording: it holds {recorded_s:.0f} s after the test's start, "
+            f"under {min_share:.0%} of the {duration_s:g} s test (another test's recording, a T25FW or a TUG?); no "
+            "walk test scored (decision C249)")
 
 
 def not_a_corridor(tracked: np.ndarray, durations: np.ndarray, corridor_m: float) -> str | None:

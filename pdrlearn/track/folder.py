@@ -145,7 +145,7 @@ def clinical_tables(result, bouts) -> dict:
     trials = ten_metre_walk_trials(result.steps, result.info.get("ten_m_walk_m"),  # decision L524: every trial
                                    result.info.get("params_source") == "calibrated",  # L649
                                    ramps=ramp_numbers(result.steps, found))  # decision L679: not on a ramp
-    if len(trials):
+    if len(trials) and not result.info.get("walk_test_recording"):  # decision C249: a 6MWT's passes are no trials
         out["ten_m_walk_trials.csv"] = trials
     if result.info.get("flights") is not None:  # decision W417: each unit's flight phases, with a jump height
         from pdrlearn.track.flight import FLIGHT_COLUMNS

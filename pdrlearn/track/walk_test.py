@@ -158,6 +158,8 @@ def declared_refusal(summary: dict) -> tuple[str, str] | None:
 T25FW_M = 7.62
 #: the summary keys :func:`t25fw` gives (decision L387)
 T25FW_KEYS = ("t25fw_time_s", "t25fw_speed_mps", "t25fw_note")
+#: decision C251: the T25FW's trials (summary.json; ``t25fw_trial_times_s`` a list)
+T25FW_TRIAL_KEYS = ("n_t25fw_trials", "t25fw_trial_times_s")
 #: decision L387: the uncalibrated lower back gets no T25FW for L313's reason (its step lengths move the 7.62 m
 #: mark); L649: nor a calibrated one (from standing)
 T25FW_LOWER_BACK_NOTE = lower_back_note(0.0, 7.62, what="the timed 25-foot walk")
@@ -225,7 +227,7 @@ def pass_rows(steps: pd.DataFrame, a: int, b: int) -> list[tuple[int, int]]:
 
 def _timed_pieces(steps: pd.DataFrame, zone_m: float, timed_m: float, decel_m: float, max_bout_m: float | None = None,
                   passes: bool = True, ramps=None, short_share: float = 0.0,
-                  any_recording: bool = False) -> list[tuple[str, object]]:
+                  any_recording: bool = False, unseen_lead: bool = False) -> list[tuple[str, object]]:
     """Decision L673: ``(name, _time_bout's result)`` of each piece a walk test times: with ``passes`` each straight
     pass of a walking bout (:func:`pass_rows`, "walking bout N pass P"), else each bout ("walking bout N"). A bout
     whose passes are all too short is judged whole for its note only (L313's: a walk that turns inside its first
@@ -234,7 +236,8 @@ def _timed_pieces(steps: pd.DataFrame, zone_m: float, timed_m: float, decel_m: f
     ``max_bout_m`` stays whole for L552 to refuse (a march's legs are no walkway's passes). Decision L679: ``ramps``
     as :func:`_time_bout`'s; decision C193: ``short_share`` too. Decision L779: with no walkway declared
     (``max_bout_m`` set, L552) a recording that does not look like a walk test (:func:`free_recording_note`) is
-    one refused piece, unless ``any_recording`` (the rule before L779)."""
+    one refused piece, unless ``any_recording`` (the rule before L779). Decision C250: ``unseen_lead`` as
+    :func:`_time_bout`'s."""
     out = []
     length = np.abs(np.nan_to_num(steps["length_m"].to_numpy(float)))
     free = free_recording_note(steps, timed_m) if max_bout_m is not None and not any_recording else None
@@ -244,7 +247,7 @@ def _timed_pieces(steps: pd.DataFrame, zone_m: float, timed_m: float, decel_m: f
         split = passes and (max_bout_m is None or length[a:b].sum() <= max_bout_m)
         parts = pass_rows(steps, a, b) if split else [(a, b)]
         got = [(f"walking bout {n}" + (f" pass {p}" if len(parts) > 1 else ""),
-                _time_bout(steps, c, d, zone_m, timed_m, decel_m, max_bout_m, ramps, short_share))
+                _time_bout(steps, c, d, zone_m, timed_m, decel_m, max_bout_m, ramps, short_share, unseen_lead))
                for p, (c, d) in enumerate(parts, 1)]
         need = zone_m + timed_m + decel_m
         if len(parts) > 1 and all(isinstance(g, float) and g < need - RUN_OUT_M for _, g in got):  # L673; R2 #2
@@ -389,7 +392,7 @@ def _near_misses(steps: pd.DataFrame, need: float, lower_back_ok: bool = False, 
 
 
 def t25fw(steps: pd.DataFrame, walkway: bool = False, calibrated: bool = False, ramps=None,
-          any_recording: bool = False) -> dict:
+          any_recording: bool = False, *, unseen_lead: bool = True, n_mean: int = 2) -> dict:
     """Decision L387: :data:`T25FW_KEYS` of a tracked step table: the timed 25-foot walk from a standing start - the
     first walking bout whose path reaches :data:`T25FW_M` is timed from its first row's start to where its path
     passes 7.62 m (no zone: the test starts from standing, L312's kernel with a zone of 0 m); a shorter, turning or
@@ -398,13 +401,31 @@ def t25fw(steps: pd.DataFrame, walkway: bool = False, calibrated: bool = False, 
     calibrated lower back is not timed either (from standing it reads fast), its note says so. Decision L679:
     ``ramps`` (:func:`ramp_numbers`): a walk on a ramp is not timed. Decision L779: unless ``walkway``, a recording
     with a stair flight in any of its walking bouts has none of its walk tests timed (:func:`free_recording_note`;
-    ``any_recording``: the rule before)."""
-    return timed_walk(steps, 0.0, T25FW_M, T25FW_KEYS,
-                      lower_back_note(0.0, T25FW_M, calibrated, what="the timed 25-foot walk"),
-                      lambda longest, need: (f"no walking bout of {need:g} m (25 ft, from standing; the longest "
-                                             f"{math.floor(longest * 100.0 + 1e-6) / 100.0:.2f} m; decision L387): "
-                                             "a shorter walk is not timed"), max_bout_m=_bout_limit(walkway),
-                      ramps=ramps, any_recording=any_recording)  # decision L779
+    ``any_recording``: the rule before). Decision C250: ``unseen_lead`` starts
+    each walk at the body's first step (:func:`body_start`; False: the foot's first row, L387's rule). Decision C251:
+    every bout timed is a trial - ``n_t25fw_trials``, ``t25fw_trial_times_s`` - and the time is the mean of the first
+    ``n_mean`` trials (the MSFC's T25FW score: the mean of two trials), the first one's when fewer were timed."""
+    args = dict(max_bout_m=_bout_limit(walkway), ramps=ramps, any_recording=any_recording,  # decision L779
+                unseen_lead=unseen_lead)  # decision C250
+    out = timed_walk(steps, 0.0, T25FW_M, T25FW_KEYS,
+                     lower_back_note(0.0, T25FW_M, calibrated, what="the timed 25-foot walk"),
+                     lambda longest, need: (f"no walking bout of {need:g} m (25 ft, from standing; the longest "
+                                            f"{math.floor(longest * 100.0 + 1e-6) / 100.0:.2f} m; decision L387): "
+                                            "a shorter walk is not timed"), **args)
+    trials = []
+    if out["t25fw_time_s"] is not None:  # decision C251: every walk from standing timed as the first
+        trials = [got[1] - got[0] for _, got in _timed_pieces(steps, 0.0, T25FW_M, 0.0, args["max_bout_m"],
+                                                              False, ramps, 0.0, any_recording, unseen_lead)
+                  if isinstance(got, tuple)]
+    out["n_t25fw_trials"], out["t25fw_trial_times_s"] = len(trials), trials
+    if len(trials) >= 2 and n_mean >= 2:  # decision C251: the mean of the first two trials
+        k = min(n_mean, len(trials))
+        out["t25fw_time_s"] = float(np.mean(trials[:k]))
+        out["t25fw_speed_mps"] = T25FW_M / out["t25fw_time_s"]
+        out["t25fw_note"] = "; ".join(filter(None, [
+            f"mean of trials 1-{k} ({len(trials)} timed, t25fw_trial_times_s; the MSFC's score, decision C251)",
+            out["t25fw_note"]]))
+    return out
 
 
 def _climb_tables(steps: pd.DataFrame, a: int, b: int) -> str:
@@ -438,15 +459,37 @@ def _short_ok(known: float, zone_m: float, timed_m: float, need: float, short_sh
     return bool(short_share) and zone_m + timed_m <= known < need and need - known <= short_share * need + 1e-9
 
 
+def body_start(steps: pd.DataFrame, a: int, b: int, t0: float, *, full_share: float = 0.75, n_next: int = 6
+               ) -> float:
+    """Decision C250 (ours, from trial s51t2's recordings): the start of a walk from standing (the bout
+    ``steps.iloc[a:b]``, its foot's first row starting at ``t0``) as the body's first step. From standing the leading
+    foot's first stride is one step long, the other foot's two: when the first row tracks at least ``full_share`` x
+    the median length of the next ``n_next`` rows (a full stride), the unseen foot led and stepped one step time -
+    half the median duration of those rows - before, so the start is ``t0`` less that (not before the previous
+    row's end, or 0 s). ``t0`` unchanged on a lower back, a bout of under 3 rows or a half first stride."""
+    if b - a < 3 or _is_lower_back(steps):
+        return t0
+    length = np.abs(steps["length_m"].to_numpy(float)[a:b])
+    nxt = slice(1, 1 + n_next)
+    ref = float(np.nanmedian(length[nxt])) if np.isfinite(length[nxt]).any() else float("nan")
+    if not (np.isfinite(length[0]) and ref > 0 and length[0] >= full_share * ref):
+        return t0
+    dur = (steps["end_s"].to_numpy(float) - steps["start_s"].to_numpy(float))[a:b][nxt]
+    step = 0.5 * float(np.nanmedian(dur)) if np.isfinite(dur).any() else 0.0  # one step: half a stride's time
+    floor = float(steps["end_s"].iloc[a - 1]) if a > 0 else 0.0
+    return max(t0 - step, floor)
+
+
 def _time_bout(steps: pd.DataFrame, a: int, b: int, zone_m: float, timed_m: float, decel_m: float,
-               max_bout_m: float | None = None, ramps=None, short_share: float = 0.0):
+               max_bout_m: float | None = None, ramps=None, short_share: float = 0.0, unseen_lead: bool = False):
     """Decisions L312, L313, L434: the bout ``steps.iloc[a:b]`` timed over the ``timed_m`` after its first
     ``zone_m`` when its path reaches ``zone_m + timed_m + decel_m``: the times ``(t0, t1)``; a float (the bout's
     known length) when it is shorter; a str (the note) when it reaches that length but is refused - decision L552:
     also when the bout is longer than ``max_bout_m`` (a march, not a walkway); decision L679: when its stretch holds
     a row of a ramp of ``ramps`` (:func:`ramp_numbers`). Decision C193: a pass short of the walkway by at most
     ``short_share`` of it that passed the timed stretch's end mark (:func:`_short_ok`) is timed to its end, the
-    times then ``(t0, t1, metres short)``."""
+    times then ``(t0, t1, metres short)``. Decision C250: ``unseen_lead`` (a walk from standing, ``zone_m`` 0) starts
+    at :func:`body_start`, one step earlier when the foot's first row is a full stride."""
     need = zone_m + timed_m + decel_m
     t, d, x, y = _path(steps.iloc[a:b])
     length = np.abs(steps["length_m"].to_numpy(float)[a:b])
@@ -480,6 +523,8 @@ def _time_bout(steps: pd.DataFrame, a: int, b: int, zone_m: float, timed_m: floa
                 f"(straight-line {math.hypot(*end):.1f} m; decision L313): a {timed_m:g} m walk "
                 "test needs a straight walkway; not timed")
     t0, t1 = np.interp([zone_m, zone_m + timed_m], d[: k + 1], t[: k + 1])
+    if unseen_lead and zone_m == 0.0:  # decision C250: from the body's first step, whichever foot took it
+        t0 = body_start(steps, a, b, float(t0))
     if not t1 > t0:
         return "the rows' times do not increase (decision L313); not timed"
     if short:  # decision C193
@@ -489,7 +534,8 @@ def _time_bout(steps: pd.DataFrame, a: int, b: int, zone_m: float, timed_m: floa
 
 def timed_walk(steps: pd.DataFrame, zone_m: float, timed_m: float, keys: tuple[str, str, str], lower_back_note: str,
                short_note, decel_m: float | None = None, max_bout_m: float | None = None,
-               passes: bool = False, ramps=None, short_share: float = 0.0, any_recording: bool = False) -> dict:
+               passes: bool = False, ramps=None, short_share: float = 0.0, any_recording: bool = False,
+               unseen_lead: bool = False) -> dict:
     """Decisions L312, L387: ``keys`` (time, speed, note) of the first walking bout whose path reaches ``zone_m`` +
     ``timed_m`` + ``decel_m`` (default ``zone_m``; L522), timed over the ``timed_m`` after its first ``zone_m``
     (L313's refusals, :func:`_time_bout`; ``short_note(longest, need)`` the note of a walk too short). Decision L535:
@@ -499,7 +545,7 @@ def timed_walk(steps: pd.DataFrame, zone_m: float, timed_m: float, keys: tuple[s
     over ``max_bout_m`` is refused; decision L679: a bout on a ramp of ``ramps`` too. Decision L673: ``passes``
     (the 10 m walk) times each straight pass of a bout (:func:`pass_rows`) as a bout of its own. Decision C193:
     ``short_share`` (a declared walkway's) times a pass a little short (:func:`_short_ok`), its note says so.
-    Decision L779: ``any_recording`` as :func:`_timed_pieces`'."""
+    Decision L779: ``any_recording`` as :func:`_timed_pieces`'; decision C250: ``unseen_lead`` too."""
     time_key, speed_key, note_key = keys
     out = dict.fromkeys(keys)
     decel_m = zone_m if decel_m is None else decel_m
@@ -511,7 +557,7 @@ def timed_walk(steps: pd.DataFrame, zone_m: float, timed_m: float, keys: tuple[s
         return out
     longest, refused = 0.0, None
     for n, got in _timed_pieces(steps, zone_m, timed_m, decel_m, max_bout_m, passes, ramps, short_share,  # L673
-                                any_recording):  # L779
+                                any_recording, unseen_lead):  # L779, C250
         if isinstance(got, float):
             longest = max(longest, got)
             continue
