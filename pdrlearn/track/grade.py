@@ -386,7 +386,8 @@ def long_slope_rows(dz, length, stair, *, max_flight_strides: int = 24,
     ``length``, m) in a run of consecutive stair rows of one sign of more than ``max_flight_strides`` rows (IBC 2018
     sec. 1011.8: a flight rises at most 12 ft = 3.66 m between landings, ~21 risers: ~21 strides step-to-step, + 3)
     whose rise over run (summed |dz| / summed |length|) is under ``slope_grade_pct`` (L463's trail grade: a foot
-    track reads real flights at 34-39 %): a slope, not a stair. NaN read as 0. A pure kernel."""
+    track reads real flights at 34-39 %): a slope, not a stair - less the run's strides whose own grade reaches
+    ``slope_grade_pct`` (a stair section inside a trail climb stays a stair, L466). NaN read as 0. A pure kernel."""
     dz = np.nan_to_num(np.asarray(dz, dtype=float))
     length = np.nan_to_num(np.abs(np.asarray(length, dtype=float)))
     stair = np.asarray(stair, dtype=bool)
@@ -395,7 +396,7 @@ def long_slope_rows(dz, length, stair, *, max_flight_strides: int = 24,
         for a, b in signal_runs(stair & (sign * dz > 0)):
             run = float(length[a:b].sum())
             if b - a > max_flight_strides and run > 0 and 100.0 * float(np.abs(dz[a:b]).sum()) / run < slope_grade_pct:
-                out[a:b] = True
+                out[a:b] = 100.0 * np.abs(dz[a:b]) < slope_grade_pct * length[a:b]
     return out
 
 
