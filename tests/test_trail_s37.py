@@ -46,18 +46,18 @@ def test_a_25_pct_trail_slope_is_a_stair_by_default_and_a_ramp_with_stair_grade_
     from pdrlearn.track.stair_flights import flight_table
 
     rng = np.random.default_rng(9310)
-    length = np.full(60, 1.4)
-    slope = _steps(length, length * (0.25 + rng.normal(0.0, 0.02, 60)))  # a 25 % trail with stride noise
+    length = np.full(20, 1.4)  # L788: 20 strides (a run of more than 24 under 30 % is a slope at any stair grade)
+    slope = _steps(length, length * (0.25 + rng.normal(0.0, 0.02, 20)))  # a 25 % trail with stride noise
     assert stair_min_grade_pct(slope) == 20.0  # L469: L301's 20 % by default (L463 amended)
     got = floors_by_kind(slope)
-    assert got["floors_up_stairs"] == 7 and got["floors_up_ramps"] == 0  # 21 m at 25 %: a stair by default
+    assert got["floors_up_stairs"] == 2 and got["floors_up_ramps"] == 0  # 7 m at 25 %: a stair by default
     assert len(flight_table(slope)) == 1
     stairs = _steps(np.r_[np.ones(3), np.full(9, 0.56), np.ones(3)], np.r_[np.zeros(3), np.full(9, 0.34), np.zeros(3)])
     waist = _steps(np.full(120, 0.7), np.full(120, 0.7 * 0.25), unit="waist")
     with stair_grade_set(TRAIL_STAIR_GRADE_PCT):  # --stair-grade 30 (L463 rule B, an option)
         assert stair_min_grade_pct(slope) == 30.0 and stair_min_grade_pct(waist) == 20.0
         got = floors_by_kind(slope)
-        assert got["floors_up_stairs"] == 0 and got["floors_up_ramps"] == 7  # 7 storeys walked on a ramp
+        assert got["floors_up_stairs"] == 0 and got["floors_up_ramps"] == 2  # 2 storeys walked on a ramp
         assert flight_table(slope).empty  # no stair flight
         ramps = ramp_table(slope, {"altitude_source": "fused"})
         assert len(ramps) == 1 and ramps["mean_grade_pct"].iloc[0] == pytest.approx(25.0, abs=1.0)  # one piece
@@ -145,7 +145,7 @@ def test_a_stair_section_inside_a_trail_climb_is_a_flight_but_a_steep_pair_is_no
         assert [(r.direction, int(r.n_strides)) for r in table.itertuples()] == flights
 
 
-TRAIL = "stand:3, straight:5, slope:40:25, straight:5, stand:3"  # a 25 % trail climb of 10 m
+TRAIL = "stand:3, straight:5, slope:25:25, straight:5, stand:3"  # a 25 % trail climb of 6 m (L788: under 24 strides)
 
 
 @pytest.fixture(scope="module")

@@ -172,7 +172,9 @@ def stride_terrain(steps: pd.DataFrame) -> np.ndarray:
     flight_spans` - L179's stair rows, |``dz_m``| >= 0.10 m, in runs of at least L438's 2 strides of one sign, a ramp
     climb's rows left out; before, every L179 row, so a level walk's lone drifting stride was a stair step); a label
     table's own ``terrain`` (the simulator's and gaitmap's flat / up / down); ``"flat"`` for a table with neither (its
-    steps are taken as level)."""
+    steps are taken as level). Decision L789: a label table with the simulator's ``kind`` takes a stair from it
+    (stairs_up / stairs_down): the simulator labels a slope's walked stride ``terrain`` up / down too (S3: a stride
+    rising 0.08 m or more), so its reference called a 15 % hill's strides "stairs up / down"."""
     n = len(steps)
     if "dz_m" in steps:
         from pdrlearn.track.stair_flights import flight_spans
@@ -185,6 +187,9 @@ def stride_terrain(steps: pd.DataFrame) -> np.ndarray:
         out = np.empty(n, dtype=object)
         out[order] = ordered
         return out
+    if "kind" in steps:  # decision L789: the simulator's stair kinds, not its slope-walk terrain
+        k = steps["kind"].astype(str).str.strip().str.lower().to_numpy()
+        return np.where(k == "stairs_up", "up", np.where(k == "stairs_down", "down", "flat")).astype(object)
     if "terrain" in steps:
         t = steps["terrain"].astype(str).str.strip().str.lower().to_numpy()
         return np.where(np.isin(t, ("up", "down")), t, "flat").astype(object)

@@ -323,7 +323,8 @@ def _with_after(steps: pd.DataFrame, info: dict | None, dz, parts, slope_rows):
 CLIMB_KINDS = ("stairs", "ramps", "rides")
 
 
-def climb_kind(dz, pause_dz, length, rows, on_stairs=None, stair_grade_pct: float | None = None) -> str:
+def climb_kind(dz, pause_dz, length, rows, on_stairs=None, stair_grade_pct: float | None = None,
+               long_slopes: bool = False) -> str:
     """Decision L302: what climbed one climb of :func:`floor_climbs` (its ``rows``, first to last stair row, of the
     rows' walking height change ``dz``, standstill change ``pause_dz`` (W158) and horizontal ``length``): ``"rides"``
     when the standstills from its first to its last stair row carry more than half its height (a lift or escalator
@@ -333,7 +334,9 @@ def climb_kind(dz, pause_dz, length, rows, on_stairs=None, stair_grade_pct: floa
     Decision L314: a climb of which more than half the stair rows are ``on_stairs`` (a lower-back track's W108 climbs,
     :func:`pdrlearn.track.grade.climb_rows`) is "stairs" (or "rides"), whatever its grade. Decision L463:
     ``stair_grade_pct`` (None: L301's 20 %) is the unit's stair grade,
-    :func:`pdrlearn.track.grade.stair_min_grade_pct`."""
+    :func:`pdrlearn.track.grade.stair_min_grade_pct`. Decision L788 (``long_slopes``, a foot track's): a climb of
+    which at least half the height is walked in :func:`pdrlearn.track.grade.long_slope_rows` (a run of stair strides
+    far longer than a building's flight, at a slope's grade) is "ramps"."""
     from pdrlearn.track.grade import STAIR_MIN_GRADE_PCT
 
     stair_grade = STAIR_MIN_GRADE_PCT if stair_grade_pct is None else stair_grade_pct
@@ -345,8 +348,28 @@ def climb_kind(dz, pause_dz, length, rows, on_stairs=None, stair_grade_pct: floa
         return "rides"
     if on_stairs is not None and 2 * int(np.count_nonzero(np.asarray(on_stairs, bool)[rows])) > len(rows):
         return "stairs"  # decision L314
+    if long_slopes and _long_slope_share(dz, length, rows) >= 0.5:  # decision L788
+        return "ramps"
     run = float(np.sum(np.abs(length[rows])))
     return "ramps" if run > 0 and 100.0 * abs(float(np.sum(dz[rows]))) / run < stair_grade else "stairs"
+
+
+def _long_slope_share(dz, length, rows) -> float:
+    """Decision L788: the share of the ``rows``' |height change| walked in
+    :func:`pdrlearn.track.grade.long_slope_rows` of their L179 stair rows (|dz| >= ``LEVEL_DZ_M``); 0 without height."""
+    from pdrlearn.kernels.distance import LEVEL_DZ_M
+    from pdrlearn.track.grade import long_slope_rows
+
+    stair = np.zeros(len(dz), bool)
+    stair[rows] = np.abs(np.asarray(dz, dtype=float)[rows]) >= LEVEL_DZ_M
+    slope = long_slope_rows(dz, length, stair)
+    total = float(np.sum(np.abs(dz[rows])))
+    return float(np.sum(np.abs(dz[rows][slope[rows]]))) / total if total > 0 else 0.0
+
+
+def _foot_rows(steps: pd.DataFrame) -> bool:
+    """Decision L788: a foot track's rows (a table without ``unit``: a foot track)."""
+    return "unit" not in steps or set(steps["unit"].astype(str)) == {"foot"}
 
 
 def _climb_inputs(steps: pd.DataFrame):
@@ -403,12 +426,13 @@ def ramp_climb_rows(steps: pd.DataFrame, info: dict | None = None) -> np.ndarray
 
     on_stairs = climb_rows(steps, info)  # decisions L314, L330
     stair_grade = stair_min_grade_pct(steps)  # decision L463
+    foot = _foot_rows(steps)  # decision L788
     slope_rows = climb_slope_rows(steps, info)  # decision L337
     parts = _climb_parts(steps)  # decisions L374, L375
     for rows, _, ride in _climbs(dz, STOREY_HEIGHT_M, STOREY_BAND, bridge, None, every=True, slope_rows=slope_rows,
                                  parts=parts):
         if not ride and climb_kind(walked, pause - parts[0], length, _kind_rows(rows, dz, slope_rows),
-                                   on_stairs, stair_grade) == "ramps":
+                                   on_stairs, stair_grade, long_slopes=foot) == "ramps":
             out[int(rows[0]):int(rows[-1]) + 1] = True
     return out
 
@@ -427,12 +451,13 @@ def floors_by_kind(steps: pd.DataFrame, storey_height_m: float = STOREY_HEIGHT_M
 
     on_stairs = climb_rows(steps, info)  # decisions L314, L330
     stair_grade = stair_min_grade_pct(steps)  # decision L463
+    foot = _foot_rows(steps)  # decision L788
     slope_rows = climb_slope_rows(steps, info)  # decision L337
     parts = _climb_parts(steps)  # decisions L374-L376: a ride is a climb of its own, "rides"
     dz, parts, slope_rows = _with_after(steps, info, dz, parts, slope_rows)  # decision L394
     for rows, n, ride in _climbs(dz, storey_height_m, STOREY_BAND, bridge, None, slope_rows=slope_rows, parts=parts):
         kind = "rides" if ride else climb_kind(walked, pause - parts[0], length, _kind_rows(rows, dz, slope_rows),
-                                               on_stairs, stair_grade)
+                                               on_stairs, stair_grade, long_slopes=foot)  # decision L788
         key = f"floors_{'up' if n > 0 else 'down'}_{kind}"
         out[key] += abs(n)
     return out

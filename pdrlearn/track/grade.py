@@ -286,7 +286,8 @@ def ramp_runs(length, dz, window: int = 1, min_grade_pct: float = RAMP_MIN_GRADE
               stair_grade_pct: float = STAIR_MIN_GRADE_PCT, min_run_m: float = RAMP_MIN_RUN_M,
               landing_max_m: float = LANDING_MAX_M, on_stairs=None, lone_stair_joins: bool = False,
               window_m: float | None = None, ends=None, min_rise_m: float | None = None,
-              stair_ends: bool = False, min_ramp_m: float | None = None) -> list[dict]:
+              stair_ends: bool = False, min_ramp_m: float | None = None, stops=None,
+              long_slopes: bool = False) -> list[dict]:
     """Decision L301: the ramps of rows (horizontal ``length`` m, height change ``dz`` m, walking order) - a pure
     kernel. A row is a ramp row of sign s when the grade of the centred ``window`` rows around it (their summed dz
     over their summed |length|) is at least ``min_grade_pct`` in size, under ``stair_grade_pct`` (steeper: a stair),
@@ -307,7 +308,11 @@ def ramp_runs(length, dz, window: int = 1, min_grade_pct: float = RAMP_MIN_GRADE
     way whose horizontal run is at most ``window_m`` is that flight's end (:func:`_stair_end`), left out.
     ``min_ramp_m`` (decision W539, measured and not adopted, an option; None: none): a ramp whose horizontal run
     (its runs summed) is under it is left out - ``WAIST_SLOPE_WINDOW_M`` drops a lower-back track's lone 2 m ramps
-    (one fitted window's noise) but also a slow walker's ramp read in short pieces."""
+    (one fitted window's noise) but also a slow walker's ramp read in short pieces.
+    ``stops`` (decision L787; None: none): True on a row the walker stood still before (:func:`stop_rows`) - it
+    starts a new run and no ramp joins across it (a stop is not walked, so no landing). ``long_slopes`` (decision
+    L788, a foot track's): the rows of :func:`long_slope_rows` of L179's stair rows (|dz| >= 0.10 m; a run far
+    longer than a building's flight at a slope's grade) are ramp rows of their sign, none a stair row."""
     length = np.nan_to_num(np.abs(np.asarray(length, dtype=float)))
     dz = np.nan_to_num(np.asarray(dz, dtype=float))
     n = len(length)
@@ -322,18 +327,30 @@ def ramp_runs(length, dz, window: int = 1, min_grade_pct: float = RAMP_MIN_GRADE
     stair = np.abs(own) >= stair_grade_pct
     if on_stairs is not None:  # decision L314
         stair |= np.asarray(on_stairs, dtype=bool)
+    slope = None
+    if long_slopes:  # decision L788: runs of L179's stair strides (|dz| >= 0.10 m), as flights and climbs read them
+        from pdrlearn.kernels.distance import LEVEL_DZ_M
+
+        slope = long_slope_rows(dz, length, (np.abs(dz) >= LEVEL_DZ_M) & (length >= GRADE_MIN_LENGTH_M))
+    if slope is not None:
+        stair &= ~slope
     sign = np.where((np.abs(g) >= min_grade_pct) & (np.abs(g) < stair_grade_pct) & ~stair
                     & (length >= GRADE_MIN_LENGTH_M), np.sign(g), 0).astype(int)
+    if slope is not None:
+        sign = np.where(slope, np.sign(dz), sign).astype(int)  # decision L788: a slope's rows are ramp rows
+    stops = None if stops is None else np.asarray(stops, dtype=bool)
     blocks = stair & ~_lone(stair) if lone_stair_joins else stair  # decision W464
-    runs = sorted((a, b - 1, s) for s in (1, -1) for a, b in signal_runs(sign == s)
-                  if length[a:b].sum() >= min_run_m)  # maximal rows of one sign, in walking order
+    runs = sorted((a0, b0 - 1, s) for s in (1, -1) for a, b in signal_runs(sign == s)
+                  for a0, b0 in _split_at(a, b, stops)  # decision L787: a stop ends a run
+                  if length[a0:b0].sum() >= min_run_m)  # maximal rows of one sign, in walking order
     ramps: list[list[tuple[int, int, int]]] = []
     for r in runs:
         if ramps:
             p = ramps[-1][-1]
             between = slice(p[1] + 1, r[0])
             if (p[2] == r[2] and length[between].sum() <= landing_max_m
-                    and not np.any(blocks[between] | (sign[between] == -r[2]))):
+                    and not np.any(blocks[between] | (sign[between] == -r[2]))
+                    and (stops is None or not stops[p[1] + 1:r[0] + 1].any())):  # decision L787
                 ramps[-1].append(r)
                 continue
         ramps.append([r])
@@ -361,6 +378,46 @@ def ramp_runs(length, dz, window: int = 1, min_grade_pct: float = RAMP_MIN_GRADE
                     "max_run_grade_pct": float(max(grades, key=abs)), "n_steps": int(rs[-1][1] - rs[0][0] + 1),
                     "max_run_rise_m": max(rises, key=abs)})
     return out
+
+
+def long_slope_rows(dz, length, stair, *, max_flight_strides: int = 24,
+                    slope_grade_pct: float = TRAIL_STAIR_GRADE_PCT) -> np.ndarray:
+    """Decision L788: (rows,) bool, the ``stair`` rows (walking order, height change ``dz`` and horizontal
+    ``length``, m) in a run of consecutive stair rows of one sign of more than ``max_flight_strides`` rows (IBC 2018
+    sec. 1011.8: a flight rises at most 12 ft = 3.66 m between landings, ~21 risers: ~21 strides step-to-step, + 3)
+    whose rise over run (summed |dz| / summed |length|) is under ``slope_grade_pct`` (L463's trail grade: a foot
+    track reads real flights at 34-39 %): a slope, not a stair - less the run's strides whose own grade reaches
+    ``slope_grade_pct`` (a stair section inside a trail climb stays a stair, L466). NaN read as 0. A pure kernel."""
+    dz = np.nan_to_num(np.asarray(dz, dtype=float))
+    length = np.nan_to_num(np.abs(np.asarray(length, dtype=float)))
+    stair = np.asarray(stair, dtype=bool)
+    out = np.zeros(len(dz), bool)
+    for sign in (1, -1):
+        for a, b in signal_runs(stair & (sign * dz > 0)):
+            run = float(length[a:b].sum())
+            if b - a > max_flight_strides and run > 0 and 100.0 * float(np.abs(dz[a:b]).sum()) / run < slope_grade_pct:
+                out[a:b] = 100.0 * np.abs(dz[a:b]) < slope_grade_pct * length[a:b]
+    return out
+
+
+def stop_rows(start_s, end_s, *, stop_s: float = 30.0) -> np.ndarray:
+    """Decision L787: (rows,) bool, True on a row (walking order) that starts at least ``stop_s`` seconds after the
+    previous row ended - the walker stood (a map or a food stop, longer than a breath-catching pause): it starts a
+    new ramp (:func:`ramp_runs`' ``stops``). A pure kernel; NaN times stop nothing."""
+    start, end = np.asarray(start_s, dtype=float), np.asarray(end_s, dtype=float)
+    out = np.zeros(len(start), bool)
+    if len(start) > 1:
+        with np.errstate(invalid="ignore"):
+            out[1:] = (start[1:] - end[:-1]) >= stop_s
+    return out
+
+
+def _split_at(a: int, b: int, stops) -> list[tuple[int, int]]:
+    """The row range ``[a, b)`` cut before each row of ``stops`` (True) inside it (decision L787)."""
+    if stops is None:
+        return [(a, b)]
+    cuts = [a, *(k for k in range(a + 1, b) if stops[k]), b]
+    return list(zip(cuts[:-1], cuts[1:], strict=True))
 
 
 def _stair_landing(stair: np.ndarray, dz: np.ndarray, before: int, after: int, sign: int) -> bool:
@@ -411,7 +468,11 @@ def track_ramps(steps: pd.DataFrame, info: dict | None) -> FoundRamps:
                       lone_stair_joins=waist,  # decision W464: one noisy barometric step splits no ramp
                       window_m=WAIST_SLOPE_WINDOW_M if waist else None, ends=ends,  # decision W517
                       min_rise_m=rest_rise_floor_m(steps) if waist else None,  # decision W519
-                      stair_ends=waist)  # decision W530: a flight's blurred ends are no ramps
+                      stair_ends=waist,  # decision W530: a flight's blurred ends are no ramps
+                      stops=(stop_rows(pd.to_numeric(steps["start_s"], errors="coerce"),
+                                       pd.to_numeric(steps["end_s"], errors="coerce"))
+                             if "start_s" in steps and "end_s" in steps else None),  # decision L787
+                      long_slopes=not waist)  # decision L788: a foot track's long shallow "flight" is a slope
     return found, np.abs(length), dz
 
 

@@ -113,10 +113,11 @@ def flight_row_masks(st: pd.DataFrame, dz: np.ndarray, length: np.ndarray | None
     |dz| / |length| reaches :func:`pdrlearn.track.grade.stair_min_grade_pct` (L469: 20 %, ``--stair-grade``; a stair
     beside a ramp, L455). L455 alone was not adopted (a real level recording gained a 2-stride drift flight); L466
     adopted it with :data:`MIN_STEEP_FLIGHT_STRIDES`, so stairs.csv's flights are made of the second (decision L595:
-    the rule, no module switch ``STEEP_STRIDES_IN_RAMPS``; its unused reader ``flight_rows`` removed)."""
+    the rule, no module switch ``STEEP_STRIDES_IN_RAMPS``; its unused reader ``flight_rows`` removed). Decision L788:
+    with ``length``, neither holds :func:`pdrlearn.track.grade.long_slope_rows` of the stair rows (a slope)."""
     from pdrlearn.track.evaluate import ramp_climb_rows
     from pdrlearn.track.gait import stair_rows
-    from pdrlearn.track.grade import stair_min_grade_pct
+    from pdrlearn.track.grade import long_slope_rows, stair_min_grade_pct
 
     stair = stair_rows(st, ramp_not_stair=False)
     kept = stair & ~ramp_climb_rows(st)  # decision L443
@@ -124,7 +125,8 @@ def flight_row_masks(st: pd.DataFrame, dz: np.ndarray, length: np.ndarray | None
         return kept, kept
     with np.errstate(invalid="ignore", divide="ignore"):
         steep = np.abs(np.nan_to_num(dz)) >= stair_min_grade_pct(st) / 100.0 * np.abs(length)  # L455, L463
-    return kept, kept | (stair & steep)
+    slope = long_slope_rows(dz, length, stair)  # decision L788: a run far longer than a building's flight, a slope
+    return kept & ~slope, (kept | (stair & steep)) & ~slope
 
 
 def flight_spans(st: pd.DataFrame) -> list[tuple[int, int, int]]:
