@@ -2,7 +2,7 @@
 
 Users FIRST..LAST: the first 12 a one-side foot drop (``--prosthetic-side left|right`` alternating,
 ``--prosthetic-toe-off-pitch -20 --prosthetic-heel-strike-pitch 3``, the trial's), the rest symmetric walkers. Both
-feet of one walk (``--foot left|right``, same user seed), ``gait LEFT RIGHT --out`` (it tracks each with --toe-off). Truth
+feet of one walk (``--foot left|right``, same user seed), ``gait LEFT RIGHT --out`` (each tracked --toe-off). Truth
 per side: trial s51t2's truth_clear.py - the simulator's toe point ``[L (1 - x_frac), 0, -h]`` of foot_trajectory.csv,
 the lowest toe height after its first peak between the toe-off and the contact, median over the walk strides.
 
