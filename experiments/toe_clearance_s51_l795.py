@@ -76,7 +76,7 @@ def one(root: Path, uid: int) -> dict:
 
 def real() -> None:
     top = Path(__file__).resolve().parents[1] / "datasets"
-    for d in sorted([*top.glob("real/gaitmap_level_*"), *top.glob("external/gaitmap_*")]):
+    for d in sorted([*top.glob("real/gaitmap_level_*"), *top.glob("external/gaitmap_ms_*")]):
         if not d.is_dir():
             continue
         out = Path("/tmp") / f"l795_real_{d.name}"
