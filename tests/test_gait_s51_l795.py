@@ -85,7 +85,8 @@ def test_gait_gives_each_sides_clearance_and_the_clinical_line_l795_c260():
     assert ("toe clearance (minimum in mid-swing, medians) left 0.004 m / right 0.021 m: left lower (a dragging toe, "
             "e.g. foot drop) (L795)") in gait_lines(w)
     page = "\n".join(asymmetry_lines(w, affected="left"))
-    assert "- Toe clearance (minimum in mid-swing, medians) affected 0.004 m / unaffected 0.021 m: affected lower" in page
+    assert ("- Toe clearance (minimum in mid-swing, medians) affected 0.004 m / unaffected 0.021 m: affected "
+            "lower") in page
     same = bilateral_gait(_foot(np.arange(N) * 1.2, 0.02), _foot(0.6 + np.arange(N) * 1.2, 0.022))["walk"]
     assert same["toe_clearance_lower"] is None
     assert not any("lower (a dragging" in line for line in gait_lines(same))
