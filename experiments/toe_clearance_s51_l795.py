@@ -97,22 +97,25 @@ if __name__ == "__main__":
         sys.exit(0)
     ROOT, FIRST, LAST = Path(sys.argv[1]), int(sys.argv[2]), int(sys.argv[3])
     ROOT.mkdir(parents=True, exist_ok=True)
-    with ThreadPoolExecutor(2) as ex:
-        rows = list(ex.map(lambda u: one(ROOT, u), range(FIRST, LAST + 1)))
-    df = pd.DataFrame(rows)
-    df.to_csv(ROOT / "l795.csv", index=False)
+    if "--summary" in sys.argv:  # the table written by an earlier run, printed again
+        df = pd.read_csv(ROOT / "l795.csv")
+    else:
+        with ThreadPoolExecutor(2) as ex:
+            rows = list(ex.map(lambda u: one(ROOT, u), range(FIRST, LAST + 1)))
+        df = pd.DataFrame(rows)
+        df.to_csv(ROOT / "l795.csv", index=False)
     pd.set_option("display.width", 200)
     print(df.round(4).to_string(index=False))
-    d = df[df.drop.notna()]
-    print(f"(a) foot-drop side named lower {int((d.lower == d.drop).sum())} of {len(d)}; other side named "
-          f"{int((d.lower.notna() & (d.lower != d.drop)).sum())}")
+    d = df[df["drop"].notna()]
+    print(f"(a) foot-drop side named lower {int((d.lower == d['drop']).sum())} of {len(d)}; other side named "
+          f"{int((d.lower.notna() & (d.lower != d['drop'])).sum())}")
     err = np.concatenate([(df[f"est_{s}"] - df[f"true_{s}"]).to_numpy(float) for s in ("left", "right")])
     print(f"(b) per-side median vs truth: median |error| {np.nanmedian(np.abs(err)):.4f} m, median error "
           f"{np.nanmedian(err):+.4f} m, max |error| {np.nanmax(np.abs(err)):.4f} m over {int(np.isfinite(err).sum())} "
           "sides")
     t = np.where(df.true_left < df.true_right, "left", "right")
-    print(f"truth's lower side = the foot-drop side on {int((t[df.drop.notna()] == d.drop).sum())} of {len(d)}; "
+    print(f"truth's lower side = the foot-drop side on {int((t[df['drop'].notna()] == d['drop']).sum())} of {len(d)}; "
           f"named side = truth's lower side where named: {int((df.lower == t)[df.lower.notna()].sum())} of "
           f"{int(df.lower.notna().sum())}")
-    s = df[df.drop.isna()]
+    s = df[df["drop"].isna()]
     print(f"(c) symmetric walkers flagged {int(s.lower.notna().sum())} of {len(s)}")
