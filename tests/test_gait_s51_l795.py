@@ -58,6 +58,15 @@ def test_the_foot_track_writes_the_clearance_after_the_lift_l795():
     assert undocumented("steps.csv (foot)", ["min_toe_clearance_m"]) == []
 
 
+def test_the_toe_offset_is_a_checked_setting_l795():
+    from pdrlearn.displace.foot import FootDisplacement, check_settings
+    from pdrlearn.errors import DataError
+
+    assert FootDisplacement().toe_offset_m == 0.14 and FootDisplacement(toe_offset_m=0.1).toe_offset_m == 0.1
+    with pytest.raises(DataError, match="toe_offset_m"):
+        check_settings({"toe_offset_m": -0.1})
+
+
 def test_the_lower_side_is_named_only_when_clearly_lower_l795():
     assert lower_clearance_side({"min_toe_clearance_m_left": -0.006, "min_toe_clearance_m_right": 0.003}) == "left"
     assert lower_clearance_side({"min_toe_clearance_m_left": 0.027, "min_toe_clearance_m_right": 0.029}) is None
