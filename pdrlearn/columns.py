@@ -1355,6 +1355,10 @@ FOOT_STEPS: tuple[Column, ...] = (
                                          "own lift, so a higher or farther-forward mount reads another value for "
                                          "the same foot motion; --reference-point heel leaves it as it is and adds "
                                          "max_heel_lift_m (L721)"),
+    ("min_toe_clearance_m", "m", "number", "offline foot track: the minimum toe clearance - the toe point's (the "
+                                           "sensor + R(t) x toe_offset_m forward, 0.14 m unless --params sets it) "
+                                           "lowest height above the line joining its rests after its first peak of "
+                                           "the swing, up to event_s (Mariani et al. 2012; L795)"),
     ("max_heel_lift_m", "m", "number", "offline foot track with --reference-point heel: the heel contact point's "
                                        "highest point above the line joining its two rests (L22's lever arm from "
                                        "the recording; the same for any mount of the unit; L721)"),
@@ -1523,6 +1527,12 @@ GAIT_BOUTS: tuple[Column, ...] = (
        f"{what} (+ toes up) over the headline's steps (steps.csv {a}, L421; C244)")
       for a, what in (("ic_angle_deg", "at its contact"), ("tc_angle_deg", "at the toe-off before it"))
       for s in ("left", "right")),
+    *((f"min_toe_clearance_m_{s}", "m", "number", f"gait_summary.json walk only, foot tracks: the {s} foot's "
+       "median minimum toe clearance over the headline's steps (steps.csv min_toe_clearance_m, L795)")
+      for s in ("left", "right")),
+    ("toe_clearance_lower", _ID, "text", "gait_summary.json walk only: left / right, the side whose median toe "
+                                         "clearance is clearly lower (at least 0.005 m below the other's, L795); "
+                                         "empty otherwise"),
     ("impact_sharpness_left", "m/s^3", "number", "gait_summary.json walk only, foot tracks: the left foot's median "
                                                  "largest |d|a|/dt| within 0.1 s of its contacts (L318)"),
     ("impact_sharpness_right", "m/s^3", "number", "gait_summary.json walk only: the same of the right foot; over 3 x "

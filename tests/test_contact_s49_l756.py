@@ -40,7 +40,7 @@ def test_the_foot_track_writes_the_contact_column_after_the_sole_angles_l756():
 
     table = pd.DataFrame({"event_s": [1.0, 2.0, 3.0], "stride_time_s": [np.nan, 1.0, 1.0]})
     angles = {1.0: -12.0, 2.0: 22.0, 3.0: 0.5}
-    fd = SimpleNamespace(lift_m_=np.array([0.1, 0.1, 0.1]),
+    fd = SimpleNamespace(lift_m_=np.array([0.1, 0.1, 0.1]), min_toe_clearance=lambda tc, ic: np.full(len(ic), 0.02),
                          sole_angle=lambda t: np.array([angles.get(float(x), np.nan) for x in np.atleast_1d(t)]))
     swing_columns(table, fd, np.array([True, True, True]))
     cols = list(table.columns)

@@ -56,6 +56,9 @@ def test_lift_and_angles_match_the_simulator_truth(walk):
     # heel strike lands toes up, toe-off leaves toes down (the simulator: toe-off -50..-58 deg, S23)
     assert np.nanmedian(rows["ic_angle_deg"]) > 10.0
     assert np.nanmedian(rows["tc_angle_deg"]) < -30.0
+    # decision L795: the toe's lowest point in mid-swing, a centimetre or so on the simulator, under the sensor lift
+    mtc = rows["min_toe_clearance_m"].to_numpy(float)
+    assert np.isfinite(mtc).all() and -0.01 < np.median(mtc) < 0.04 and (mtc < rows["max_sensor_lift_m"]).all()
 
 
 def test_tc_angle_needs_the_toe_off():
@@ -64,3 +67,4 @@ def test_tc_angle_needs_the_toe_off():
     st = track_plasys(s).steps
     assert st["tc_angle_deg"].isna().all()
     assert np.isfinite(st["max_sensor_lift_m"]).sum() >= 2 and np.isfinite(st["ic_angle_deg"]).sum() >= 2
+    assert np.isfinite(st["min_toe_clearance_m"]).sum() >= 2  # decision L795: from the toe's rise without a toe-off

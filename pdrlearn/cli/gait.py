@@ -71,6 +71,11 @@ def gait_lines(summary: dict, by_kind: dict | None = None) -> list[str]:
     angles = foot_angle_text(w)
     if angles:  # cohort C244
         lines.append(angles)
+    from pdrlearn.track.affected_side import toe_clearance_text
+
+    clearance = toe_clearance_text(w)
+    if clearance:  # decision L795
+        lines.append(clearance)
     return lines
 
 

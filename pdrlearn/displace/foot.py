@@ -224,7 +224,8 @@ SETTING_BOUNDS = {"sw": {"low": 0, "open_low": True}, "r": {"low": 0, "open_low"
                   "max_rest_s": {"low": 0}, "rest_s": {"low": 0, "open_low": True},
                   "zupt_erode": {"low": 0, "high": 0.5},  # a fraction cut at both ends of a stance run
                   "zupt_erode_max_s": {"low": 0}, "upsample": {"low": 1}, "max_stride_s": {"low": 0, "open_low": True},
-                  "accel_scale_error": {"low": 0}, "min_rocker_samples": {"low": 1}, "zaru_gyro_rad_s": {"low": 0}}
+                  "accel_scale_error": {"low": 0}, "min_rocker_samples": {"low": 1}, "zaru_gyro_rad_s": {"low": 0},
+                  "toe_offset_m": {"low": 0}}  # decision L795
 
 
 def setting_rules() -> dict[str, Rule]:
@@ -340,6 +341,9 @@ class FootDisplacement:
         still samples (``standstill_mask``, the set-up standstill's detector) whose own length, first still sample
         to last, is :data:`FOOT_REST_DRIFT_MIN_S` or more - a 30 s stand leaves a stride gap under 30 s (each stride
         takes up to ``max_rest_s`` of it) but a still run over 30 s
+    toe_offset_m : decision L795: the sensor-to-toe distance (m) along the foot's forward axis, for ``toe_height_m_``
+        and :meth:`min_toe_clearance` (default 0.14 m, the project's own: a 0.25 m adult foot, the unit on the instep
+        ~45 % of its length from the heel; the rigid-foot toe point of Mariani et al. 2012)
 
     Attributes
     ----------
@@ -351,7 +355,9 @@ class FootDisplacement:
     heel_lift_m_ : (B,) with ``reference_point="heel"`` and a lever arm, the heel contact point's highest point above
         the line joining its two rests (m, decision L721), else None;
     lift_m_ : (B,) the sensor's highest point above the line joining its two rests (m, decision L421);
-        sole_pitch_deg_ (B, L) the sole angle of every stride sample (:meth:`sole_angle` reads it at a time)
+        sole_pitch_deg_ (B, L) the sole angle of every stride sample (:meth:`sole_angle` reads it at a time);
+        toe_height_m_ (B, L) the toe point's height above the line joining its rests (decision L795,
+        :meth:`min_toe_clearance` reads it)
     rows_ : (B,) rows of the input steps table the strides come from (dropped rows: no swing between)
     stance_ : (n,) bool stance mask;  stance_source_ : "force" or "inertial"
     """
@@ -365,7 +371,7 @@ class FootDisplacement:
                  zaru_gyro_rad_s: float = 0.4, yaw: str = "twist", tilt_dedrift: bool = False,
                  tilt_clock: str = "rotation", timestamps: bool = False,
                  upsample_runs: bool = False, rest_bias: bool = False, clip_noise: bool = False,
-                 rest_drift: bool = False, rest_drift_by: str = "gap"):
+                 rest_drift: bool = False, rest_drift_by: str = "gap", toe_offset_m: float = 0.14):
         check_settings({k: v for k, v in locals().items() if k != "self"}, "FootDisplacement")  # decision B206
         if tilt_clock not in ("time", "rotation"):
             raise DataError(f"FootDisplacement: tilt_clock '{tilt_clock}' is not 'time' or 'rotation'")
@@ -378,6 +384,7 @@ class FootDisplacement:
             raise DataError(f"FootDisplacement: rest_drift_by '{rest_drift_by}' is not one of "
                             f"{', '.join(REST_DRIFT_BY)}")
         self.rest_drift_by = rest_drift_by
+        self.toe_offset_m = float(toe_offset_m)  # decision L795
         self.clip_noise = bool(clip_noise)
         if yaw not in ("twist", "x-axis"):
             raise DataError(f"FootDisplacement: yaw '{yaw}' is not 'twist' or 'x-axis'")
@@ -543,16 +550,18 @@ class FootDisplacement:
         """Decision L421: ``lift_m_`` (B,) the sensor's highest point above the line joining its two rests (the
         ZUPT-corrected velocity of thesis ch.7.2.1, L21's error clock, integrated once) and ``sole_pitch_deg_``
         (B, L) the sole angle of every stride sample (gaitmap's convention), read at a time by :meth:`sole_angle`."""
-        from pdrlearn.kernels.clearance import max_lift, sole_pitch_deg
+        from pdrlearn.kernels.clearance import max_lift, sole_pitch_deg, toe_height
 
         self.idx_, self.mask_ = idx, mask
         if not len(idx):
             self.lift_m_, self.sole_pitch_deg_ = np.zeros(0), np.zeros((0, idx.shape[1]))
+            self.toe_height_m_ = np.zeros((0, idx.shape[1]))
             return
         clock = (K.error_clock(a_nav, mask, r=self.r, scale_error=self.accel_scale_error, weight=weight)
                  if self.accel_scale_error > 0 else None)
         pos = K._cumtrapz(K.zupt_velocity(a_nav, mask, dt, zupt_end=self.zupt_end, zupt=zm, clock=clock), dt)
         self.lift_m_ = max_lift(pos, mask)
+        self.toe_height_m_ = toe_height(pos, q, mask, self.toe_offset_m)  # decision L795
         del pos
         self.sole_pitch_deg_ = sole_pitch_deg(q)
 
@@ -562,6 +571,19 @@ class FootDisplacement:
         from pdrlearn.kernels.clearance import value_at
 
         return value_at(self.t_, self.idx_, self.mask_, self.sole_pitch_deg_, np.asarray(times, dtype=float))
+
+    def min_toe_clearance(self, tc_times, ic_times) -> np.ndarray:
+        """Decision L795: (B,) m, each stride's minimum toe clearance (:func:`pdrlearn.kernels.clearance.min_clearance`
+        of ``toe_height_m_``) between its toe-off ``tc_times`` (B,) s (NaN: not known) and its initial contact
+        ``ic_times`` (B,) s; NaN without a contact inside the stride."""
+        from pdrlearn.kernels.clearance import min_clearance, sample_at
+
+        if not len(self.idx_):
+            return np.zeros(0)
+        i_to = sample_at(self.t_, self.idx_, self.mask_, np.asarray(ic_times, dtype=float))
+        i_from = sample_at(self.t_, self.idx_, self.mask_, np.asarray(tc_times, dtype=float))
+        i_from = np.where((i_from >= 0) & (i_from < i_to), i_from, -1)
+        return min_clearance(self.toe_height_m_, i_from, i_to)
 
     def _intervals(self, t: np.ndarray, period: float, idx: np.ndarray, mask: np.ndarray):
         """Decision L83: the sample intervals the strides are integrated over. Returns ``dt`` (``period``, or

@@ -544,6 +544,11 @@ def asymmetry_lines(walk: dict, stairs=None, leg_m: float | None = None, affecte
     angles = foot_angle_line(walk, affected)  # cohort C244
     if angles:
         lines.append(angles)
+    from pdrlearn.track.affected_side import toe_clearance_text
+
+    clearance = toe_clearance_text(walk, affected)
+    if clearance:  # decision L795, cohort C260
+        lines.append(f"- {clearance[0].upper()}{clearance[1:]}")
     speed, cad = _number(walk.get("gait_speed_mps")), _number(walk.get("cadence_spm"))
     if speed is not None:
         lines.append(f"- Gait speed {speed:.2f} m/s{f', cadence {cad:.0f} steps/min' if cad is not None else ''} "

@@ -32,3 +32,19 @@ def side_word(side: str, affected: str | None) -> str:
 def sides_note(affected: str | None) -> str:
     """Cohort C245: "left = affected" (the L / R columns' key) when a side is named, else ""."""
     return f"{affected} = affected" if affected in ("left", "right") else ""
+
+
+def toe_clearance_text(walk: dict, affected: str | None = None) -> str | None:
+    """Decision L795 (cohort C260): "toe clearance (minimum in mid-swing, medians) left x.xxx m / right y.yyy m", and
+    ": left lower" when ``walk``'s ``toe_clearance_lower`` names the clearly lower side (a foot drop), the sides
+    worded by ``affected`` (C245); None without either side's ``min_toe_clearance_m_left`` / ``_right``."""
+    v = {s: walk.get(f"min_toe_clearance_m_{s}") for s in ("left", "right")}
+    if all(x is None for x in v.values()):
+        return None
+    text = "toe clearance (minimum in mid-swing, medians) " + " / ".join(
+        f"{side_word(s, affected) if affected in ('left', 'right') else s} "
+        f"{'-' if v[s] is None else format(v[s], '.3f')} m" for s in ("left", "right"))
+    low = walk.get("toe_clearance_lower")
+    if low in ("left", "right"):
+        text += f": {side_word(low, affected)} lower (a dragging toe, e.g. foot drop)"
+    return text + " (L795)"

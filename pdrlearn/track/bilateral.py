@@ -849,6 +849,7 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
         reason = support_note(setup_of(contact_source), _cycle_s(walk), rate_hz) if "event_s" in left_steps else None
     walk["headline_steps"] = basis  # decision L538
     walk.update(foot_angles(both[masks[0]]))  # cohort C244: the headline strides' sole angles per side
+    walk["toe_clearance_lower"] = lower_clearance_side(walk)  # decision L795
     walk.update({f"n_steps_all_{s}": int((steps["side"] == s).sum()) for s in SIDES})
     walk["step_length_scale_pct"] = None if scale is None else 100.0 * scale  # decision L310
     walk["step_length_passes"] = passes  # decision L760
@@ -877,8 +878,9 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
 
 
 #: cohort C244: a foot track's sole angles (steps.csv, decision L421) that :func:`foot_events` carries and
-#: :func:`foot_angles` gives per side: at the initial contact and at the toe-off (--toe-off)
-FOOT_ANGLES = ("ic_angle_deg", "tc_angle_deg")
+#: :func:`foot_angles` gives per side: at the initial contact and at the toe-off (--toe-off); decision L795: and the
+#: stride's minimum toe clearance
+FOOT_ANGLES = ("ic_angle_deg", "tc_angle_deg", "min_toe_clearance_m")
 
 
 def foot_angles(contacts: pd.DataFrame) -> dict:
@@ -893,6 +895,18 @@ def foot_angles(contacts: pd.DataFrame) -> dict:
             v = v[np.isfinite(v)]
             out[f"{name}_{s}"] = float(np.median(v)) if len(v) else None
     return out
+
+
+def lower_clearance_side(walk: dict, *, min_diff_m: float = 0.005) -> str | None:
+    """Decision L795: ``"left"`` / ``"right"``, the side whose median minimum toe clearance (``walk``'s
+    ``min_toe_clearance_m_left`` / ``_right``, :func:`foot_angles`) is clearly the lower - at least ``min_diff_m``
+    below the other's (a foot drop; a symmetric walker's sides differ by the stride noise); None otherwise or
+    without both."""
+    v = {s: walk.get(f"min_toe_clearance_m_{s}") for s in SIDES}
+    if any(x is None or not np.isfinite(x) for x in v.values()):
+        return None
+    low, high = sorted(SIDES, key=lambda s: v[s])
+    return low if v[high] - v[low] >= min_diff_m else None
 
 
 def _cycle_s(walk: dict) -> float | None:

@@ -1999,17 +1999,20 @@ def bridge_foot_yaw(fd: FootDisplacement, foot_gaps: dict, stream=None, *, every
 
 
 def swing_columns(table: pd.DataFrame, fd: FootDisplacement, valid: np.ndarray) -> None:
-    """Decision L421: ``max_sensor_lift_m`` and the sole angles ``ic_angle_deg`` (at ``event_s``) and
-    ``tc_angle_deg`` (at ``tc_s``, where the toe-off is known) of each stride row of ``table`` (the rows of ``fd``),
-    NaN on the rows not ``valid`` (a stride across a gap, one L94 moved 0 m)."""
+    """Decision L421: ``max_sensor_lift_m`` (L795: and ``min_toe_clearance_m``) and the sole angles ``ic_angle_deg``
+    (at ``event_s``) and ``tc_angle_deg`` (at ``tc_s``, where the toe-off is known) of each stride row of ``table``
+    (the rows of ``fd``), NaN on the rows not ``valid`` (a stride across a gap, one L94 moved 0 m)."""
     from pdrlearn.track.table_columns import place_column
 
     valid = np.asarray(valid, dtype=bool)
     tc = table["tc_s"].to_numpy(float) if "tc_s" in table else np.full(len(table), np.nan)
     # before the gait columns (L66) and L97's tail, which run's and track --streaming's steps.csv end with too
     place_column(table, "max_sensor_lift_m", np.where(valid, fd.lift_m_, np.nan), before=("stride_time_s",))
-    place_column(table, "ic_angle_deg", np.where(valid, fd.sole_angle(table["event_s"].to_numpy(float)), np.nan),
-                 after=("max_sensor_lift_m",))
+    ic = table["event_s"].to_numpy(float)
+    place_column(table, "min_toe_clearance_m", np.where(valid, fd.min_toe_clearance(tc, ic), np.nan),
+                 after=("max_sensor_lift_m",))  # decision L795
+    place_column(table, "ic_angle_deg", np.where(valid, fd.sole_angle(ic), np.nan),
+                 after=("min_toe_clearance_m",))
     place_column(table, "tc_angle_deg", np.where(valid, fd.sole_angle(tc), np.nan), after=("ic_angle_deg",))
     from pdrlearn.kernels.contact_type import contact_types
 
