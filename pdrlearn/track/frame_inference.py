@@ -1002,6 +1002,8 @@ def declared_frame_warning(placement: str, declared: AxisFrame, found: InferredF
                       f"which axis is which: {unchecked})")
     if off and found is not None:
         fix = f'if the data are right, write "frames": {json.dumps({placement: found.frame.to_dict()})} in meta.json'
+        if not refuse:  # decision W607: a batch of recordings need not be edited one by one
+            fix += " (or track with --mount-frame inferred, decision W607)"
     elif off:
         flip = set(off) if len(off) == 2 else {*off, "left"}  # turned 180 deg about the direction that agrees
         fix = (f'if the data are right, write "frames": {json.dumps({placement: _turned(declared, flip).to_dict()})} '
