@@ -581,7 +581,7 @@ def pseudonym_paths(rels: list[str], names: dict[str, str], source: Path) -> lis
 def job_warnings(r: JobResult, given: str | None = None) -> list[str]:
     """The warnings a track-all job raised, in order, each once: a tracked session's, or (cohort C15) those a
     failed session raised before its error; the ``DIR: `` prefix naming the session folder as ``given``
-    (decision B34) removed. Decision W608: a line that another ends with after a location (D10's frame line, logged
+    (decision B34) removed. Decision W607: a line that another ends with after a location (D10's frame line, logged
     as ``meta.json: session 'NAME': TEXT`` and kept in the summary as ``TEXT``, W334) is said once, located."""
     got = r.value["warnings"] if r.ok else r.extra.get("warnings", [])
     if given:
