@@ -1725,7 +1725,8 @@ RIDES: tuple[Column, ...] = (
     ("end_s", "s", "number", "when it had moved 90 %"),
     ("kind", _ID, "text", "lift (0.5 m/s or more vertically), escalator (0.15-0.5 m/s, at most 45 s), vehicle (it "
                           "vibrates at 0.15 m/s^2 or more, climbing or level: a standstill of 20 s or more; L615, "
-                          "L616) or other (a slow long climb); vehicle and other count no floors (L376)"),
+                          "L616), other (a slow long climb) or stairs (it shook like walking: steps missed; the "
+                          "lower back's opt-in walked_ride, W609); vehicle and other count no floors (L376)"),
     ("dz_m", "m", "number", "the altitude change while standing (steps.csv pause_dz_m of the next step; a vehicle "
                             "row of a standstill under 1.5 m of change, L616: the barometer's change over it, not in "
                             "pause_dz_m); empty: a foot track without a barometer (L624: its vehicle rows are read "

@@ -287,6 +287,7 @@ def _validators() -> dict[tuple[str, str], object]:
     from pdrlearn.displace.foot import REFERENCE_POINTS
     from pdrlearn.export.from_model import EXPORT_UNITS
     from pdrlearn.io.external import SOURCES
+    from pdrlearn.io.frames import MOUNT_FRAMES
     from pdrlearn.io.importer import _TIME_SCALE, _resolve_unit, _time_word, parse_frame
     from pdrlearn.io.sensors import PLACEMENTS
     from pdrlearn.kernels.bayes import RULES
@@ -359,6 +360,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("track", "reference_point"): _one_of(REFERENCE_POINTS),  # decision L72
         ("track", "altitude"): _one_of(ALTITUDES),  # decision L154
         ("track", "compass"): _one_of(COMPASS_CHOICES),  # decision L545
+        ("track", "mount_frame"): _one_of(MOUNT_FRAMES),  # decision W607
         ("plot", "shade"): _one_of(list(SHADE_COLOURS)),  # decision L655
         ("track", "window"): parse_window,  # decision L105
         ("track", "per"): parse_per,  # decision L277
@@ -420,7 +422,8 @@ def _validators() -> dict[tuple[str, str], object]:
     }
     for opt in ("pipeline", "method", "rules", "start", "length_bounds", "reference_point", "window", "per",
                 "per_align", "units", "altitude", "detector", "length_model", "splits",
-                "ten_m_walk", "compass", "walk_test_start"):  # C12, L108, B127, L154, E93, L534, L545, L642
+                "ten_m_walk", "compass", "walk_test_start", "mount_frame"):  # C12, L108, B127, L154, E93, L534, L545,
+        # L642, W607
         v[("track-all", opt)] = v[("track", opt)]
     for cmd in ("train", "train-all"):
         v[(cmd, "tasks")] = settings("tasks")

@@ -582,11 +582,13 @@ def pseudonym_paths(rels: list[str], names: dict[str, str], source: Path) -> lis
 def job_warnings(r: JobResult, given: str | None = None) -> list[str]:
     """The warnings a track-all job raised, in order, each once: a tracked session's, or (cohort C15) those a
     failed session raised before its error; the ``DIR: `` prefix naming the session folder as ``given``
-    (decision B34) removed."""
+    (decision B34) removed. Decision W607: a line that another ends with after a location (D10's frame line, logged
+    as ``meta.json: session 'NAME': TEXT`` and kept in the summary as ``TEXT``, W334) is said once, located."""
     got = r.value["warnings"] if r.ok else r.extra.get("warnings", [])
     if given:
         got = [m[len(given) + 2:] if m.startswith(given + ": ") else m for m in got]
-    return list(dict.fromkeys(got))
+    got = list(dict.fromkeys(got))
+    return [m for m in got if not any(o != m and o.endswith(": " + m) for o in got)]
 
 
 def _session_row(rel: str, group: str, r: JobResult, given: str | None = None, skipped: bool = False) -> dict:
@@ -989,6 +991,7 @@ def track_all(
     clock_offset: float = _track.CLOCK_OFFSET_OPT,
     clock_drift_ppm: float = _track.CLOCK_DRIFT_OPT,
     units: str = _track.UNITS_OPT,
+    mount_frame: str = _track.MOUNT_FRAME_OPT,  # decision W607
     window: str = _track.WINDOW_OPT,
     per: str = _track.PER_OPT,
     per_align: str = _track.PER_ALIGN_OPT,

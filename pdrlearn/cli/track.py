@@ -225,6 +225,10 @@ def no_waist_for_clock(command: str, option: str, where: str) -> DataError:
     without a waist unit, or whose waist unit ``--units`` leaves out."""
     return DataError(f"{command}: {option} moves the waist unit's clock onto the foot's, but {where} has no waist "
                      f"unit (wAccelerometer.csv + wGyroscope.csv) or --units leaves it out; drop {option}")
+MOUNT_FRAME_OPT = typer.Option("declared", "--mount-frame", help="declared (default): a unit's meta.json frame is "
+                               "used even when its data contradict it (D10's warning); inferred: the frame the data "
+                               "give is used then (a unit clipped turned on its mount, e.g. a lower-back unit at the "
+                               "side of the waistband), one line saying so (decision W607).")
 UNITS_OPT = typer.Option(None, "--units", help="Body units to track with: foot (the waist files left out, as "
                          "`pdrlearn run --units foot`), waist, or foot,waist (default: every unit the session has; "
                          "decision B127), e.g. to keep the foot outcome of a session whose waist unit stopped early.")
@@ -405,6 +409,7 @@ def track(
     clock_offset: float = CLOCK_OFFSET_OPT,
     clock_drift_ppm: float = CLOCK_DRIFT_OPT,
     units: str = UNITS_OPT,
+    mount_frame: str = MOUNT_FRAME_OPT,
     window: str = WINDOW_OPT,
     per: str = PER_OPT,
     per_align: str = PER_ALIGN_OPT,
@@ -593,7 +598,8 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    altitude: str | None = None, align_units: bool = False, compass: str = "auto",
                    bout_rule: str | None = None, clock_offset: float | None = None,
                    clock_drift_ppm: float | None = None, drop_partial_row: bool = False,
-                   steady_trim: int | None = None, length_reference: str = "model") -> dict:
+                   steady_trim: int | None = None, length_reference: str = "model",
+                   mount_frame: str = "declared") -> dict:
     """The tracking options as one plain dict, with what does not depend on the session checked and read
     once (fix files exist, ``--start``, ``--initial-heading`` and ``--window`` parsed, ``--params`` JSON read):
     a batch checks them before its first session, and the dict travels to a Dask worker as it is
@@ -762,6 +768,11 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
         if check_altitude(altitude) == "fused" and "waist" not in (parse_units(units) or ("waist",)):
             raise DataError(f"track: --altitude fused reads the waist barometer (wBarometer.csv), which --units "
                             f"{units} leaves out: add waist to --units (--units foot,waist) or drop --altitude")
+    from pdrlearn.io.frames import MOUNT_FRAMES
+
+    if mount_frame not in MOUNT_FRAMES:  # decision W607: before any session
+        raise DataError(f"--mount-frame {mount_frame}: give declared (the meta.json frame, the default) or inferred "
+                        "(the frame the data give when they contradict it, decision W607)")
     if compass not in COMPASS_CHOICES:  # decision L545: before any session
         raise DataError(f"--compass {compass}: give auto (fall back to the waist gyroscope when the compass check "
                         "warns, the default), keep (keep the compass) or off (read no compass, decision L657)")
@@ -803,7 +814,8 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "altitude": altitude, "align_units": align_units, "compass": compass, "clock_offset_s": clock_offset_s,
             "clock_drift": clock_drift, "drop_partial_row": drop_partial_row,
             "steady_trim": None if steady_trim is None else check_steady_trim(steady_trim),  # decision L415
-            "length_reference": length_reference}  # decision C126
+            "length_reference": length_reference,  # decision C126
+            "mount_frame": mount_frame}  # decision W607
 
 
 def read_params(params: Path):
@@ -949,6 +961,7 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
     # L77: the drops warning of its path; B81: a unit's file cut short, tracked over the time all its files cover
     session = read_session(session_dir, streamed=streaming, spans="common" if o.get("common_span") else "refuse",
                            drop_partial_row=bool(o.get("drop_partial_row")))  # decision B266
+    session.mount_frame = o.get("mount_frame", "declared")  # decision W607
     if o.get("names"):  # decision C86: track-all --subject-map; the name the tables, figures and summary carry
         session = pseudonymous(session, o["names"])
     from pdrlearn.io.plasys import unit_ends

@@ -21,6 +21,11 @@ from pdrlearn.kernels.frames import DIRECTIONS
 _DIRECTIONS = DIRECTIONS
 
 
+#: decision W607: how a unit's declared frame meets data that contradict it with confidence (D10): "declared" keeps it
+#: (D10's warning), "inferred" uses the frame the data give (a unit clipped turned on its mount)
+MOUNT_FRAMES = ("declared", "inferred")
+
+
 @dataclass(frozen=True)
 class AxisFrame:
     """Body direction (forward/backward/left/right/up/down) that each sensor axis points to."""

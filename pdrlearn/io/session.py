@@ -246,6 +246,9 @@ class Session:
     folder: Path | None = None
     infer_frames: bool = True
     check_units: bool = True
+    #: decision W607: ``"inferred"`` tracks a unit whose declared frame its data contradict with confidence (D10)
+    #: in the frame the data give (a unit clipped turned on its mount); ``"declared"`` keeps the declared frame
+    mount_frame: str = "declared"
     _inferred: dict[str, AxisFrame | DataError] = field(default_factory=dict, repr=False, compare=False)
     _checked: dict = field(default_factory=dict, repr=False, compare=False)  # placement -> DeclaredCheck
     _handed: dict[object, object] = field(default_factory=dict, repr=False, compare=False)
@@ -277,6 +280,11 @@ class Session:
         """Decision E181: a session built in memory with ``meta`` but no ``frames`` takes the frames its meta
         declares (:func:`~pdrlearn.io.frames.frames_from_meta`: its ``"frames"`` entry, else a known source), as
         :func:`pdrlearn.io.read_session` does for meta.json; before, they were ignored and inferred from the data."""
+        from pdrlearn.io.frames import MOUNT_FRAMES
+
+        if self.mount_frame not in MOUNT_FRAMES:  # decision W607
+            raise DataError(f"session {self.name!r}: mount_frame={self.mount_frame!r}: give one of "
+                            f"{', '.join(MOUNT_FRAMES)}")
         if not self.frames and isinstance(self.meta, dict) and self.meta:
             from pdrlearn.io.frames import frames_from_meta
 
@@ -462,12 +470,17 @@ class Session:
             if self.infer_frames and placement not in self._checked:  # decision D10: once per session
                 from pdrlearn.track.frame_inference import check_declared_frame
 
-                self._checked[placement] = chk = check_declared_frame(self, placement, frame)
+                self._checked[placement] = chk = check_declared_frame(self, placement, frame,
+                                                                      mount_frame=self.mount_frame)
                 if chk.message and not chk.refuse:
                     log.warning("%s: %s", where, chk.message)
+                if chk.used_found is not None:  # decision W607: summary's frames_inferred and frame_status say so
+                    self._inferred[placement] = chk.used_found
             chk = self._checked.get(placement)
             if chk is not None and chk.refuse:
                 raise DataError(f"{where}: {chk.message}")  # decision D23: a reversed forward is refused
+            if chk is not None and chk.used_found is not None:
+                return chk.used_found  # decision W607: mount_frame "inferred"
             return frame
         reason = ""
         if self.infer_frames:
@@ -623,7 +636,7 @@ class Session:
                     check, status = chk.message, "warned"
                 else:  # decision D22: the data could not judge it; never "not contradicted"
                     check, status = chk.summary(), "unchecked"
-            source = ("none" if frame is None else "inferred" if not declared
+            source = ("none" if frame is None else "inferred" if not declared or frame != self.frames[p]
                       else "declared" if isinstance(self.meta.get("frames"), dict) else "source_project")
             h = self.handedness(p) if self.infer_frames else None
             out[p] = {"frame": None if frame is None else frame.to_dict(), "source": source, "check": check,

@@ -119,6 +119,14 @@ def ride_kind(dz: float, duration_s: float, vibration_mps2: float | None = None)
     return "other"
 
 
+def walked_ride(vibration_mps2: float, *, min_mps2: float = 1.2) -> bool:
+    """Decision W609: True when a standstill's "ride" shook the unit at ``min_mps2`` or more (:func:`ride_vibration`):
+    a walk whose steps the detector missed (a stair flight), not a ride. 1.2 m/s^2 lies above every rider and real
+    standstill decision L403 measured (vehicles 0.357-0.990, lifts / escalators under 0.09, mobgap standstills at
+    most 0.981 m/s^2); NaN: not known, False."""
+    return bool(np.isfinite(vibration_mps2) and float(vibration_mps2) >= float(min_mps2))
+
+
 def escalator_travel_m(dz: float) -> float:
     """Decision L377: the horizontal travel (m) of an escalator ride of height change ``dz``, estimated at
     :data:`ESCALATOR_INCLINE_DEG` (dz / tan 30 deg)."""

@@ -456,8 +456,10 @@ def floors_by_kind(steps: pd.DataFrame, storey_height_m: float = STOREY_HEIGHT_M
     parts = _climb_parts(steps)  # decisions L374-L376: a ride is a climb of its own, "rides"
     dz, parts, slope_rows = _with_after(steps, info, dz, parts, slope_rows)  # decision L394
     for rows, n, ride in _climbs(dz, storey_height_m, STOREY_BAND, bridge, None, slope_rows=slope_rows, parts=parts):
-        kind = "rides" if ride else climb_kind(walked, pause - parts[0], length, _kind_rows(rows, dz, slope_rows),
-                                               on_stairs, stair_grade, long_slopes=foot)  # decision L788
+        # decision W610: parts carry L394's rides after the last step, rows the steps never reach
+        kind = "rides" if ride else climb_kind(walked, pause - parts[0][:len(pause)], length,
+                                               _kind_rows(rows, dz, slope_rows), on_stairs, stair_grade,
+                                               long_slopes=foot)  # decision L788
         key = f"floors_{'up' if n > 0 else 'down'}_{kind}"
         out[key] += abs(n)
     return out

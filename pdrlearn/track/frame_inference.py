@@ -803,6 +803,9 @@ class DeclaredCheck:
     side_drill: bool = False
     #: decision W435: the waist forward measurement's step-frequency power ratio (None: not measured or a foot)
     forward_power_ratio: float | None = None
+    #: decision W607: the frame the data give, used instead of the declared one (``mount_frame="inferred"``); None:
+    #: the declared frame is used
+    used_found: AxisFrame | None = None
 
     def summary(self) -> str:
         """``info``'s words for a check that raised nothing (decision D22: never "not contradicted" unchecked)."""
@@ -837,7 +840,8 @@ def _span_check(session, placement: str, declared: AxisFrame, max_s: float | Non
     return found, unchecked, off, evidence, up, fwd, compared, ratio
 
 
-def check_declared_frame(session, placement: str, declared: AxisFrame, *, side_words: bool = False) -> DeclaredCheck:
+def check_declared_frame(session, placement: str, declared: AxisFrame, *, side_words: bool = False,
+                         mount_frame: str = "declared") -> DeclaredCheck:
     """The data's word on a declared or ``source_project`` frame: a warning (without the ``meta.json``
     location) when it is left-handed or the data contradict it with confidence (decision D10); a refusal when
     its forward is reversed against the data (decision D22), also when the inference gives up on which
@@ -848,7 +852,10 @@ def check_declared_frame(session, placement: str, declared: AxisFrame, *, side_w
     unit's strides in that span mostly travel sideways or backward
     (:func:`pdrlearn.track.stride_kinds.not_judged`). ``side_words`` (decision W416 (b), not adopted: its rule's
     waist-only backpedal, user 10022, reads forward, so there is no line to word; opt-in, False = D10's line as
-    before): a waist line without a foot unit leads with :func:`side_travel_words`."""
+    before): a waist line without a foot unit leads with :func:`side_travel_words`. ``mount_frame`` (decision W607):
+    ``"inferred"`` uses the frame the data give when they contradict the declared one with confidence (a unit clipped
+    turned on its mount: a side-clipped lower back), one line saying so, never a refusal; ``"declared"`` (the
+    default) keeps the declared frame with D10's line."""
     if isinstance(session.meta.get("frames"), dict):
         origin = 'declared in "frames"'
     else:
@@ -872,6 +879,9 @@ def check_declared_frame(session, placement: str, declared: AxisFrame, *, side_w
     if skip is not None:  # decision W415: no line but a left-handed one; D25 still reads the measured offset
         return DeclaredCheck(declared_frame_warning(placement, declared, None, origin, off={}), False, skip,
                              compared, rev, side_drill=True, forward_power_ratio=ratio)
+    if mount_frame == "inferred" and off and found is not None:  # decision W607: the data's frame, said once
+        msg = declared_frame_warning(placement, declared, found, origin, off=off, data_used=True)
+        return DeclaredCheck(msg, False, unchecked, compared, rev, forward_power_ratio=ratio, used_found=found.frame)
     forced = reverse and session.frame_forced(placement)  # decision D23's override
     refuse = reverse and not forced and placement in REFUSE_REVERSED  # D23 amended: the foot only
     used = 'the meta.json frame ("force_frame", decision D23)' if forced else "the meta.json frame"
@@ -964,13 +974,15 @@ def _turned(declared: AxisFrame, names: set[str]) -> AxisFrame:
 
 def declared_frame_warning(placement: str, declared: AxisFrame, found: InferredFrame | None, origin: str,
                            used: str = "the meta.json frame", *, off: dict[str, float] | None = None,
-                           refuse: bool = False, unchecked: str | None = None, how: str | None = None) -> str | None:
+                           refuse: bool = False, unchecked: str | None = None, how: str | None = None,
+                           data_used: bool = False) -> str | None:
     """Decision D10's warning for a ``declared`` frame (``origin``: where it was declared) against the frame
     ``found`` in the data (``None``: the data did not fix it), or ``None`` when there is nothing to say. Shared by
     :func:`check_declared_frame` (offline) and the live ``WaistTracker`` (decision B108, ``used``: what it keeps).
     ``off`` (default: D10's disagreement with ``found``) may come from the directions measured when the
     inference gave up (``unchecked``: its reason); ``refuse`` words it as D22's refusal (``how``: D28/D30's words
-    for a forward turned or vertical, :func:`misdeclared`; None: reversed)."""
+    for a forward turned or vertical, :func:`misdeclared`; None: reversed). ``data_used`` (decision W607): the frame
+    ``found`` is used instead (``mount_frame="inferred"``), said so."""
     if off is None:
         off = frame_disagreement(declared, found) if found is not None else {}
     left_handed = not declared.right_handed
@@ -990,6 +1002,8 @@ def declared_frame_warning(placement: str, declared: AxisFrame, found: InferredF
                       f"which axis is which: {unchecked})")
     if off and found is not None:
         fix = f'if the data are right, write "frames": {json.dumps({placement: found.frame.to_dict()})} in meta.json'
+        if not refuse:  # decision W607: a batch of recordings need not be edited one by one
+            fix += " (or track with --mount-frame inferred, decision W607)"
     elif off:
         flip = set(off) if len(off) == 2 else {*off, "left"}  # turned 180 deg about the direction that agrees
         fix = (f'if the data are right, write "frames": {json.dumps({placement: _turned(declared, flip).to_dict()})} '
@@ -1004,6 +1018,10 @@ def declared_frame_warning(placement: str, declared: AxisFrame, found: InferredF
         fix = (f"{fix}; but if the declared axes are right, the accelerometer reports gravity as -1 g (iOS Core "
                f"Motion exports do): negate all three columns of {acc_n}.csv (pdrlearn import --acc=-X,-Y,-Z) "
                "instead, since writing the data's frame would mirror every turn")
+    if data_used and off and found is not None:  # decision W607: mount_frame "inferred"
+        return (f"{what} {' and '.join(issues)}; the frame the data give is used instead (mount_frame \"inferred\", "
+                f"decision W607): to declare it, write \"frames\": {json.dumps({placement: found.frame.to_dict()})} in "
+                "meta.json")
     if refuse:  # decision D22: a reversed track is never what is meant (D28, D30: nor a turned one)
         tracked = ("reversed" if how is None else f"turned (the declared forward is {how})")
         return (f"{what} {' and '.join(issues)}; every stride would be tracked {tracked}, so it is not used "

@@ -32,18 +32,20 @@ def ride_accelerometer(session, streams: tuple[str, ...] = VIBRATION_STREAMS) ->
 
 def ride_rows(t: np.ndarray, p_hpa: np.ndarray, steps: pd.DataFrame, t0: float, z: np.ndarray,
               z_start: np.ndarray, t_end: float | None = None, acc=None,
-              vibration_kind: bool = False) -> tuple[np.ndarray, list[dict]]:
+              vibration_kind: bool = False, walked_kind: bool = False) -> tuple[np.ndarray, list[dict]]:
     """Decisions L375, L376: per step the kind of the ride in the pause before it (``""``: none) and one record per
     ride (rides.csv's :data:`RIDE_COLUMNS` and ``row``, the step it precedes). ``(t, p_hpa)``: the barometer (s,
     hPa); ``z`` (n+1,) the track's altitude at ``t0`` and each step's end, ``z_start`` (n,) at each step's start
     (W158: ``pause_dz_m = z_start - z[:-1]``). Decision L394: with ``t_end`` (the recording's end) also the ride in
     the standstill after the last step (``row`` n, no step). Decision L402: ``acc`` (:func:`ride_accelerometer`'s)
     gives each ride's ``vibration_mps2``; with ``vibration_kind`` (L403: opt-in, the ``ride_vibration`` option) a
-    vibrating ride is a vehicle's, kind other."""
+    vibrating ride is a vehicle's, kind other. Decision W609 (not adopted: the ``walked_ride`` option):
+    ``walked_kind`` makes a ride that shakes like walking (:func:`pdrlearn.kernels.pause_ride.walked_ride`) kind
+    ``"stairs"``."""
     pause = np.asarray(z_start, dtype=float) - np.asarray(z, dtype=float)[:-1]
     kinds, records = _rides(t, p_hpa, _pause_ends(steps, t0), steps["start_s"].to_numpy(float), pause, acc,
-                            vibration_kind)
-    return kinds, _after_last(t, p_hpa, steps, records, t_end, acc, vibration_kind)
+                            vibration_kind, walked_kind)
+    return kinds, _after_last(t, p_hpa, steps, records, t_end, acc, vibration_kind, walked_kind)
 
 
 def _pause_dz(t, p_hpa, ends, starts) -> np.ndarray:
@@ -61,7 +63,7 @@ def _pause_dz(t, p_hpa, ends, starts) -> np.ndarray:
 
 
 def _after_last(t, p_hpa, steps: pd.DataFrame, records: list[dict], t_end: float | None, acc=None,
-                vibration_kind: bool = False) -> list[dict]:
+                vibration_kind: bool = False, walked_kind: bool = False) -> list[dict]:
     """Decision L394: ``records`` and the ride in the standstill from the last step's end to ``t_end`` (the
     recording's end, at most the barometer's last time), ``row`` the number of steps (it precedes none)."""
     if t_end is None or not len(steps) or not len(t):
@@ -69,7 +71,8 @@ def _after_last(t, p_hpa, steps: pd.DataFrame, records: list[dict], t_end: float
     a, b = float(steps["end_s"].iloc[-1]), min(float(t_end), float(t[-1]))
     if not b > a:
         return records
-    _, extra = _rides(t, p_hpa, np.array([a]), np.array([b]), _pause_dz(t, p_hpa, [a], [b]), acc, vibration_kind)
+    _, extra = _rides(t, p_hpa, np.array([a]), np.array([b]), _pause_dz(t, p_hpa, [a], [b]), acc, vibration_kind,
+                      walked_kind)
     return records + [{**r, "ride": len(records) + 1, "row": len(steps)} for r in extra]
 
 
@@ -78,7 +81,8 @@ def _pause_ends(steps: pd.DataFrame, t0: float) -> np.ndarray:
     return np.concatenate([[t0], steps["end_s"].to_numpy(float)[:-1]])
 
 
-def _rides(t, p_hpa, ends, starts, pause, acc=None, vibration_kind: bool = False) -> tuple[np.ndarray, list[dict]]:
+def _rides(t, p_hpa, ends, starts, pause, acc=None, vibration_kind: bool = False,
+           walked_kind: bool = False) -> tuple[np.ndarray, list[dict]]:
     """:func:`ride_rows` on the pauses from ``ends`` to ``starts`` (s) whose altitude changed by ``pause`` (m);
     ``acc`` ``(t, (n, 3))`` or None: decision L402's vibration (NaN without), which tells the kind only with
     ``vibration_kind`` (L403)."""
@@ -89,6 +93,7 @@ def _rides(t, p_hpa, ends, starts, pause, acc=None, vibration_kind: bool = False
         ride_vibration,
         ride_window,
         vibrating_span,
+        walked_ride,
     )
 
     kinds = np.full(len(starts), "", dtype=object)
@@ -103,7 +108,8 @@ def _rides(t, p_hpa, ends, starts, pause, acc=None, vibration_kind: bool = False
         a, b, duration = ride_window(t, p_hpa, float(ends[j]), float(starts[j]))
         dz = float(pause[j])
         vib = ride_vibration(acc[0], acc[1], a, b) if acc is not None else float("nan")  # decision L402
-        kinds[j] = kind = ride_kind(dz, duration, vib if vibration_kind else None)
+        kinds[j] = kind = ("stairs" if walked_kind and walked_ride(vib)  # decision W609 (opt-in): missed steps, no ride
+                           else ride_kind(dz, duration, vib if vibration_kind else None))
         unread = (acc[2] if acc is not None else "the accelerometer") if vibration_kind and np.isnan(vib) else None
         rate = abs(dz) / duration  # the climb's (W89)
         span = vibrating_span(acc[0], acc[1], float(ends[j]), float(starts[j])) if kind == "vehicle" else None
@@ -302,6 +308,15 @@ def ride_lines(records: list[dict]) -> list[str]:
                      "s): a vehicle on a hill or a ride of another kind, so they count no floors; their "
                      "height stays in the altitude (rides.csv kind other; decision L376)")
     lines.extend(vehicle_lines(records))
+    walked = [r for r in records if r["kind"] == "stairs"]
+    if walked:  # decision W609
+        shown = ", ".join(f"{r['dz_m']:+.1f} m at {r['start_s']:.0f}-{r['end_s']:.0f} s ({r['vibration_mps2']:.2f} "
+                          "m/s^2)" for r in walked[:3])
+        more = ", ..." if len(walked) > 3 else ""
+        lines.append(f"{len(walked)} barometric climb(s) between detected steps ({shown}{more}) "
+                     "shook the unit like walking (1.2 m/s^2 or more; a rider stands still): stairs walked whose steps "
+                     "the lower back missed, not a lift or an escalator (rides.csv kind stairs; their floors counted, "
+                     "no ride travel added); n_steps and the distance lack those steps (decision W609)")
     for r in records:
         if r.get("gap_s", 0.0) > RIDE_GAP_S:  # decision B298
             lines.append(f"wBarometer.csv has a gap of {r['gap_s']:.1f} s inside ride {r['ride']} "

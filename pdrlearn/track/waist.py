@@ -736,7 +736,8 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "lying_heading": True,  # W269, W271 (adopted by W270): lying turns it by the long axis's yaw only
                    "rest_frame": False,  # W285: harmonic headings less the AHRS frame's turn over a long rest
                    "climb_veto": False,  # L314's ramp veto from W108's climbs: opt-in (decision L330)
-                   "ride_vibration": False}  # L402: a vibrating ride is a vehicle's; L403: not met, opt-in
+                   "ride_vibration": False,  # L402: a vibrating ride is a vehicle's; L403: not met, opt-in
+                   "walked_ride": False}  # W609: a ride shaking like walking is stairs; not met, opt-in
 #: decision W193: options that act on one pipeline / mode only - where each applies (said when it is set and does
 #: nothing) and the test of whether it acts: ``(pipeline, realtime, heading method, detector given, integrate_stops)``
 SCOPED_OPTIONS = {
@@ -1132,6 +1133,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "rest_bias": rest_bias, "step_bound": None,  # W230: a PARAMS.json option only
              "climb_veto": None,  # L330: a PARAMS.json option only
              "ride_vibration": None,  # L402 / L403: a PARAMS.json option only
+             "walked_ride": None,  # W609: a PARAMS.json option only
              "lying_heading": None,  # W269: a PARAMS.json option only
              "rest_frame": None,  # W285: a PARAMS.json option only
              "pll_slow_check": None,  # W289: a PARAMS.json option only
@@ -1440,7 +1442,8 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
 
         ride_kinds, rides = ride_rows(baro.t, baro.values[:, 0], steps, float(imu.t[0]), z, z_start,
                                       t_end=float(imu.t[-1]), acc=ride_accelerometer(session),  # L394, L402
-                                      vibration_kind=bool(o["ride_vibration"]))  # L403: opt-in
+                                      vibration_kind=bool(o["ride_vibration"]),  # L403: opt-in
+                                      walked_kind=bool(o["walked_ride"]))  # W609: opt-in
         steps = steps.assign(ride=ride_kinds)
         warnings.extend(ride_lines(rides))
     # decisions W114, W441: the pelvic gyro's count beside the contacts' (offline), both ways
