@@ -436,6 +436,31 @@ def yaw_change(t: np.ndarray, rate_z: np.ndarray, t0: float = -np.inf, t1: float
     return 0.5 * float((r[1:] + r[:-1]).dot(tt[1:] - tt[:-1]))  # trapezoid (one product, E17; .dot: E20)
 
 
+def end_phase_yaw(t: np.ndarray, rate_z: np.ndarray, t0: float, t1: float) -> float:
+    """Decision E336: the yaw (rad, CCW) of the stride ``[t0, t1]`` (s)'s ends over its mean yaw, ``psi = (Y(t0) +
+    Y(t1)) / 2 - mean Y`` with ``Y`` the vertical rate ``rate_z`` (rad/s) integrated from ``t0`` (the trapezoid of
+    :func:`yaw_change`, the mean by the trapezoid over ``[t0, t1]``). A gait cycle's mean pelvis yaw is the walking
+    direction; its yaw at the cycle's ends (the foot's rest) is that plus the pelvic rotation's value at that phase
+    (psi). 0 for a constant rate (a steady turn), fewer than 2 samples or ``t1 <= t0``."""
+    if not t1 > t0 or len(t) < 2:
+        return 0.0
+    tt = np.minimum(np.maximum(t, t0), t1)
+    r = interp(tt, t, rate_z)
+    dt = tt[1:] - tt[:-1]
+    y = np.concatenate(([0.0], np.cumsum(0.5 * (r[1:] + r[:-1]) * dt)))
+    mean = 0.5 * float((y[1:] + y[:-1]).dot(dt)) / (float(t1) - float(t0))
+    return 0.5 * float(y[-1]) - mean
+
+
+def waist_end_phase_yaw(levelled: Levelled, t0: float, t1: float) -> float:
+    """Decision E336: :func:`end_phase_yaw` of the stride's levelled waist vertical rate (the rate
+    :func:`stride_motion` integrates for a waist-headed stride); 0 without the waist's gyroscope."""
+    w = levelled.get("waist")
+    if w is None or w[0] is None or w[2] is None:
+        return 0.0
+    return end_phase_yaw(w[0], np.asarray(w[2], dtype=float)[:, 2], float(t0), float(t1))
+
+
 def pivot_yaw(t: np.ndarray, gyr: np.ndarray, up: np.ndarray, *, still_rad_s: float = 0.4) -> float:
     """Decision L28: heading change (rad, CCW) of a foot between two strides, samples ``t (n,)`` s, ``gyr
     (n, 3)`` rad/s (offset removed): the rate about ``up`` (the mean specific force over the gap: the foot
