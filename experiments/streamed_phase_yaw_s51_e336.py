@@ -18,6 +18,7 @@ import sys
 from pathlib import Path
 
 import numpy as np
+
 import streamed_sigma_s51_e330 as e330  # experiments/streamed_sigma_s51_e330.py: mission(), first_offset(), row()
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -32,7 +33,8 @@ def kind_of(u: int) -> str:
 
 def cli(code: Path, *args: str) -> None:
     env = {**os.environ, "PYTHONPATH": str(code)}
-    subprocess.run([sys.executable, "-m", "pdrlearn", *args], check=True, capture_output=True, env=env, cwd=str(ROOT))
+    # cwd = the code's root: `python -m` puts the working directory first on sys.path, before PYTHONPATH
+    subprocess.run([sys.executable, "-m", "pdrlearn", *args], check=True, capture_output=True, env=env, cwd=str(code))
 
 
 def runs(u: int):
@@ -55,8 +57,9 @@ def main(a: int, b: int, delta: float | None) -> None:
             off = np.degrees(e330.first_offset(sim, out))
             r = e330.row(sim, out)
             got[name].append({**r, "offset": off})
-            print(f"{kind}_u{u} {name}: first-leg offset {off:+.2f} deg, RMS {r['rms']:.2f} m, final {r['final']:.2f} m,"
-                  f" within 2 sigma {r['share']:.3f}, median sigma / RMS {r['sigma_rms']:.2f}", flush=True)
+            print(f"{kind}_u{u} {name}: first-leg offset {off:+.2f} deg, RMS {r['rms']:.2f} m, final "
+                  f"{r['final']:.2f} m, within 2 sigma {r['share']:.3f}, median sigma / RMS {r['sigma_rms']:.2f}",
+                  flush=True)
             if delta is not None and name == "after":
                 r = e330.row(sim, out, e330.radius(out, delta))
                 got["E337"].append(r)
@@ -65,11 +68,11 @@ def main(a: int, b: int, delta: float | None) -> None:
     for name in ("before", "after"):
         rs = got[name]
         off = [r["offset"] for r in rs]
+        med = {k: float(np.median([r[k] for r in rs])) for k in ("rms", "final", "sigma_rms")}
         print(f"{name}: {len(rs)} runs, median |offset| {np.median(np.abs(off)):.2f} deg, RMS offset "
-              f"{np.sqrt(np.mean(np.square(np.radians(off)))):.5f} rad, median RMS {np.median([r['rms'] for r in rs]):.2f}"
-              f" m, median final {np.median([r['final'] for r in rs]):.2f} m, mean share {np.mean([r['share'] for r in rs]):.3f},"
-              f" min {np.min([r['share'] for r in rs]):.3f}, median sigma / RMS "
-              f"{np.median([r['sigma_rms'] for r in rs]):.2f}")
+              f"{np.sqrt(np.mean(np.square(np.radians(off)))):.5f} rad, median RMS {med['rms']:.2f} m, median final "
+              f"{med['final']:.2f} m, mean share {np.mean([r['share'] for r in rs]):.3f}, min "
+              f"{np.min([r['share'] for r in rs]):.3f}, median sigma / RMS {med['sigma_rms']:.2f}")
     if got["E337"]:
         rs = got["E337"]
         share = [r["share"] for r in rs]

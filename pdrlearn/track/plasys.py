@@ -2094,7 +2094,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     L189, L206, options not adopted; L550: a keyword, as the runtime ``Tracker``'s): True / ``"summed"`` give an M3
     stride whose terrain class the gate dropped L39's level rule, per stride / on its run's summed dz; False: raw.
     ``cycle_yaw`` (decision E336, as the runtime ``Tracker``'s): a stride headed by the waist gyroscope goes along its
-    gait cycle's mean yaw (the heading after it less the pelvic rotation's yaw at its ends); False: the heading after it.
+    gait cycle's mean yaw (the heading after it less the pelvic rotation's yaw at its ends); False: the heading after
+    it.
     """
     start, start_alt = start_coordinate(start)  # decision L157: (lat, lon[, alt]) checked as --start
     initial_heading = heading_in_radians(initial_heading, "initial_heading")  # decision L158 (W81's check)
