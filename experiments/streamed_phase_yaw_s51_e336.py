@@ -1,7 +1,9 @@
 """Decisions E336 / E337 (session 51, FG): the streamed heading's offset from the first stride, before / after E336.
 
     BASE=/tmp/fg/base python experiments/streamed_phase_yaw_s51_e336.py 18400 18406 > finding.txt   # E337's delta
-    BASE=/tmp/fg/base python experiments/streamed_phase_yaw_s51_e336.py 18410 18424 DELTA > e336.txt
+    BASE=/tmp/fg/base python experiments/streamed_phase_yaw_s51_e336.py 18410 18424 > e336.txt
+    BASE=/tmp/fg/base python experiments/streamed_phase_yaw_s51_e336.py 18410 18424 0.0073 > e337.txt
+    BASE=/tmp/fg/base python experiments/streamed_phase_yaw_s51_e336.py 18424 18438 > e338.txt
 
 ``BASE``: a directory holding the ``pdrlearn`` package before E336 (``git archive <base> pdrlearn | tar -x``); the
 after-run is this tree's. Users 18410-18417: E330's mission (its stops per user); 18422-18423: E330's plain walk with
@@ -26,9 +28,10 @@ OUT = Path(os.environ.get("OUT", "/tmp/fg/e336"))
 
 
 def kind_of(u: int) -> str:
-    if 18410 <= u <= 18417:
+    """E336's users 18410-18423 and E338's 18424-18437: 8 missions, 4 plain walks, 2 left-foot walks each."""
+    if 18410 <= u <= 18417 or 18424 <= u <= 18431:
         return "mission"
-    return "walkL" if u in (18422, 18423) else "walk"
+    return "walkL" if u in (18422, 18423, 18436, 18437) else "walk"
 
 
 def cli(code: Path, *args: str) -> None:

@@ -59,6 +59,7 @@ from pdrlearn.kernels.stride import (
     FINE_PAD_S,
     GAP_YAW_MAX_S,
     HEADING_SOURCES,
+    CyclePhase,
     StanceSegmenter,
     advance_xyz,
     fine_spec,
@@ -558,6 +559,7 @@ class Tracker(OwnGuard, FixInput):
     _hole_warned = False  # decision L674's one line
     drop_neighbour = False  # decisions E101, L549 (a bare Tracker.__new__: L167 off)
     cycle_yaw = True  # decision E336 (a bare Tracker.__new__: on, as the keyword's default)
+    _cycle_phase = None  # decision E338 (a bare Tracker.__new__ makes one at its first stride)
     gated_level_dz: bool | str = False  # decision L550 (a bare Tracker.__new__: raw heights)
     #: decision E46: the long foot gaps (start, end) not yet behind the last emitted stride, the pending gap row
     #: ([start, gap_s] or None), the end / reported heading / position of the last emitted stride
@@ -859,6 +861,7 @@ class Tracker(OwnGuard, FixInput):
         self._hole_warned = False
         self.drop_neighbour = bool(drop_neighbour)  # decisions E101, L549
         self.cycle_yaw = bool(cycle_yaw)  # decision E336
+        self._cycle_phase = CyclePhase()  # decision E338
         self._held: set[str] = set()
         #: decision E115: the required waist streams that stopped while the foot strides went on (name -> the
         #: time of its newest sample then); their samples are taken again when they return
@@ -2400,7 +2403,9 @@ class Tracker(OwnGuard, FixInput):
             side = self._side.stride(dx, dy, length, _sideways.step_frame(lev), _sideways.foot_turn(lev))  # L400
         direction += side + waist_forward_flip(foot_headed, classes.get("direction"), length, side)  # E216
         if self.cycle_yaw and not foot_headed:  # decision E336: along the cycle's mean yaw (track --streaming's)
-            direction -= waist_end_phase_yaw(lev, t0, t1)
+            if self._cycle_phase is None:  # a bare Tracker.__new__
+                self._cycle_phase = CyclePhase()
+            direction -= waist_end_phase_yaw(lev, t0, t1, self._cycle_phase)  # E338: held over turning strides
         if self._first_walk is not None:  # decision E215: L494's first-walk direction, said once (applied: opt-in)
             if self._fixes.used:  # a used fix set the frame (D24's yaw feedback learnt in it)
                 self._first_walk.stop()

@@ -2199,6 +2199,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     fa_t, fa_v = streams["fAccelerometer"]
     has_force = "fForceA" in streams and "fForceB" in streams
     foot_headed = np.zeros(len(table), dtype=bool)  # decision L37 needs only this of each stride
+    cycle_phase = SK.CyclePhase()  # decision E338
     frame = np.zeros(len(table))  # decision E124: each stride's step frame from the foot's facing
     foot_turn = np.zeros(len(table))  # decision L400: the foot's heading change over each stride
     posture = np.zeros(len(table), dtype=bool)  # decision B131: strides skipped as the runtime skips them
@@ -2249,7 +2250,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         foot_turn[i] = KSW.foot_turn(lev)  # decision L400
         foot_headed[i] = SK.headed_by_foot(lev, heading)
         if cycle_yaw and not foot_headed[i]:  # decision E336: along the cycle's mean yaw (the runtime's call)
-            place[i] -= SK.waist_end_phase_yaw(lev, float(t0), float(t1))
+            place[i] -= SK.waist_end_phase_yaw(lev, float(t0), float(t1), cycle_phase)  # E338: held over turns
         pause = bool(i and prev < t0 and overlaps_any(prev, float(t0), imu_gaps))
         stop_turn = (SK.long_stop_turn(streams.__getitem__, prev, float(t0)) if waist_gap_yaw  # decision E335: E324's
                      and not foot_headed[i] and not pause else None)  # turn read once for both calls below (runtime's)
