@@ -10,7 +10,7 @@ import math
 import numpy as np
 import pytest
 
-from pdrlearn.kernels.stride import end_phase_yaw, waist_end_phase_yaw
+from pdrlearn.kernels.stride import CyclePhase, end_phase_yaw, waist_end_phase_yaw
 from tests.lean_helpers import ROOT
 
 
@@ -26,6 +26,21 @@ def test_end_phase_yaw_is_the_oscillation_at_the_ends():
     lev = {"waist": (t, None, np.column_stack([0 * t, 0 * t, osc]), None, 0.0)}
     assert waist_end_phase_yaw(lev, 0.0, 1.1) == end_phase_yaw(t, osc, 0.0, 1.1)
     assert waist_end_phase_yaw({"foot": lev["waist"]}, 0.0, 1.1) == 0.0  # no waist unit: nothing
+
+
+def test_a_turning_stride_takes_the_last_straight_strides_phase_e338():
+    """Decision E338: psi is read on strides turning under L79's 15 deg; a turning one (a curve's start or end: no
+    steady ramp) takes the last straight stride's, or its own before any."""
+    ph = CyclePhase()
+    assert ph.stride(-0.12, math.radians(40.0)) == -0.12  # no straight stride yet: its own
+    assert ph.stride(-0.05, math.radians(2.0)) == -0.05
+    assert ph.stride(-0.12, math.radians(40.0)) == -0.05  # held over the curve
+    assert ph.stride(-0.04, math.radians(-14.0)) == -0.04
+    t = np.linspace(0.0, 1.1, 111)
+    ramp = np.where(t < 0.55, math.radians(60.0) / 0.55, 0.0)  # a 60 deg turn over the stride's first half
+    lev = {"waist": (t, None, np.column_stack([0 * t, 0 * t, ramp]), None, 0.0)}
+    assert abs(waist_end_phase_yaw(lev, 0.0, 1.1)) > math.radians(10.0)  # E336 alone: the turn's shape as psi
+    assert waist_end_phase_yaw(lev, 0.0, 1.1, ph) == -0.04
 
 
 @pytest.fixture(scope="module")
