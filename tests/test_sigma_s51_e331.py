@@ -33,7 +33,7 @@ def test_the_streamed_waist_regime_carries_it_and_no_other():
     streamed regime and L267's offline fallback keep their constants."""
     from pdrlearn.track.position_sigma import sigma_params, sigma_per_row
 
-    assert sigma_params("plasys-streaming")["heading_offset_rad"] == 0.047
+    assert sigma_params("plasys-streaming")["heading_offset_rad"] == 0.0073  # E337 (E336 removed the offset's cause)
     assert all("heading_offset_rad" not in sigma_params(r) for r in ("plasys-foot-streaming", "plasys-gyro-fallback",
                                                                     "plasys-fused", "plasys-foot", "waist"))
     import pandas as pd
@@ -43,4 +43,4 @@ def test_the_streamed_waist_regime_carries_it_and_no_other():
     t = np.r_[0.0, steps["end_s"]]
     old = {k: v for k, v in sigma_params("plasys-streaming").items() if k != "heading_offset_rad"}
     new, before = sigma_per_row(steps, t, sigma_params("plasys-streaming")), sigma_per_row(steps, t, old)
-    assert new[-1] ** 2 - before[-1] ** 2 == pytest.approx((0.047 * 40) ** 2, rel=1e-6)  # 1.88 m across 40 m
+    assert new[-1] ** 2 - before[-1] ** 2 == pytest.approx((0.0073 * 40) ** 2, rel=1e-6)  # 0.29 m across 40 m

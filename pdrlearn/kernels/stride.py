@@ -33,6 +33,7 @@ from pdrlearn.kernels.contact import MAX_STRIDE_S
 from pdrlearn.kernels.histospline import upsample_block_means
 from pdrlearn.kernels.rest_heading import REST_BIAS_MIN_S, rest_rotation
 from pdrlearn.kernels.stop_bias import vertical_rate
+from pdrlearn.kernels.turn_length import STRAIGHT_MAX_RAD
 from pdrlearn.kernels.window import BRIDGE_GAP_S, TIE_S, Levelled, foot_levelled, interp, resample, segment
 
 # -- length-class bounds -------------------------------------------------------------------------------
@@ -434,6 +435,49 @@ def yaw_change(t: np.ndarray, rate_z: np.ndarray, t0: float = -np.inf, t1: float
     tt = np.minimum(np.maximum(t, t0), t1)  # clipped to [t0, t1]
     r = interp(tt, t, rate_z)
     return 0.5 * float((r[1:] + r[:-1]).dot(tt[1:] - tt[:-1]))  # trapezoid (one product, E17; .dot: E20)
+
+
+def end_phase_yaw(t: np.ndarray, rate_z: np.ndarray, t0: float, t1: float, *, with_turn: bool = False):
+    """Decision E336: the yaw (rad, CCW) of the stride ``[t0, t1]`` (s)'s ends over its mean yaw, ``psi = (Y(t0) +
+    Y(t1)) / 2 - mean Y`` with ``Y`` the vertical rate ``rate_z`` (rad/s) integrated from ``t0`` (the trapezoid of
+    :func:`yaw_change`, the mean by the trapezoid over ``[t0, t1]``). A gait cycle's mean pelvis yaw is the walking
+    direction; its yaw at the cycle's ends (the foot's rest) is that plus the pelvic rotation's value at that phase
+    (psi). 0 for a constant rate (a steady turn), fewer than 2 samples or ``t1 <= t0``. ``with_turn``: ``(psi,
+    Y(t1))``, the stride's turn too (decision E338)."""
+    if not t1 > t0 or len(t) < 2:
+        return (0.0, 0.0) if with_turn else 0.0
+    tt = np.minimum(np.maximum(t, t0), t1)
+    r = interp(tt, t, rate_z)
+    dt = tt[1:] - tt[:-1]
+    y = np.concatenate(([0.0], np.cumsum(0.5 * (r[1:] + r[:-1]) * dt)))
+    mean = 0.5 * float((y[1:] + y[:-1]).dot(dt)) / (float(t1) - float(t0))
+    psi = 0.5 * float(y[-1]) - mean
+    return (psi, float(y[-1])) if with_turn else psi
+
+
+class CyclePhase:
+    """Decision E338: E336's end-phase yaw read on straight strides only (the waist's turn over the stride under L79's
+    :data:`~pdrlearn.kernels.turn_length.STRAIGHT_MAX_RAD`); a turning stride, whose yaw is no steady ramp where a
+    curve starts or ends, takes the last straight stride's (the same gait phase), or its own before any."""
+
+    def __init__(self) -> None:
+        self.psi: float | None = None
+
+    def stride(self, psi: float, turn: float) -> float:
+        if abs(turn) < STRAIGHT_MAX_RAD:
+            self.psi = psi
+        return psi if self.psi is None else self.psi
+
+
+def waist_end_phase_yaw(levelled: Levelled, t0: float, t1: float, phase: CyclePhase | None = None) -> float:
+    """Decision E336: :func:`end_phase_yaw` of the stride's levelled waist vertical rate (the rate
+    :func:`stride_motion` integrates for a waist-headed stride); 0 without the waist's gyroscope. ``phase`` (decision
+    E338): the stream's :class:`CyclePhase`, which holds it over turning strides."""
+    w = levelled.get("waist")
+    if w is None or w[0] is None or w[2] is None:
+        return 0.0
+    psi, turn = end_phase_yaw(w[0], np.asarray(w[2], dtype=float)[:, 2], float(t0), float(t1), with_turn=True)
+    return psi if phase is None else phase.stride(psi, turn)
 
 
 def pivot_yaw(t: np.ndarray, gyr: np.ndarray, up: np.ndarray, *, still_rad_s: float = 0.4) -> float:

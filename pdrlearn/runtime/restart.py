@@ -37,7 +37,8 @@ def restart_state(tracker) -> dict:
     (on its clock: already moved by the offsets), the offsets it applies now (a ``rebase_clock`` included; E237) and
     E272's waist gyroscope bias read at the last stop (``{"rps", "n_stops"}``, None without the waist unit; E281) and
     the last L611 rows judged (``pedal_history``, E280) and L621's live foot rest reading (``foot_rest``: ``{"readings",
-    "n_still"}``, review R1 F3). Strides held for their L611 verdict (E280) are not in it:
+    "n_still"}``, review R1 F3) and E338's held end-phase yaw (``cycle_phase``, rad, or None). Strides held for their
+    L611 verdict (E280) are not in it:
     ``last_end_s`` and the bias are those before the first held one, which the new tracker measures again. A
     tracker that resamples (``resample=True``, E22) is refused in one line (decision L140): its buffer holds
     resampled samples, and its low-pass filter holds the last raw ones (its delay, 0.84 s from 50 to 20 Hz), which
@@ -52,6 +53,7 @@ def restart_state(tracker) -> dict:
                         "(decision L140)")
     kept = tracker._kept
     prev_end, stop, rest = tracker._restart_from  # decision E280: strides held for L611's verdict are measured again
+    phase = None if tracker._cycle_phase is None else tracker._cycle_phase.psi  # E338: set by placed strides only
     return {
         "version": STATE_VERSION,
         "position": [float(v) for v in tracker.position],
@@ -65,6 +67,7 @@ def restart_state(tracker) -> dict:
         "stop_bias": None if stop is None else {"rps": float(stop[0]), "n_stops": int(stop[1])},  # decision E281
         "pedal_history": [list(r) for r in tracker._loops.history],  # decision E280: the verdicts' neighbours
         "foot_rest": {"readings": [float(v) for v in rest[0]], "n_still": int(rest[1])},  # review R1 F3 (L621)
+        "cycle_phase": None if phase is None else float(phase),  # decision E338: the held end-phase yaw (rad)
     }
 
 
@@ -99,6 +102,8 @@ def resume(tracker, state: dict) -> list:
                    for a, b, dz, u, d, j in (state["pedal_history"] if version == STATE_VERSION else [])]
         rest = state.get("foot_rest") if version == STATE_VERSION else None  # review R1 F3: absent = not read yet
         rest = None if rest is None else ([float(v) for v in rest["readings"]], float(rest["n_still"]))
+        phase = state.get("cycle_phase")  # decision E338: absent (an older state) or None = no straight stride yet
+        phase = None if phase is None else float(phase)
     except (TypeError, ValueError, KeyError) as exc:
         raise DataError(f"{where}: the state's position, heading_rad, last_end_s, samples, clock offsets, foot_rest, "
                         f"stop_bias or pedal_history are malformed ({exc}); give what "
@@ -106,7 +111,8 @@ def resume(tracker, state: dict) -> list:
     if not (np.isfinite(position).all() and math.isfinite(heading) and all(map(math.isfinite, clocks.values()))
             and (stop is None or (math.isfinite(stop[0]) and _count(stop[1])))
             and all(math.isfinite(v) for r in history for v in (r[0], r[1], r[2], r[4]))
-            and (rest is None or (all(math.isfinite(v) and v > 0 for v in rest[0]) and _count(rest[1])))):
+            and (rest is None or (all(math.isfinite(v) and v > 0 for v in rest[0]) and _count(rest[1])))
+            and (phase is None or math.isfinite(phase))):
         raise DataError(f"{where}: the state's position {position.tolist()}, heading {heading}, clock offsets "
                         f"{clocks}, stop_bias {stop}, pedal_history or foot_rest are not finite (or a count is not a "
                         "whole number >= 0); give what Tracker.restart_state() returned (decision L134, review R1 F5)")
@@ -128,6 +134,8 @@ def resume(tracker, state: dict) -> list:
     tracker.n_steps = int(state["n_steps"])
     if stop is not None and tracker._stop_bias is not None:  # decision E281: the bias read at the old one's last stop
         tracker._stop_bias.rps, tracker._stop_bias.n_stops = stop[0], int(stop[1])
+    if tracker._cycle_phase is not None:  # decision E338: the old tracker's held end-phase yaw
+        tracker._cycle_phase.psi = phase
     if rest is not None:  # review R1 F3: L621's reading before the first held stride, which is measured again
         tracker._foot_rest.readings, tracker._foot_rest.n_still = rest[0], int(rest[1])
     tracker._loops.history, tracker._loops.seen = history, len(history)  # decision E280

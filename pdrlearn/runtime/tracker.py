@@ -59,6 +59,7 @@ from pdrlearn.kernels.stride import (
     FINE_PAD_S,
     GAP_YAW_MAX_S,
     HEADING_SOURCES,
+    CyclePhase,
     StanceSegmenter,
     advance_xyz,
     fine_spec,
@@ -76,6 +77,7 @@ from pdrlearn.kernels.stride import (
     stride_rules_one,
     travel_sign_one,
     waist_bridge_yaw,
+    waist_end_phase_yaw,
     waist_forward_flip,
     waist_gap_from,
     waist_gap_max_s,
@@ -461,6 +463,9 @@ class Tracker(OwnGuard, FixInput):
         durations) and height change of the clean stride before it (decision L167, an option; E101: a keyword, as
         ``track_plasys(streaming=True, drop_neighbour=...)``); False (default): its own (decision L549: no module
         switch).
+    cycle_yaw : a stride headed by the waist gyroscope is placed along its gait cycle's mean yaw, the heading after
+        it less the pelvic rotation's yaw at the stride's ends (decision E336, the default; ``track_streaming``'s
+        ``cycle_yaw``); False: along the heading after it (the pelvis' yaw at the foot's rest, before E336).
     max_gap_s : a push whose timestamps jump further ahead than this (s; default 60) of a stream's last sample is
         refused in one line, the tracker unchanged (decision B141: a clock glitch accepted as a gap would refuse
         every later sample); ``math.inf`` accepts any gap.
@@ -553,6 +558,8 @@ class Tracker(OwnGuard, FixInput):
     _spun: tuple[float, float] | None = None  # decision L742: (their foot turn, the last one's end) since a stride
     _hole_warned = False  # decision L674's one line
     drop_neighbour = False  # decisions E101, L549 (a bare Tracker.__new__: L167 off)
+    cycle_yaw = True  # decision E336 (a bare Tracker.__new__: on, as the keyword's default)
+    _cycle_phase = None  # decision E338 (a bare Tracker.__new__ makes one at its first stride)
     gated_level_dz: bool | str = False  # decision L550 (a bare Tracker.__new__: raw heights)
     #: decision E46: the long foot gaps (start, end) not yet behind the last emitted stride, the pending gap row
     #: ([start, gap_s] or None), the end / reported heading / position of the last emitted stride
@@ -614,6 +621,7 @@ class Tracker(OwnGuard, FixInput):
         contacts: bool = False,
         check_input: bool = True,
         drop_neighbour: bool = False,
+        cycle_yaw: bool = True,
         resume: dict | None = None,
         max_gap_s: float = MAX_GAP_S,
         start_enu_m=None,
@@ -852,6 +860,8 @@ class Tracker(OwnGuard, FixInput):
         self._drop_warned = False
         self._hole_warned = False
         self.drop_neighbour = bool(drop_neighbour)  # decisions E101, L549
+        self.cycle_yaw = bool(cycle_yaw)  # decision E336
+        self._cycle_phase = CyclePhase()  # decision E338
         self._held: set[str] = set()
         #: decision E115: the required waist streams that stopped while the foot strides went on (name -> the
         #: time of its newest sample then); their samples are taken again when they return
@@ -2392,6 +2402,10 @@ class Tracker(OwnGuard, FixInput):
                 self._side = _sideways.SideRun()
             side = self._side.stride(dx, dy, length, _sideways.step_frame(lev), _sideways.foot_turn(lev))  # L400
         direction += side + waist_forward_flip(foot_headed, classes.get("direction"), length, side)  # E216
+        if self.cycle_yaw and not foot_headed:  # decision E336: along the cycle's mean yaw (track --streaming's)
+            if self._cycle_phase is None:  # a bare Tracker.__new__
+                self._cycle_phase = CyclePhase()
+            direction -= waist_end_phase_yaw(lev, t0, t1, self._cycle_phase)  # E338: held over turning strides
         if self._first_walk is not None:  # decision E215: L494's first-walk direction, said once (applied: opt-in)
             if self._fixes.used:  # a used fix set the frame (D24's yaw feedback learnt in it)
                 self._first_walk.stop()

@@ -2083,7 +2083,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                     min_confidence: float | None = None,
                     warn_out_of_domain: float | None = None, contacts: bool = False,
                     drop_neighbour: bool = False, first_walk: bool = False,
-                    gated_level_dz: bool | str = False, cycling: bool = True) -> TrackResult:
+                    gated_level_dz: bool | str = False, cycling: bool = True,
+                    cycle_yaw: bool = True) -> TrackResult:
     """PLASYS M2/M3 with the streaming runtime's stride-local kernel (issue 7 trajectory parity).
 
     Strides come from :class:`~pdrlearn.kernels.stride.StanceSegmenter` fed the whole foot gyroscope;
@@ -2114,6 +2115,9 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     heading is turned once, at the end of its first walk, by that walk's direction. ``gated_level_dz`` (decisions
     L189, L206, options not adopted; L550: a keyword, as the runtime ``Tracker``'s): True / ``"summed"`` give an M3
     stride whose terrain class the gate dropped L39's level rule, per stride / on its run's summed dz; False: raw.
+    ``cycle_yaw`` (decision E336, as the runtime ``Tracker``'s): a stride headed by the waist gyroscope goes along its
+    gait cycle's mean yaw (the heading after it less the pelvic rotation's yaw at its ends); False: the heading after
+    it.
     """
     start, start_alt = start_coordinate(start)  # decision L157: (lat, lon[, alt]) checked as --start
     initial_heading = heading_in_radians(initial_heading, "initial_heading")  # decision L158 (W81's check)
@@ -2217,6 +2221,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     fa_t, fa_v = streams["fAccelerometer"]
     has_force = "fForceA" in streams and "fForceB" in streams
     foot_headed = np.zeros(len(table), dtype=bool)  # decision L37 needs only this of each stride
+    cycle_phase = SK.CyclePhase()  # decision E338
     frame = np.zeros(len(table))  # decision E124: each stride's step frame from the foot's facing
     foot_turn = np.zeros(len(table))  # decision L400: the foot's heading change over each stride
     posture = np.zeros(len(table), dtype=bool)  # decision B131: strides skipped as the runtime skips them
@@ -2266,6 +2271,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         frame[i] = KSW.step_frame(lev)  # decision E124: the step frame's direction from the foot's facing
         foot_turn[i] = KSW.foot_turn(lev)  # decision L400
         foot_headed[i] = SK.headed_by_foot(lev, heading)
+        if cycle_yaw and not foot_headed[i]:  # decision E336: along the cycle's mean yaw (the runtime's call)
+            place[i] -= SK.waist_end_phase_yaw(lev, float(t0), float(t1), cycle_phase)  # E338: held over turns
         pause = bool(i and prev < t0 and overlaps_any(prev, float(t0), imu_gaps))
         stop_turn = (SK.long_stop_turn(streams.__getitem__, prev, float(t0)) if waist_gap_yaw  # decision E335: E324's
                      and not foot_headed[i] and not pause else None)  # turn read once for both calls below (runtime's)

@@ -51,11 +51,12 @@ SIGMA_PARAMS: dict[str, dict[str, float]] = {
     # L128's plasys-foot constants, as before L150 (uncalibrated, too large)
     "plasys-foot-streaming": {"displacement_rel": 0.0021, "heading_walk_rad": 0.062, "bias_rps": 0.0,
                               "point_m": 0.068},
-    # plasys --streaming with a waist unit: the waist gyroscope's heading (L99; L150). Decision E331: its heading is
+    # plasys --streaming with a waist unit: the waist gyroscope's heading (L99; L150). Decision E331: its heading was
     # held off the walking direction from the first stride on (users 17870-17883: RMS 0.04674 rad, -2.10 to -3.18
-    # deg), a constant offset term, rounded up
+    # deg), a constant offset term; decision E337: after E336 removed that offset's cause (the pelvis' yaw at the
+    # stride's end) what remains (users 18400-18403: RMS 0.00723 rad), rounded up
     "plasys-streaming": {"displacement_rel": 0.029, "heading_walk_rad": 0.0070, "bias_rps": 0.00051,
-                         "point_m": 5.1e-174, "heading_offset_rad": 0.047},
+                         "point_m": 5.1e-174, "heading_offset_rad": 0.0073},
     # decision L267: plasys offline after L226's fallback (L182 judged the compass disturbed): the heading is the
     # waist gyroscope's, as the streamed one, so its radius is the streamed regime's (not fitted on its own)
     "plasys-gyro-fallback": {"displacement_rel": 0.029, "heading_walk_rad": 0.0070, "bias_rps": 0.00051,
