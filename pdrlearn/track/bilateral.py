@@ -49,11 +49,13 @@ from pdrlearn.track.foot_heights import height_warning
 from pdrlearn.track.gait_flight import flight_after, flight_warning
 from pdrlearn.track.step_anchors import (
     anchor_rows,
+    axis_lengths,
     drift_bound_pct,
     lost_rows,
     pass_bound_pct,
     pass_corrected,
     pass_starts,
+    segment_axes,
     short_strides,
 )
 from pdrlearn.track.support_bias import setup_of, support_note
@@ -802,13 +804,20 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
     ck = contact_kinds(both)
     anchors = anchor_rows(ck, both["bout"].to_numpy(), k, raw)  # decision L760
     passes, first = None, None
+    cols = [both[c].to_numpy(float) for c in ("x_m", "y_m", "dir_rad")]
+    whole = False
+    if reanchor:  # decision L791: along each straight segment's axis, when that gives two anchors or more
+        axes = segment_axes(ck, both["bout"].to_numpy(), cols[2])
+        seg = axis_lengths(*cols, k, axes, turn_max_deg=STEP_TURN_MAX_DEG, axis_max_deg=STEP_AXIS_MAX_DEG)
+        seg_anchors = anchor_rows(ck, both["bout"].to_numpy(), k, seg)
+        if len(seg_anchors) >= 2:
+            raw, anchors, cols, whole = seg, seg_anchors, [cols[0], cols[1], axes], True
     if len(anchors) >= 2 and reanchor:  # decision L760: closing steps inside the walk: each pass re-anchored
         scale, bend, passes = None, 0.0, len(anchors)
-        cols = [both[c].to_numpy(float) for c in ("x_m", "y_m", "dir_rad")]
         side = both["side"].to_numpy()
         short = short_strides(side, both["length_m"].to_numpy(float), share=CLOSING_STRIDE_SHARE)
         starts = pass_starts(ck, side, both["ic_s"].to_numpy(float), *cols, short, k, raw, anchors,
-                             bout=both["bout"].to_numpy())  # decision L782: a pass after a stop
+                             bout=both["bout"].to_numpy(), whole_pass=whole)  # decisions L782, L791
         steps["step_length_m"] = pass_corrected(steps["side"].to_numpy(), raw, steps["ic_s"].to_numpy(float),
                                                 anchors, starts, opened=opening_step(both),
                                                 start=float(both["ic_s"].iloc[0]))
