@@ -10,24 +10,18 @@ import sys
 
 import numpy as np
 
-from step_length_s50_l760 import fmt, pair_rows
-from step_length_s51_l782 import pair_numbers
+from step_length_s50_l760 import pair_rows
+from step_length_s51_l782 import err_text, pair_line, pair_numbers
 
 
 def main(paths: list[str]) -> None:
-    rows = pair_rows(paths, pair_numbers, lambda r: (
-        f"{r['name']:12s} true {fmt(r['true'])} SI {fmt(r['si'])} steps with a length {r['n']} passes "
-        f"{r['passes']} line {r['line']}"))
+    rows = pair_rows(paths, pair_numbers, pair_line)
     for kind in ("six", "ten", "two"):
         sel = [r for r in rows if r["name"].split("/")[-1] == kind]
         if not sel:
             continue
-        e = np.array([abs(r["si"] - r["true"]) if None not in (r["si"], r["true"]) else np.nan for r in sel])
         right = sum(1 for r in sel if None not in (r["si"], r["true"]) and np.sign(r["si"]) == np.sign(r["true"]))
-        ok = np.isfinite(e)
-        print(f"{kind}: pairs {len(sel)} with SI {int(ok.sum())} median |err| "
-              f"{np.nanmedian(e) if ok.any() else float('nan'):.2f} within 2: {int((e[ok] <= 2).sum())} max "
-              f"{np.nanmax(e) if ok.any() else float('nan'):.2f} longer side right {right} of {len(sel)}")
+        print(f"{kind}: pairs {len(sel)} {err_text(sel)} longer side right {right} of {len(sel)}")
 
 
 if __name__ == "__main__":
