@@ -764,7 +764,7 @@ def kind_measures(both: pd.DataFrame, steps: pd.DataFrame, cycles: pd.DataFrame)
 def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
                    step_lengths: pd.DataFrame | None = None, contact_source=None,
                    rate_hz: float | None = None, reanchor: bool = True, si_drift: bool = False,
-                   ramps: bool = False) -> dict:
+                   ramps: bool = False, per_segment: bool = False) -> dict:
     """Decisions L259-L262 (Python API): bilateral gait of one walk from the left and the right foot's step
     tables (a foot track's ``steps.csv`` or a label table, :func:`foot_events`) on one clock.
 
@@ -783,7 +783,10 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
     ``si_drift`` (decision L761, not adopted: the bound flagged 35 of 40 simulated pairs and missed 3 of 5 unflagged
     ones over 2 points): the walk's ``step_length_si_drift_pct`` and :func:`drift_warning`'s line, for measuring
     only. ``ramps`` (decision L775, not adopted; default off): ramp strides (:func:`stride_ramp`) their own
-    kind ``ramp``, out of the level headline. Refuses
+    kind ``ramp``, out of the level headline. ``per_segment`` (decision L791, not adopted: fresh 6MWT-like pairs'
+    median |SI err| 4.15 -> 4.44 points; default off, for measuring only): with ``reanchor``, the re-anchored
+    passes' step lengths and anchors along each straight segment's own axis, a pass never across a turn
+    (:func:`pdrlearn.track.step_anchors.segment_axes`). Refuses
     (:class:`DataError`, one line) two tables whose contacts do not overlap in time (L260: not one walk on one
     clock)."""
     left, right = foot_events(left_steps, ramps=ramps), foot_events(right_steps, ramps=ramps)  # decision L775
@@ -806,7 +809,7 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
     passes, first = None, None
     cols = [both[c].to_numpy(float) for c in ("x_m", "y_m", "dir_rad")]
     whole = False
-    if reanchor:  # decision L791: along each straight segment's axis, when that gives two anchors or more
+    if reanchor and per_segment:  # decision L791 (not adopted, opt-in): segment axes, two anchors or more
         axes = segment_axes(ck, both["bout"].to_numpy(), cols[2])
         seg = axis_lengths(*cols, k, axes, turn_max_deg=STEP_TURN_MAX_DEG, axis_max_deg=STEP_AXIS_MAX_DEG)
         seg_anchors = anchor_rows(ck, both["bout"].to_numpy(), k, seg)
