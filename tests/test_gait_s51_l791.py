@@ -4,7 +4,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from pdrlearn.track.bilateral import STEP_AXIS_MAX_DEG, STEP_TURN_MAX_DEG, step_lengths
+from pdrlearn.track.bilateral import STEP_AXIS_MAX_DEG, STEP_TURN_MAX_DEG, bilateral_gait, step_lengths
 from pdrlearn.track.step_anchors import (
     anchor_rows,
     axis_lengths,
@@ -69,3 +69,36 @@ def test_a_pass_that_lost_a_closing_step_starts_after_its_last_turn():
     out = pass_corrected(side, length, ic[k], anchors, new, opened=True, start=0.0)
     assert np.isnan(out[5:11]).all() and np.isfinite(out[11:14]).all()
     assert list(lost_rows(length, out, anchors)) == [5, 6, 7]  # L783's line names them
+
+
+def _wide_stop_walk(wide_m: float = 3.0) -> tuple[pd.DataFrame, pd.DataFrame]:
+    """Two 9-step bouts (left 0.45 m, right 0.55 m) with a stop, the feet side by side, between them; the left track
+    lies ``wide_m`` sideways of the right (never re-anchored) and zig-zags +-0.06 m stride by stride."""
+    pos = {"left": complex(0, wide_m), "right": complex(0, 0.0)}
+    rows: dict[str, list] = {"left": [], "right": []}
+    t = [0.0]
+
+    def stride(side, new):
+        d = new - pos[side]
+        rows[side].append({"start_s": t[0] - 0.6, "end_s": t[0] + 0.1, "event_s": t[0], "tc_s": t[0] - 0.4,
+                           "length_m": abs(d), "heading_rad": float(np.angle(d)), "turn_angle_rad": 0.0})
+        pos[side], t[0] = new, t[0] + 0.6
+
+    for bout in range(2):
+        front = pos["right"].real
+        for i in range(10):
+            side = "right" if i % 2 == 0 else "left"
+            front += (0.55 if side == "right" else 0.45) if i < 9 else 0.0
+            y = 0.0 if side == "right" else wide_m + (0.06 if (i // 2) % 2 else -0.06)
+            stride(side, complex(front, y))
+        t[0] += 5.0 * (bout == 0)
+    return pd.DataFrame(rows["left"]), pd.DataFrame(rows["right"])
+
+
+def test_bilateral_gait_per_segment_is_opt_in_and_reads_the_wide_tracks_right():
+    left, right = _wide_stop_walk()
+    old, new = (bilateral_gait(left, right, per_segment=p)["steps"] for p in (False, True))
+    for st in (old, new):
+        assert np.isfinite(st["step_length_m"]).sum() >= 12
+    err = [np.nanmax(np.abs(st["step_length_m"] - np.where(st["side"] == "left", 0.45, 0.55))) for st in (old, new)]
+    assert err[0] > 0.03 and err[1] < 0.01  # the default (L760) reads the 3 m by the sine; L791's axis does not
