@@ -27,20 +27,29 @@ def pair_numbers(folder: Path) -> dict:
             "line": any("have no step length" in x or "no step length:" in x for x in res["warnings"])}
 
 
+def pair_line(r: dict) -> str:
+    """One pair's printed line (shared with step_length_s51_l791.py)."""
+    return (f"{r['name']:12s} true {fmt(r['true'])} SI {fmt(r['si'])} steps with a length {r['n']} passes "
+            f"{r['passes']} line {r['line']}")
+
+
+def err_text(sel: list[dict]) -> str:
+    """The pairs' SI count, median and max |SI tracked - true| and the number within 2 points (shared with
+    step_length_s51_l791.py)."""
+    e = np.array([abs(r["si"] - r["true"]) if None not in (r["si"], r["true"]) else np.nan for r in sel])
+    ok = np.isfinite(e)
+    return (f"with SI {int(ok.sum())} median |err| {np.nanmedian(e) if ok.any() else float('nan'):.2f} within 2: "
+            f"{int((e[ok] <= 2).sum())} max {np.nanmax(e) if ok.any() else float('nan'):.2f}")
+
+
 def main(paths: list[str]) -> None:
-    rows = pair_rows(paths, pair_numbers, lambda r: (
-        f"{r['name']:12s} true {fmt(r['true'])} SI {fmt(r['si'])} steps with a length {r['n']} passes "
-        f"{r['passes']} line {r['line']}"))
+    rows = pair_rows(paths, pair_numbers, pair_line)
     for kinds in (("stop",), ("mix",), ("stop", "mix"), ("turn",)):
         sel = [r for r in rows if r["name"].split("/")[-1] in kinds]
         if not sel:
             continue
-        e = np.array([abs(r["si"] - r["true"]) if None not in (r["si"], r["true"]) else np.nan for r in sel])
-        ok = np.isfinite(e)
-        print(f"{'+'.join(kinds)}: pairs {len(sel)} steps with a length {sum(r['n'] or 0 for r in sel)} with SI "
-              f"{int(ok.sum())} median |err| {np.nanmedian(e) if ok.any() else float('nan'):.2f} within 2: "
-              f"{int((e[ok] <= 2).sum())} max {np.nanmax(e) if ok.any() else float('nan'):.2f}")
-
+        print(f"{'+'.join(kinds)}: pairs {len(sel)} steps with a length {sum(r['n'] or 0 for r in sel)} "
+              f"{err_text(sel)}")
 
 if __name__ == "__main__":
     main(sys.argv[1:])

@@ -49,11 +49,13 @@ from pdrlearn.track.foot_heights import height_warning
 from pdrlearn.track.gait_flight import flight_after, flight_warning
 from pdrlearn.track.step_anchors import (
     anchor_rows,
+    axis_lengths,
     drift_bound_pct,
     lost_rows,
     pass_bound_pct,
     pass_corrected,
     pass_starts,
+    segment_axes,
     short_strides,
 )
 from pdrlearn.track.support_bias import setup_of, support_note
@@ -767,7 +769,7 @@ def kind_measures(both: pd.DataFrame, steps: pd.DataFrame, cycles: pd.DataFrame)
 def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
                    step_lengths: pd.DataFrame | None = None, contact_source=None,
                    rate_hz: float | None = None, reanchor: bool = True, si_drift: bool = False,
-                   ramps: bool = False) -> dict:
+                   ramps: bool = False, per_segment: bool = False) -> dict:
     """Decisions L259-L262 (Python API): bilateral gait of one walk from the left and the right foot's step
     tables (a foot track's ``steps.csv`` or a label table, :func:`foot_events`) on one clock.
 
@@ -786,7 +788,10 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
     ``si_drift`` (decision L761, not adopted: the bound flagged 35 of 40 simulated pairs and missed 3 of 5 unflagged
     ones over 2 points): the walk's ``step_length_si_drift_pct`` and :func:`drift_warning`'s line, for measuring
     only. ``ramps`` (decision L775, not adopted; default off): ramp strides (:func:`stride_ramp`) their own
-    kind ``ramp``, out of the level headline. Refuses
+    kind ``ramp``, out of the level headline. ``per_segment`` (decision L791, not adopted: fresh 6MWT-like pairs'
+    median |SI err| 4.15 -> 4.44 points; default off, for measuring only): with ``reanchor``, the re-anchored
+    passes' step lengths and anchors along each straight segment's own axis, a pass never across a turn
+    (:func:`pdrlearn.track.step_anchors.segment_axes`). Refuses
     (:class:`DataError`, one line) two tables whose contacts do not overlap in time (L260: not one walk on one
     clock)."""
     left, right = foot_events(left_steps, ramps=ramps), foot_events(right_steps, ramps=ramps)  # decision L775
@@ -807,13 +812,20 @@ def bilateral_gait(left_steps: pd.DataFrame, right_steps: pd.DataFrame, *,
     ck = contact_kinds(both)
     anchors = anchor_rows(ck, both["bout"].to_numpy(), k, raw)  # decision L760
     passes, first = None, None
+    cols = [both[c].to_numpy(float) for c in ("x_m", "y_m", "dir_rad")]
+    whole = False
+    if reanchor and per_segment:  # decision L791 (not adopted, opt-in): segment axes, two anchors or more
+        axes = segment_axes(ck, both["bout"].to_numpy(), cols[2])
+        seg = axis_lengths(*cols, k, axes, turn_max_deg=STEP_TURN_MAX_DEG, axis_max_deg=STEP_AXIS_MAX_DEG)
+        seg_anchors = anchor_rows(ck, both["bout"].to_numpy(), k, seg)
+        if len(seg_anchors) >= 2:
+            raw, anchors, cols, whole = seg, seg_anchors, [cols[0], cols[1], axes], True
     if len(anchors) >= 2 and reanchor:  # decision L760: closing steps inside the walk: each pass re-anchored
         scale, bend, passes = None, 0.0, len(anchors)
-        cols = [both[c].to_numpy(float) for c in ("x_m", "y_m", "dir_rad")]
         side = both["side"].to_numpy()
         short = short_strides(side, both["length_m"].to_numpy(float), share=CLOSING_STRIDE_SHARE)
         starts = pass_starts(ck, side, both["ic_s"].to_numpy(float), *cols, short, k, raw, anchors,
-                             bout=both["bout"].to_numpy())  # decision L782: a pass after a stop
+                             bout=both["bout"].to_numpy(), whole_pass=whole)  # decisions L782, L791
         steps["step_length_m"] = pass_corrected(steps["side"].to_numpy(), raw, steps["ic_s"].to_numpy(float),
                                                 anchors, starts, opened=opening_step(both),
                                                 start=float(both["ic_s"].iloc[0]))

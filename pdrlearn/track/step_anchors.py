@@ -50,7 +50,8 @@ def short_strides(side: np.ndarray, stride: np.ndarray, *, share: float = 0.75) 
 
 def pass_starts(kinds: np.ndarray, both_side: np.ndarray, ic: np.ndarray, x: np.ndarray, y: np.ndarray,
                 d: np.ndarray, short: np.ndarray, k: np.ndarray, length: np.ndarray,
-                anchors: np.ndarray, *, bout: np.ndarray | None = None) -> list[tuple[int, float, float] | None]:
+                anchors: np.ndarray, *, bout: np.ndarray | None = None,
+                whole_pass: bool = False) -> list[tuple[int, float, float] | None]:
     """Decision L760: for each pass after the first (the steps after anchor p - 1), where the feet stood side by
     side before it: a turn on the spot (the simulator's ``turn:180``) ends with the feet together, so the last
     contact j of L538's ``turn`` kind before the pass's first step with a length and the other foot's contact
@@ -60,12 +61,20 @@ def pass_starts(kinds: np.ndarray, both_side: np.ndarray, ic: np.ndarray, x: np.
     that pass has no step length). Decision L782: with ``bout`` (the merged contacts' bout numbers), a pass with no
     turn contact before it whose first step lies in a later bout than the anchor (the walker stopped with the feet
     side by side and went on) takes the anchor's landing contact as j, and the time of the new bout's first contact
-    ic[j + 1] (a foot track does not drift while it stands, as the first pass starts at the walk's first contact)."""
+    ic[j + 1] (a foot track does not drift while it stands, as the first pass starts at the walk's first contact).
+    Decision L791 (iii), ``whole_pass``: the pair is the last turn before the pass's own closing step (anchor p), and
+    the pass's first step is the first with a length after it, so a pass whose walk lost a closing step never spans
+    a turn (L760 interpolated across it); ``d`` may be :func:`segment_axes` (L791 (i): the offset along the axis
+    of the segment after the turn)."""
     n = len(kinds)
     out: list[tuple[int, float, float] | None] = []
-    for a in anchors[:-1]:
-        rows = np.flatnonzero(np.isfinite(length[a + 1:])) + a + 1
-        turns = [] if not len(rows) else np.flatnonzero(kinds[k[a] + 1:k[rows[0]] + 1] == "turn") + k[a] + 1
+    for a, b in zip(anchors[:-1], anchors[1:], strict=True):
+        rows = np.flatnonzero(np.isfinite(length[a + 1:b])) + a + 1
+        if whole_pass:  # decision L791 (iii): the last turn before the pass's own closing step; steps before it none
+            turns = np.flatnonzero(kinds[k[a] + 1:k[b]] == "turn") + k[a] + 1
+            rows = rows[k[rows] > turns[-1]] if len(turns) else rows
+        else:
+            turns = [] if not len(rows) else np.flatnonzero(kinds[k[a] + 1:k[rows[0]] + 1] == "turn") + k[a] + 1
         stop = bool(bout is not None and len(rows) and not len(turns) and k[a] + 1 < n
                 and bout[k[rows[0]]] != bout[k[a]])  # decision L782: a stop, not a turn, before the pass
         if stop:
@@ -152,3 +161,40 @@ def lost_rows(raw: np.ndarray, corrected: np.ndarray, anchors: np.ndarray) -> np
     lost = np.isfinite(np.asarray(raw, float)) & ~np.isfinite(np.asarray(corrected, float))
     lost[np.asarray(anchors, int)] = False
     return np.flatnonzero(lost)
+
+
+def segment_axes(kinds: np.ndarray, bout: np.ndarray, d: np.ndarray) -> np.ndarray:
+    """Decision L791 (i): each merged contact's straight-segment axis (rad): the contacts of a bout between two of
+    L538's ``turn`` contacts form a segment, its axis the circular mean of its non-turn contacts' stride directions
+    ``d`` (both feet); a turn contact's is NaN. Along one axis the two tracks' sideways separation, never re-anchored,
+    is a constant inside a pass, which the pass's two anchors take out; each step's own direction reads it into the
+    step length by its sine (trial s51t2: 0.26 m wobbles in a 30 m pass)."""
+    kinds, bout, d = np.asarray(kinds, dtype=object), np.asarray(bout), np.asarray(d, float)
+    turn = kinds == "turn"
+    seg = np.cumsum(turn | np.r_[True, bout[1:] != bout[:-1]])
+    out = np.full(len(d), np.nan)
+    for s in np.unique(seg[~turn]):
+        own = (seg == s) & ~turn
+        ok = own & np.isfinite(d)
+        if ok.any():
+            out[own] = np.arctan2(np.sin(d[ok]).sum(), np.cos(d[ok]).sum())
+    out[turn] = np.nan
+    return out
+
+
+def axis_lengths(x: np.ndarray, y: np.ndarray, d: np.ndarray, k: np.ndarray, axes: np.ndarray, *,
+                 turn_max_deg: float, axis_max_deg: float) -> np.ndarray:
+    """Decision L791 (i, ii): the length (m) of the steps ending on the merged contacts ``k`` (from contact k - 1),
+    the two feet's rest positions differenced along the landing contact's segment axis (:func:`segment_axes`); NaN
+    in a turn (the two strides differ over ``turn_max_deg``, L310's), when the step's own direction (its two strides'
+    mean) lies over ``axis_max_deg`` (L310's) off its segment's axis or its opposite, or without positions."""
+    x, y, d, axes = (np.asarray(v, float) for v in (x, y, d, axes))
+    k = np.asarray(k, int)
+    a, b = k, k - 1
+    ax = axes[a]
+    length = (x[a] - x[b]) * np.cos(ax) + (y[a] - y[b]) * np.sin(ax)
+    walk = np.arctan2(np.sin(d[a]) + np.sin(d[b]), np.cos(d[a]) + np.cos(d[b]))
+    step = np.angle(np.exp(1j * (d[a] - d[b])))
+    with np.errstate(invalid="ignore"):
+        bad = (np.abs(step) > np.radians(turn_max_deg)) | (np.abs(np.sin(walk - ax)) > np.sin(np.radians(axis_max_deg)))
+    return np.where(bad | ~np.isfinite(length), np.nan, length)
