@@ -49,7 +49,8 @@ def test_slopes_on_a_stairs_model_are_said_96(stairs_model):
     line, pooled = _line(stairs_model, X, y)
     assert pooled < 0.05  # C16's pooled range sees nothing: the slopes lie between flat and stairs
     assert line is not None and "40 of 40 labelled 'down' steps (100 %, most often x0; also up 100 %)" in line
-    assert "though 0 % lie outside its whole training range" in line and "trained on stairs" in line and "steps.md 96" in line
+    assert "though 0 % lie outside its whole training range" in line and "trained on stairs" in line
+    assert "steps.md 96" in line
 
 
 def test_stairs_on_a_stairs_model_are_quiet_96(stairs_model):
