@@ -56,6 +56,10 @@ def test_slopes_on_a_stairs_model_are_said_96(stairs_model):
 def test_stairs_on_a_stairs_model_are_quiet_96(stairs_model):
     X, y = _steps(_GRADE, np.random.default_rng(2))
     assert _line(stairs_model, X, y)[0] is None
+    X[:, 1] *= 4.0  # steps outside the whole range: C16's share, not this line (its detail stays opt-in)
+    X[y == "up", 0] = 0.15
+    line, pooled = _line(stairs_model, X, y)
+    assert pooled > 0.5 and line is None
 
 
 def test_without_class_ranges_no_score_96():

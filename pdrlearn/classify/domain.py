@@ -361,9 +361,12 @@ def class_domain_line(task: str, by_class: dict[str, dict], pooled: float | None
                       share: float = DEFAULT_WARN_SHARE, min_steps: int = 10) -> str | None:
     """Steps decision 96: the one line when more than ``share`` (C61's) of some class's labelled steps (at least
     ``min_steps`` checked) lie outside the range of the training steps of that class; the class most off. ``pooled``:
-    C16's share over the whole training range, said for contrast. None otherwise."""
+    C16's share over the whole training range, said for contrast. None otherwise, and None when more than ``share``
+    lie outside the whole range (C16's printed share says it; its detailed line stays opt-in)."""
     from pdrlearn.decision_refs import decision_ref
 
+    if pooled is not None and pooled > share:
+        return None
     off = {c: s for c, s in by_class.items()
            if s.get("fraction") is not None and s["n_steps"] >= min_steps and s["fraction"] > share}
     if not off:
