@@ -296,6 +296,92 @@ def attach_ranges(est, X: np.ndarray) -> int:
     return n
 
 
+def fit_class_ranges(est, X: np.ndarray, y: np.ndarray, *, min_steps: int = 10) -> dict[str, FeatureRange]:
+    """Steps decision 96: per class with at least ``min_steps`` training steps, :func:`fit_range` of a leaf's inputs
+    over that class's windows (C16's quantiles, one class at a time)."""
+    y = np.asarray(y).astype(str)
+    return {c: fit_range(est, np.asarray(X)[y == c]) for c in sorted(set(y.tolist())) if (y == c).sum() >= min_steps}
+
+
+def attach_class_ranges(est, X: np.ndarray, y: np.ndarray) -> int:
+    """Steps decision 96: store ``training_class_ranges_`` (:func:`fit_class_ranges`) on every leaf of the fitted
+    ``est`` that has none yet; returns how many leaves have them. A leaf whose inputs cannot be computed keeps none."""
+    n = 0
+    for leaf, Xl in _leaves(est, X):
+        if getattr(leaf, "training_class_ranges_", None) is None:
+            try:
+                leaf.training_class_ranges_ = fit_class_ranges(leaf, Xl, y)
+            except (MissingSensorError, DataError, ValueError) as exc:
+                log.info("no per-class training ranges for %s: %s", type(leaf).__name__, exc)
+                continue
+        n += 1
+    return n
+
+
+def step_class_score(est, X: np.ndarray, labels) -> tuple[np.ndarray, list[str]] | None:
+    """Steps decision 96: per step, C16's score of the windows ``X`` against the training range of its labelled
+    class (``labels``) and the feature that set it (composite model: the largest over its leaves); NaN for a class
+    the model kept no range of. None when a leaf has no per-class ranges (trained before 96) or no inputs."""
+    X = np.asarray(X, dtype=float)
+    labels = np.asarray(labels).astype(str)
+    d = np.zeros(len(X))
+    known = np.ones(len(X), dtype=bool)
+    worst = np.full(len(X), "", dtype=object)
+    for leaf, Xl in _leaves(est, X):
+        ranges = getattr(leaf, "training_class_ranges_", None)
+        if ranges is None:
+            return None
+        try:
+            F = np.asarray(model_inputs(leaf, Xl)[0], dtype=float)
+        except (MissingSensorError, DataError, ValueError):
+            return None
+        for c in set(labels.tolist()):
+            rows = labels == c
+            if c not in ranges or F.shape[1] != len(ranges[c].lo):
+                known &= ~rows
+                continue
+            ex = ranges[c].excess(F[rows])
+            du, arg = ex.max(axis=1), ex.argmax(axis=1)
+            better = du > d[rows]
+            idx = np.flatnonzero(rows)[better]
+            d[idx] = du[better]
+            worst[idx] = [ranges[c].features[j] for j in arg[better]]
+    return np.where(known, d, np.nan), list(worst)
+
+
+def class_domain(d: np.ndarray, labels, worst: list[str]) -> dict[str, dict]:
+    """Steps decision 96: per labelled class, :func:`summarize` of its steps' :func:`step_class_score`."""
+    d = np.asarray(d, dtype=float)
+    labels = np.asarray(labels).astype(str)
+    w = np.asarray(worst, dtype=object)
+    return {c: summarize(d[labels == c], list(w[labels == c]), "") for c in sorted(set(labels.tolist()))}
+
+
+def class_domain_line(task: str, by_class: dict[str, dict], pooled: float | None, *,
+                      share: float = DEFAULT_WARN_SHARE, min_steps: int = 10) -> str | None:
+    """Steps decision 96: the one line when more than ``share`` (C61's) of some class's labelled steps (at least
+    ``min_steps`` checked) lie outside the range of the training steps of that class; the class most off. ``pooled``:
+    C16's share over the whole training range, said for contrast. None otherwise, and None when more than ``share``
+    lie outside the whole range (C16's printed share says it; its detailed line stays opt-in)."""
+    from pdrlearn.decision_refs import decision_ref
+
+    if pooled is not None and pooled > share:
+        return None
+    off = {c: s for c, s in by_class.items()
+           if s.get("fraction") is not None and s["n_steps"] >= min_steps and s["fraction"] > share}
+    if not off:
+        return None
+    c, s = max(off.items(), key=lambda kv: kv[1]["fraction"])
+    feat = f", most often {s['feature']}" if s.get("feature") else ""
+    also = [f"{o} {100 * so['fraction']:.0f} %" for o, so in off.items() if o != c]
+    whole = "" if pooled is None else f", though {100 * pooled:.0f} % lie outside its whole training range"
+    return (f"{task}: {s['n_out']} of {s['n_steps']} labelled '{c}' steps ({100 * s['fraction']:.0f} %{feat}"
+            f"{'; also ' + ', '.join(also) if also else ''}) lie outside the range of the steps the model learned "
+            f"'{c}' from{whole}: it learned the class from other steps than these (e.g. trained on stairs, "
+            f"evaluated on slopes), so these scores are not its accuracy on the data it was trained for; train on "
+            f"labelled steps like these ({decision_ref(96, topic='steps')})")
+
+
 def has_ranges(est) -> bool:
     """Whether every leaf of ``est`` stores a training range (models saved before C16: False)."""
     members = getattr(est, "estimators_", None)
@@ -436,4 +522,5 @@ __all__ = ["QUANTILES", "STEP_THRESHOLD", "FRACTION_THRESHOLD", "FeatureRange", 
            "attach_ranges", "has_ranges", "step_score", "combine_scores", "check_warn_at", "summarize", "domain_report",
            "warning_line", "session_warning_line", "DEFAULT_WARN_SHARE",
            "NO_RANGES_NOTE", "JOINT_QUANTILE", "JOINT_FOLDS", "JointDomain", "fit_joint",
-           "attach_joint", "step_joint_score", "joint_fraction"]
+           "attach_joint", "step_joint_score", "joint_fraction", "fit_class_ranges", "attach_class_ranges",
+           "step_class_score", "class_domain", "class_domain_line"]

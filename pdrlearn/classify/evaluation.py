@@ -113,7 +113,10 @@ def evaluate_model(
     from pdrlearn.classify.domain import (
         NO_RANGES_NOTE,
         check_warn_at,
+        class_domain,
+        class_domain_line,
         domain_report,
+        step_class_score,
         step_score,
         summarize,
         warning_line,
@@ -222,6 +225,7 @@ def evaluate_model(
         order = list(dict.fromkeys(([tm.chosen] if tm.chosen else []) + tm.ranking()))
         y_true, y_pred, used, n_gap = [], [], [], 0
         ood, ood_feat, ood_models = [], [], set()  # decision C16: the chosen model's training-range check
+        by_cls: list = []  # steps decision 96: (scores, labels, features) against each labelled class's range
         for i, rows in sess_rows.items():
             runs = [p for p in order if p in preds and i in preds[p]]
             if runs:
@@ -231,6 +235,9 @@ def evaluate_model(
                     ood.append(sc[0])
                     ood_feat += sc[1]
                     ood_models.add("/".join(runs[0]))
+                cs = step_class_score(tm.models[runs[0][0]][runs[0][1]], data.X[got_rows], data.y[got_rows])
+                if cs is not None:  # steps decision 96: against the range of each step's labelled class
+                    by_cls.append((cs[0], data.y[got_rows], cs[1]))
             every_step_in_a_gap = bool(windows[i].gap_steps) and not (data.foot[rows] | data.waist[rows]).any()
             if not runs and not every_step_in_a_gap:
                 res["skipped"].append(f"chosen: no model runs on {windows[i].session}")
@@ -271,6 +278,13 @@ def evaluate_model(
             continue
         if ood:
             domain[task] = summarize(np.concatenate(ood), ood_feat, ", ".join(sorted(ood_models)))
+            if by_cls:  # steps decision 96: per labelled class, its steps outside that class's training range
+                domain[task]["by_class"] = class_domain(np.concatenate([b[0] for b in by_cls]),
+                                                        np.concatenate([b[1] for b in by_cls]),
+                                                        [w for b in by_cls for w in b[2]])
+                line = class_domain_line(task, domain[task]["by_class"], domain[task]["fraction"])
+                if line:
+                    log.warning(line)
         chosen = max(set(used), key=used.count)
         m = class_metrics(np.concatenate(y_true), np.concatenate(y_pred), classes)
         res["n_steps"] = int(m["n_steps"])

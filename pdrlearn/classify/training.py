@@ -24,6 +24,7 @@ from sklearn.pipeline import Pipeline
 from sklearn.preprocessing import FunctionTransformer
 
 from pdrlearn.classify.domain import (
+    attach_class_ranges,
     attach_joint,
     attach_ranges,
     domain_report,
@@ -1325,6 +1326,7 @@ def train_task(
             if unit in per:
                 attach_ranges(per[unit], data.X[subsets[unit][0]])
                 attach_joint(per[unit], data.X[subsets[unit][0]], data.y[subsets[unit][0]])  # decision C71
+                attach_class_ranges(per[unit], data.X[subsets[unit][0]], data.y[subsets[unit][0]])  # steps 96
     tm.chosen = best_pair(tm.ranking(), tm.one_unit_votes())  # decisions C8, C124
     if tm.chosen is None:
         raise DataError(f"task {data.task}: no method could be trained ({'; '.join(tm.skipped)})")

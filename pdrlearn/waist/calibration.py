@@ -25,6 +25,7 @@ from pdrlearn.waist.plausibility import (  # noqa: F401  (W99 moved to plausibil
     calibration_gait,
     step_counts,
     steps_missed,
+    turns_bias_message,
 )
 from pdrlearn.waist.pll_calibration import calibrated_here, recorded_options, without_recorded
 from pdrlearn.waist.steplength import (
@@ -595,13 +596,18 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
     if turns is not None:
         from pdrlearn.waist.ahrs import waist_imu
 
-        biases = []
+        biases, walked = [], []
         for s in sessions:
             imu = waist_imu(s)
             biases.append(K.gyro_bias_360(imu.t, imu.w_z, turns=turns))
+            walked.append(turns + biases[-1] * float(imu.t[-1] - imu.t[0]) / (2 * np.pi))  # int w dt / 2 pi
         out.gyro_bias_rps = float(np.mean(biases))
         out.notes.append(f"gyro bias {out.gyro_bias_rps:.5f} rad/s from {len(sessions)} walk(s) of "
                          f"{turns:+g} turn(s) (seed 003 eq. 2)")
+        odd = turns_bias_message(walked, turns, out.gyro_bias_rps)  # decision C262
+        if odd:
+            log.warning("calibrate: %s", odd)
+            out.notes.append(odd)
     if fit_turns:
         gmm, how = fit_turn_classifier(np.concatenate(rates) if rates else np.zeros(0))
         if gmm is not None:

@@ -710,6 +710,29 @@ STILL_S = (2.0, 5.0)
 STILL_YAW_RATE_WARN_RPS = 0.015
 
 
+def turns_bias_message(measured_turns, turns: float, bias_rps: float, *,
+                       bound_rps: float = STILL_YAW_RATE_WARN_RPS, off_turns: float = 0.5) -> str | None:
+    """Decision C262: the one line for ``calibrate --turns``'s fitted vertical gyro bias ``bias_rps`` (seed 003 eq. 2)
+    when it exceeds ``bound_rps`` (W105's rate at rest: more than a MEMS gyroscope drifts still) or when a walk's
+    measured turn (``measured_turns``: its ``int w dt / 2 pi`` per walk, bias included) is ``off_turns`` or more from
+    ``turns``; else None. The line names the nearest half turn the walks measured when that differs from ``turns``."""
+    from pdrlearn.decision_refs import decision_ref
+
+    m = np.asarray(measured_turns, dtype=float).ravel()
+    far = m.size > 0 and bool(np.any(np.abs(m - turns) >= off_turns))
+    if not (far or abs(bias_rps) > bound_rps) or not np.isfinite(bias_rps):
+        return None
+    walked = ", ".join(f"{v:+.2f}" for v in m)
+    half = round(2.0 * float(np.mean(m))) / 2.0 if m.size else turns
+    hint = (f"if the walk turned {half:+g} turn(s) (an out-and-back is 0.5), calibrate with --turns {half:g}; "
+            if half != turns else "")
+    return (f"--turns {turns:+g}: the gyroscope measured {walked} turn(s) over the walk(s), so the fitted gyro bias "
+            f"is {bias_rps:+.4f} rad/s ({np.degrees(bias_rps):+.2f} deg/s), "
+            + ("over" if abs(bias_rps) > bound_rps else "under")
+            + f" the {bound_rps:g} rad/s a MEMS gyroscope drifts at rest (W105): {hint}a bias this large is written "
+            f"and turns every straight of the track ({decision_ref('C262', topic='cohort')})")
+
+
 def still_yaw_rate(t: np.ndarray, acc_nav: np.ndarray, gyr_nav: np.ndarray, fs: float,
                    bias_rps: float = 0.0, *, vertical: np.ndarray | None = None,
                    still: np.ndarray | None = None) -> tuple[float, float, float] | None:
