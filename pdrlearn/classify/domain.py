@@ -200,16 +200,8 @@ def fit_joint(est, X: np.ndarray, y: np.ndarray) -> JointDomain:
 def attach_joint(est, X: np.ndarray, y: np.ndarray) -> int:
     """Decision C71: store ``training_joint_`` on every leaf of the fitted ``est`` that has none yet; returns how
     many leaves have one. A leaf whose inputs cannot be computed keeps none."""
-    n = 0
-    for leaf, Xl in _leaves(est, X):
-        if getattr(leaf, "training_joint_", None) is None:
-            try:
-                leaf.training_joint_ = fit_joint(leaf, Xl, y)
-            except (MissingSensorError, DataError, ValueError, np.linalg.LinAlgError) as exc:
-                log.info("no joint domain model for %s: %s", type(leaf).__name__, exc)
-                continue
-        n += 1
-    return n
+    return _attach(est, X, "training_joint_", lambda leaf, Xl: fit_joint(leaf, Xl, y), "joint domain model",
+                   np.linalg.LinAlgError)
 
 
 def step_joint_score(est, X: np.ndarray) -> np.ndarray | None:
@@ -284,13 +276,20 @@ def fit_range(est, X: np.ndarray) -> FeatureRange:
 def attach_ranges(est, X: np.ndarray) -> int:
     """Store ``training_range_`` on every leaf of the fitted ``est`` that has none yet (training windows
     ``X``); returns how many leaves have one. A leaf whose inputs cannot be computed keeps none."""
+    return _attach(est, X, "training_range_", fit_range, "training range")
+
+
+def _attach(est, X: np.ndarray, attr: str, fit, what: str, *also) -> int:
+    """The one mechanism of :func:`attach_ranges`, :func:`attach_joint` and :func:`attach_class_ranges`: ``attr`` =
+    ``fit(leaf, leaf's inputs)`` on every leaf of ``est`` that has none yet; returns how many leaves have one. A leaf
+    whose inputs cannot be computed (or whose fit raises one of ``also``) keeps none, said at INFO as "no WHAT"."""
     n = 0
     for leaf, Xl in _leaves(est, X):
-        if getattr(leaf, "training_range_", None) is None:
+        if getattr(leaf, attr, None) is None:
             try:
-                leaf.training_range_ = fit_range(leaf, Xl)
-            except (MissingSensorError, DataError, ValueError) as exc:
-                log.info("no training range for %s: %s", type(leaf).__name__, exc)
+                setattr(leaf, attr, fit(leaf, Xl))
+            except (MissingSensorError, DataError, ValueError, *also) as exc:
+                log.info("no %s for %s: %s", what, type(leaf).__name__, exc)
                 continue
         n += 1
     return n
@@ -306,16 +305,8 @@ def fit_class_ranges(est, X: np.ndarray, y: np.ndarray, *, min_steps: int = 10) 
 def attach_class_ranges(est, X: np.ndarray, y: np.ndarray) -> int:
     """Steps decision 96: store ``training_class_ranges_`` (:func:`fit_class_ranges`) on every leaf of the fitted
     ``est`` that has none yet; returns how many leaves have them. A leaf whose inputs cannot be computed keeps none."""
-    n = 0
-    for leaf, Xl in _leaves(est, X):
-        if getattr(leaf, "training_class_ranges_", None) is None:
-            try:
-                leaf.training_class_ranges_ = fit_class_ranges(leaf, Xl, y)
-            except (MissingSensorError, DataError, ValueError) as exc:
-                log.info("no per-class training ranges for %s: %s", type(leaf).__name__, exc)
-                continue
-        n += 1
-    return n
+    return _attach(est, X, "training_class_ranges_", lambda leaf, Xl: fit_class_ranges(leaf, Xl, y),
+                   "per-class training ranges")
 
 
 def step_class_score(est, X: np.ndarray, labels) -> tuple[np.ndarray, list[str]] | None:
