@@ -138,7 +138,7 @@ def bout_rows(steps: pd.DataFrame, session, bouts: pd.DataFrame, ic: np.ndarray,
             p = by.get(r["start_s"])
             r[name] = p["error_pct"] if p is not None else np.nan
             if name == "err_pct" and p is not None:
-                r["reference_m"], r["tracked_m"] = p["reference_m"], p["tracked_m"]
+                r["reference_m"], r["tracked_m"], r["n_steps"] = p["reference_m"], p["tracked_m"], p["n_steps"]
     for r in rows:
         r["edge_part_pts"] = r["err_pct"] - r["err_edges_exact_pct"]
     return rows
@@ -167,6 +167,9 @@ def summarize(df: pd.DataFrame, by: list[str]) -> None:
         short = 1e3 * (g.piece_span_s - g.ref_span_s)
         print(f"    walking piece span - ref span ms {q(short)}; sum pieces {g.piece_span_s.sum():.2f} s vs ref "
               f"{g.ref_span_s.sum():.2f} s")
+        print(f"    detected steps counted in the bout: median {g.n_steps.median():.1f}; reference contacts - 1: "
+              f"median {(g.ref_contacts - 1).median():.1f}; median |edge part| {g.edge_part_pts.abs().median():.3f} "
+              f"points; median |piece span - ref span| {short.abs().median():.1f} ms")
         print(f"    bout distance error %: median |err| {g.err_pct.abs().median():.3f}, signed {g.err_pct.median():+.3f};"
               f" edges exact: median |err| {g.err_edges_exact_pct.abs().median():.3f}, signed "
               f"{g.err_edges_exact_pct.median():+.3f}; edge part (points) {q(g.edge_part_pts)}")
