@@ -170,14 +170,13 @@ def summarize(df: pd.DataFrame, by: list[str]) -> None:
         print(f"    detected steps counted in the bout: median {g.n_steps.median():.1f}; reference contacts - 1: "
               f"median {(g.ref_contacts - 1).median():.1f}; median |edge part| {g.edge_part_pts.abs().median():.3f} "
               f"points; median |piece span - ref span| {short.abs().median():.1f} ms")
-        print(f"    bout distance error %: median |err| {g.err_pct.abs().median():.3f}, signed {g.err_pct.median():+.3f};"
-              f" edges exact: median |err| {g.err_edges_exact_pct.abs().median():.3f}, signed "
-              f"{g.err_edges_exact_pct.median():+.3f}; edge part (points) {q(g.edge_part_pts)}")
+        print(f"    bout distance error %: median |err| {g.err_pct.abs().median():.3f}, signed "
+              f"{g.err_pct.median():+.3f}; edges exact: median |err| {g.err_edges_exact_pct.abs().median():.3f}, "
+              f"signed {g.err_edges_exact_pct.median():+.3f}; edge part (points) {q(g.edge_part_pts)}")
 
 
 def real(ext: Path, opts: dict) -> pd.DataFrame:
     import waist  # sibling experiment (E301: bare name)
-
     from pdrlearn.io import read_session
     from pdrlearn.waist.calibration import calibrate
     from pdrlearn.waist.params import resolve_params
@@ -217,8 +216,8 @@ def simulated(users: list[int], opts: dict, knobs: dict | None = None) -> pd.Dat
         cut = np.flatnonzero(np.diff(ic) > GAP_S)
         lo, hi = np.r_[0, cut + 1], np.r_[cut, len(ic) - 1]
         tr = s.trajectory
-        bouts = pd.DataFrame({"start_s": ic[lo], "end_s": ic[hi], "level": "wb",
-                              "length_m": [path_length(tr[(tr.t >= ic[a]) & (tr.t <= ic[b])]) for a, b in zip(lo, hi)]})
+        walked = [path_length(tr[(tr.t >= ic[a]) & (tr.t <= ic[b])]) for a, b in zip(lo, hi, strict=True)]
+        bouts = pd.DataFrame({"start_s": ic[lo], "end_s": ic[hi], "level": "wb", "length_m": walked})
         s.extras["bouts"] = bouts
         res = get_pipeline("waist-pendulum")(s, params=None, **opts)
         rows += bout_rows(res.steps, s, bouts, ic, user=u, params="defaults")

@@ -646,8 +646,8 @@ def pelvis_pose(
     first swing's heel-off to half a step after the first contact and fades from half a step before the last contact
     to its foot flat, the phase interpolated between the contacts only; ``"contact"`` is at full amplitude from the
     first contact to the last (rising over the half step before the first, from the bounce's crest, and fading over the
-    half step after the last, to its crest) and the phase runs at the bout's step rate through its edge contacts (:func:`_edge_phase_knots`), as the real lower back
-    marks a bout's edge contacts (W611).
+    half step after the last, to its crest) and the phase runs at the bout's step rate through its edge contacts
+    (:func:`_edge_phase_knots`), as the real lower back marks a bout's edge contacts (W611).
 
     ``transfer_offsets``: (backward m, lowering m, forward pitch rad) at ``t`` of sit-to-stand transfers
     (:func:`pdrlearn.sim.transfer.transfer_motion`, decision S36), added to the standing pelvis.
