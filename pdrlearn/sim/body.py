@@ -553,6 +553,25 @@ def _bouts(steps: list[Footstep], ev: Events) -> list[tuple[int, int]]:
     return [(starts[i], starts[i + 1] - 1) for i in range(len(starts) - 1)]
 
 
+def _edge_phase_knots(steps: list[Footstep], ev: Events, ph_k: list) -> tuple[np.ndarray, np.ndarray]:
+    """Decision W612: the gait phase's knots (times, phases) with one more a step before each bout's first contact
+    (its phase - 1) and a step after its last (+ 1), where they fit between the bouts, so the phase runs at the bout's
+    step rate through its edge contacts instead of flattening toward the stands between bouts."""
+    t_k, p_k = list(map(float, ev.ic)), [float(v) for v in ph_k]
+    bouts = _bouts(steps, ev)
+    for i, (a, b) in enumerate(bouts):
+        before = float(ev.ic[a] - ev.step_s[a])
+        if i == 0 or before > ev.ic[bouts[i - 1][1]] + ev.step_s[bouts[i - 1][1]]:
+            t_k.append(before)
+            p_k.append(p_k[a] - 1.0)
+        after = float(ev.ic[b] + ev.step_s[b])
+        if i == len(bouts) - 1 or after < ev.ic[bouts[i + 1][0]] - ev.step_s[bouts[i + 1][0]]:
+            t_k.append(after)
+            p_k.append(p_k[b] + 1.0)
+    order = np.argsort(t_k, kind="stable")
+    return np.asarray(t_k)[order], np.asarray(p_k)[order]
+
+
 def pendulum_rise(step_m: np.ndarray, leg_m: float) -> np.ndarray:
     """Rise (m) of an inverted pendulum of length ``leg_m`` vaulting over a step ``step_m`` (m):
     ``h = L - sqrt(L^2 - (s/2)^2)`` (seed 003 eq. 1 solved for h; Zijlstra & Hof 2003)."""
@@ -619,8 +638,16 @@ def pelvis_pose(
     transfer_offsets: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None,
     span: tuple[float, float] | None = None,
     vibration_source: tuple[np.ndarray, np.ndarray] | None | bool = False,
+    bout_envelope: str = "step",
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Pelvis reference point (n, 3) at the waist-unit height, orientation (n, 3, 3) and base heading (n,).
+
+    ``bout_envelope`` (decision W612): the gait oscillations' envelope over a walking bout - ``"step"`` rises from the
+    first swing's heel-off to half a step after the first contact and fades from half a step before the last contact
+    to its foot flat, the phase interpolated between the contacts only; ``"contact"`` is at full amplitude from the
+    first contact to the last (rising over the half step before the first, from the bounce's crest, and fading over the
+    half step after the last, to its crest) and the phase runs at the bout's step rate through its edge contacts
+    (:func:`_edge_phase_knots`), as the real lower back marks a bout's edge contacts (W611).
 
     ``transfer_offsets``: (backward m, lowering m, forward pitch rad) at ``t`` of sit-to-stand transfers
     (:func:`pdrlearn.sim.transfer.transfer_motion`, decision S36), added to the standing pelvis.
@@ -673,12 +700,19 @@ def pelvis_pose(
     for a, b in _bouts(steps, ev):
         kinds = {steps[i].kind for i in range(a, b + 1)}
         amp = 0.3 if kinds <= {"turn", "close"} else 1.0
-        rise = smoothstep((t - ev.ho[a]) / max(ev.ic[a] + 0.5 * ev.step_s[a] - ev.ho[a], 1e-3))
-        fall = 1.0 - smoothstep(
-            (t - (ev.ic[b] - 0.5 * ev.step_s[b])) / max(ev.ff[b] - ev.ic[b] + 0.5 * ev.step_s[b], 1e-3)
-        )
+        if bout_envelope == "contact":  # decision W612: full from the first contact to the last
+            half_a, half_b = max(0.5 * ev.step_s[a], 1e-3), max(0.5 * ev.step_s[b], 1e-3)  # crest to trough
+            rise = smoothstep((t - (ev.ic[a] - half_a)) / half_a)
+            fall = 1.0 - smoothstep((t - ev.ic[b]) / half_b)
+        else:
+            rise = smoothstep((t - ev.ho[a]) / max(ev.ic[a] + 0.5 * ev.step_s[a] - ev.ho[a], 1e-3))
+            fall = 1.0 - smoothstep(
+                (t - (ev.ic[b] - 0.5 * ev.step_s[b])) / max(ev.ff[b] - ev.ic[b] + 0.5 * ev.step_s[b], 1e-3)
+            )
         env = np.maximum(env, amp * np.minimum(rise, fall))
-    if len(steps) > 1:
+    if len(steps) > 1 and bout_envelope == "contact":  # decision W612: the phase at the bout's own step rate
+        ph = PchipInterpolator(*_edge_phase_knots(steps, ev, ph_k), extrapolate=True)(t)
+    elif len(steps) > 1:
         ph = PchipInterpolator(ev.ic, np.array(ph_k, float), extrapolate=True)(t)
     else:
         ph = np.zeros_like(t)

@@ -111,6 +111,9 @@ KNOBS: dict[str, object] = {
     "device_errors": True,  # accelerometer scale factors per unit (the user's own), not per session (S22)
     "pelvis": "model",  # "realistic": roll toward the stance side and a smaller sway, drawn per user (S27)
     "bounce": "constant",  # "pendulum": the pelvis bounce scales with the step length (S29); "population": S74
+    # decision W612: the gait oscillations' envelope over a bout - "step" (fading in and out across the edge steps) or
+    # "contact" (full amplitude from the bout's first contact to its last, as the real lower back, W611)
+    "bout_envelope": "step",
     "rocker": "hermite",  # "smooth": a heel rocker that comes to rest gradually, no second |acc| peak (S31)
     "contact": "heel",  # "forefoot": level steps land on the forefoot, no heel rocker (a toe walker, S108)
     # decision S109: the foot unit's distance from the heel as a share of the foot length (None: the user's own draw,
@@ -160,6 +163,7 @@ KNOBS: dict[str, object] = {
 GAP_UNITS = ("foot", "waist", "both")
 #: knobs meta.json records only when set (default sessions' meta.json as before they existed: S27, S29, S31, S34, S35)
 META_ONLY_WHEN_SET = ("pelvis", "bounce", "waist_mount_deg", "waist_mount_end_deg", "rocker", "contact",
+                      "bout_envelope",  # decision W612
                       "waist_reclip", "graded_slopes", "fatigue_pct",  # decisions S121-S123
                       "foot_sensor_pos", "foot_sensor_height_m", "foot_mount_roll_deg",
                       "pelvis_height_m", "bounce_scale", "step_time_asymmetry", "step_length_asymmetry",
@@ -267,6 +271,8 @@ def _check_knobs(knobs: dict) -> dict:
         if out[k] not in FEET and (out[k] is not None or k in ("instrumented_foot", "paretic_side")):
             raise DataError(f"simulate: {k}={out[k]!r} must be 'left' or 'right'")
     check_prosthetic_foot(out)  # decision S119
+    if out["bout_envelope"] not in ("step", "contact"):  # decision W612
+        raise DataError(f"simulate: bout_envelope={out['bout_envelope']!r} must be 'step' or 'contact'")
     if out["rocker"] not in ROCKER_MODES:
         raise DataError(f"simulate: rocker={out['rocker']!r} must be one of {', '.join(ROCKER_MODES)}")
     if out["contact"] not in CONTACT_MODES:  # decision S108
@@ -774,6 +780,7 @@ def simulate_path(
             trunk_noise=trunk,
             pelvis=pelvis,
             bounce_mode=str(opt["bounce"]),
+            bout_envelope=str(opt["bout_envelope"]),  # decision W612
             transfer_offsets=transfer_motion(tt, transfers, sit_starts) if transfers else None,
             span=span,
             vibration_source=vib_source,
