@@ -268,9 +268,9 @@ WINDOW_OPT = typer.Option(None, "--window", help="START,END in seconds from the 
                           "recording_start or a date-time import; decision L299).")
 WINDOW_MARGIN_OPT = typer.Option(None, "--window-margin", metavar="SECONDS", help="With --window: track only the "
                                  "window and SECONDS before and after it (e.g. 60: a fused heading's +-60 s), not the "
-                                 "whole recording - a window of a long shift then costs the window. The positions start "
-                                 "at the margin's start (not where the whole track was); decision L792 gives what else "
-                                 "differs. Default: the whole recording is tracked.")
+                                 "whole recording - a window of a long shift then costs the window. The positions "
+                                 "start at the margin's start (not where the whole track was); decision L792 gives "
+                                 "what else differs. Default: the whole recording is tracked.")
 
 PER_OPT = typer.Option(None, "--per", help="Totals per period in OUT/periods.csv (e.g. 1h, 30min, 90s, 900; 'm' is "
                        "refused as it reads as metres: write min for minutes, decision B305; 0.1 s at least, B329): "

@@ -800,8 +800,9 @@ def foot_loads(
         (ev.ic[k], ev.ff[k], ev.theta_ic[k] > 0, steps[k].kind.startswith("stairs")) for k in idx
     ]
     lifts = [(ev.ho[k], ev.to[k]) for k in idx] + [(far, far)]
+    ordered = bool(np.all(t[1:] >= t[:-1]))  # decision S126: a sorted grid's interval is a slice (the same samples)
     for (c0, ff, heel_first, stairs), (ho, to) in zip(contacts, lifts, strict=True):
-        m = (t >= c0) & (t < to)
+        m = slice(*np.searchsorted(t, [c0, to])) if ordered else (t >= c0) & (t < to)
         tt = t[m]
         mid = 0.5 * (ho + to)
         off = 1.0 - _ramp(tt, mid, to)
