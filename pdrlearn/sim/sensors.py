@@ -170,10 +170,11 @@ def field_disturbance(
     amps = rng.normal(0.0, amplitude_ut, (n_blobs, 3))
     from scipy.spatial import cKDTree
 
-    # decision S126: each blob's candidates from a k-d tree (radius 4 w, a superset), then the same exact test on them
-    candidates = cKDTree(pos).query_ball_point(centres, 4 * width_m * (1 + 1e-9) + 1e-12, return_sorted=True)
-    for c, a, rows in zip(centres, amps, candidates, strict=True):
-        rows = np.asarray(rows, dtype=np.intp)
+    # decision S126: each blob's candidates from a k-d tree (radius 4 w, a superset), then the same exact test on them;
+    # one blob's at a time (all blobs' lists at once held 1.0 GB for a 4 h shift walking one corridor)
+    tree = cKDTree(pos)
+    for c, a in zip(centres, amps, strict=True):
+        rows = np.asarray(tree.query_ball_point(c, 4 * width_m * (1 + 1e-9) + 1e-12, return_sorted=True), dtype=np.intp)
         d2 = np.sum((pos[rows] - c) ** 2, axis=1)
         near = rows[d2 < (4 * width_m) ** 2]
         out[near] += np.exp(-0.5 * d2[d2 < (4 * width_m) ** 2] / width_m**2)[:, None] * a
