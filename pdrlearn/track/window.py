@@ -100,8 +100,10 @@ def check_margin(margin_s: float | None, window) -> float | None:
         raise DataError(f"--window-margin {margin_s:g}: the margin is of a --window; add --window START,END or drop "
                         "--window-margin")
     if not math.isfinite(margin_s) or margin_s <= 0:
+        from pdrlearn.decision_refs import decision_ref
+
         raise DataError(f"--window-margin {margin_s:g}: give the seconds tracked before and after the window, a "
-                        "number > 0 (e.g. 60, decision L792)")
+                        f"number > 0 (e.g. 60, {decision_ref('L792', topic='localization')})")
     return float(margin_s)
 
 
