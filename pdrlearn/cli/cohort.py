@@ -993,6 +993,7 @@ def track_all(
     units: str = _track.UNITS_OPT,
     mount_frame: str = _track.MOUNT_FRAME_OPT,  # decision W607
     window: str = _track.WINDOW_OPT,
+    window_margin: float = _track.WINDOW_MARGIN_OPT,
     per: str = _track.PER_OPT,
     per_align: str = _track.PER_ALIGN_OPT,
     corridor: float = _track.CORRIDOR_OPT,

@@ -266,6 +266,11 @@ WINDOW_OPT = typer.Option(None, "--window", help="START,END in seconds from the 
                           "the recording is clipped to its end, with one warning line (decision B242). Clock times "
                           "(02:10,02:20 or two ISO 8601 date-times) when the session gives its start (meta.json "
                           "recording_start or a date-time import; decision L299).")
+WINDOW_MARGIN_OPT = typer.Option(None, "--window-margin", metavar="SECONDS", help="With --window: track only the "
+                                 "window and SECONDS before and after it (e.g. 60: a fused heading's +-60 s), not the "
+                                 "whole recording - a window of a long shift then costs the window. The positions "
+                                 "start at the margin's start (not where the whole track was); decision L792 gives "
+                                 "what else differs. Default: the whole recording is tracked.")
 
 PER_OPT = typer.Option(None, "--per", help="Totals per period in OUT/periods.csv (e.g. 1h, 30min, 90s, 900; 'm' is "
                        "refused as it reads as metres: write min for minutes, decision B305; 0.1 s at least, B329): "
@@ -411,6 +416,7 @@ def track(
     units: str = UNITS_OPT,
     mount_frame: str = MOUNT_FRAME_OPT,
     window: str = WINDOW_OPT,
+    window_margin: float = WINDOW_MARGIN_OPT,
     per: str = PER_OPT,
     per_align: str = PER_ALIGN_OPT,
     segments: Path = SEGMENTS_OPT,
@@ -586,7 +592,8 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    no_plot: bool = False,
                    initial_heading: float | None = None, start_xy: str | None = None,
                    turn_to_heading: bool = False, at_times: Path | None = None,
-                   common_span: bool = False, window: str | None = None, per: str | None = None,
+                   common_span: bool = False, window: str | None = None, window_margin: float | None = None,
+                   per: str | None = None,
                    per_align: str | None = None, segments: Path | None = None, corridor: float | None = None,
                    splits: str | None = None,
                    walk_test_duration: float | None = None, walk_test_start: str = "auto",
@@ -625,6 +632,9 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
 
     heading0 = initial_heading_option(initial_heading)  # decision L98: degrees ENU -> rad
     win = parse_window(window)  # decision L105: a bad window is one line before any tracking
+    from pdrlearn.track.window import check_margin
+
+    margin_s = check_margin(window_margin, win)  # decision L792: before any tracking
     from pdrlearn.track.periods import parse_per
 
     per_s = parse_per(per)  # decision L277
@@ -802,7 +812,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "drop_neighbour": drop_neighbour, "no_cycling": no_cycling, "dpi": dpi, "plot": plot,
             "initial_heading_rad": heading0, "start_xy": xy0, "turn_to_heading": turn_to_heading,  # L635, L637
             "at_times": at_times_file, "at_times_table": at_times_rows,  # decision L638
-            "common_span": common_span, "window": win, "per_s": per_s,
+            "common_span": common_span, "window": win, "window_margin_s": margin_s, "per_s": per_s,
             "per_align": per_align, "per_align_auto": per_align_auto,  # decision C178
             "legs": legs, "segments": segments,  # decision L618
             "corridor_m": corridor_m, "walk_test_s": walk_test_s, "walk_test_start": go, "splits_m": splits_m,
@@ -1154,13 +1164,18 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
         kw.update(track_keys)  # decision W422: track_plasys options given in --params
     # decision W352: the gait quality (W350) only when asked for; W353: it reads the track's own AHRS
     gait_quality = tracked_unit(pipeline) == "waist" and bool(o.get("gait_quality"))
+    tracked_in = session
+    if win is not None and o.get("window_margin_s") is not None:  # decision L792: the window and its margin only
+        from pdrlearn.track.window import margin_session
+
+        tracked_in = margin_session(session, *win, o["window_margin_s"])
     if gait_quality:
         from pdrlearn.waist.ahrs import kept_imus
 
         with kept_imus() as imus:
-            result = fn(session, **kw)
+            result = fn(tracked_in, **kw)
     else:
-        result = fn(session, **kw)
+        result = fn(tracked_in, **kw)
     if o.get("length_reference", "model") != "model" and pipeline == "plasys":  # decision C126: the whole session's
         from pdrlearn.track.session_length import whole_session_length  # strides, before a window keeps some
 

@@ -625,44 +625,12 @@ def population_bounce(steps: list[Footstep], initial: dict, user: UserProfile) -
     return (user.pelvis_bounce_m / MID_PELVIS_BOUNCE_M) * pendulum_rise(s / POPULATION_K, user.sensor_height_m)
 
 
-def pelvis_pose(
-    t: np.ndarray,
-    steps: list[Footstep],
-    ev: Events,
-    initial: dict,
-    user: UserProfile,
-    rng: np.random.Generator | None = None,
-    trunk_noise: float = 1.0,
-    pelvis: PelvisParams | None = None,
-    bounce_mode: str = "constant",
-    transfer_offsets: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None,
-    span: tuple[float, float] | None = None,
-    vibration_source: tuple[np.ndarray, np.ndarray] | None | bool = False,
-    bout_envelope: str = "step",
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Pelvis reference point (n, 3) at the waist-unit height, orientation (n, 3, 3) and base heading (n,).
-
-    ``bout_envelope`` (decision W612): the gait oscillations' envelope over a walking bout - ``"step"`` rises from the
-    first swing's heel-off to half a step after the first contact and fades from half a step before the last contact
-    to its foot flat, the phase interpolated between the contacts only; ``"contact"`` is at full amplitude from the
-    first contact to the last (rising over the half step before the first, from the bounce's crest, and fading over the
-    half step after the last, to its crest) and the phase runs at the bout's step rate through its edge contacts
-    (:func:`_edge_phase_knots`), as the real lower back marks a bout's edge contacts (W611).
-
-    ``transfer_offsets``: (backward m, lowering m, forward pitch rad) at ``t`` of sit-to-stand transfers
-    (:func:`pdrlearn.sim.transfer.transfer_motion`, decision S36), added to the standing pelvis.
-
-    ``pelvis``: None = the model's sway and obliquity; :func:`realistic_pelvis` = decision S27's.
-    ``bounce_mode``: ``"constant"`` = the user's ``pelvis_bounce_m`` on every step; ``"pendulum"`` = scaled per
-    step by the inverted pendulum's rise for the step's length (decision S29, :func:`pendulum_bounce`);
-    ``"population"`` = the rise the real lower back's population K reads as the step (S74, :func:`population_bounce`).
-
-    Decision S44, evaluation in parts: ``span`` = (first, last) time of the whole grid that ``t`` is a part of, and
-    ``vibration_source`` = :func:`trunk_vibration_source` over that span (drawn once): every value at a time is then
-    the one the whole grid gets there."""
-    t_first, t_last = (float(t[0]), float(t[-1])) if span is None else span
-    bounce_amp = (pendulum_bounce(steps, ev, initial, user) if bounce_mode == "pendulum"
-                  else population_bounce(steps, initial, user) if bounce_mode == "population" else None)
+def pelvis_knots(steps: list[Footstep], ev: Events, initial: dict, user: UserProfile, t_first: float,
+                 t_last: float) -> np.ndarray:
+    """The pelvis's base knots (k, 5): time, the middle of the two feet's centres (x, y, z) and their mean yaw, at
+    ``t_first``, each bout's heel-off, each initial contact, 0.1 s after each bout's last foot flat and ``t_last``
+    (knots closer than 1e-6 s to the previous one dropped), which :func:`pelvis_pose` interpolates (PCHIP). Decision
+    S125: one session's knots, built once and shared by the parts of its grid."""
     feet = {f: (np.asarray(h, float), y) for f, (h, y) in initial.items()}
 
     def config() -> tuple[float, ...]:
@@ -684,7 +652,50 @@ def pelvis_pose(
     for kt in knots[1:]:
         if kt[0] > kept[-1][0] + 1e-6:
             kept.append(kt)
-    kn = np.array(kept)
+    return np.array(kept)
+
+
+def pelvis_pose(
+    t: np.ndarray,
+    steps: list[Footstep],
+    ev: Events,
+    initial: dict,
+    user: UserProfile,
+    rng: np.random.Generator | None = None,
+    trunk_noise: float = 1.0,
+    pelvis: PelvisParams | None = None,
+    bounce_mode: str = "constant",
+    transfer_offsets: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None,
+    span: tuple[float, float] | None = None,
+    vibration_source: tuple[np.ndarray, np.ndarray] | None | bool = False,
+    knots: np.ndarray | None = None,
+    bout_envelope: str = "step",
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Pelvis reference point (n, 3) at the waist-unit height, orientation (n, 3, 3) and base heading (n,).
+
+    ``bout_envelope`` (decision W612): the gait oscillations' envelope over a walking bout - ``"step"`` rises from the
+    first swing's heel-off to half a step after the first contact and fades from half a step before the last contact
+    to its foot flat, the phase interpolated between the contacts only; ``"contact"`` is at full amplitude from the
+    first contact to the last (rising over the half step before the first, from the bounce's crest, and fading over the
+    half step after the last, to its crest) and the phase runs at the bout's step rate through its edge contacts
+    (:func:`_edge_phase_knots`), as the real lower back marks a bout's edge contacts (W611).
+
+    ``transfer_offsets``: (backward m, lowering m, forward pitch rad) at ``t`` of sit-to-stand transfers
+    (:func:`pdrlearn.sim.transfer.transfer_motion`, decision S36), added to the standing pelvis.
+
+    ``pelvis``: None = the model's sway and obliquity; :func:`realistic_pelvis` = decision S27's.
+    ``bounce_mode``: ``"constant"`` = the user's ``pelvis_bounce_m`` on every step; ``"pendulum"`` = scaled per
+    step by the inverted pendulum's rise for the step's length (decision S29, :func:`pendulum_bounce`);
+    ``"population"`` = the rise the real lower back's population K reads as the step (S74, :func:`population_bounce`).
+
+    Decision S44, evaluation in parts: ``span`` = (first, last) time of the whole grid that ``t`` is a part of, and
+    ``vibration_source`` = :func:`trunk_vibration_source` over that span (drawn once): every value at a time is then
+    the one the whole grid gets there. Decision S125: ``knots`` = :func:`pelvis_knots` over that span, built once for
+    all the parts (None: built here)."""
+    t_first, t_last = (float(t[0]), float(t[-1])) if span is None else span
+    bounce_amp = (pendulum_bounce(steps, ev, initial, user) if bounce_mode == "pendulum"
+                  else population_bounce(steps, initial, user) if bounce_mode == "population" else None)
+    kn = pelvis_knots(steps, ev, initial, user, t_first, t_last) if knots is None else knots  # decision S125
     base = PchipInterpolator(kn[:, 0], kn[:, 1:], axis=0, extrapolate=True)(t)
     heading = base[:, 3]
 
@@ -698,18 +709,24 @@ def pelvis_pose(
         prev = v
     env = np.zeros_like(t)
     for a, b in _bouts(steps, ev):
-        kinds = {steps[i].kind for i in range(a, b + 1)}
-        amp = 0.3 if kinds <= {"turn", "close"} else 1.0
         if bout_envelope == "contact":  # decision W612: full from the first contact to the last
             half_a, half_b = max(0.5 * ev.step_s[a], 1e-3), max(0.5 * ev.step_s[b], 1e-3)  # crest to trough
-            rise = smoothstep((t - (ev.ic[a] - half_a)) / half_a)
-            fall = 1.0 - smoothstep((t - ev.ic[b]) / half_b)
+            rise_at, rise_s, fall_at, fall_s = ev.ic[a] - half_a, half_a, ev.ic[b], half_b
         else:
-            rise = smoothstep((t - ev.ho[a]) / max(ev.ic[a] + 0.5 * ev.step_s[a] - ev.ho[a], 1e-3))
-            fall = 1.0 - smoothstep(
-                (t - (ev.ic[b] - 0.5 * ev.step_s[b])) / max(ev.ff[b] - ev.ic[b] + 0.5 * ev.step_s[b], 1e-3)
-            )
-        env = np.maximum(env, amp * np.minimum(rise, fall))
+            rise_at, rise_s = ev.ho[a], max(ev.ic[a] + 0.5 * ev.step_s[a] - ev.ho[a], 1e-3)
+            fall_at, fall_s = ev.ic[b] - 0.5 * ev.step_s[b], max(ev.ff[b] - ev.ic[b] + 0.5 * ev.step_s[b], 1e-3)
+        # decision S125: the bout's envelope is 0 before its rise and after its fall (rise or fall clipped to
+        # 0 exactly): evaluated on its own samples (one more each side), not on the whole part for every bout
+        i0 = max(int(np.searchsorted(t, rise_at)) - 1, 0)
+        i1 = int(np.searchsorted(t, fall_at + fall_s, side="right")) + 1
+        if i1 <= i0:
+            continue
+        tb = t[i0:i1]
+        kinds = {steps[i].kind for i in range(a, b + 1)}
+        amp = 0.3 if kinds <= {"turn", "close"} else 1.0
+        rise = smoothstep((tb - rise_at) / rise_s)
+        fall = 1.0 - smoothstep((tb - fall_at) / fall_s)
+        env[i0:i1] = np.maximum(env[i0:i1], amp * np.minimum(rise, fall))
     if len(steps) > 1 and bout_envelope == "contact":  # decision W612: the phase at the bout's own step rate
         ph = PchipInterpolator(*_edge_phase_knots(steps, ev, ph_k), extrapolate=True)(t)
     elif len(steps) > 1:
@@ -754,8 +771,9 @@ def pelvis_pose(
     kick_f = np.zeros_like(t)
     kick_l = np.zeros_like(t)
     tau0 = 0.025
-    for k, st in enumerate(steps):
-        i0, i1 = np.searchsorted(t, [ev.ic[k], ev.ic[k] + 8 * tau0])
+    edges = np.searchsorted(t, np.stack([ev.ic, ev.ic + 8 * tau0], axis=1)) if len(steps) else np.zeros((0, 2), int)
+    for k in np.flatnonzero(edges[:, 1] > edges[:, 0]):  # decision S125: only the part's own kicks
+        st, (i0, i1) = steps[k], edges[k]
         tau = t[i0:i1] - ev.ic[k]
         g = tau * np.exp(-tau / tau0)
         s = 0.3 if st.kind == "turn" else (1.6 if st.kind == "stairs_down" else 1.0)
@@ -816,8 +834,9 @@ def foot_loads(
         (ev.ic[k], ev.ff[k], ev.theta_ic[k] > 0, steps[k].kind.startswith("stairs")) for k in idx
     ]
     lifts = [(ev.ho[k], ev.to[k]) for k in idx] + [(far, far)]
+    ordered = bool(np.all(t[1:] >= t[:-1]))  # decision S126: a sorted grid's interval is a slice (the same samples)
     for (c0, ff, heel_first, stairs), (ho, to) in zip(contacts, lifts, strict=True):
-        m = (t >= c0) & (t < to)
+        m = slice(*np.searchsorted(t, [c0, to])) if ordered else (t >= c0) & (t < to)
         tt = t[m]
         mid = 0.5 * (ho + to)
         off = 1.0 - _ramp(tt, mid, to)

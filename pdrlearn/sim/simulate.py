@@ -31,6 +31,7 @@ from pdrlearn.sim.body import (
     Events,
     foot_loads,
     foot_pose,
+    pelvis_knots,
     pelvis_pose,
     realistic_pelvis,
     schedule,
@@ -769,6 +770,8 @@ def simulate_path(
     jerks = draw_jerks(*span, float(opt["trunk_jerk_rate_hz"]), opt["trunk_jerk_deg"], opt["trunk_jerk_m"],
                        _rng(user.seed, int(seed), scenario, speed, "trunk_jerks"))
 
+    knots = pelvis_knots(steps, ev, initial, user, *span)  # decision S125: once, for every part of the grid
+
     def waist_unit(tt: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         p_pel, rot, _ = pelvis_pose(
             tt,
@@ -784,6 +787,7 @@ def simulate_path(
             transfer_offsets=transfer_motion(tt, transfers, sit_starts) if transfers else None,
             span=span,
             vibration_source=vib_source,
+            knots=knots,
         )
         if freezes:  # decision S51: the pelvis trembles with the legs
             p_pel = p_pel + freeze_pelvis(tt, freezes, freeze_starts)

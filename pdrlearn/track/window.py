@@ -91,6 +91,42 @@ def check_window(window: tuple[float, float], session: Session, unit: str | None
     return t0 + start, t0 + end
 
 
+def check_margin(margin_s: float | None, window) -> float | None:
+    """Decision L792: ``--window-margin`` in seconds (None: not given); one :class:`DataError` line for a value that
+    is not a finite number > 0, or that is given without ``--window``."""
+    if margin_s is None:
+        return None
+    if window is None:
+        raise DataError(f"--window-margin {margin_s:g}: the margin is of a --window; add --window START,END or drop "
+                        "--window-margin")
+    if not math.isfinite(margin_s) or margin_s <= 0:
+        from pdrlearn.decision_refs import decision_ref
+
+        raise DataError(f"--window-margin {margin_s:g}: give the seconds tracked before and after the window, a "
+                        f"number > 0 (e.g. 60, {decision_ref('L792', topic='localization')})")
+    return float(margin_s)
+
+
+def margin_session(session: Session, t0: float, t1: float, margin_s: float) -> Session:
+    """Decision L792: ``session`` with its sensor streams (and the streams ``--units`` left out, W253) cut to
+    ``[t0 - margin_s, t1 + margin_s]`` (the session's clock), what a pipeline tracks for ``--window --window-margin``:
+    the window with the margin its state needs (a fused heading's +-60 s, a standstill's gyroscope bias, a filter's
+    warm-up), not the whole recording. The labels, references and meta are the session's (L105's cut takes the
+    window's); the recording's start (:attr:`Session.t_recording_start`) stays the recording's, so the window's
+    seconds keep their meaning."""
+    a, b = t0 - margin_s, t1 + margin_s
+
+    def cut(stream):
+        m = (stream.t >= a) & (stream.t <= b)
+        return stream if m.all() else type(stream)(stream.name, stream.t[m], stream.values[m])
+
+    return dataclasses.replace(
+        session, streams={k: cut(v) for k, v in session.streams.items()},
+        _left_out={k: cut(v) for k, v in session._left_out.items()}, _t_start_uncut=session.t_recording_start,
+        _inferred=dict(session._inferred), _checked={}, _handed={}, _valid=None,
+        _read_warnings=list(session._read_warnings))
+
+
 def _mid_inside_rows(df: pd.DataFrame | None, t0: float, t1: float) -> np.ndarray | None:
     """The rows (from 0) of ``df`` whose middle lies in ``[t0, t1]``; None when ``df`` has no start/end."""
     if df is None or not {"start_s", "end_s"} <= set(df):
