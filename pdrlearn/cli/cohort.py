@@ -588,7 +588,8 @@ def job_warnings(r: JobResult, given: str | None = None) -> list[str]:
     logged as ``meta.json: session 'NAME': TEXT`` and kept in the summary as ``TEXT``, W334) is said once, located."""
     got = r.value["warnings"] if r.ok else r.extra.get("warnings", [])
     if given:
-        got = [m[len(given) + 2:] if m.startswith((given + ": ", given + "/")) else m for m in got]
+        got = [m[len(given) + 2:] if m.startswith(given + ": ") else m[len(given) + 1:] if m.startswith(given + "/")
+               else m for m in got]
     got = list(dict.fromkeys(got))
     return [m for m in got if not any(o != m and o.endswith(": " + m) for o in got)]
 
