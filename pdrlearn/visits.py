@@ -460,20 +460,50 @@ def _baselines(named) -> dict[str, str | None]:
     """Decision C28: each subject's baseline, the first of its own visits (:func:`visit_order`) that starts with a
     baseline word (C24; the study's first visit when no visit name does), ``None`` for a subject without one. A
     subject of a group (site) none of whose visit names is a baseline word takes its group's first visit (decision
-    C40: a site naming its visits ``T0`` / ``T1`` beside one naming them ``pre`` / ``post``)."""
+    C40: a site naming its visits ``T0`` / ``T1`` beside one naming them ``pre`` / ``post``) - a group seen at two or
+    more visits only (decision C264: a group of one subject seen at ``V2`` alone, its folder the group, made ``V2`` a
+    baseline, and every subject's ``V2`` left changes.csv). A subject still without one takes the most common
+    baseline (C28) among those it has, else among those whose subjects have its visits later (C264: seen at ``V2``
+    alone, it is paired against ``V1`` when the others' ``V2`` follows ``V1``, listed ``missing`` there); else
+    ``None`` (:func:`change_table`: the study's most common baseline)."""
     import pandas as pd
 
     firsts = _firsts(named["visit"])
     group = named["group"].astype(str) if "group" in named else pd.Series("", index=named.index)
-    local = {g: _firsts(vs) for g, vs in named.groupby(group)["visit"]}
-    out = {}
+    local = {g: _firsts(vs) for g, vs in named.groupby(group)["visit"] if vs.nunique() > 1}  # C264: an order
+    out, own = {}, {}
     for s, mine in named.groupby("subject"):
-        own = set(mine["visit"])
-        out[s] = next((v for v in firsts if v in own), None)
+        own[s] = set(mine["visit"])
+        out[s] = next((v for v in firsts if v in own[s]), None)
         g = str(group[mine.index[0]])
-        if out[s] is None and _word_rank(local[g][0]) != 0:  # C40: the group names its baseline otherwise
-            out[s] = next((v for v in local[g] if v in own), None)
+        if out[s] is None and g in local and _word_rank(local[g][0]) != 0:  # C40: the group names its own
+            out[s] = next((v for v in local[g] if v in own[s]), None)
+    counts = pd.Series([b for b in out.values() if b is not None], dtype=object).value_counts()
+    order = visit_order(named["visit"])
+    common = sorted(counts.index, key=lambda b: (-counts[b], order.index(b)))
+    after = {b: set().union(*(own[s] - {b} for s in out if out[s] == b)) for b in common}
+    for s in [s for s, b in out.items() if b is None]:  # decision C264: the baseline its visits belong to
+        out[s] = next((b for b in common if b in own[s]), None) or next(
+            (b for b in common if own[s] & after[b]), None)
     return out
+
+
+def _naming_warning(named) -> str | None:
+    """Decision C264: one line when the subjects' baselines (:func:`_baselines`) are named differently and one of
+    them is no baseline word - a study mixing visit-naming schemes (``baseline`` / ``week12`` beside ``V1`` / ``V2``,
+    C40's per-site baseline) is paired within each scheme, and changes_summary.csv never pools the schemes (C28);
+    None when one name is everybody's baseline, or each is a baseline word (``baseline`` beside ``pre``: named so)."""
+    import pandas as pd
+
+    counts = pd.Series(list(_baselines(named).values()), dtype=object).dropna().value_counts()
+    if len(counts) < 2 or all(_word_rank(b) == 0 for b in counts.index):  # C28: pre / post sites named so
+        return None
+    order = visit_order(counts.index)
+    listed = ", ".join(f"{b!r} ({n} subject{'s' * (n != 1)})" for b in order for n in [int(counts[b])])
+    return (f"the subjects' baseline visits are named differently: {listed}; changes.csv pairs each naming's visits "
+            "on their own and changes_summary.csv never pools them; if they are one study's visits, give track-all "
+            f"--visit-map FILE (raw,canonical, e.g. {order[-1]},{order[0]}) "
+            f"({decision_ref('C264', topic='cohort')})")
 
 
 def _twins(named) -> dict[str, list[str]]:
@@ -588,7 +618,7 @@ def change_table(sessions, metrics=CHANGE_METRICS, visit_map: dict[str, str] | N
         named[by] = named[by].map(_as_text) if by in named else None
     measures = [m for m in metrics if m in sessions and pd.to_numeric(sessions[m], errors="coerce").notna().any()]
     base_of = _baselines(named)
-    counts = pd.Series([b for b in base_of.values() if b is not None]).value_counts()
+    counts = pd.Series([b for b in base_of.values() if b is not None], dtype=object).value_counts()
     common = min(counts.index, key=lambda b: (-counts[b], visits.index(b))) if len(counts) else visits[0]
     baselines = set(base_of.values())
     later: dict[str, list[str]] = {}
@@ -689,7 +719,8 @@ def label_warnings(sessions, visit_map: dict[str, str] | None = None) -> list[st
     named = _labelled(sessions)
     if named.empty:
         return []
-    out = [w for w in (canonical_visits(named["visit"], visit_map)[1],) if w]
+    names, merged = canonical_visits(named["visit"], visit_map)
+    out = [w for w in (merged, _naming_warning(named.assign(visit=named["visit"].map(names)))) if w]
     groups = named.groupby("subject")["group"].agg(lambda g: sorted(set(map(str, g))))
     spans = [f"{s!r} ({', '.join(g)})" for s, g in groups.items() if len(g) > 1]
     if spans:

@@ -582,11 +582,14 @@ def pseudonym_paths(rels: list[str], names: dict[str, str], source: Path) -> lis
 def job_warnings(r: JobResult, given: str | None = None) -> list[str]:
     """The warnings a track-all job raised, in order, each once: a tracked session's, or (cohort C15) those a
     failed session raised before its error; the ``DIR: `` prefix naming the session folder as ``given``
-    (decision B34) removed. Decision W607: a line that another ends with after a location (D10's frame line, logged
-    as ``meta.json: session 'NAME': TEXT`` and kept in the summary as ``TEXT``, W334) is said once, located."""
+    (decision B34) removed, and a ``DIR/`` prefix of a file in it (decision C265: a failed session's
+    ``ROOT/S1/V1/meta.json: ...`` is ``meta.json: ...``, as a tracked session's, so sessions.csv is the same from a
+    copy of ROOT elsewhere, C18). Decision W607: a line that another ends with after a location (D10's frame line,
+    logged as ``meta.json: session 'NAME': TEXT`` and kept in the summary as ``TEXT``, W334) is said once, located."""
     got = r.value["warnings"] if r.ok else r.extra.get("warnings", [])
     if given:
-        got = [m[len(given) + 2:] if m.startswith(given + ": ") else m for m in got]
+        got = [m[len(given) + 2:] if m.startswith(given + ": ") else m[len(given) + 1:] if m.startswith(given + "/")
+               else m for m in got]
     got = list(dict.fromkeys(got))
     return [m for m in got if not any(o != m and o.endswith(": " + m) for o in got)]
 

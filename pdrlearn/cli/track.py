@@ -918,6 +918,25 @@ def _refuse_waist_pipeline_without_waist(pipeline: str, session) -> None:
                         "--units (decision W260)")
 
 
+def refuse_incomplete_foot(pipeline: str, o: dict, session) -> None:
+    """Decision C266 (trial s52t3, F7): a PLASYS track of a session whose foot unit lacks its accelerometer or
+    gyroscope while the lower-back unit has both is refused in one line naming ``--units waist``, the way to the
+    track the session holds ("has no fGyroscope ... choose a method that does not need it" named no method that
+    does). Still refused (exit 2): the foot pipeline is not swapped for the lower back's silently."""
+    missing = [n for n in ("fAccelerometer", "fGyroscope") if not session.has(n)]
+    if pipeline != "plasys" or not missing or not session.has("wAccelerometer", "wGyroscope") or o.get("units"):
+        return
+    from pdrlearn.decision_refs import decision_ref
+    from pdrlearn.errors import MissingSensorError
+
+    given = " (drop --pipeline plasys)" if o.get("pipeline") == "plasys" else ""
+    raise MissingSensorError(
+        f"track: {session.where}: the foot unit has no {' or '.join(f'{n}.csv' for n in missing)}, which every "
+        f"PLASYS method needs; the lower-back unit is complete (wAccelerometer, wGyroscope): track it with "
+        f"--units waist{given}, or record the foot's {' and '.join(n[1:].lower() for n in missing)} "
+        f"({decision_ref('C266', topic='cohort')})")
+
+
 def track_session(session_dir: Path, settings: dict) -> dict:
     """Read and track one session with :func:`track_settings`'s options; return what :func:`write_track`
     writes (the session, the result, its summary.json dict, the pipeline, whether it was aided). Decision E154:
@@ -1034,6 +1053,7 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
     _refuse_waist_pipeline_without_waist(pipeline, session)  # decision W260
     auto = pipeline == "auto"
     pipeline = resolve_pipeline(pipeline, session)
+    refuse_incomplete_foot(pipeline, o, session)  # decision C266
     calibrated = calibrated_pipeline(pipeline, par) if auto else pipeline  # decision W407: the calibration's pipeline
     if calibrated != pipeline:
         pipeline = calibrated

@@ -1666,7 +1666,8 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                 head = head - sinus
             else:  # L770 (candidate B, adopted): the line when its amplitude reaches 5 deg
                 line = compass_sinusoid_line(sinus_info.pop("compass_sinusoid_deg"),
-                                             sinus_info.pop("compass_sinusoid_residual_deg"))  # L785
+                                             sinus_info.pop("compass_sinusoid_residual_deg"),  # L785
+                                             compass=wh.compass_ is not None)  # W616
                 warnings += [line] if line else []
             head = fuse_by_segment(relative, head, strides["start_s"].to_numpy(float),
                                    strides["end_s"].to_numpy(float), foot_gaps, tau_s=fused_tau_s,
@@ -1902,7 +1903,7 @@ def _compass_sinusoid(relative, head, strides: pd.DataFrame, straight, *, info_o
 
 
 def compass_sinusoid_line(amplitude_deg: float | None, residual_deg: float | None = None, *, min_deg: float = 5.0,
-                          max_deg: float = 12.0, max_residual_deg: float = 6.0) -> str | None:
+                          max_deg: float = 12.0, max_residual_deg: float = 6.0, compass: bool = True) -> str | None:
     """Decision L770 (candidate B, adopted by its rule): the warning of a fused track whose waist compass reads a
     heading error that follows the walking direction (:func:`_compass_sinusoid`'s amplitude ``amplitude_deg``, deg)
     of ``min_deg`` or more (L708's bound: 5 deg moves a track sideways by 8.7 % of the distance); None under it or
@@ -1910,8 +1911,11 @@ def compass_sinusoid_line(amplitude_deg: float | None, residual_deg: float | Non
     measured its gain - an amplitude of at most ``max_deg`` (L770's fits: 2.4-11.5 deg) and a fit residual
     ``residual_deg`` (deg; None: not judged) of at most ``max_residual_deg`` (L770's missions 3.5-5.0 deg); else it
     says the difference is not a hard iron's sinusoid and does not advise the option (trial s51t1: a 26-75 min hike's
-    foot drift read as +-57.7 / +-130.8 deg, the option 205.6 -> 1277.96 m, 82.55 -> 3276.62 m)."""
-    if amplitude_deg is None or not amplitude_deg >= min_deg:
+    foot drift read as +-57.7 / +-130.8 deg, the option 205.6 -> 1277.96 m, 82.55 -> 3276.62 m). Decision W616:
+    ``compass`` False (a waist unit without a magnetometer, its heading the gyroscope's) gives None - the fit then
+    reads the waist gyroscope against the foot's, no compass (trial s52t3: 6 of 6 such sessions were told of a
+    compass beside "no magnetometer")."""
+    if not compass or amplitude_deg is None or not amplitude_deg >= min_deg:
         return None
     from pdrlearn.decision_refs import decision_ref
 
