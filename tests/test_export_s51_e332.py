@@ -1,7 +1,8 @@
-"""Decision E332 (session 51, I4): ``pdrlearn run --at-times FILE|T1,T2,...`` writes OUT/at_times.csv, the position
-the live track showed at each given time - the streamed trajectory's row of the last stride returned by then (E344;
-E332 read the last stride ended by then), held, not interpolated - and refuses unsorted, out-of-range times, a file without a time column, and a run without --out, in
-one line before any replay. One short simulated walk (fresh user 17910, shipped bundle), replayed in-process."""
+"""Decision E332 (session 51, I4): ``pdrlearn run --at-times FILE|T1,T2,...`` writes OUT/at_times.csv, the position the
+live track showed at each given time - the streamed trajectory's row of the last stride returned by then (E344; E332
+read the last stride ended by then), held, not interpolated - and refuses unsorted, out-of-range times, a file
+without a time column, and a run without --out, in one line before any replay. One short simulated walk (fresh user
+17910, shipped bundle), replayed in-process."""
 
 from __future__ import annotations
 

@@ -4,7 +4,6 @@ decision W607)" only when `track` or `track-all` (the commands that take the opt
 
 from __future__ import annotations
 
-
 import pytest
 
 from pdrlearn.cli import main as cli_main
