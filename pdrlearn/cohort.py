@@ -620,6 +620,20 @@ def group_measures(metrics=None) -> tuple[str, ...]:
 NO_VISIT_GROUP = "(no visit)"
 
 
+def label_texts(values) -> list[str]:
+    """Decision C263: label cells (a group, subject or visit) as text, a missing one ""; pandas 3's ``astype(str)``
+    keeps NaN as NaN, which ``"; ".join`` refused."""
+    import pandas as pd
+
+    return ["" if not isinstance(v, str) and pd.isna(v) else str(v) for v in values]
+
+
+def joined_labels(values) -> str:
+    """Decision C263: the distinct labels of ``values`` (:func:`label_texts`) in first-seen order joined by "; " -
+    subjects.csv's (C25) and subjects_pooled.csv's (C257) ``group`` of a subject's sessions."""
+    return "; ".join(dict.fromkeys(label_texts(values)))
+
+
 def group_labels(sessions, by: str | None = None):
     """The group of each row of ``sessions.csv`` (a DataFrame) that groups.csv counts it in, as text: its ``group``
     (the folder, ``--group-depth``, C12), or with ``by`` ``"visit"`` (decision C202, ``track-all --group-by visit``)

@@ -1824,11 +1824,16 @@ AT_TIMES: tuple[Column, ...] = (
                          "start), in the file's order"),
     ("stride_end_s", "s", "number", "`run --at-times` only (decision E332), the second column: the time of the "
                                     "streamed trajectory.csv row held at t - the end of the last stride the live "
-                                    "track had placed by t; x, y, z, pos_sigma_m, z_rides and floor are that row's, "
-                                    "not interpolated; empty before the first stride (the start row)"),
+                                    "track had returned by t (returned_s; decision E344); x, y, z, pos_sigma_m, "
+                                    "z_rides and floor are that row's, not interpolated; empty while the start row "
+                                    "is shown (before the first stride is returned)"),
+    ("returned_s", "s", "number", "`run --at-times` only (decision E344), the third column: when that stride "
+                                  "reached the device - the last sample of the replay's push that returned it "
+                                  "(--chunk-s apart, E288's data latency; the final flush: the recording's last "
+                                  "sample); empty while the start row is shown"),
     ("x", "m", "number", "trajectory.csv's x at t: linear between its rows; the start's before its first row (the "
                          "standstill before the first stride), its last row's after its last (`run --at-times`: "
-                         "the row at stride_end_s, E332)"),
+                         "the row at stride_end_s, the last returned by t, E332, E344)"),
     ("y", "m", "number", "trajectory.csv's y at t, as x"),
     ("z", "m", "number", "trajectory.csv's z at t, as x"),
     ("lat", "deg", "number", "trajectory.csv's lat at t, as x; only when the track has lat/lon"),

@@ -5,7 +5,7 @@ as the unit. Both are functions of sessions.csv, as subjects.csv and changes.csv
 
 from __future__ import annotations
 
-from pdrlearn.cohort import SKIPPED, describe_groups, natural_key
+from pdrlearn.cohort import SKIPPED, describe_groups, joined_labels, natural_key
 
 #: decision C257: sessions.csv's activity measures subjects_pooled.csv pools (additive per session: a count or a
 #: time or a distance); ``n_steps_both_feet`` is the steps of both feet (L103), empty where W476 withheld the count
@@ -70,7 +70,7 @@ def _pooled_row(subject: str, mine, measures, partial_measures) -> dict:
 
     hours = (column("time_span_s") - column("time_no_data_s").fillna(0.0)) / 3600.0  # L275: worn time with data
     visits = [v for v in dict.fromkeys(mine["visit"]) if isinstance(v, str)] if "visit" in mine else []
-    row = {"subject": subject, "group": "; ".join(dict.fromkeys(mine["group"].astype(str))),
+    row = {"subject": subject, "group": joined_labels(mine["group"]),  # decision C263: C25's text, one helper
            "n_tracked": len(ok), "n_failed": len(failed),
            "visits": "; ".join(sorted(visits, key=natural_key)) or None,
            "paths": "; ".join(mine["path"].astype(str)),

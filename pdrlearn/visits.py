@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import re
 
-from pdrlearn.cohort import GROUP_METRICS, SKIPPED, natural_key, t_interval
+from pdrlearn.cohort import GROUP_METRICS, SKIPPED, joined_labels, natural_key, t_interval
 from pdrlearn.decision_refs import decision_ref
 
 #: changes.csv's leading columns (decision C22; C82: the visits as meta.json wrote them; C83: the trials averaged);
@@ -265,7 +265,7 @@ def _subject_row(subject, visit, by: str | None, label, at) -> dict:
 
     t = total("bouts_time_s")
     row = {"subject": subject, "visit": visit, "visit_as_written": _names(at["visit_as_written"]),
-           "group": "; ".join(dict.fromkeys(at["group"].astype(str))),
+           "group": joined_labels(at["group"]),  # decision C263: a missing group "", not a crash
            # decision B393: a split part at rest (B389's skipped) is neither tracked nor failed
            "n_tracked": len(ok), "n_failed": int((at["status"] != SKIPPED).sum()) - len(ok),
            "paths": "; ".join(at["path"].astype(str)),

@@ -9,13 +9,11 @@
 from __future__ import annotations
 
 import logging
-import shutil
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 import pytest
-from scipy.spatial.transform import Rotation
 
 from pdrlearn.cli.cohort import job_warnings
 from pdrlearn.cohort import JobResult
@@ -24,24 +22,13 @@ from pdrlearn.io import read_session
 from pdrlearn.io.session import Session
 from pdrlearn.kernels.pause_ride import walked_ride
 from pdrlearn.track.rides import ride_lines, ride_rows
-
-ROOT = Path(__file__).resolve().parents[1]
-WAIST = ROOT / "datasets" / "real" / "mobgap_HA001_Test5_Trial1"
+from tests.frame_helpers import yawed_lower_back
 
 
 @pytest.fixture(scope="module")
 def yawed(tmp_path_factory) -> Path:
-    """The mobgap lower-back recording turned 90 deg about its up axis (x: a unit clipped at the side), meta.json
-    (source_project's frame) unchanged."""
-    d = tmp_path_factory.mktemp("w607") / "w"
-    shutil.copytree(WAIST, d)
-    rot = Rotation.from_euler("x", 90, degrees=True)
-    for f in d.glob("w*.csv"):
-        df = pd.read_csv(f)
-        if {"x", "y", "z"} <= set(df.columns):
-            df[["x", "y", "z"]] = rot.apply(df[["x", "y", "z"]].to_numpy())
-            df.to_csv(f, index=False)
-    return d
+    """The mobgap lower-back recording turned 90 deg about its up axis (tests.frame_helpers)."""
+    return yawed_lower_back(tmp_path_factory.mktemp("w607") / "w")
 
 
 def test_mount_frame_inferred_uses_the_data_frame_w607(yawed, caplog):
@@ -50,7 +37,8 @@ def test_mount_frame_inferred_uses_the_data_frame_w607(yawed, caplog):
         kept = declared.require_frame("waist")
     assert kept == declared.frames["waist"]  # the default: the declared frame, D10's line
     assert declared.frame_status("waist") == "contradicted" and not declared.frames_inferred
-    assert any("is still used (decision D8)" in r.getMessage() for r in caplog.records)
+    d10 = [r.getMessage() for r in caplog.records if "is still used (decision D8)" in r.getMessage()]
+    assert d10 and not any("--mount-frame" in m for m in d10)  # decision W615: read outside track / track-all
     caplog.clear()
     s = read_session(yawed)
     s.mount_frame = "inferred"
@@ -131,5 +119,6 @@ def test_d10_line_names_the_option_w607():
             return "measured"
 
     declared = AxisFrame(x="left", y="up", z="forward")
-    line = declared_frame_warning("waist", declared, Found(), 'declared in "frames"', off={"forward": 92.0})
+    line = declared_frame_warning("waist", declared, Found(), 'declared in "frames"', off={"forward": 92.0},
+                                  command="track")  # decision W615: only a command that has the option names it
     assert "is still used (decision D8)" in line and "--mount-frame inferred, decision W607" in line

@@ -1116,7 +1116,7 @@ def track_all(
     if names is not None:  # run.json (and the resume key) hold the map's hash, which names no one
         options["subject_map"] = {"sha256": map_sha256(names), "n_names": len(names)}
 
-    settings = settings_of(arguments)  # decision E93: every tracking option it declares, as `track` passes them
+    settings = settings_of(arguments, "track-all")  # decision E93: every tracking option, as `track` passes them
     if params is not None and params_dir is not None:  # decision C26: which file would a session use?
         raise DataError("track-all: give --params FILE (one file for every session) or --params-dir DIR (one "
                         "SUBJECT.json per subject), not both")

@@ -405,8 +405,9 @@ def run(
                                  help="Checkpoint times: a CSV with a column t_s (or t: seconds on the session's "
                                  "clock; or time: ISO 8601) or a comma list of seconds, in increasing order: "
                                  "OUT/at_times.csv gives the position the live track showed at each - the streamed "
-                                 "row of the last stride ended by then, not interpolated (x, y, z, pos_sigma_m, "
-                                 "floor when known; decision E332). Needs --out and SESSION_DIR."),
+                                 "row of the last stride the replay's pushes had returned by then (--chunk-s "
+                                 "apart; decision E344), not interpolated (x, y, z, pos_sigma_m, floor when known; "
+                                 "decision E332). Needs --out and SESSION_DIR."),
 ) -> None:
     """Replay a recorded session (or a Bluetooth capture) through the streaming runtime.
 
@@ -547,6 +548,7 @@ def run(
         from pdrlearn.runtime.latency import DataLatency
 
         data_lat = DataLatency()  # decision E288: the steps' data latency (a capture's pushes: not measured)
+        returned = []  # decision E344: per step, the time of the last sample of the push that returned it (s)
         if gait_other is not None and session_dir is None:  # decision E311: gait pairs two session folders
             raise DataError(f"run: --gait {gait_other} pairs SESSION_DIR with the other foot's session; "
                             + ("a --protocol capture is no session folder: " if protocol is not None else "")
@@ -738,8 +740,11 @@ def run(
                     steps += new
                     data_s = max((float(t[-1]) for t, _ in chunk.values() if len(t)), default=0.0)
                     data_lat.add(new, data_s)  # decision E288
+                    returned += [data_s] * len(new)  # decision E344
                     reached(data_s)
-                steps += tracker.flush()
+                tail = tracker.flush()
+                steps += tail
+                returned += [max(bounds, default=0.0)] * len(tail)  # decision E344: the flush, at the recording's end
             _warn_short_streams(session, tracker, steps)
             source = f"session {session.name}"
         result = streamed_result(steps, start_ll, start_alt)
@@ -793,7 +798,7 @@ def run(
             _write(out, result, summary, session, source, dpi=dpi, record=record(latency_ms_per_step=_latency(lat),
                    data_latency_ms=data_lat.report(None if protocol is not None else chunk_s)),  # decision E288
                    bouts=table, with_ele=start_ele, redact=redact, plot=plot, gait=gait,  # decision L533
-                   at_times=at_t)  # decision E332
+                   at_times=at_t, returned_s=returned)  # decisions E332, E344
         if as_json:
             shown = redacted(json_safe(summary), redact)
             if gait is not None:  # decision E311: gait_summary.json's object, not in summary.json
@@ -1245,7 +1250,7 @@ def as_written(result) -> None:
 
 def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: int | None = None,
            record: dict, bouts, with_ele: bool = False, redact: tuple[str, ...] | None = None,
-           plot: bool = True, gait: dict | None = None, at_times=None) -> None:
+           plot: bool = True, gait: dict | None = None, at_times=None, returned_s=None) -> None:
     """steps.csv, trajectory.csv, bouts.csv (L124), turns.csv (L200), path.png (not with ``plot`` false: ``--no-plot``,
     decision L533), summary.json and run.json
     (``record``, decision L122) as ``track`` writes them (same names, columns, number format, ``track``'s figure),
@@ -1255,8 +1260,8 @@ def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: i
     no clock start, so none. Decision L363: with lat/lon (``--start``) also track's track.gpx and track.geojson
     (``with_ele``: ``--start LAT,LON,ALT`` gave the altitude). ``redact``: decision E176's paths, written as
     <redacted> in every text file before the folder is moved into place. ``at_times`` (decision E332): session
-    seconds whose live positions (:func:`pdrlearn.track.at_times.live_positions` of the written trajectory) go to
-    at_times.csv."""
+    seconds whose live positions (:func:`pdrlearn.track.at_times.live_positions` of the written trajectory, each
+    stride row shown from ``returned_s``, the time of the push that returned it: decision E344) go to at_times.csv."""
     import json
 
     from pdrlearn.atomic import atomic_directory
@@ -1284,7 +1289,8 @@ def _write(out: Path, result, summary, session=None, source: str = "", *, dpi: i
         if at_times is not None:  # decision E332: the position the live track showed at each checkpoint time
             from pdrlearn.track.at_times import live_positions
 
-            write_table_csv(live_positions(traj, at_times, start), tmp / "at_times.csv")
+            # decision E344: a stride's row from the time its push returned it, not from its end
+            write_table_csv(live_positions(traj, at_times, start, returned_s=returned_s), tmp / "at_times.csv")
         # L124 (E98), L200, L202: bouts.csv, turns.csv ... as track; E144: its clock columns
         tables = event_tables(result, bouts, start=start)
         for name, table in tables.items():

@@ -512,7 +512,7 @@ def track(
     options = given_options(arguments, leave_out=("session_dir", "out", "force", "as_json"))  # for OUT/run.json
     forms = redaction(arguments)  # decision E176
     out_folder(out, "track", force=force, inputs=(session_dir, params, gnss, fixes, segments))  # L618: LEGS.csv too
-    settings = settings_of(arguments)  # decision E93: every tracking option, as track-all passes them
+    settings = settings_of(arguments, "track")  # decision E93: every tracking option, as track-all passes them
     was = existed(out)
     wall, cpu = time.perf_counter(), time.process_time()
     # decision E131: on a terminal, the stage (tracking, then writing) and the time spent; the offline pipelines
@@ -569,14 +569,15 @@ NOT_IN_TRACK_ALL = {
 }
 
 
-def settings_of(arguments: dict) -> dict:
+def settings_of(arguments: dict, command: str = "track") -> dict:
     """:func:`track_settings` of a command's options as given (``dict(locals())`` of ``track`` / ``track-all``):
     every keyword of it that the command has, so that an option one command declares cannot be left out of its
-    call (decision E93: ``track-all`` had dropped --detector, --length-model and --align-units)."""
+    call (decision E93: ``track-all`` had dropped --detector, --length-model and --align-units). ``command``: ``track``
+    or ``track-all`` (decision W615: D10's line names its ``--mount-frame``)."""
     import inspect
 
     names = inspect.signature(track_settings).parameters
-    return track_settings(**{k: v for k, v in arguments.items() if k in names})
+    return track_settings(**{k: v for k, v in arguments.items() if k in names and k != "command"}, command=command)
 
 
 def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str | None = None,
@@ -606,7 +607,7 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
                    bout_rule: str | None = None, clock_offset: float | None = None,
                    clock_drift_ppm: float | None = None, drop_partial_row: bool = False,
                    steady_trim: int | None = None, length_reference: str = "model",
-                   mount_frame: str = "declared") -> dict:
+                   mount_frame: str = "declared", command: str | None = None) -> dict:
     """The tracking options as one plain dict, with what does not depend on the session checked and read
     once (fix files exist, ``--start``, ``--initial-heading`` and ``--window`` parsed, ``--params`` JSON read):
     a batch checks them before its first session, and the dict travels to a Dask worker as it is
@@ -825,7 +826,8 @@ def track_settings(*, pipeline: str = "auto", method: str = "auto", model: str |
             "clock_drift": clock_drift, "drop_partial_row": drop_partial_row,
             "steady_trim": None if steady_trim is None else check_steady_trim(steady_trim),  # decision L415
             "length_reference": length_reference,  # decision C126
-            "mount_frame": mount_frame}  # decision W607
+            "mount_frame": mount_frame,  # decision W607
+            "command": command}  # decision W615: track or track-all, the command whose options these are
 
 
 def read_params(params: Path):
@@ -991,6 +993,7 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
     session = read_session(session_dir, streamed=streaming, spans="common" if o.get("common_span") else "refuse",
                            drop_partial_row=bool(o.get("drop_partial_row")))  # decision B266
     session.mount_frame = o.get("mount_frame", "declared")  # decision W607
+    session.mount_frame_command = o.get("command")  # decision W615: D10's line names the option of this command
     if o.get("names"):  # decision C86: track-all --subject-map; the name the tables, figures and summary carry
         session = pseudonymous(session, o["names"])
     from pdrlearn.io.plasys import unit_ends

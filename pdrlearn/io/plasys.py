@@ -237,6 +237,22 @@ def read_table(path: str | os.PathLike, text_columns: tuple[str, ...] = (), *, h
         return raw
 
     _decimal_comma_columns(df, text, comma=dialect.get("decimal") == ",")
+    return _labels_as_written(df, path, text_columns, {**dialect, **no_header})
+
+
+def _labels_as_written(df: pd.DataFrame, path: Path, text_columns: tuple[str, ...], options: dict) -> pd.DataFrame:
+    """Decision C263: :func:`read_table`'s ``text_columns`` hold each cell as written - "NA", "null", "None", "nan"
+    are names (a group folder "NA": pandas' missing-value words had made it NaN, and the report crashed); only an
+    empty cell is missing."""
+    at = [i for i, c in enumerate(df.columns) if c in text_columns]
+    if not at or not len(df):
+        return df
+    raw = pd.read_csv(path, dtype=str, keep_default_na=False, **options)
+    if raw.shape != df.shape:
+        return df
+    for i in at:
+        cells = raw.iloc[:, i]
+        df.isetitem(i, cells.mask(cells == ""))
     return df
 
 

@@ -249,6 +249,9 @@ class Session:
     #: decision W607: ``"inferred"`` tracks a unit whose declared frame its data contradict with confidence (D10)
     #: in the frame the data give (a unit clipped turned on its mount); ``"declared"`` keeps the declared frame
     mount_frame: str = "declared"
+    #: decision W615: the command reading the session that takes ``--mount-frame`` (``track``, ``track-all``), named
+    #: in D10's line; None: the reader has no such option (another command, a notebook), the line names none
+    mount_frame_command: str | None = None
     _inferred: dict[str, AxisFrame | DataError] = field(default_factory=dict, repr=False, compare=False)
     _checked: dict = field(default_factory=dict, repr=False, compare=False)  # placement -> DeclaredCheck
     _handed: dict[object, object] = field(default_factory=dict, repr=False, compare=False)
@@ -471,7 +474,8 @@ class Session:
                 from pdrlearn.track.frame_inference import check_declared_frame
 
                 self._checked[placement] = chk = check_declared_frame(self, placement, frame,
-                                                                      mount_frame=self.mount_frame)
+                                                                      mount_frame=self.mount_frame,
+                                                                      command=self.mount_frame_command)  # W615
                 if chk.message and not chk.refuse:
                     log.warning("%s: %s", where, chk.message)
                 if chk.used_found is not None:  # decision W607: summary's frames_inferred and frame_status say so

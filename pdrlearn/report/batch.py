@@ -32,14 +32,15 @@ def read_batch(folder: str | Path) -> tuple[pd.DataFrame, pd.DataFrame]:
     sessions.csv, one without track-all's columns or rows, or a groups.csv that does not fit it is one
     :class:`DataError` line naming the file. A folder without groups.csv gets it recomputed from sessions.csv
     (it is a ``groupby`` of it, C12)."""
-    from pdrlearn.cohort import group_labels, group_measures, group_table
+    from pdrlearn.cohort import group_labels, group_measures, group_table, label_texts
 
     folder = Path(folder)
     path = folder / "sessions.csv"
     if not path.is_file():
         raise DataError(f"{path}: not found; a track-all output folder holds sessions.csv (and groups.csv) - "
                         f"{_REGENERATE}")
-    # cohort C42/C25: the labels as written (a subject "007", a visit "01" stay text, as track-all's subjects.csv)
+    # cohort C42/C25: the labels as written (a subject "007", a visit "01" stay text, as track-all's subjects.csv;
+    # C263: a group "NA" too)
     sessions = read_table(path, text_columns=LABEL_COLUMNS)
     missing = [c for c in REQUIRED_SESSION_COLUMNS if c not in sessions.columns]
     if missing:
@@ -52,7 +53,7 @@ def read_batch(folder: str | Path) -> tuple[pd.DataFrame, pd.DataFrame]:
     if bad:
         raise DataError(f"{path}: column status must be ok, failed or skipped, found {', '.join(bad[:3])}; "
                         f"{_REGENERATE}")
-    sessions["group"] = sessions["group"].astype(str)
+    sessions["group"] = label_texts(sessions["group"])  # decision C263: text (pandas 3's astype(str) kept NaN)
     by = _run_option(folder, "group_by")  # decision C202: --group-by visit's groups.csv is per visit
     by = by if by == "visit" else None
     gpath = folder / "groups.csv"
@@ -64,7 +65,7 @@ def read_batch(folder: str | Path) -> tuple[pd.DataFrame, pd.DataFrame]:
     missing = [c for c in REQUIRED_GROUP_COLUMNS if c not in groups.columns]
     if missing:
         raise DataError(f"{gpath}: not a track-all groups.csv (no column {', '.join(missing)}); {_REGENERATE}")
-    groups["group"] = groups["group"].astype(str)
+    groups["group"] = label_texts(groups["group"])  # decision C263
     expected = set(group_labels(sessions, by))  # decision C202: the visits, with --group-by visit
     if set(groups["group"]) != expected:
         raise DataError(f"{gpath}: its groups ({', '.join(sorted(groups['group'])[:4])}) are not those of "

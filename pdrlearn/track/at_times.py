@@ -162,22 +162,31 @@ def positions_at(trajectory: pd.DataFrame, t: np.ndarray, span: tuple[float, flo
     return out
 
 
-def live_positions(trajectory: pd.DataFrame, t, start: datetime | None = None) -> pd.DataFrame:
-    """Decision E332: ``run --at-times``' table: per time ``t`` (s, increasing), the streamed ``trajectory``'s row at
-    or before it - the position a live device showed then, held, not interpolated (the stride ending after ``t`` was
-    not known yet) - with ``stride_end_s``, that row's time (the start row before the first stride); its numeric
-    columns but the times and L623's ride index; ``time`` (L298's form) with a recording start."""
+def live_positions(trajectory: pd.DataFrame, t, start: datetime | None = None, *, returned_s) -> pd.DataFrame:
+    """Decision E332, amended by E344: ``run --at-times``' table: per time ``t`` (s, increasing), the streamed
+    ``trajectory``'s row the live device had been returned by then - the last row whose stride's push reached
+    ``returned_s`` (one per row after the start row, in the rows' order: E288's push time, s) at or before ``t``, the
+    start row before that - held, not interpolated; with ``stride_end_s`` (that row's time) and ``returned_s`` (its
+    push's time), both empty for the start row; its numeric columns but the times and L623's ride index; ``time``
+    (L298's form) with a recording start."""
     from pdrlearn.track.clock import clock_texts
 
     t = np.asarray(t, dtype=float)
-    tr = trajectory.sort_values("t", kind="stable").reset_index(drop=True)
+    tr = trajectory.reset_index(drop=True)
+    ret = np.asarray(returned_s, dtype=float).ravel()
+    if len(ret) != max(len(tr) - 1, 0):
+        raise ValueError(f"live_positions: {len(ret)} return time(s) for {len(tr)} trajectory row(s) (one per stride "
+                         "row after the start row)")
+    shown = np.maximum.accumulate(np.r_[-np.inf, ret])[: len(tr)]  # decision E344: when each row reached the device
+    idx = np.clip(np.searchsorted(shown, t + 1e-9, side="right") - 1, 0, max(len(tr) - 1, 0))
+    stride = (idx > 0) if len(tr) else np.zeros(len(t), bool)
     rt = tr["t"].to_numpy(float)
-    idx = np.clip(np.searchsorted(rt, t + 1e-9, side="right") - 1, 0, max(len(tr) - 1, 0))
-    out = pd.DataFrame({"t": t, "stride_end_s": np.where(t + 1e-9 >= rt[0], rt[idx], np.nan) if len(rt) else np.nan})
+    out = pd.DataFrame({"t": t, "stride_end_s": np.where(stride, rt[idx] if len(tr) else np.nan, np.nan),
+                        "returned_s": np.where(stride, shown[idx] if len(tr) else np.nan, np.nan)})
     for c in tr.columns:
         if c in NOT_POSITIONS or not pd.api.types.is_numeric_dtype(tr[c]) or pd.api.types.is_bool_dtype(tr[c]):
             continue
-        out[c] = tr[c].to_numpy()[idx]
+        out[c] = tr[c].to_numpy()[idx] if len(tr) else np.nan
     if start is not None:
         out["time"] = clock_texts(start, out["t"])
     return out

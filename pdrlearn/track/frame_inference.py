@@ -841,7 +841,7 @@ def _span_check(session, placement: str, declared: AxisFrame, max_s: float | Non
 
 
 def check_declared_frame(session, placement: str, declared: AxisFrame, *, side_words: bool = False,
-                         mount_frame: str = "declared") -> DeclaredCheck:
+                         mount_frame: str = "declared", command: str | None = None) -> DeclaredCheck:
     """The data's word on a declared or ``source_project`` frame: a warning (without the ``meta.json``
     location) when it is left-handed or the data contradict it with confidence (decision D10); a refusal when
     its forward is reversed against the data (decision D22), also when the inference gives up on which
@@ -855,7 +855,8 @@ def check_declared_frame(session, placement: str, declared: AxisFrame, *, side_w
     before): a waist line without a foot unit leads with :func:`side_travel_words`. ``mount_frame`` (decision W607):
     ``"inferred"`` uses the frame the data give when they contradict the declared one with confidence (a unit clipped
     turned on its mount: a side-clipped lower back), one line saying so, never a refusal; ``"declared"`` (the
-    default) keeps the declared frame with D10's line."""
+    default) keeps the declared frame with D10's line, naming the option when ``command`` (decision W615: ``track`` or
+    ``track-all``, the commands that have it) reads the session."""
     if isinstance(session.meta.get("frames"), dict):
         origin = 'declared in "frames"'
     else:
@@ -889,7 +890,7 @@ def check_declared_frame(session, placement: str, declared: AxisFrame, *, side_w
         return DeclaredCheck(weak_reversal_warning(placement, declared, origin, rev, *evidence, how=how), False,
                              unchecked, compared, rev, forward_power_ratio=ratio)
     msg = declared_frame_warning(placement, declared, found, origin, used, off=off, refuse=refuse,
-                                 unchecked=unchecked, how=how)
+                                 unchecked=unchecked, how=how, command=command)  # decision W615
     if side_words and msg and placement == "waist" and UNIT_STREAMS["foot"][0] not in session.streams:
         msg = side_travel_words(rev) + msg if side_travel_words(rev) else msg  # decision W416
     return DeclaredCheck(msg, refuse, unchecked, compared, rev, forced=forced, forward_power_ratio=ratio)
@@ -975,14 +976,16 @@ def _turned(declared: AxisFrame, names: set[str]) -> AxisFrame:
 def declared_frame_warning(placement: str, declared: AxisFrame, found: InferredFrame | None, origin: str,
                            used: str = "the meta.json frame", *, off: dict[str, float] | None = None,
                            refuse: bool = False, unchecked: str | None = None, how: str | None = None,
-                           data_used: bool = False) -> str | None:
+                           data_used: bool = False, command: str | None = None) -> str | None:
     """Decision D10's warning for a ``declared`` frame (``origin``: where it was declared) against the frame
     ``found`` in the data (``None``: the data did not fix it), or ``None`` when there is nothing to say. Shared by
     :func:`check_declared_frame` (offline) and the live ``WaistTracker`` (decision B108, ``used``: what it keeps).
     ``off`` (default: D10's disagreement with ``found``) may come from the directions measured when the
     inference gave up (``unchecked``: its reason); ``refuse`` words it as D22's refusal (``how``: D28/D30's words
     for a forward turned or vertical, :func:`misdeclared`; None: reversed). ``data_used`` (decision W607): the frame
-    ``found`` is used instead (``mount_frame="inferred"``), said so."""
+    ``found`` is used instead (``mount_frame="inferred"``), said so. ``command`` (decision W615): the command reading
+    the session that takes ``--mount-frame`` (``track``, ``track-all``), named in the line's fix; None (every other
+    command, the live tracker, a notebook): the option is not named."""
     if off is None:
         off = frame_disagreement(declared, found) if found is not None else {}
     left_handed = not declared.right_handed
@@ -1002,8 +1005,8 @@ def declared_frame_warning(placement: str, declared: AxisFrame, found: InferredF
                       f"which axis is which: {unchecked})")
     if off and found is not None:
         fix = f'if the data are right, write "frames": {json.dumps({placement: found.frame.to_dict()})} in meta.json'
-        if not refuse:  # decision W607: a batch of recordings need not be edited one by one
-            fix += " (or track with --mount-frame inferred, decision W607)"
+        if not refuse and command is not None:  # W607: a batch need not be edited one by one; W615: if it has it
+            fix += f" (or run {command} with --mount-frame inferred, decision W607)"
     elif off:
         flip = set(off) if len(off) == 2 else {*off, "left"}  # turned 180 deg about the direction that agrees
         fix = (f'if the data are right, write "frames": {json.dumps({placement: _turned(declared, flip).to_dict()})} '
