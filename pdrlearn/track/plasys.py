@@ -2452,6 +2452,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             # decision E215: D25 guards a compass, which this never reads (W415's "not_judged" key, dict as offline)
             "compass_mount": {"fallback": False, "not_judged": STREAMED_COMPASS_MOUNT},
             "first_walk_deg": None if walk_ref.angle is None else float(np.degrees(walk_ref.angle)),  # E215
+            "cycle_yaw": bool(cycle_yaw),  # decision E342: the radius's heading offset term follows it (E336 / E331)
             "warnings": warnings}
     for w in warnings:
         log.warning("%s: %s", session.where, w)
