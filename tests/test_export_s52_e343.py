@@ -41,3 +41,19 @@ def test_streamed_heading_after_a_ride_equals_the_live_one(ride_then_curve):
     assert len(live) == len(streamed) and turned.any()
     assert np.allclose(streamed, live, atol=1e-6)  # before E343: 1.35 deg off on the curve's strides
     assert np.allclose(res.trajectory[["x", "y"]].iloc[-1].to_numpy(float), [steps[-1].x, steps[-1].y], atol=1e-6)
+
+
+def test_the_streamed_track_says_its_cycle_yaw_e342(ride_then_curve):
+    """Decision E342: ``info["cycle_yaw"]``, which picks the radius's heading offset term (E331's with E336 off)."""
+    from pdrlearn.track.plasys import track_streaming
+    from pdrlearn.track.position_sigma import add_position_sigma
+
+    logging.disable(logging.WARNING)
+    try:
+        res = track_streaming(ride_then_curve, method="M2", cycle_yaw=False)
+    finally:
+        logging.disable(logging.NOTSET)
+    assert res.info["cycle_yaw"] is False
+    add_position_sigma(res, ride_then_curve)
+    assert res.info["position_sigma"]["model"] == "plasys-streaming"
+    assert res.info["position_sigma"]["heading_offset_rad"] == 0.047
