@@ -54,8 +54,10 @@ SIGMA_PARAMS: dict[str, dict[str, float]] = {
     # plasys --streaming with a waist unit: the waist gyroscope's heading (L99; L150). Decision E331: its heading was
     # held off the walking direction from the first stride on (users 17870-17883: RMS 0.04674 rad, -2.10 to -3.18
     # deg), a constant offset term; decision E337: after E336 removed that offset's cause (the pelvis' yaw at the
-    # stride's end) what remains (users 18400-18403: RMS 0.00723 rad), rounded up; decision E342: a track with E336 off
-    # (info["cycle_yaw"] False) takes E331's 0.047 (sigma_params' boundary_offset_rad)
+    # stride's end) what remains (users 18400-18403: RMS 0.00723 rad), rounded up; decision E342 (E337's rule amended):
+    # kept on the shipped E336 + E338 code (users 18900-18919: mean share within 2 sigma 1.000, worst run 0.994,
+    # median sigma / RMS 1.38); a track with E336 off (info["cycle_yaw"] False) takes E331's 0.047 (sigma_params'
+    # boundary_offset_rad)
     "plasys-streaming": {"displacement_rel": 0.029, "heading_walk_rad": 0.0070, "bias_rps": 0.00051,
                          "point_m": 5.1e-174, "heading_offset_rad": 0.0073},
     # decision L267: plasys offline after L226's fallback (L182 judged the compass disturbed): the heading is the
