@@ -754,11 +754,13 @@ def run(
 
             foot_rides(result, with_left_out_units(session))  # L615's vibration reading on, as track's default
         _side_class_lines(result.steps, bundle, source if session is None else session.name)  # decision E287
-        from pdrlearn.track.position_sigma import add_position_sigma
+        from pdrlearn.track.position_sigma import add_position_sigma, sigma_params
 
         # decisions L128/L150, as `track --streaming`: the waist gyroscope's heading when the tracker uses the waist
-        # unit
-        add_position_sigma(result, session, "plasys-streaming" if "waist" in tracker.units else "plasys-foot-streaming")
+        # unit; decision E342: its offset term by the tracker's cycle_yaw (E336), as track --streaming's info says
+        regime = "plasys-streaming" if "waist" in tracker.units else "plasys-foot-streaming"
+        add_position_sigma(result, session, regime,
+                           params=sigma_params(regime, {**result.info, "cycle_yaw": tracker.cycle_yaw}))
         as_written(result)  # decision E157: the summary from the tables as written, whatever the chunk size
         if heading0 is not None:  # decision L98: recorded; path.png draws the track in ENU
             result.info["initial_heading_rad"] = heading0

@@ -469,15 +469,30 @@ class CyclePhase:
         return psi if self.psi is None else self.psi
 
 
-def waist_end_phase_yaw(levelled: Levelled, t0: float, t1: float, phase: CyclePhase | None = None) -> float:
-    """Decision E336: :func:`end_phase_yaw` of the stride's levelled waist vertical rate (the rate
-    :func:`stride_motion` integrates for a waist-headed stride); 0 without the waist's gyroscope. ``phase`` (decision
-    E338): the stream's :class:`CyclePhase`, which holds it over turning strides."""
+def waist_phase_turn(levelled: Levelled, t0: float, t1: float) -> tuple[float, float] | None:
+    """Decision E336 / E338: ``(psi, turn)`` of :func:`end_phase_yaw` on the stride's levelled waist vertical rate (the
+    rate :func:`stride_motion` integrates for a waist-headed stride); None without the waist's gyroscope. Kept per
+    stride by ``track --streaming``, which feeds :class:`CyclePhase` only once L611 has judged the strides (decision
+    E343: a pedalling stride, which the runtime never places, sets no held phase)."""
     w = levelled.get("waist")
     if w is None or w[0] is None or w[2] is None:
+        return None
+    return end_phase_yaw(w[0], np.asarray(w[2], dtype=float)[:, 2], float(t0), float(t1), with_turn=True)
+
+
+def waist_end_phase_yaw(levelled: Levelled, t0: float, t1: float, phase: CyclePhase | None = None) -> float:
+    """Decision E336: :func:`end_phase_yaw` of the stride's levelled waist vertical rate (:func:`waist_phase_turn`);
+    0 without the waist's gyroscope. ``phase`` (decision E338): the stream's :class:`CyclePhase`, which holds it over
+    turning strides."""
+    return held_phase_yaw(waist_phase_turn(levelled, t0, t1), phase)
+
+
+def held_phase_yaw(raw: tuple[float, float] | None, phase: CyclePhase | None = None) -> float:
+    """Decision E338: the yaw a stride of :func:`waist_phase_turn`'s ``raw`` is placed off by: its own psi without
+    ``phase``, else the phase's held one; 0 (the phase untouched) without the waist's gyroscope."""
+    if raw is None:
         return 0.0
-    psi, turn = end_phase_yaw(w[0], np.asarray(w[2], dtype=float)[:, 2], float(t0), float(t1), with_turn=True)
-    return psi if phase is None else phase.stride(psi, turn)
+    return raw[0] if phase is None else phase.stride(*raw)
 
 
 def pivot_yaw(t: np.ndarray, gyr: np.ndarray, up: np.ndarray, *, still_rad_s: float = 0.4) -> float:

@@ -2225,7 +2225,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     fa_t, fa_v = streams["fAccelerometer"]
     has_force = "fForceA" in streams and "fForceB" in streams
     foot_headed = np.zeros(len(table), dtype=bool)  # decision L37 needs only this of each stride
-    cycle_phase = SK.CyclePhase()  # decision E338
+    phase_raw: list[tuple[float, float] | None] = [None] * len(table)  # decisions E336 / E343: (psi, turn)
     frame = np.zeros(len(table))  # decision E124: each stride's step frame from the foot's facing
     foot_turn = np.zeros(len(table))  # decision L400: the foot's heading change over each stride
     posture = np.zeros(len(table), dtype=bool)  # decision B131: strides skipped as the runtime skips them
@@ -2275,8 +2275,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         frame[i] = KSW.step_frame(lev)  # decision E124: the step frame's direction from the foot's facing
         foot_turn[i] = KSW.foot_turn(lev)  # decision L400
         foot_headed[i] = SK.headed_by_foot(lev, heading)
-        if cycle_yaw and not foot_headed[i]:  # decision E336: along the cycle's mean yaw (the runtime's call)
-            place[i] -= SK.waist_end_phase_yaw(lev, float(t0), float(t1), cycle_phase)  # E338: held over turns
+        if cycle_yaw and not foot_headed[i]:  # decision E336: along the cycle's mean yaw (the runtime's call); the
+            phase_raw[i] = SK.waist_phase_turn(lev, float(t0), float(t1))  # E338 phase is held below, after L611
         pause = bool(i and prev < t0 and overlaps_any(prev, float(t0), imu_gaps))
         stop_turn = (SK.long_stop_turn(streams.__getitem__, prev, float(t0)) if waist_gap_yaw  # decision E335: E324's
                      and not foot_headed[i] and not pause else None)  # turn read once for both calls below (runtime's)
@@ -2325,6 +2325,9 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         raise NoStridesError(f"{session.where}: no walking strides: {_placement_clause(session)}{pedal_warning}"
                              f"{_no_strides_hint(session)}")
     skipped_posture, posture = posture, posture | pedal
+    cycle_phase = SK.CyclePhase()  # decision E343: E338's held phase over the strides the runtime places (its _apply),
+    for i in np.flatnonzero(~(in_gap | posture)):  # in order, after L611's mask: a crank stroke is no gait phase
+        place[i] -= SK.held_phase_yaw(phase_raw[i], cycle_phase)
     raw_disp, disp = disp, apply_level_gain(disp, gain)  # decision L26 (the runtime: E14)
     if (method == "M3" and use_bounds is not None and "length_class" in classes
             and not (isinstance(model, str) and model == "oracle")):  # decision C94: C89's count, as the runtime's
@@ -2453,6 +2456,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             # decision E215: D25 guards a compass, which this never reads (W415's "not_judged" key, dict as offline)
             "compass_mount": {"fallback": False, "not_judged": STREAMED_COMPASS_MOUNT},
             "first_walk_deg": None if walk_ref.angle is None else float(np.degrees(walk_ref.angle)),  # E215
+            "cycle_yaw": bool(cycle_yaw),  # decision E342: the radius's heading offset term follows it (E336 / E331)
             "warnings": warnings}
     for w in warnings:
         log.warning("%s: %s", session.where, w)

@@ -54,11 +54,16 @@ SIGMA_PARAMS: dict[str, dict[str, float]] = {
     # plasys --streaming with a waist unit: the waist gyroscope's heading (L99; L150). Decision E331: its heading was
     # held off the walking direction from the first stride on (users 17870-17883: RMS 0.04674 rad, -2.10 to -3.18
     # deg), a constant offset term; decision E337: after E336 removed that offset's cause (the pelvis' yaw at the
-    # stride's end) what remains (users 18400-18403: RMS 0.00723 rad), rounded up
+    # stride's end) what remains (users 18400-18403: RMS 0.00723 rad), rounded up; decision E342 (E337's rule amended):
+    # kept on the shipped E336 + E338 code (users 18900-18919: mean share within 2 sigma 1.000, worst run 0.994,
+    # median sigma / RMS 1.38); a track with E336 off (info["cycle_yaw"] False) takes E331's 0.047 (sigma_params'
+    # boundary_offset_rad)
     "plasys-streaming": {"displacement_rel": 0.029, "heading_walk_rad": 0.0070, "bias_rps": 0.00051,
                          "point_m": 5.1e-174, "heading_offset_rad": 0.0073},
     # decision L267: plasys offline after L226's fallback (L182 judged the compass disturbed): the heading is the
-    # waist gyroscope's, as the streamed one, so its radius is the streamed regime's (not fitted on its own)
+    # waist gyroscope's, as the streamed one, so its radius takes the streamed regime's four L150 constants (not
+    # fitted on its own) without E331 / E337's heading_offset_rad: that offset was the streamed strides' (the pelvis'
+    # yaw at the foot's rest, E336), and this offline track was not measured for it (E331, E342)
     "plasys-gyro-fallback": {"displacement_rel": 0.029, "heading_walk_rad": 0.0070, "bias_rps": 0.00051,
                              "point_m": 5.1e-174},
     # the lower-back pipelines (fitted on waist-pendulum; waist-pll shares them, not fitted)
@@ -238,9 +243,12 @@ def compass_extent_rad(compass_check: dict | None) -> float:
 
 
 def sigma_params(regime: str, info: dict | None = None, *, extent_heading: bool = False, extent_return: bool = False,
-                 compass_extent: bool = False) -> dict[str, float]:
-    """The error model of ``regime``: its :data:`SIGMA_PARAMS`. Three options, off by default (decision L595: keywords,
-    no module switches; each changes ``plasys-fused`` only):
+                 compass_extent: bool = False, boundary_offset_rad: float = 0.047) -> dict[str, float]:
+    """The error model of ``regime``: its :data:`SIGMA_PARAMS`. Decision E342: a ``plasys-streaming`` track whose
+    ``info["cycle_yaw"]`` is False (E336 off: its strides go along the pelvis' yaw at the foot's rest, E331's offset)
+    takes ``heading_offset_rad`` = ``boundary_offset_rad``, E331's measured RMS offset of that heading (E337's term is
+    the offset left after E336 + E338). Three options, off by default (decision L595: keywords, no module switches;
+    each changes ``plasys-fused`` only):
 
     - ``extent_heading`` (decision L240: L239's candidate not adopted, its rule failed on the short routes only: 100 %
       of their strides within 2 sigma against the rule's 99.5 %; 27/29 R1 finals within 2 sigma against 18/29
@@ -254,6 +262,8 @@ def sigma_params(regime: str, info: dict | None = None, *, extent_heading: bool 
       error is the track's own compass check (``info["compass_check"]``, :func:`compass_extent_rad`) in place of
       L239's."""
     params = dict(SIGMA_PARAMS[regime])
+    if regime == "plasys-streaming" and (info or {}).get("cycle_yaw") is False:  # decision E342 (E331's delta)
+        params["heading_offset_rad"] = float(boundary_offset_rad)
     if regime == "plasys-fused":
         for flag, term in ((extent_heading, "extent_heading_rad"), (extent_return, "extent_return_rad")):
             if flag:
