@@ -565,8 +565,9 @@ def run(
                             + ("a --protocol capture is no session folder: " if protocol is not None else "")
                             + "give the two feet's session folders (pdrlearn run BUNDLE LEFT --gait RIGHT)")
         if protocol is not None and altitude != "foot":  # decision E339: the capture has no waist barometer
-            raise DataError(f"run: --altitude {altitude} fuses the waist barometer; the --protocol capture {protocol} "
-                            "carries the foot unit only: drop --altitude, or replay a session folder with wBarometer.csv")
+            raise DataError(f"run: --altitude {altitude} fuses the waist barometer; the --protocol capture "
+                            f"{protocol} carries the foot unit only: drop --altitude, or replay a session folder "
+                            "with wBarometer.csv")
         if protocol is not None and common_span:  # decision B230: a capture has one unit's streams, on one clock
             raise DataError(f"run: --common-span cuts a session's files to the time all of them cover; the --protocol "
                             f"capture {protocol} has no files: drop --common-span")

@@ -631,7 +631,8 @@ class AltitudeFusion:
         per = SCALE_REF_DZ_M if bias_mode == "scale" else 1.0  # L502: k's budgets are b's at a 0.10 m stride
         self._bias_sd = FOOT_CLIMB_BIAS_SD_M / per if climb_bias else 0.0
         self._step_sd = FOOT_CLIMB_BIAS_STEP_SD_M / per
-        # h = 0 and no slope at the start, w its prior, b (L478; L502: b_up or k) and L502's b_down their priors (0: off)
+        # h = 0 and no slope at the start, w its prior, b (L478; L502: b_up or k) and L502's b_down their priors
+        # (0: off)
         self.x = np.zeros(5)
         self.p = np.diag([0.0, 0.0, BARO_WANDER_SD_M ** 2, self._bias_sd ** 2,
                           self._bias_sd ** 2 * (bias_mode == "split")])
