@@ -6,6 +6,7 @@ of the branch's start; OUT: a scratch folder):
 
     BASE=/tmp/i3/base PYTHONPATH=. python experiments/run_altitude_s52_e339.py track SIM OUT 18860 18880
     BASE=/tmp/i3/base PYTHONPATH=. python experiments/run_altitude_s52_e339.py nobaro SIM OUT 18860 18865 ...
+    PYTHONPATH=. python experiments/run_altitude_s52_e339.py streamed SIM OUT 18860 18865 18870 18875
     PYTHONPATH=. python experiments/run_altitude_s52_e339.py report SIM OUT 18860 18880
 
 ``track``: per user `run` before (BASE), `run` and `run --altitude fused` after, `track --altitude fused` and `track`
@@ -146,13 +147,20 @@ def report(sim: Path, out: Path, users: list[int]) -> None:
     f = sum(same(o / "before", o / "fused", FUSED_WITHOUT_BAROMETER) for o in nb)
     print(f"(b) without a barometer: run byte-identical {d} of {len(nb)}, run --altitude fused (its line excepted) "
           f"{f} of {len(nb)}: {', '.join(o.name for o in nb)}")
-    gaps = [streamed_gap(sim / f"u{u}", out / f"u{u}" / "run_fused") for u in users]
-    print(f"(c) streamed 0.1 s chunks vs run --altitude fused: max |dz_m|, |z| difference {max(gaps):.3g} m "
-          f"(users within 1e-9: {sum(g <= 1e-9 for g in gaps)} of {len(gaps)})")
+    gaps = {p.stem: float(p.read_text()) for p in sorted(out.glob("streamed_u*.txt"))}
+    print(f"(c) streamed 0.1 s chunks vs run --altitude fused: max |dz_m|, |z| difference "
+          f"{max(gaps.values(), default=float('nan')):.3g} m (users within 1e-9: "
+          f"{sum(g <= 1e-9 for g in gaps.values())} of {len(gaps)}: {', '.join(gaps)})")
+
+
+def streamed_phase(sim: Path, out: Path, users: list[int]) -> None:
+    for u in users:
+        (out / f"streamed_u{u}.txt").write_text(repr(streamed_gap(sim / f"u{u}", out / f"u{u}" / "run_fused")))
+        print("done", u, flush=True)
 
 
 if __name__ == "__main__":
     phase, sim, out = sys.argv[1], Path(sys.argv[2]), Path(sys.argv[3])
     ids = [int(v) for v in sys.argv[4:]]
-    users = list(range(ids[0], ids[1])) if phase != "nobaro" and len(ids) == 2 else ids
-    {"track": track_phase, "nobaro": nobaro_phase, "report": report}[phase](sim, out, users)
+    users = list(range(ids[0], ids[1])) if phase in ("track", "report") and len(ids) == 2 else ids
+    {"track": track_phase, "nobaro": nobaro_phase, "report": report, "streamed": streamed_phase}[phase](sim, out, users)

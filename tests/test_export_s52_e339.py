@@ -120,3 +120,13 @@ def test_a_row_waits_for_the_barometer_past_its_end_e339():
     assert f.rows([late], latest=11.0) == [] and f.rows([], latest=14.3) == [late]  # a stopped barometer: 2 s on
     last = SimpleNamespace(start_s=11.2, end_s=12.4, dz_m=0.0, z=row.z)
     assert f.rows([last], latest=12.5, final=True) == [last]
+
+
+def test_run_units_foot_refuses_fused_before_the_replay_e339(hill, tmp_path, capsys):
+    from pdrlearn.cli import main
+
+    _, folder, _ = hill
+    assert main(["run", str(SHIPPED), str(folder), "--units", "foot", "--altitude", "fused", "--out",
+                 str(tmp_path / "u")]) != 0
+    assert "--units foot leaves out: add waist to --units" in capsys.readouterr().err
+    assert not (tmp_path / "u" / "steps.csv").exists()

@@ -708,6 +708,16 @@ def run(
             # decision L177: run checked the clocks on the recording above (L170), the same numbers: no second line
             # decision E230: run said the intervals of dropped samples when it read the session (L77): not again
             fuse = altitude
+            if fuse == "fused" and "waist" not in use:  # decision E339, as track's L154: no waist barometer tracked
+                if units is not None:
+                    raise DataError(f"run: --altitude fused reads the waist barometer (wBarometer.csv), which --units "
+                                    f"{units} leaves out: add waist to --units (--units foot,waist) or drop --altitude")
+                import logging
+
+                from pdrlearn.kernels.barometer import FUSED_WITHOUT_BAROMETER
+
+                logging.getLogger("pdrlearn.cli").warning("%s: %s", session.name, FUSED_WITHOUT_BAROMETER)
+                fuse = "foot"
             if fuse == "fused" and "waist" in use and session.has("wBarometer") and len(session["wBarometer"]):
                 from pdrlearn.kernels.barometer import FUSED_EFFECT
                 from pdrlearn.track.barometer import usable_barometer
