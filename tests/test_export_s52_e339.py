@@ -130,3 +130,22 @@ def test_run_units_foot_refuses_fused_before_the_replay_e339(hill, tmp_path, cap
                  str(tmp_path / "u")]) != 0
     assert "--units foot leaves out: add waist to --units" in capsys.readouterr().err
     assert not (tmp_path / "u" / "steps.csv").exists()
+
+
+def test_run_fused_on_a_foot_only_recording_keeps_the_foots_altitude_e339(hill, tracks, tmp_path, capsys):
+    """As `track --altitude fused` (L154): a recording without the waist unit is tracked with the foot's altitude and
+    L154's one line (before the amendment `run` refused it: the two-unit bundle falls back to the foot, E26)."""
+    import shutil
+
+    from pdrlearn.cli import main
+
+    _, folder, _ = hill
+    foot_only = tmp_path / "foot_only"
+    shutil.copytree(folder, foot_only)
+    for f in foot_only.glob("w*.csv"):
+        f.unlink()
+    assert main(["run", str(SHIPPED), str(foot_only), "--altitude", "fused", "--no-plot", "--out",
+                 str(tmp_path / "o")]) == 0
+    assert FUSED_WITHOUT_BAROMETER in capsys.readouterr().err
+    summary = json.loads((tmp_path / "o" / "summary.json").read_text())
+    assert summary["info"].get("altitude_source") != "fused"
