@@ -359,6 +359,7 @@ def _validators() -> dict[tuple[str, str], object]:
         ("track", "length_bounds"): two_numbers,
         ("track", "reference_point"): _one_of(REFERENCE_POINTS),  # decision L72
         ("track", "altitude"): _one_of(ALTITUDES),  # decision L154
+        ("run", "altitude"): _one_of(ALTITUDES),  # decision E339, track's values
         ("track", "compass"): _one_of(COMPASS_CHOICES),  # decision L545
         ("track", "mount_frame"): _one_of(MOUNT_FRAMES),  # decision W607
         ("plot", "shade"): _one_of(list(SHADE_COLOURS)),  # decision L655

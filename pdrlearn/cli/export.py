@@ -359,6 +359,11 @@ def run(
                                         "0.25 s (under 1 s) takes the length and height change of the stride before "
                                         "it (decision L167, not the default; E101; as `track --streaming "
                                         "--drop-neighbour`)."),
+    altitude: str = typer.Option("foot", "--altitude", metavar="foot|fused",
+                                 help="A foot-unit bundle's altitude: the strides' own height (foot, the default, "
+                                 "as `track`'s) or fused with the session's waist barometer as it streams (fused: "
+                                 "`track --altitude fused`'s filter, L154; slopes and hills read; each row waits "
+                                 "~1 s for the barometer; decision E339; docs/deploying.md)."),
     no_cycling: bool = typer.Option(False, "--no-cycling", help="An activity without bicycles (dance, a clinic): no "
                                     "stride is judged pedalling (L611) and none is held for that verdict, which "
                                     "holds a short turning stride up to 3 later strides (decision E304; as `track "
@@ -438,6 +443,8 @@ def run(
         pdrlearn run out/bundle/u1 out/sim/D_u1 --no-plot --out out/run_tables   # no path.png (L533)
 
         pdrlearn run out/bundle/u1 out/sim/D_u1 --no-cycling --out out/run_dance   # no pedalling hold (E304)
+
+        pdrlearn run out/bundle/u1 out/sim/D_u1 --altitude fused --out out/run_hill   # the barometer's altitude (E339)
     """
     # decision L122: every option as given (defaults included) and the start, for OUT/run.json, as track's
     record = _run_json(dict(locals()), time.perf_counter(), time.process_time())
@@ -479,6 +486,11 @@ def run(
         from pdrlearn.kernels.relative_length import check_length_reference
 
         check_length_reference(length_reference)  # decision C117: before any output
+        from pdrlearn.kernels.barometer import ALTITUDES
+
+        if altitude not in ALTITUDES:  # decision E339: track's values, before any output
+            raise DataError(f"run: --altitude {altitude!r} is not one of {', '.join(ALTITUDES)} (foot: the strides' "
+                            "own height; fused: with the waist barometer, decision E339)")
         from pdrlearn.track.grade import check_stair_grade, record_stair_grade
 
         stair_grade_pct = check_stair_grade(stair_grade)  # decision L469, as `track`: before any output
@@ -517,6 +529,7 @@ def run(
                                                          ("--warn-out-of-domain", warn_out_of_domain is not None),
                                                          ("--drop-neighbour", drop_neighbour),
                                                          ("--no-cycling", no_cycling),  # decision E304
+                                                         ("--altitude", altitude != "foot"),  # E339 (E106: read)
                                                          ("--stair-rise", stair_rise is not None),
                                                          ("--length-reference", length_reference != "model"),
                                                          ("--heading-source", heading_source != "auto"),  # E285
@@ -553,6 +566,10 @@ def run(
             raise DataError(f"run: --gait {gait_other} pairs SESSION_DIR with the other foot's session; "
                             + ("a --protocol capture is no session folder: " if protocol is not None else "")
                             + "give the two feet's session folders (pdrlearn run BUNDLE LEFT --gait RIGHT)")
+        if protocol is not None and altitude != "foot":  # decision E339: the capture has no waist barometer
+            raise DataError(f"run: --altitude {altitude} fuses the waist barometer; the --protocol capture "
+                            f"{protocol} carries the foot unit only: drop --altitude, or replay a session folder "
+                            "with wBarometer.csv")
         if protocol is not None and common_span:  # decision B230: a capture has one unit's streams, on one clock
             raise DataError(f"run: --common-span cuts a session's files to the time all of them cover; the --protocol "
                             f"capture {protocol} has no files: drop --common-span")
@@ -692,6 +709,28 @@ def run(
             # before its end is in a gap, which the steps wait for (E22/E23: chunk sizes give the same steps)
             # decision L177: run checked the clocks on the recording above (L170), the same numbers: no second line
             # decision E230: run said the intervals of dropped samples when it read the session (L77): not again
+            fuse = altitude
+            if fuse == "fused" and "waist" not in use:  # decision E339, as track's L154: no waist barometer tracked
+                if units is not None:
+                    raise DataError(f"run: --altitude fused reads the waist barometer (wBarometer.csv), which --units "
+                                    f"{units} leaves out: add waist to --units (--units foot,waist) or drop --altitude")
+                import logging
+
+                from pdrlearn.kernels.barometer import FUSED_WITHOUT_BAROMETER
+
+                logging.getLogger("pdrlearn.cli").warning("%s: %s", session.name, FUSED_WITHOUT_BAROMETER)
+                fuse = "foot"
+            if fuse == "fused" and "waist" in use and session.has("wBarometer") and len(session["wBarometer"]):
+                from pdrlearn.kernels.barometer import FUSED_EFFECT
+                from pdrlearn.track.barometer import usable_barometer
+
+                baro_lines: list[str] = []  # decision B188, as track's L154: an impossible pressure is not fused
+                if usable_barometer(session, baro_lines, FUSED_EFFECT) is None:
+                    import logging
+
+                    fuse = "foot"
+                    for line in baro_lines:
+                        logging.getLogger("pdrlearn.cli").warning("%s: %s", session.name, line)
             tracker = Tracker(bundle, heading_source=heading_source,  # decision E285
                               frames=frames_of(session, bundle, use), clock_check=False, stream_checks=False,
                               resample=resample_mode(resample, no_resample), rules=rules, min_confidence=min_confidence,
@@ -703,6 +742,7 @@ def run(
                               drop_neighbour=drop_neighbour,  # E101
                               cycling=not no_cycling,  # decision E304
                               length_reference=length_reference,  # decision C117
+                              altitude=fuse,  # decision E339
                               check_domain=True, warn_out_of_domain=warn_out_of_domain)  # decision E105
             from pdrlearn.classify.users import bundle_own_user
 
@@ -748,6 +788,9 @@ def run(
             _warn_short_streams(session, tracker, steps)
             source = f"session {session.name}"
         result = streamed_result(steps, start_ll, start_alt)
+        if tracker.foot_altitude_change_m is not None:  # decision E339: as track's L154 info (L145 / L127 read it)
+            result.info["altitude_source"] = "fused"
+            result.info["foot_altitude_change_m"] = tracker.foot_altitude_change_m
         if session is not None and "foot" in tracker.units:  # decision E293: track's rides (L378, L624), rides.csv
             from pdrlearn.track.rides import foot_rides
             from pdrlearn.track.units import with_left_out_units
@@ -1140,7 +1183,10 @@ def _summary(steps, tracker, lat, source, result, session, storey_height_m: floa
     out.update(time_accounting(result, session))  # decision L275, as track's summary (B14)
     # lat/lon with --start, as track's summary (without it track has none: no NaN keys either)
     geo = {k: v for k, v in out["final_position"].items() if k in ("lat", "lon") and np.isfinite(v)}
-    out["final_position"] = {**dict(zip("xyz", written_floats([float(v) for v in tracker.position]), strict=True)),
+    pos = [float(v) for v in tracker.position]
+    if tracker.foot_altitude_change_m is not None and len(result.trajectory):  # decision E339: the fused z, not the
+        pos[2] = float(result.trajectory["z"].iloc[-1])  # tracker's own (the foot's height)
+    out["final_position"] = {**dict(zip("xyz", written_floats(pos), strict=True)),
                              **geo}  # decision E157: at the CSVs' digits
     if session is not None:
         from pdrlearn.track.bouts import session_ids

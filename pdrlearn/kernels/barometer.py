@@ -119,6 +119,11 @@ class LiveAltitude:
                     return found
         return None
 
+    @property
+    def times(self) -> np.ndarray:
+        """The held samples' times (s; decision E339's holder reads how far the barometer was pushed)."""
+        return self._t
+
     def set_origin(self, t0: float) -> None:
         """The time the altitude is relative to (once)."""
         if self._origin_s is None:
@@ -332,6 +337,12 @@ class PlausibleWatch:
 WAIST_EFFECT = "z stays 0 with no floors counted"
 FOOT_EFFECT = "the foot altitude is not compared with it (L145)"
 FUSED_EFFECT = "the altitude is the foot's own, not fused with it (L154)"
+#: decision L154: the altitude sources of a foot track (``track --altitude``; E339: ``run --altitude``, the
+#: ``Tracker``'s ``altitude``): the strides' own height (the default) or fused with the waist barometer
+ALTITUDES = ("foot", "fused")
+#: decision L154's line for ``altitude="fused"`` on a session without the waist barometer (E339: also ``run``'s)
+FUSED_WITHOUT_BAROMETER = ("altitude \"fused\" needs the waist barometer (wBarometer.csv), which this session "
+                           "lacks: the altitude is the foot's own (L39 / the terrain classes)")
 
 
 def implausible_barometer_message(found: tuple[float, float, float, float, float],
@@ -606,6 +617,68 @@ def without_stair_climbs(climbing: np.ndarray, raw_dz: np.ndarray, length_m: np.
     return out
 
 
+class AltitudeFusion:
+    """Decision L154's filter over the strides, one stride at a time (decision E339: shared by :func:`fuse_altitude`
+    and the live :class:`~pdrlearn.runtime.Tracker`'s ``altitude="fused"``): :meth:`start` with the barometer's
+    altitude at the first stride's start, then :meth:`stride` per stride in walking order with its height change, its
+    end time and the barometer's altitude there (both relative to the first start, :func:`relative_altitude`); each
+    returns the fused height change. The model, the states and the options are :func:`fuse_altitude`'s."""
+
+    def __init__(self, *, level_dz_m: float = 0.10, climb_bias: bool = True, bias_mode: str = "scale"):
+        if bias_mode not in BIAS_MODES:
+            raise ValueError(f"bias_mode {bias_mode!r}: one of 'one', 'split', 'scale' (decision L502)")
+        self.level_dz_m, self.mode = float(level_dz_m), bias_mode
+        per = SCALE_REF_DZ_M if bias_mode == "scale" else 1.0  # L502: k's budgets are b's at a 0.10 m stride
+        self._bias_sd = FOOT_CLIMB_BIAS_SD_M / per if climb_bias else 0.0
+        self._step_sd = FOOT_CLIMB_BIAS_STEP_SD_M / per
+        # h = 0 and no slope at the start, w its prior, b (L478; L502: b_up or k) and L502's b_down their priors
+        # (0: off)
+        self.x = np.zeros(5)
+        self.p = np.diag([0.0, 0.0, BARO_WANDER_SD_M ** 2, self._bias_sd ** 2,
+                          self._bias_sd ** 2 * (bias_mode == "split")])
+        self.ref = 0.0  # the barometer's reference, moved by each transient
+        self.t_prev: float | None = None
+
+    _OBS = np.array([1.0, 0.0, 1.0, 0.0, 0.0])
+
+    def _update(self, z: float) -> None:
+        obs, x, p = self._OBS, self.x, self.p
+        s = obs @ p @ obs + BARO_NOISE_M ** 2
+        if abs(z - self.ref - obs @ x) > BARO_JUMP_SDS * np.sqrt(s):  # L154: a transient re-references the barometer
+            self.ref = z - obs @ x
+            return
+        k = p @ obs / s
+        self.x, self.p = x + k * (z - self.ref - obs @ x), p - np.outer(k, obs @ p)
+
+    def start(self, t0: float, b0: float) -> None:
+        """The first stride's start ``t0`` (s) and the barometer's altitude there ``b0`` (m)."""
+        self._update(b0)
+        self.t_prev = float(t0)
+
+    def stride(self, d: float, t1: float, b: float, climbing: bool = False) -> float:
+        """One stride: its height change ``d`` (m, after L39 / the class rules; non-finite as 0), its end ``t1`` (s)
+        and the barometer's altitude there ``b`` (m); ``climbing`` (L564): not level whatever its |d|. Returns its
+        fused height change (m)."""
+        d = float(np.nan_to_num(d))
+        level = abs(d) < self.level_dz_m and not climbing
+        mode = self.mode
+        a = np.exp(-max(float(t1 - self.t_prev), 0.0) / BARO_WANDER_TAU_S)  # the wander decorrelates
+        climb = float(not level and self._bias_sd > 0.0)
+        down = climb * float(mode == "split" and d < 0.0)  # L502: a descending stride's own bias
+        up = climb - down
+        f = np.eye(5)
+        f[0, 1], f[2, 2], f[0, 4] = float(level), a, down
+        f[0, 3] = up * d if mode == "scale" else up  # L502: dz (1 + k) flips the correction with dz's sign
+        h0 = self.x[0]
+        self.x = f @ self.x + np.array([d, 0.0, 0.0, 0.0, 0.0])
+        self.p = f @ self.p @ f.T + np.diag([FOOT_STRIDE_SD_M ** 2, SLOPE_STEP_SD_M ** 2 * level,
+                                             BARO_WANDER_SD_M ** 2 * (1.0 - a * a), self._step_sd ** 2 * up,
+                                             self._step_sd ** 2 * down])
+        self._update(b)
+        self.t_prev = float(t1)
+        return float(self.x[0] - h0)
+
+
 def fuse_altitude(dz: np.ndarray, start_s: np.ndarray, end_s: np.ndarray, baro_t: np.ndarray,
                   baro_hpa: np.ndarray, *, level_dz_m: float = 0.10, climb_bias: bool = True,
                   bias_mode: str = "scale", climbing: np.ndarray | None = None) -> np.ndarray:
@@ -634,43 +707,11 @@ def fuse_altitude(dz: np.ndarray, start_s: np.ndarray, end_s: np.ndarray, baro_t
     if not len(d):
         return d
     b = relative_altitude(baro_t, baro_hpa, np.concatenate([[t0[0]], t1]))
-    level = np.abs(d) < level_dz_m
-    if climbing is not None:  # decision L564: inside a barometric climb no stride is level
-        level &= ~np.asarray(climbing, dtype=bool).ravel()
-    on, mode = bool(climb_bias), bias_mode
-    if mode not in BIAS_MODES:
-        raise ValueError(f"bias_mode {mode!r}: one of 'one', 'split', 'scale' (decision L502)")
-    per = SCALE_REF_DZ_M if mode == "scale" else 1.0  # L502: k's budgets are b's at a 0.10 m stride
-    bias_sd = FOOT_CLIMB_BIAS_SD_M / per if on else 0.0
-    step_sd = FOOT_CLIMB_BIAS_STEP_SD_M / per
-    # h = 0 and no slope at the start, w its prior, b (L478; L502: b_up or k) and L502's b_down their priors (0: off)
-    x = np.zeros(5)
-    p = np.diag([0.0, 0.0, BARO_WANDER_SD_M ** 2, bias_sd ** 2, bias_sd ** 2 * (mode == "split")])
-    obs = np.array([1.0, 0.0, 1.0, 0.0, 0.0])
+    climb = np.zeros(len(d), dtype=bool) if climbing is None else np.asarray(climbing, dtype=bool).ravel()
+    kf = AltitudeFusion(level_dz_m=level_dz_m, climb_bias=climb_bias, bias_mode=bias_mode)  # decision E339: shared
     h = np.zeros(len(d) + 1)
-
-    ref = 0.0  # the barometer's reference, moved by each transient
-
-    def update(x, p, z, ref):
-        s = obs @ p @ obs + BARO_NOISE_M ** 2
-        if abs(z - ref - obs @ x) > BARO_JUMP_SDS * np.sqrt(s):
-            return x, p, z - obs @ x
-        k = p @ obs / s
-        return x + k * (z - ref - obs @ x), p - np.outer(k, obs @ p), ref
-
-    x, p, ref = update(x, p, b[0], ref)
-    t_prev = t0[0]
+    kf.start(t0[0], b[0])
     for i in range(len(d)):
-        a = np.exp(-max(float(t1[i] - t_prev), 0.0) / BARO_WANDER_TAU_S)  # the wander decorrelates
-        climb = float(not level[i] and bias_sd > 0.0)
-        down = climb * float(mode == "split" and d[i] < 0.0)  # L502: a descending stride's own bias
-        up = climb - down
-        f = np.eye(5)
-        f[0, 1], f[2, 2], f[0, 4] = float(level[i]), a, down
-        f[0, 3] = up * d[i] if mode == "scale" else up  # L502: dz (1 + k) flips the correction with dz's sign
-        x = f @ x + np.array([d[i], 0.0, 0.0, 0.0, 0.0])
-        p = f @ p @ f.T + np.diag([FOOT_STRIDE_SD_M ** 2, SLOPE_STEP_SD_M ** 2 * level[i],
-                                   BARO_WANDER_SD_M ** 2 * (1.0 - a * a), step_sd ** 2 * up, step_sd ** 2 * down])
-        x, p, ref = update(x, p, b[i + 1], ref)
-        h[i + 1], t_prev = x[0], t1[i]
+        kf.stride(d[i], t1[i], b[i + 1], bool(climb[i]))
+        h[i + 1] = kf.x[0]
     return np.diff(h)

@@ -105,6 +105,7 @@ from pdrlearn.kernels.window import (
     stride_hole_line,
 )
 from pdrlearn.runtime.baro_check import BaroCheck
+from pdrlearn.runtime.baro_fusion import FusedRows
 from pdrlearn.runtime.bundle import Bundle, load_bundle, waist_only_hint
 from pdrlearn.runtime.classify import StepGraph, TaskClassifier
 from pdrlearn.runtime.clip_watch import ClipWatch, full_scales
@@ -524,6 +525,13 @@ class Tracker(OwnGuard, FixInput):
         ``full_scale``): clipping is judged at them (samples within 5 % of the range). Decision E303: with
         ``check_input`` and ``stream_checks``, each IMU stream's 10 s blocks are checked for clipping (B77 / B311, or
         at the declared range) and stuck axes (B455): one line per stream, and per stream and axis, in ``warnings``.
+    altitude : ``"foot"`` (default: the strides' own height, as ``pdrlearn track``'s default) or ``"fused"``
+        (decision E339: L154's fusion with the pushed waist barometer, ``track --altitude fused``'s filter,
+        :class:`~pdrlearn.kernels.barometer.AltitudeFusion`; ``pdrlearn run --altitude fused``): a row is returned
+        once the barometer was pushed about a second past its end (W89's window; or its declared end, or the other
+        streams 2 s further, or :meth:`flush`), with its fused ``dz_m`` and ``z``. Needs wBarometer among the
+        tracked units' sensors (refused otherwise); declared ``sensors`` without it keep the foot's height with
+        L154's line. Not carried over by ``restart_state`` (a resumed tracker fuses anew from its first row).
     gait : decision E320: keep every returned stride's gait values (:class:`pdrlearn.runtime.gait.StrideGait`,
         numpy only; needs ``contacts=True``: a stride time is initial contact to initial contact):
         :meth:`gait_strides` per stride, :meth:`gait_summary` the session's (with the other foot's tracker, the
@@ -593,6 +601,7 @@ class Tracker(OwnGuard, FixInput):
     _repeats: RepeatedLines | None = None
     _gait_log: StrideGait | None = None  # decision E320 (a bare Tracker.__new__: none kept)
     _toe_off: LiveToeOff | None = None  # decision E326 (likewise)
+    _fused: FusedRows | None = None  # decision E339 (likewise: the foot's own altitude)
 
     def __init__(
         self,
@@ -639,6 +648,7 @@ class Tracker(OwnGuard, FixInput):
         cycling: bool = True,
         full_scale: dict | None = None,
         gait: bool = False,
+        altitude: str = "foot",
     ):
         self._busy = new_guard()  # decision E231: push / flush one thread at a time
         start_xyz = enu_start(start, start_enu_m)  # decision L159
@@ -710,6 +720,9 @@ class Tracker(OwnGuard, FixInput):
         #: decision E232: L145's foot-vs-barometer check (a foot track pushed a barometer, run's line at flush)
         self._baro = (BaroCheck(baro) if baro is not None and "foot" in self.units and self.stream_checks
                       else None)
+        self._fused = self._fusion(altitude, sensors, stream_ends_s)  # decision E339
+        if self._fused is not None:  # E339: L145's live check reads the foot's z; a fused track's is run's summary's
+            self._baro = None
         #: decision B131: [first s, last s, steps, index in warnings, the line last logged (B473)]
         self._posture: list | None = None
         self._turn_tally: list | None = None  # decisions C89 / C94: [TurnTally, index of its line in warnings]
@@ -1015,6 +1028,32 @@ class Tracker(OwnGuard, FixInput):
         if line:
             self._warn(line)
 
+    def _fusion(self, altitude: str, sensors, ends) -> FusedRows | None:
+        """Decision E339: the barometric altitude's holder for ``altitude="fused"`` (None for ``"foot"``)."""
+        from pdrlearn.kernels.barometer import ALTITUDES, FUSED_WITHOUT_BAROMETER
+
+        if altitude not in ALTITUDES:
+            raise DataError(f"altitude={altitude!r} is not one of {', '.join(ALTITUDES)} (foot: the strides' own "
+                            "height; fused: with the waist barometer, decisions L154, E339)")
+        if altitude == "foot":
+            return None
+        if "wBarometer" not in self.used_sensors:  # as `track --units foot --altitude fused`
+            raise DataError(f"altitude='fused' reads the waist barometer (wBarometer), which the tracked units "
+                            f"({'+'.join(self.units)}) of bundle {self.bundle.path} do not use: track the foot and "
+                            "the waist unit, or altitude='foot' (decision E339)")
+        if sensors is not None and "wBarometer" not in sensors:  # decision L154's line: the foot's own height
+            self._warn(FUSED_WITHOUT_BAROMETER)
+            return None
+        return FusedRows("wBarometer", end_s=(ends or {}).get("wBarometer"),
+                         wait_s=float(self.bundle.manifest["displacement"].get("max_wait_s", 2.0)))
+
+    @property
+    def foot_altitude_change_m(self) -> float | None:
+        """Decision E339: with ``altitude="fused"``, the foot's own altitude change (m) over the rows returned, of
+        which at least one was fused (``track``'s ``info["foot_altitude_change_m"]``, L154); else None."""
+        f = self._fused
+        return None if f is None or not f.n_fused else float(f.foot_change_m)
+
     def restart_state(self) -> dict:
         """What a new tracker needs to go on where this one stands (decision L134): ``Tracker(bundle,
         resume=tracker.restart_state())`` measures the stride in progress whole, as this tracker would have; a
@@ -1285,6 +1324,12 @@ class Tracker(OwnGuard, FixInput):
                 self._rides.push(*samples[self._rides.name])
             if self._baro is not None and self._baro.name in samples:  # decision E232
                 self._baro.push(*samples[self._baro.name])
+            if self._fused is not None and self._fused.name in samples:  # decision E339
+                found = self._fused.push(*samples[self._fused.name])
+                if found is not None:  # decision B188, as the offline track: one line, not fused from then on
+                    from pdrlearn.kernels.barometer import FUSED_EFFECT, implausible_barometer_message
+
+                    self._warn(implausible_barometer_message(found, FUSED_EFFECT.replace("own,", "own from then on,")))
         for msg in self._frozen.push(checked, fast):  # decision B120: a frozen sensor, one warning per run
             self._warn(msg)
         if self._frozen_foot is not None:  # decision B213: B203's frozen foot IMU, live
@@ -1311,6 +1356,8 @@ class Tracker(OwnGuard, FixInput):
             if line is not None:
                 self._warn(line)
         steps = self._process_ready()
+        if self._fused is not None:  # decision E339: the rows whose barometric altitude is known, fused
+            steps = self._fused.rows(steps, self._latest)
         # a push that completes steps returns them first, and the next push feeds its foot samples to the
         # push-time levelling (decision E21) and trims (decision E15); pushes in chunks of a stride or more
         # complete a step nearly every time, so trim anyway once the buffers hold twice buffer_s (bounded
@@ -1746,6 +1793,8 @@ class Tracker(OwnGuard, FixInput):
         self._detect()
         steps = self._process_ready(force=True)
         steps += self._release(self._loops.flush())  # decision E280: the last strides, judged on what is known
+        if self._fused is not None:  # decision E339: every held row, on the barometer pushed
+            steps = self._fused.rows(steps, self._latest, final=True)
         self._log_pedal()
         self._trim()
         self.height_checks()  # decision E47: the end of a recording

@@ -9,11 +9,12 @@ import logging
 import numpy as np
 
 from pdrlearn.errors import DataError
+from pdrlearn.kernels.barometer import ALTITUDES, FUSED_WITHOUT_BAROMETER
 
 log = logging.getLogger("pdrlearn.track")
 
-#: decision L154: the altitude sources of the foot pipeline, and the default (not adopted: the foot's own)
-ALTITUDES = ("foot", "fused")
+#: decision L154: the default altitude source of the foot pipeline (not adopted: the foot's own); the sources are
+#: :data:`pdrlearn.kernels.barometer.ALTITUDES` (decision E339: shared with the runtime)
 DEFAULT_ALTITUDE = "foot"
 
 
@@ -50,8 +51,7 @@ def apply_altitude(result, session, altitude: str, raw_dz: np.ndarray | None = N
     if altitude != "fused" or not len(steps):
         return
     if not (session.has("wBarometer") and len(session["wBarometer"])):
-        msg = ("altitude \"fused\" needs the waist barometer (wBarometer.csv), which this session lacks: the altitude "
-               "is the foot's own (L39 / the terrain classes)")
+        msg = FUSED_WITHOUT_BAROMETER  # decision E339: run's too
         result.info.setdefault("warnings", []).append(msg)
         log.warning("%s: %s", session.where, msg)
         return
