@@ -443,7 +443,9 @@ def summarize(d: np.ndarray, worst: list[str], unit: str) -> dict:
     ok = np.isfinite(d)
     out = d[ok] > STEP_THRESHOLD
     names = [w for w, o, k in zip(worst, d > STEP_THRESHOLD, ok, strict=True) if o and k and w]
-    top = max(set(names), key=names.count) if names else None
+    # the most frequent; a tie goes to the first name in sorted order (session 52, I3: max over a set followed the
+    # string hash, so summary.json's feature changed with PYTHONHASHSEED)
+    top = min(set(names), key=lambda w: (-names.count(w), w)) if names else None
     return {"unit": unit, "n_steps": int(ok.sum()), "n_out": int(out.sum()),
             "fraction": float(out.mean()) if ok.any() else None,
             "max_score": float(d[ok].max()) if ok.any() else None,
