@@ -132,6 +132,7 @@ def scheduler():
         yield cluster.scheduler_address
 
 
+@pytest.mark.extended  # D57: test_run_cohort_isolates_failures_serial_and_dask still runs Dask = serial by default
 def test_train_all_dask_equals_serial(cohort, scheduler, tmp_path, capsys):
     args = ["--tasks", "terrain", "--methods", "heuristic,svm", "--cv", "3", "--json"]
     # exit code 1: one user failed, the others completed and the summary is written

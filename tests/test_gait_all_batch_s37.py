@@ -77,6 +77,7 @@ def serial(study, tmp_path_factory) -> Path:
     return out
 
 
+@pytest.mark.extended  # D57: test_gait_all_warnings_c129's --jobs 2 run still equals the serial one by default
 def test_gait_all_jobs_writes_the_serial_runs_bytes_c115(study, serial, tmp_path):
     out = tmp_path / "par"
     rc, err = _run(study, "--out", out, "--jobs", "2")

@@ -60,6 +60,7 @@ def test_reanchored_product_stays_a_rotation_for_an_hour(per_sample):
 
 
 @pytest.mark.slow
+@pytest.mark.extended  # D57: test_runtime_stream's push-time levelling = incremental=False, E27's hour of products
 def test_a_15_minute_walk_streams_the_same_as_the_shared_kernel():
     """A long walk of strides at 20 Hz pushed in 1 s chunks: the default (incremental) tracker equals
     ``incremental=False`` within 1e-9 m on every stride (before decision E27 it crashed after 7-8 minutes
@@ -121,7 +122,10 @@ def scenario_d(tmp_path_factory):
     return root
 
 
-@pytest.mark.parametrize("chunk_s", [0.05, 0.1, 0.2, 0.3])
+# D57: 0.1 s (E28's case: the sample at 1.3 s) by default; the other chunk sizes in `make test-all`
+@pytest.mark.parametrize("chunk_s", [pytest.param(0.05, marks=pytest.mark.extended), 0.1,
+                                     pytest.param(0.2, marks=pytest.mark.extended),
+                                     pytest.param(0.3, marks=pytest.mark.extended)])
 def test_run_chunks_put_every_sample_in_one_push(scenario_d, tmp_path, capsys, chunk_s):
     """Decision E28: ``pdrlearn run --chunk-s`` on scenario D: chunk bounds on a float grid put the sample at
     1.3 s (0.1 s chunks) into two pushes ("pushed timestamps are not increasing"); on integer chunk indices

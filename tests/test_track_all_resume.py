@@ -49,14 +49,6 @@ def _run(*args: str) -> tuple[int, str, str]:
 
 
 @pytest.fixture(scope="module")
-def reference(study, tmp_path_factory) -> Path:
-    """An uninterrupted run."""
-    out = tmp_path_factory.mktemp("ref") / "o"
-    assert _run(study, "--out", out)[0] == 1
-    return out
-
-
-@pytest.fixture(scope="module")
 def tracked(study, tmp_path_factory) -> tuple[Path, Path]:
     """A copy of the study and its uninterrupted run, made once for the tests that each tracked such a copy first
     (decision D54): ``(root, out)``, read-only (:func:`first_run` hands each test its own state)."""
@@ -68,12 +60,19 @@ def tracked(study, tmp_path_factory) -> tuple[Path, Path]:
 
 
 @pytest.fixture
-def first_run(study, tracked, tmp_path) -> tuple[Path, Path]:
+def restored(study, tracked) -> tuple[Path, Path]:
     """:func:`tracked`'s copy of the study restored (an earlier test edited it; it stays at its path, which the
-    sessions' resume keys hold) and a copy of its run in ``tmp_path / "o"``: the state a test's own first run left."""
+    sessions' resume keys hold) and its uninterrupted run, read-only: ``(root, out)``."""
     root, out = tracked
     shutil.rmtree(root)
     shutil.copytree(study, root)
+    return root, out
+
+
+@pytest.fixture
+def first_run(restored, tmp_path) -> tuple[Path, Path]:
+    """:func:`restored`'s study and a copy of its run in ``tmp_path / "o"``: the state a test's own first run left."""
+    root, out = restored
     shutil.copytree(out, tmp_path / "o")
     return root, tmp_path / "o"
 
@@ -84,7 +83,10 @@ def _files(folder: Path) -> dict[str, bytes]:
             if p.is_file() and p.name != "run.json"}
 
 
-def test_a_killed_batch_resumes_and_writes_the_uninterrupted_tables(study, reference, tmp_path):
+def test_a_killed_batch_resumes_and_writes_the_uninterrupted_tables(restored, tmp_path):
+    """The uninterrupted run it is compared with is :func:`tracked`'s, of the same (restored) study folder (decision
+    D58: it tracked the study a second time for itself)."""
+    study, reference = restored
     out = tmp_path / "o"
     env = {**os.environ, "PYTHONPATH": str(REPO), "OMP_NUM_THREADS": "1"}
     proc = subprocess.Popen([sys.executable, "-m", "pdrlearn", "track-all", "--no-plot", str(study), "--out", str(out)],
