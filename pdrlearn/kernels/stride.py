@@ -610,16 +610,19 @@ def stride_gap_yaw(levelled: Levelled, heading_source: str, stream: Callable[[st
         long_stop_turn(stream, prev_end, t0) if stop_turn is None else stop_turn)
 
 
-def waist_bridge_yaw(stream: Callable[[str], tuple[np.ndarray, np.ndarray]], t0: float, t1: float) -> float:
+def waist_bridge_yaw(stream: Callable[[str], tuple[np.ndarray, np.ndarray]], t0: float, t1: float, *,
+                     gap_line: bool = True) -> float:
     """Decision L91: the waist's turn (rad, CCW) over ``[t0, t1]`` (s), an interval the foot gyroscope did not
     record (it overlaps a foot gap over 1 s, B11): :func:`gap_yaw` of ``wGyroscope`` / ``wAccelerometer`` over the
-    whole interval, ungated as L61 (:data:`WAIST_GAP_STILL_RAD_S`); 0 when ``t1 <= t0``. Decision E348: an
-    interval of the waist gyroscope over :data:`WAIST_GAP_S` (its own gap) adds no turn, not the straight line of
-    the rate between the two pelvic-rotation instants around it (trial s52t1: -41.9 deg over a 3 s straight walk)."""
+    whole interval, ungated as L61 (:data:`WAIST_GAP_STILL_RAD_S`); 0 when ``t1 <= t0``. Across the waist
+    gyroscope's own gap the trapezoid draws a straight line of the rate between the samples around it (W389, E299).
+    ``gap_line=False`` (decision E348's candidate, measured and not adopted: straight walks median |error| 30.77 ->
+    1.98 deg, but gaps inside a curve 14.84 -> 57.46 deg): an interval over :data:`WAIST_GAP_S` adds no turn."""
     if not t1 > t0:
         return 0.0
     return gap_yaw(*stream("wGyroscope"), *stream("wAccelerometer"), float(t0), float(t1),
-                   still_rad_s=WAIST_GAP_STILL_RAD_S, max_s=float(t1) - float(t0), max_dt_s=WAIST_GAP_S)
+                   still_rad_s=WAIST_GAP_STILL_RAD_S, max_s=float(t1) - float(t0),
+                   max_dt_s=None if gap_line else WAIST_GAP_S)
 
 
 #: Heading sources of a streamed stride: the foot's attitude change from rest to rest, the waist's

@@ -358,8 +358,8 @@ def calibration_record(displacement: dict) -> dict | None:
 #: decision L91's clause of a long foot gap's line (the waist heads the strides), and E299's when the waist gyroscope
 #: has its own gap there (a later wGyroscope gap rewrites the first into the second: review R3 F5)
 _L91_TURN = "turns with the waist gyroscope (L91)"
-_E299_TURN = ("turns by the waist gyroscope's samples either side of its own gap, none across it (decision E348): a "
-              "turn inside it is not measured, every later stride's heading may be off by that turn (decision E299)")
+_E299_TURN = ("turns by a straight line across the waist gyroscope's own gap, a turn inside it not measured: every "
+              "later stride's heading may be off by that turn (decision E299)")
 
 
 def heading_gap_line(a: float, b: float) -> str:
