@@ -117,7 +117,13 @@ def export(
             raise DataError(f"export {model_dir}: a waist calibration has no classifiers; drop --methods / "
                             "--length-bounds / --float32 / --units")
         return _export_waist(model_dir, out, frame, force, as_json)
-    if frame is not None:
+    if frame is not None:  # decision E349: a misspelt calibration file is no model directory
+        if not Path(model_dir).exists():
+            raise DataError(f"export --frame: {model_dir}: no such file; --frame exports a waist calibration, the "
+                            "PARAMS.json `pdrlearn calibrate` wrote: check the file's name")
+        if not Path(model_dir).is_dir():
+            raise DataError(f"export --frame: {model_dir} is not a waist calibration (a JSON file whose \"pipeline\" "
+                            "is a waist pipeline, `pdrlearn calibrate`'s PARAMS.json): give that file")
         raise DataError(f"export --frame: only for a waist calibration; {model_dir} is a model directory, whose "
                         "bundle records its training sessions' frames")
     refused = bundle_refusal(model_dir)  # decision L780: a runtime bundle is exported already

@@ -21,6 +21,10 @@ CADENCE_RANGE_SPM, SPEED_RANGE_MPS = (70.0, 160.0), (0.5, 2.5)
 #: simulated festinating walks of W100 read 0.6-0.7 m/s on the uncalibrated waist), while the uncalibrated waist reads
 #: fast-cadence walks short (the session-27 trial: 1.95 m/s at 200 steps/min for a true 3.33 m/s)
 RUNNING_FIRST_SPEED_MPS = 1.5
+#: decision L123: the speed L95 judges is the straight strides' median (L79) when there are at least this many; a
+#: stride turning on the spot covers little ground at a walking cadence (the trial's 360-deg spins: median 0.16
+#: m/s over all strides, 0.73 m/s straight, distance +0.81 %). Here since E350 (the live Tracker judges it too)
+MIN_STRAIGHT_FOR_RANGE = 5
 
 
 def reference_leg_m() -> float:
@@ -80,3 +84,45 @@ def running_stride(length_m: float, stride_s: float, leg_m: float | None = None)
         return False
     cad, speed = (float(v[0]) for v in cadence_speed(np.array([length_m]), np.array([stride_s])))  # L66
     return range_side(cad, speed, leg_m) == "fast" and fast_gait(cad, speed, leg_m) == "running"
+
+
+def validated_text(leg_m: float | None, leg_source: str | None = None) -> str:
+    """Decisions L95 / L148: the ranges the pipelines are validated on, as L95's line says them (the leg-scaled ones
+    too for a known ``leg_m``, from ``leg_source``); offline ``track``'s line and the live Tracker's (E350) share it."""
+    cad_range, speed_range = gait_ranges(leg_m)  # decision L148
+    text = (f"the pipelines are validated on walking at {CADENCE_RANGE_SPM[0]:.0f}-{CADENCE_RANGE_SPM[1]:.0f} "
+            f"steps/min and {SPEED_RANGE_MPS[0]:g}-{SPEED_RANGE_MPS[1]:g} m/s (decision L95)")
+    if leg_m is not None:
+        text += (f", for the {leg_m:.2f} m leg of {leg_source or 'meta.json'} "
+                 f"{cad_range[0]:.0f}-{cad_range[1]:.0f} steps/min and {speed_range[0]:.2f}-{speed_range[1]:.2f} "
+                 f"m/s (scaled to a {reference_leg_m():.2f} m adult leg by dynamic similarity, Hof 1996; "
+                 "decision L148)")
+    return text
+
+
+def slow_words() -> str:
+    """Decision L95: what the line of a walk below the range says before :func:`validated_text`."""
+    return "this is slower than the walking the pipelines were validated on: "
+
+
+def streamed_slow_line(cadence_spm, speed_mps, straight, *, leg_m: float | None = None) -> str | None:
+    """Decision E350: offline ``track``'s L95 line for a walk below the range (:func:`range_side` "slow"), on a
+    stream's strides: ``cadence_spm`` / ``speed_mps`` (B,) each stride's (NaN: none), ``straight`` (B,) bool (L79:
+    level and turning under 15 deg). The speed judged is the straight strides' median when there are
+    :data:`MIN_STRAIGHT_FOR_RANGE` of them (L123), else all strides'; None inside the range, above it (E325 flags a
+    running stride) or with neither figure. The line ends with what a streamed track cannot trust (offline's words
+    for a streamed track)."""
+    cad = np.asarray(cadence_spm, dtype=float)
+    speed = np.asarray(speed_mps, dtype=float)
+    straight = np.asarray(straight, dtype=bool) & np.isfinite(speed)
+    c = float(np.median(cad[np.isfinite(cad)])) if np.isfinite(cad).any() else None
+    if int(straight.sum()) >= MIN_STRAIGHT_FOR_RANGE:  # decision L123
+        v, what = float(np.median(speed[straight])), "straight-walking speed"
+    else:
+        v, what = (float(np.median(speed[np.isfinite(speed)])) if np.isfinite(speed).any() else None), "speed"
+    if range_side(c, v, leg_m) != "slow":
+        return None
+    figs = ", ".join([*([f"median cadence {c:.0f} steps/min"] if c is not None else []),
+                      *([f"{what} {v:.2f} m/s"] if v is not None else [])])
+    return (f"{figs}: {slow_words()}{validated_text(leg_m)}; the distance, the terrain / direction / length classes "
+            "and the floors are not reliable")

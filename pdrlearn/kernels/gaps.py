@@ -75,10 +75,12 @@ def gap_lines(gaps: dict[str, list[tuple[float, float]]], consequence: str) -> l
 
 
 def gap_warnings(gaps: dict[str, list[tuple[float, float]]],
-                 consequence: str = "no displacement is counted inside them") -> list[str]:
+                 consequence: str = "no displacement is counted inside them", *,
+                 fix: str = "re-record or trim the session") -> list[str]:
     """One warning per group of streams with the same gaps: the count, the longest gap and ``consequence``
-    (what the pipeline does about them; decision B34)."""
-    return gap_lines(gaps, f"{consequence} - re-record or trim the session")
+    (what the pipeline does about them; decision B34), then ``fix`` (decision E349: a live tracker's own, where a
+    stream cannot be re-recorded)."""
+    return gap_lines(gaps, f"{consequence} - {fix}")
 
 
 def cut_contacts_at_gaps(start_s: np.ndarray, end_s: np.ndarray, has_next: np.ndarray,

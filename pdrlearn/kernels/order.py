@@ -40,3 +40,10 @@ def repeats_dropped_line(where: str, count: str) -> str:
     ``where`` names the push, ``count`` the attribute that counts them."""
     return (f"{where}: dropping samples whose timestamp repeats one already taken (the first is kept; "
             f"drop_duplicate_timestamps=True, decision E203); the count is {count}")
+
+
+def reorder_hint() -> str:
+    """Decision E349: the fix a live tracker's refusal of samples out of time order names: the runtime's jitter
+    buffer (:class:`pdrlearn.runtime.Reorderer`, decision E296), which puts a link's late packets back in order."""
+    return ("or put pdrlearn.runtime.Reorderer(hold_s=...) between the link and the tracker: it releases each "
+            "sensor's samples in time order, a packet overtaken by a later one put back in place (decision E296)")

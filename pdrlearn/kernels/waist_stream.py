@@ -38,6 +38,14 @@ def rule_contacts(settings: dict | None = None):
     return offline
 
 
+def live_gap_fix() -> str:
+    """Decision E349: what a live waist tracker does at a gap over B11's 1 s (:class:`Bridge`), the end of its gap
+    line in place of the offline "re-record or trim the session" (a live stream cannot be either)."""
+    return ("the live tracker goes on: each gap is filled as a rest (no turn counted inside it: the heading is kept "
+            "across it, a turn inside it is missed), the walking sequence ends at it and the steps resume with the "
+            "first contact after it (decisions W59, B11); check the heading after the longest one")
+
+
 class Bridge:
     """Decision W59: the dropped samples of a pushed stream bridged as the offline detector's input is
     (:func:`pdrlearn.waist.ahrs.body_data`, decision W34), so that ``online`` equals ``detect``: an interval

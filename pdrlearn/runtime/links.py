@@ -12,6 +12,7 @@ import math
 
 from pdrlearn.errors import ClockWentBack, DataError
 from pdrlearn.kernels.counter_wrap import live_wrap
+from pdrlearn.kernels.order import reorder_hint
 
 #: decision E224 (ours, not from a document): a repeated E115 pause / resume line is written at most once per this many
 #: seconds of stream time (5 min: an hour's waist pausing on every packet writes about 24 lines, not 20 000); every
@@ -263,8 +264,8 @@ def order_error(name: str, t0: float, last: float, *, duplicate: bool, max_lag_s
             f"samples {where} and the same Tracker goes on (ClockWentBack.offset_s; decision E227)", unit,
             off, beside)  # decision E235: always the offset the line names, never None
     return DataError(f"{head}; a packet that arrived late? a sample older than the stream's newest is refused (the "
-                     "push is refused and the tracker unchanged): push each unit's samples in the order it sent them"
-                     f"{note}")
+                     "push is refused and the tracker unchanged): push each unit's samples in the order it sent them, "
+                     f"{reorder_hint()}{note}")  # decision E349
 
 
 __all__ = ["REPEAT_WARN_S", "STILL_S", "RepeatedLines", "StartClocks", "order_error", "unit_of"]

@@ -18,11 +18,13 @@ from __future__ import annotations
 import functools
 import logging
 import math
+from collections import deque
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
+from pdrlearn.decision_refs import decision_ref
 from pdrlearn.errors import DataError, InternalError, ModelError, VerticalAxisError
 from pdrlearn.kernels import carried_yaw as _carried_yaw
 from pdrlearn.kernels import distance as _distance
@@ -49,9 +51,10 @@ from pdrlearn.kernels.distance import (
 )
 from pdrlearn.kernels.fixes import wrap_angle
 from pdrlearn.kernels.frames import DIRECTIONS
-from pdrlearn.kernels.gait_range import running_stride
+from pdrlearn.kernels.gait_range import running_stride, streamed_slow_line
+from pdrlearn.kernels.gait_values import cadence_speed
 from pdrlearn.kernels.gaps import MIN_GAP_S, drop_stride_disp, streamed_drops_line
-from pdrlearn.kernels.order import first_out_of_order, repeated, repeats_dropped_line
+from pdrlearn.kernels.order import first_out_of_order, reorder_hint, repeated, repeats_dropped_line
 from pdrlearn.kernels.stride import (
     DEFAULT_DOWN_MODE,
     DOWN_MODES,
@@ -556,6 +559,8 @@ class Tracker(OwnGuard, FixInput):
     _pedal_line: list | None = None  # decision E280: [spans, index in warnings]
     _foot_gaps: list | tuple = ()
     _heading_gaps: list | tuple = ()  # decision E299: the waist gyroscope's gaps over 1 s, the latest 16
+    _range_rows: deque | tuple = ()  # decision E350: the latest strides' cadence, speed and straightness
+    _slow_said = False  # decision E350: flush's L95 line said
     _l91_lines: list | tuple = ()  # E299 amended (R3 F5): (start, end, index in warnings) of foot lines saying L91
     _drop_ref: tuple | None = None  # decision L167 (a bare Tracker.__new__ has no clean stride yet)
     _session_length = None  # decision C117 (a bare Tracker.__new__: the model's length class)
@@ -1223,8 +1228,8 @@ class Tracker(OwnGuard, FixInput):
         if (ring is not None and t0 <= ring.last) or (n > 1 and not (t[1:] > t[:-1]).all()):
             prev = f" after {ring.last:.3f} s" if ring is not None else ""
             raise DataError(
-                f"{name}: pushed timestamps are not increasing (at {t0:.3f} s{prev}); push samples in time order"
-            )
+                f"{name}: pushed timestamps are not increasing (at {t0:.3f} s{prev}); push samples in time order, "
+                f"{reorder_hint()}")  # decision E349
         if ring is None:
             ring = self._buf[name] = Ring(v.shape[1])
             self._oldest = min(self._oldest, t0)
@@ -1741,7 +1746,7 @@ class Tracker(OwnGuard, FixInput):
                        f"order: unwrap each pod's counter before pushing, pdrlearn.runtime.CounterUnwrapper(bits="
                        f"{w[0]}, tick_s={w[1]:g}) (decision E297)")
             raise DataError(f"{name}: pushed timestamps are not increasing (at {t[i]:.3f} s after {t[i - 1]:.3f} s); "
-                            f"push samples in time order{dup}")
+                            f"push samples in time order{dup or ', ' + reorder_hint()}")  # decision E349
         return t, v
 
     def _feed_foot(self) -> None:
@@ -1811,6 +1816,7 @@ class Tracker(OwnGuard, FixInput):
         self._warn_unused_fixes()  # decision D21
         self._warn_out_of_domain()  # decision E105
         self._warn_turning_lengths()  # decisions C89 / C94
+        self._slow_line()  # decision E350
         if self._carry:  # decision L134
             steps, self._carry = [*self._carry, *steps], []
         if self._gait_log is not None:  # decision E320
@@ -2031,6 +2037,8 @@ class Tracker(OwnGuard, FixInput):
                 step.stride_time_s = d
         if prev is not None and not step.impossible and self._running(step, prev):  # decision E325
             step.flags = (*step.flags, "running")
+        if prev is not None and not step.impossible:  # decision E350: L95's figures of the stream, judged at flush
+            self._note_range(step, prev)
         self._kept = (step.end_s, step.heading_rad, (step.x, step.y, step.z),  # L97: a zeroed stride ends none
                       (step.start_s, step.end_s, math.nan if step.impossible else step.event_s))
         self._row_gaps = [g for g in self._row_gaps if g[1] > step.end_s]
@@ -2513,14 +2521,41 @@ class Tracker(OwnGuard, FixInput):
         return False
 
     @staticmethod
-    def _running(step: Step, prev: tuple) -> bool:
-        """Decision E325: L95 / W144's running rule (:func:`~pdrlearn.kernels.gait_range.running_stride`) on the
-        emitted ``step``'s IC-to-IC stride time (E51), else the time from the previous emitted stride's start (``prev``:
-        its start, end, IC) to its own (L66 / L80's kernel with the starts as the events)."""
+    def _stride_s(step: Step, prev: tuple) -> float:
+        """Decision E325: the emitted ``step``'s IC-to-IC stride time (E51), else the time from the previous emitted
+        stride's start (``prev``: its start, end, IC) to its own (L66 / L80's kernel with the starts as the events)."""
         d = step.stride_time_s
         if d != d:
             d = float(stride_times((prev[0], step.start_s), (prev[1], step.end_s), (prev[0], step.start_s))[1])
-        return running_stride(step.length_m, d)
+        return d
+
+    @staticmethod
+    def _running(step: Step, prev: tuple) -> bool:
+        """Decision E325: L95 / W144's running rule (:func:`~pdrlearn.kernels.gait_range.running_stride`) on the
+        stride time :meth:`_stride_s`."""
+        return running_stride(step.length_m, Tracker._stride_s(step, prev))
+
+    def _note_range(self, step: Step, prev: tuple) -> None:
+        """Decision E350: the emitted ``step``'s cadence, speed (L66, :meth:`_stride_s`) and whether it is straight
+        (L79: level, its own turn under 15 deg), the latest 4096 strides (over an hour of walking), for
+        :meth:`flush`'s L95 line (:func:`~pdrlearn.kernels.gait_range.streamed_slow_line`)."""
+        if not isinstance(self._range_rows, deque):  # a bare Tracker.__new__ or a restart state: from here on
+            self._range_rows = deque(maxlen=4096)
+        cad, speed = cadence_speed(np.array([step.length_m]), np.array([self._stride_s(step, prev)]))
+        turn = step.turn_angle_rad
+        self._range_rows.append((float(cad[0]), float(speed[0]), bool(
+            turn == turn and abs(turn) < _turn_length.STRAIGHT_MAX_RAD and abs(step.dz_m) < _distance.LEVEL_DZ_M)))
+
+    def _slow_line(self) -> None:
+        """Decision E350: offline ``track``'s L95 line for a walk below the range, on the strides :meth:`_note_range`
+        kept (said once, at :meth:`flush`)."""
+        if self._slow_said or not self._range_rows:
+            return
+        cad, speed, straight = zip(*self._range_rows, strict=True)
+        line = streamed_slow_line(cad, speed, straight)
+        if line:
+            self._slow_said = True
+            self._warn(f"{line} ({decision_ref('L95', 'E350')})")
 
     def _swing_hole(self, t0: float, t1: float) -> float:
         """Decision L674: the longest hole (s) in the foot accelerometer / gyroscope input times of the stride

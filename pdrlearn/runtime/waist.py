@@ -293,23 +293,25 @@ class WaistStream(OwnGuard, FixInput):
             log.warning("live waist tracker: %s", msg)
         self.n_dropped_duplicates += n
 
-    def _check_order(self, t: np.ndarray, index: np.ndarray) -> None:
+    def _check_order(self, t: np.ndarray, index: np.ndarray, *, where: str = "push", last: float | None = None) -> None:
         """Decision E203: one line naming the first sample of the push that does not increase strictly - from the
         previous push's last sample, or from the sample before it in this push - and the fix. ``t`` the kept samples'
-        times, ``index`` their indices in the pushed array (the line names those: a dropped repeat shifts no index)."""
-        k = first_out_of_order(t, self._last_t)
+        times, ``index`` their indices in the pushed array (the line names those: a dropped repeat shifts no index).
+        ``where`` / ``last``: the method and its stream's last time (decision E349: ``push_barometer``'s own)."""
+        last = self._last_t if last is None else last
+        k = first_out_of_order(t, last)
         if k is None:
             return
         i, now = int(index[k]), float(t[k])
-        before = float(t[k - 1]) if k else float(self._last_t)  # a dropped repeat before it has prev's time
+        before = float(t[k - 1]) if k else float(last)  # a dropped repeat before it has prev's time
         fix = ("pass drop_duplicate_timestamps=True to drop repeated samples (the first kept, as 'pdrlearn import "
                "--drop-duplicate-timestamps')" if now == before else "sort the samples by time before pushing")
         what = "repeats" if now == before else "goes back from"
         if k == 0:
-            raise DataError(f"{self._name}.push: timestamps must increase strictly across pushes (seconds): this "
+            raise DataError(f"{self._name}.{where}: timestamps must increase strictly across pushes (seconds): this "
                             f"push's {'first sample' if i == 0 else f'sample {i}'} (t={now:.6f} s) {what} the previous "
-                            f"push's last (t={self._last_t:.6f} s); {fix}")
-        raise DataError(f"{self._name}.push: timestamps must increase strictly (seconds): sample {i} of this push "
+                            f"push's last (t={last:.6f} s); {fix}")
+        raise DataError(f"{self._name}.{where}: timestamps must increase strictly (seconds): sample {i} of this push "
                         f"(t={now:.6f} s) {what} sample {i - 1} (t={before:.6f} s); {fix}")
 
     @one_call_at_a_time  # decision E241
@@ -331,8 +333,13 @@ class WaistStream(OwnGuard, FixInput):
             return
         if not np.isfinite(t).all():
             raise DataError(f"{self._name}.push_barometer: NaN or inf timestamps; drop those samples")
-        if first_out_of_order(t, self._baro_last) is not None:
-            raise DataError(f"{self._name}.push_barometer: timestamps must increase strictly across pushes (seconds)")
+        keep = ~repeated(t, [self._baro_last]) if self._drop_dups else np.ones(t.size, dtype=bool)  # E203 (E349)
+        self._check_order(t[keep], np.flatnonzero(keep), where="push_barometer", last=self._baro_last)  # E349
+        if not keep.all():
+            t, p = t[keep], p[keep]
+            self._count_repeats(int((~keep).sum()))
+            if not t.size:
+                return
         self._baro_last = float(t[-1])
         if self._alt is None:
             self._alt = LiveAltitude()
@@ -499,11 +506,12 @@ class WaistStream(OwnGuard, FixInput):
 
     def _gap_warnings(self) -> None:
         from pdrlearn.kernels.gaps import gap_warnings
+        from pdrlearn.kernels.waist_stream import live_gap_fix
 
         gaps = self._proc.gaps.get("online stream", [])
         new = gaps[self._n_gaps:]
         self._n_gaps = len(gaps)
-        for w in gap_warnings({"wAccelerometer, wGyroscope": new}):
+        for w in gap_warnings({"wAccelerometer, wGyroscope": new}, fix=live_gap_fix()):  # decision E349
             self.warnings.append(w)
             log.warning("live waist tracker: %s", w)
 
@@ -844,8 +852,9 @@ class WaistTracker(WaistStream):
         on the bundled HA001 Test11 recording the two agree on 79 of the 80 contacts both decide (E103)
     drop_duplicate_timestamps : drop a pushed sample whose timestamp equals the one before it (in the same push or the
         previous push's last), keeping the first, as ``pdrlearn import --drop-duplicate-timestamps`` does for a file
-        (decision E203: a phone app repeats samples routinely); counted in ``n_dropped_duplicates``, one warning line.
-        Off (the default): such a push is refused with one line naming the sample and this option
+        (decision E203: a phone app repeats samples routinely; the barometer's ``push_barometer`` too, decision
+        E349); counted in ``n_dropped_duplicates``, one warning line. Off (the default): such a push is refused
+        with one line naming the sample and this option
     """
 
     def __init__(self, bundle, *, fs: float | None = None, start=(0.0, 0.0), heading_rad: float = 0.0,

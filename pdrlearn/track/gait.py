@@ -31,12 +31,15 @@ import pandas as pd
 from pdrlearn.kernels.contact import MAX_STRIDE_S, TOUCH_S, stride_times  # noqa: F401
 from pdrlearn.kernels.gait_range import (  # noqa: F401  (decision E325: the lean kernels, re-exported)
     CADENCE_RANGE_SPM,
+    MIN_STRAIGHT_FOR_RANGE,
     RUNNING_FIRST_SPEED_MPS,
     SPEED_RANGE_MPS,
     fast_gait,
     gait_ranges,
     range_side,
     reference_leg_m,
+    slow_words,
+    validated_text,
 )
 
 # decision E320: cadence / speed and the finite median, numpy only, shared with the lean runtime's gait values
@@ -640,10 +643,7 @@ def trimmed_gait_summary(steps: pd.DataFrame, cadence_from: str | None = None) -
     return out
 
 
-#: decision L123: the speed L95 judges is the straight strides' median (L79) when there are at least this many; a
-#: stride turning on the spot covers little ground at a walking cadence (the trial's 360-deg spins: median 0.16
-#: m/s over all strides, 0.73 m/s straight, distance +0.81 %)
-MIN_STRAIGHT_FOR_RANGE = 5
+# decision L123's MIN_STRAIGHT_FOR_RANGE: in pdrlearn.kernels.gait_range (E350: the live Tracker judges it too)
 
 
 def leg_length(meta: dict | None) -> dict:
@@ -722,15 +722,7 @@ def race_walk_case(summary: dict, info: dict, gait: str) -> bool:
 
 
 def _validated(summary: dict, leg: float | None) -> str:
-    cad_range, speed_range = gait_ranges(leg)  # decision L148
-    text = (f"the pipelines are validated on walking at {CADENCE_RANGE_SPM[0]:.0f}-{CADENCE_RANGE_SPM[1]:.0f} "
-            f"steps/min and {SPEED_RANGE_MPS[0]:g}-{SPEED_RANGE_MPS[1]:g} m/s (decision L95)")
-    if leg is not None:
-        text += (f", for the {leg:.2f} m leg of {summary.get('leg_length_source') or 'meta.json'} "
-                 f"{cad_range[0]:.0f}-{cad_range[1]:.0f} steps/min and {speed_range[0]:.2f}-{speed_range[1]:.2f} "
-                 f"m/s (scaled to a {reference_leg_m():.2f} m adult leg by dynamic similarity, Hof 1996; "
-                 "decision L148)")
-    return text
+    return validated_text(leg, summary.get("leg_length_source"))  # decisions L95 / L148 (E350: shared)
 
 
 def _straight_judged(summary: dict) -> bool:
@@ -842,7 +834,7 @@ def gait_range_warning(summary: dict) -> str | None:
     gait = fast_gait(cad, speed, leg, gait_speed)
     race = side == "fast" and race_walk_case(summary, info, gait) and not info.get("step_count_unusable")  # W549
     what = (RACE_WALK_GAITS if race else FAST_GAITS[gait][0] if side == "fast"
-            else "this is slower than the walking the pipelines were validated on: ")
+            else slow_words())
     if side == "fast" and info.get("step_count_unusable"):  # decision W442: the contacts are not steps here
         what = ("no gait to name: the lower back's contacts are no step count here (the steps are too small or too "
                 "slow to count, decision W442), so this cadence is not the walker's: ")
