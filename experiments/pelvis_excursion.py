@@ -22,7 +22,7 @@ from pdrlearn.kernels import waist as K
 from pdrlearn.waist.params import DEFAULT_K
 
 
-def _gain(s: np.ndarray, h: np.ndarray, leg: float) -> np.ndarray:
+def gain(s: np.ndarray, h: np.ndarray, leg: float) -> np.ndarray:
     g = K.pendulum_length(h, leg)  # seed 003 eq. 1, K = 1, F = 0
     return np.where(g > 0, s / np.maximum(g, 1e-9), np.nan)
 
@@ -71,7 +71,7 @@ def sim_rows(users: range, speed: str, bounce: str, rate_hz: float, user_fn=None
         hp = st["h_m"].to_numpy(float)[keep]
         s_at = np.interp(mid[keep], 0.5 * (inner[:-1] + inner[1:]), s)
         s_all.append(s), ht_all.append(h), hp_all.append(hp)
-        gt_all.append(_gain(s, h, p.leg_m)), gp_all.append(_gain(s_at, hp, p.leg_m))
+        gt_all.append(gain(s, h, p.leg_m)), gp_all.append(gain(s_at, hp, p.leg_m))
         walked = float(np.sum(np.linalg.norm(np.diff(xy, axis=0), axis=1)))
         ratio.append(res.distance_m / walked)
     cat = np.concatenate
@@ -80,14 +80,16 @@ def sim_rows(users: range, speed: str, bounce: str, rate_hz: float, user_fn=None
             "ratio": np.median(ratio), "ratio_min": np.min(ratio), "ratio_max": np.max(ratio), "n": len(ratio)}
 
 
-def real_rows(external: Path) -> list[tuple[str, dict]]:
+def real_rows(external: Path, pattern: str = "mobgap_*_Test5_*") -> list[tuple[str, dict]]:
+    """Per INDIP reference bout of the recordings ``pattern`` matches under ``external`` (S73: Test5; W618: every
+    mobgap test): s (bout length / detected steps), the pipeline's median h, the gain and the uncalibrated ratio."""
     from pdrlearn.io.plasys import read_session
     from pdrlearn.track.waist import track_waist
     from pdrlearn.waist.evaluate import reference_bouts, steps_in_interval
     from pdrlearn.waist.params import resolve_params
 
     rows = []
-    for folder in sorted(external.glob("mobgap_*_Test5_*")):
+    for folder in sorted(external.glob(pattern)):
         ses = read_session(folder)
         p, _ = resolve_params(ses, None)
         res = track_waist(ses, pipeline="waist-pendulum", params=p)
@@ -98,7 +100,7 @@ def real_rows(external: Path) -> list[tuple[str, dict]]:
             hp = st["h_m"].to_numpy(float)[m]
             s = float(b.length_m) / max(int(m.sum()), 1)
             rows.append((f"{folder.name}@{b.start_s:.0f}s", {
-                "s": s, "h_pipe": float(np.median(hp)), "gain_pipe": float(np.nanmedian(_gain(np.full(len(hp), s),
+                "s": s, "h_pipe": float(np.median(hp)), "gain_pipe": float(np.nanmedian(gain(np.full(len(hp), s),
                                                                                                hp, p.leg_m))),
                 "ratio": float(st["length_m"].to_numpy(float)[m].sum() / b.length_m), "leg": p.leg_m,
                 "n": int(m.sum())}))
