@@ -1838,7 +1838,8 @@ class Tracker(OwnGuard, FixInput):
     def _moving(self, at_s: float) -> bool:
         """Decision E345: L611's rest test at one instant on the buffered foot accelerometer (L621's live reading)."""
         t, acc = self._stream("fAccelerometer")
-        return bool(_lull.moving_at(t, acc, at_s, self._foot_rest.g_rest)[0])
+        i, j = np.searchsorted(t, (at_s - 2 * _pedal.REST_WINDOW_S, at_s + 2 * _pedal.REST_WINDOW_S))  # the test's
+        return bool(_lull.moving_at(t[i:j], acc[i:j], at_s, self._foot_rest.g_rest)[0])  # samples and a margin
 
     def _pitched(self, t0: float, t1: float) -> bool:
         """Decision B474: whether the foot rests at the window's start pitched more than 45 deg further from level than
