@@ -1,8 +1,9 @@
-"""Decision E345 (session 52, FE; trial s52t1): a slow stair stride's swing lull is no stance.
+"""Decision E345 (session 52, FE; trial s52t1): a slow stair stride's swing lull is no stance - an option
+(``{"stance_lull_join": 1}``; not adopted as the default by E347's rule, see docs/decisions/export.md).
 
-The streamed segmenter (gyroscope alone) took the middle of a slow stair swing for a stance and cut the stride in two
-halves whose heights reverse: L611 dropped them as "cycling", the descent halves read "up, backward". The strides
-either side of a boundary where L611's own rest test finds no rest, between two rests, are now one stride, in
+The streamed segmenter (gyroscope alone) takes the middle of a slow stair swing for a stance and cuts the stride in two
+halves whose heights reverse: L611 drops them as "cycling", the descent halves read "up, backward". With the option
+the strides either side of a boundary where L611's own rest test finds no rest, between two rests, are one stride, in
 ``track --streaming`` and the live ``Tracker`` alike (``kernels.lull``)."""
 
 from __future__ import annotations
@@ -18,6 +19,8 @@ from pdrlearn.kernels.lull import join_lulls, joins, moving_at
 from pdrlearn.kernels.stride import StanceSegmenter
 
 ROOT = Path(__file__).resolve().parents[1]
+#: decision E345's option (track --streaming --params, a bundle's displacement)
+OPTION = {"stance_lull_join": 1}
 #: a short slow flight up and down, one step at a time (the trial's knobs: slow, 0.5 m steps of 0.65 s, 8 cm swing)
 ROUTE = "stand:2, up:4:0.17:0.28:step-to-step:slow, stand:1, turn:180, down:4:0.17:0.28:step-to-step:slow, stand:2"
 
@@ -47,13 +50,13 @@ def streamed(slow_stairs):
 
     logging.disable(logging.WARNING)
     try:
-        return track_plasys(slow_stairs, streaming=True, method="M2")
+        return track_plasys(slow_stairs, streaming=True, method="M2", params=OPTION)
     finally:
         logging.disable(logging.NOTSET)
 
 
 def test_the_lull_cut_is_joined_in_track_streaming_e345(slow_stairs, streamed):
-    """Before E345: 14 strides (4 cut in halves), the halves of the flights dropped as L611's cycling."""
+    """Without the option: 14 strides (4 cut in halves), the halves of the flights dropped as L611's cycling."""
     st, labels = streamed.steps, slow_stairs.steps
     assert len(st) == len(labels) == 10
     assert not any("cycling?" in w for w in streamed.info["warnings"])
@@ -70,7 +73,9 @@ def test_the_live_tracker_joins_the_same_strides_e345(slow_stairs, streamed):
     from pdrlearn.runtime import Tracker, load_bundle
     from tests.runtime_helpers import time_chunks
 
-    tr = Tracker(load_bundle(ROOT / "models" / "plasys-sim-default"), tasks=[], sensors=list(slow_stairs.streams))
+    bundle = load_bundle(ROOT / "models" / "plasys-sim-default")
+    bundle.manifest["displacement"].update(OPTION)  # as a bundle exported with the option
+    tr = Tracker(bundle, tasks=[], sensors=list(slow_stairs.streams))
     steps = []
     logging.disable(logging.WARNING)
     try:
@@ -84,10 +89,10 @@ def test_the_live_tracker_joins_the_same_strides_e345(slow_stairs, streamed):
     assert abs(steps[-1].z - float(st["dz_m"].sum())) < 1e-6
 
 
-def test_the_keyword_keeps_every_cut_and_a_crank_is_never_joined_e345(slow_stairs):
+def test_the_default_keeps_every_cut_and_a_crank_is_never_joined_e345(slow_stairs):
     gyr, acc = slow_stairs.streams["fGyroscope"], slow_stairs.streams["fAccelerometer"]
-    seg = StanceSegmenter.from_params({"stance_lull_join": 0})
-    assert not seg.lull_join and StanceSegmenter().lull_join
+    seg = StanceSegmenter.from_params({})
+    assert not seg.lull_join and StanceSegmenter.from_params(OPTION).lull_join  # E347: an option, off by default
     cut = np.array(seg.update(gyr.t, gyr.values))
     assert len(cut) == 14  # the segmenter's own strides: four strides cut at a lull
     joined = join_lulls(cut, acc.t, acc.values, 9.81, seg.max_step_s)

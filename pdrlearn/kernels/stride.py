@@ -175,10 +175,10 @@ class StanceSegmenter:
                  stance_gap_swing_frac: float = STANCE_L27_DEFAULTS["stance_gap_swing_frac"],
                  stance_gap_max_s: float = STANCE_L27_DEFAULTS["stance_gap_max_s"],
                  stance_rhythm_frac: float = FR.STREAMED_RHYTHM_FRAC, foot_gap_cut: bool = False,
-                 lull_join: bool = True):
+                 lull_join: bool = False):
         self.thr = float(stance_gyro_rad_s)
-        #: decision E345: the callers (``track --streaming``, the runtime) join two strides cut at a swing lull
-        #: (:mod:`pdrlearn.kernels.lull`); False (``{"stance_lull_join": 0}``) keeps every cut
+        #: decision E345 (an option, not adopted by E347's rule): True (``{"stance_lull_join": 1}``) makes the callers
+        #: (``track --streaming``, the runtime) join two strides cut at a swing lull (:mod:`pdrlearn.kernels.lull`)
         self.lull_join = bool(lull_join)
         self.foot_gap_cut = bool(foot_gap_cut)  # decision L715 (not adopted): the rhythm cut at the foot's own gap
         self.min_stance_s = float(min_stance_s)
