@@ -85,6 +85,7 @@ def test_the_live_tracker_joins_the_same_strides_e345(slow_stairs, streamed):
     finally:
         logging.disable(logging.NOTSET)
     st = streamed.steps
+    assert len(steps) == 10  # 14 without the option (the trial's run: halves dropped as cycling)
     assert [(s.start_s, s.end_s) for s in steps] == list(zip(st["start_s"], st["end_s"], strict=True))
     assert abs(steps[-1].z - float(st["dz_m"].sum())) < 1e-6
 
