@@ -174,8 +174,12 @@ class StanceSegmenter:
                  stance_mean_min_s: float = STANCE_L27_DEFAULTS["stance_mean_min_s"],
                  stance_gap_swing_frac: float = STANCE_L27_DEFAULTS["stance_gap_swing_frac"],
                  stance_gap_max_s: float = STANCE_L27_DEFAULTS["stance_gap_max_s"],
-                 stance_rhythm_frac: float = FR.STREAMED_RHYTHM_FRAC, foot_gap_cut: bool = False):
+                 stance_rhythm_frac: float = FR.STREAMED_RHYTHM_FRAC, foot_gap_cut: bool = False,
+                 lull_join: bool = False):
         self.thr = float(stance_gyro_rad_s)
+        #: decision E345 (an option, not adopted by E347's rule): True (``{"stance_lull_join": 1}``) makes the callers
+        #: (``track --streaming``, the runtime) join two strides cut at a swing lull (:mod:`pdrlearn.kernels.lull`)
+        self.lull_join = bool(lull_join)
         self.foot_gap_cut = bool(foot_gap_cut)  # decision L715 (not adopted): the rhythm cut at the foot's own gap
         self.min_stance_s = float(min_stance_s)
         self.half = float(stance_half_s)
@@ -226,7 +230,11 @@ class StanceSegmenter:
         finite number refused in one line naming its key)."""
         keys = ("stance_gyro_rad_s", "min_stance_s", "stance_half_s", "min_step_s", "max_step_s",
                 "stance_rhythm_frac", *STANCE_L27_DEFAULTS)  # L684; L120: stance_gap_swing_frac, stance_gap_max_s
-        return cls(**{k: _param_number(k, params[k]) for k in keys if k in params})
+        kw = {k: _param_number(k, params[k]) for k in keys if k in params}
+        if "stance_lull_join" in params:  # decision E345's switch: true / false or 1 / 0
+            v = params["stance_lull_join"]
+            kw["lull_join"] = bool(v) if isinstance(v, bool) else _param_number("stance_lull_join", v) != 0
+        return cls(**kw)
 
     def _gap_now(self) -> float:
         """Decision L120: the motion (s) the stance in progress survives: ``stance_gap_s``, or
@@ -361,6 +369,13 @@ class StanceSegmenter:
             return None
         end = 0.5 * (s0 + s1)
         return (start, end) if self._step_ok(end - start) else None
+
+    def may_open_at(self, start_s: float) -> bool:
+        """Decision E345: whether a stride starting at ``start_s`` (s, the end of a returned stride) may still be
+        returned: the stride in progress starts there, or the stance that ended the returned stride is still in
+        progress (it sets the next start when it ends)."""
+        return self.open_s == start_s or (self.open_s is None and self.last_boundary == start_s
+                                          and self.stance_start is not None)
 
     def _rhythm_rest(self, min_run: float) -> float:
         """Decision L684: the shortest stance (s) the foot's period asks, read from the trailing |w| means:

@@ -29,6 +29,7 @@ from pdrlearn.errors import DataError, InternalError, ModelError, VerticalAxisEr
 from pdrlearn.kernels import carried_yaw as _carried_yaw
 from pdrlearn.kernels import distance as _distance
 from pdrlearn.kernels import first_walk as _first_walk
+from pdrlearn.kernels import lull as _lull
 from pdrlearn.kernels import pedal as _pedal
 from pdrlearn.kernels import relative_length as _relative_length
 from pdrlearn.kernels import sideways as _sideways
@@ -1838,6 +1839,8 @@ class Tracker(OwnGuard, FixInput):
         if not self._pending:  # decision E280: held strides whose chain can no longer go on are judged
             return self._release(self._loops.expire(max(latest, stale), self._chain_quiet_s))
         while self._pending and (force or self._pending[0][1] + self._lookahead_s < max(latest, stale)):
+            if self._lull_wait(max(latest, stale), force):  # decision E345: its end may be a swing's lull
+                break
             if self._unchecked:  # decision B140: before the first step's window is cut
                 self._check_unpushed(*self._pending[0])
             t1 = self._pending[0][1]
@@ -1861,6 +1864,37 @@ class Tracker(OwnGuard, FixInput):
                 raise DataError(self._no_gravity(t0, t1)) from None
             out += self._release(self._loops.add(rec[3], (rec, snap)))
         return out
+
+    def _lull_wait(self, now: float, force: bool) -> bool:
+        """Decision E345 (:mod:`pdrlearn.kernels.lull`): True while the first pending stride must wait (its end's rest
+        is not readable yet, or its end is a lull and the stride after it is not known yet); a stride ending at a lull
+        is joined with the next (``track --streaming``'s :func:`~pdrlearn.kernels.lull.join_lulls`, pair by pair).
+        ``now``: the data's time (s) every stream has reached; ``force``: the end of the recording."""
+        seg = self.segmenter
+        if not seg.lull_join or "fAccelerometer" not in self._buf:
+            return False
+        a, b = self._pending[0]
+        reach = _pedal.REST_WINDOW_S  # L611's rest test reads the samples within this of the instant
+        if not force and now < b + reach:
+            return True
+        if not self._moving(b) or self._moving(a):
+            return False
+        if len(self._pending) < 2:  # the stride after it: still to come while the segmenter may return it
+            return not force and seg.may_open_at(b) and seg.last_t - b <= seg.max_step_s + 2 * seg.half + 1.0
+        nxt = self._pending[1]
+        if nxt[0] != b:
+            return False
+        if not force and now < nxt[1] + reach:
+            return True
+        if _lull.joins((a, b), nxt, False, True, self._moving(nxt[1]), seg.max_step_s):
+            self._pending[0:2] = [(a, nxt[1])]
+        return False
+
+    def _moving(self, at_s: float) -> bool:
+        """Decision E345: L611's rest test at one instant on the buffered foot accelerometer (L621's live reading)."""
+        t, acc = self._stream("fAccelerometer")
+        i, j = np.searchsorted(t, (at_s - 2 * _pedal.REST_WINDOW_S, at_s + 2 * _pedal.REST_WINDOW_S))  # the test's
+        return bool(_lull.moving_at(t[i:j], acc[i:j], at_s, self._foot_rest.g_rest)[0])  # samples and a margin
 
     def _pitched(self, t0: float, t1: float) -> bool:
         """Decision B474: whether the foot rests at the window's start pitched more than 45 deg further from level than

@@ -78,6 +78,7 @@ from pdrlearn.kernels.distance import (
 )
 from pdrlearn.kernels.first_walk import FirstWalk
 from pdrlearn.kernels.foot_rhythm import foot_period
+from pdrlearn.kernels.lull import join_lulls
 from pdrlearn.kernels.pedal import closed_loop_strides, pedal_line, ride_strides, seated_strides, unrested_strides
 from pdrlearn.kernels.spin import foot_gap_start, spin_line, spin_turn, turns_in_place
 from pdrlearn.kernels.window import (
@@ -2143,6 +2144,9 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     fine = SK.fine_spec(seg_params, streams.__getitem__, forward, rest_search_s=rest_search_s,  # decision L141
                         heading=step_heading)
     strides = SK.stance_strides(*streams["fGyroscope"], seg_params)
+    segmenter = SK.StanceSegmenter.from_params(seg_params)
+    if segmenter.lull_join and "fAccelerometer" in streams:  # decision E345: a slow stair swing's lull is no stance
+        strides = join_lulls(strides, *streams["fAccelerometer"], foot_rest_gravity(session), segmenter.max_step_s)
     spins = (turns_in_place(*streams["fAccelerometer"], *streams["fGyroscope"], strides[:, 0], strides[:, 1])
              if "fAccelerometer" in streams else np.zeros(len(strides), dtype=bool))  # decision L742, as the runtime
     # decision L742: each kept stride's (foot turn, end) of the turns in place left out since the stride before it
