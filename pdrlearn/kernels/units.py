@@ -568,6 +568,23 @@ def tilt_rate_ratio(acc_t: np.ndarray, acc: np.ndarray, gyro_t: np.ndarray, gyro
     return (rms_a / rms_g if rms_g > 0 else float("nan")), rms_g
 
 
+def check_tilt_rate(acc_t: np.ndarray, acc: np.ndarray, gyro_t: np.ndarray, gyro: np.ndarray, where: str,
+                    fix: str) -> float:
+    """Decision B40: refuse a gyroscope (``gyro``, read as rad/s) whose tilt rate is more than 1 / :data:`TILT_RATIO_MIN`
+    times the accelerometer's gravity-direction rate (:func:`tilt_rate_ratio`) while it tilts at over
+    :data:`TILT_GYRO_RMS_MIN` rad/s RMS: deg/s read as rad/s. One line naming ``where`` and ``fix``. Import runs it
+    (:func:`check_imu_pair`), and decision B476 ``read_session`` on a session folder's units. Returns the ratio
+    (NaN when too short to judge)."""
+    ratio, rms_tilt = tilt_rate_ratio(acc_t, acc, gyro_t, gyro)
+    if rms_tilt > TILT_GYRO_RMS_MIN and ratio < TILT_RATIO_MIN:  # decision B40
+        raise DataError(
+            f"{where}: the gyroscope says the unit tilts at {rms_tilt:.3g} rad/s (RMS) but the accelerometer's "
+            f"gravity direction turns {1 / ratio:.3g} times slower: the values look like deg/s read as rad/s "
+            f"(57.3 times too large); {fix}"
+        )
+    return ratio
+
+
 def check_imu_pair(acc_t: np.ndarray, acc: np.ndarray, gyro_t: np.ndarray, gyro: np.ndarray, placement: str,
                    where_acc: str, where_gyro: str, *, gyro_fix: str = "declare its unit",
                    acc_fix: str = "check its unit", gyro_big_fix: str = "declare its unit as deg/s") -> None:
@@ -594,13 +611,7 @@ def check_imu_pair(acc_t: np.ndarray, acc: np.ndarray, gyro_t: np.ndarray, gyro:
             f"(|acc| std {astd:.2g} m/s^2), far under a moving {placement}'s (over {bound:g} rad/s): the values "
             f"look like rad/s converted as deg/s (57.3 times too small); {gyro_fix}"
         )
-    ratio, rms_tilt = tilt_rate_ratio(acc_t, acc, gyro_t, gyro)
-    if rms_tilt > TILT_GYRO_RMS_MIN and ratio < TILT_RATIO_MIN:  # decision B40
-        raise DataError(
-            f"{where_gyro}: the gyroscope says the unit tilts at {rms_tilt:.3g} rad/s (RMS) but the accelerometer's "
-            f"gravity direction turns {1 / ratio:.3g} times slower: the values look like deg/s read as rad/s "
-            f"(57.3 times too large); {gyro_big_fix}"
-        )
+    check_tilt_rate(acc_t, acc, gyro_t, gyro, where_gyro, gyro_big_fix)  # decision B40
     fs = 1.0 / float(np.median(np.diff(gyro_t))) if gyro_t.size > 2 else 0.0
     if not fs > 0:
         return
