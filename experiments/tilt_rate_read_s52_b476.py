@@ -97,7 +97,8 @@ def main() -> None:
     with tempfile.TemporaryDirectory() as td:
         table = [row for f in real_folders() for row in rows(f, "real")]
         table += [row for f in simulated(Path(td)) for row in rows(f, "sim")]
-    print("| group | recording | unit | ratio | tilt RMS rad/s | refused | deg/s as rad/s: ratio | tilt RMS | refused |")
+    print("| group | recording | unit | ratio | tilt RMS rad/s | refused | deg/s as rad/s: ratio | tilt RMS | "
+          "refused |")
     print("|---|---|---|---|---|---|---|---|---|")
     for g, name, unit, r, rms, ref, r2, rms2, ref2 in table:
         print(f"| {g} | {name} | {unit} | {r:.3f} | {rms:.3g} | {'yes' if ref else 'no'} | {r2:.4f} | {rms2:.3g} | "
