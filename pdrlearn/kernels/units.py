@@ -552,7 +552,8 @@ def tilt_rate_ratio(acc_t: np.ndarray, acc: np.ndarray, gyro_t: np.ndarray, gyro
     """(RMS of the accelerometer's gravity-direction rate / RMS of the gyroscope's tilt rate, the latter in rad/s)
     over the recording, both averaged over :data:`TILT_WINDOW_S` (decision B40); ``(nan, nan)`` when too short.
     Decision B476: summed over blocks of ``block_rows`` averaged samples (each with its neighbours, so the rates are
-    those of the whole array), so that ``read_session`` of a day-long recording holds a block's arrays, not the day's."""
+    those of the whole array), so that ``read_session`` of a day-long recording holds a block's arrays, not the
+    day's."""
     fs = 1.0 / float(np.median(np.diff(gyro_t))) if gyro_t.size > 2 else 0.0
     w = int(round(TILT_WINDOW_S * fs)) if fs > 0 else 0
     if w < 2 or gyro.shape[0] < 4 * w:
