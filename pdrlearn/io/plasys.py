@@ -50,7 +50,7 @@ from pdrlearn.io.validate import (
 from pdrlearn.kernels.clock import stamp_jitter_s
 from pdrlearn.kernels.gaps import DROPS_CAUSE, gap_turn, streamed_drops_line  # decision E230: shared with the runtime
 from pdrlearn.kernels.rate_change import change_text, rate_changes
-from pdrlearn.kernels.units import data_row_lines, out_of_range, out_of_range_message
+from pdrlearn.kernels.units import check_tilt_rate, data_row_lines, out_of_range, out_of_range_message
 from pdrlearn.textfile import (
     compressed_hint,
     csv_stem,
@@ -557,6 +557,20 @@ def _to_stream(path: str | os.PathLike, name: str, arr: np.ndarray, time_scale: 
     if check_unit:
         _check_value_unit(path, name, values, t, declared)
     return Stream(name, t, values)
+
+
+def check_tilt_rates(streams: dict[str, Stream], files: dict[str, Path], units: tuple[str, ...] = ("waist",)) -> None:
+    """Decision B476: B40's tilt-rate test (:func:`pdrlearn.kernels.units.check_tilt_rate`, which ``pdrlearn import``
+    runs) on each of ``units`` of a session folder with both an accelerometer and a gyroscope: a gyroscope file in
+    deg/s without a declared unit is one line naming the file and the meta.json declaration that fixes it. The lower
+    back by default: a walking foot's gyroscope in deg/s is B30's already (p99 |rate| over 40, a walking foot's p99 is
+    >= 4.75 rad/s, B37), while the lower back's (0.57-2.35 rad/s) passes B30 until a turn."""
+    for unit in units:
+        acc_name, gyro_name = UNIT_IMU[unit]
+        if acc_name in streams and gyro_name in streams:
+            a, g = streams[acc_name], streams[gyro_name]
+            check_tilt_rate(a.t, a.values, g.t, g.values, str(files[gyro_name]),
+                            f"declare \"units\": {{\"{gyro_name}\": \"deg/s\"}} in meta.json (decisions B40, B476)")
 
 
 def _check_value_unit(path, name: str, values: np.ndarray, t: np.ndarray, declared: str | None) -> None:
@@ -1441,6 +1455,8 @@ def _read_session(folder, *, check_units, uniform_clock, bridge_drops, streamed,
         if r is not None:
             _check_declared_rate({n: streams[n] for n in names}, r, meta_path)
     apply_offsets(streams, clocks, meta_path)  # decision B115: each unit's clock onto the session's
+    if check_units:
+        check_tilt_rates(streams, files)  # decision B476: import's B40 test on the folder's units
     if spans not in ("refuse", "warn", "off", "common"):
         raise ValueError(f"spans={spans!r}: use 'refuse', 'warn', 'off' or 'common'")
     # decision B72: before a gap warning about a cut file; B81: "common" cuts the session instead of refusing

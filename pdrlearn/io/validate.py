@@ -276,6 +276,7 @@ def check_timestamps(t: np.ndarray, where: str, *, in_memory: bool = False, rese
                 f"--retime HZ` rather than dropping them (decision B468); if the rows repeat a sample, {duplicate_fix}")
         raise DataError(
             f"{where}: {dup.size} duplicate timestamp(s) (first at line {line(dup[0] + 1)}); {duplicate_fix}"
+            + _also_backwards(t, dt, line, backward_fix)
         )
     back = np.flatnonzero(~(dt > 0))  # NaN intervals count as backwards
     # decision B73: a clock reset (a few large backward jumps, increasing in between); sorting (the advice below)
@@ -295,8 +296,31 @@ def check_timestamps(t: np.ndarray, where: str, *, in_memory: bool = False, rese
                             "values[order])")
         raise DataError(
             f"{where}: timestamps go backwards {back.size} time(s) (first at line {line(back[0] + 1)}); "
-            + backward_fix
+            + backward_fix + _also_repeated(t, line, duplicate_fix)
         )
+
+
+def _also_backwards(t: np.ndarray, dt: np.ndarray, line, backward_fix: str) -> str:
+    """Decision B477: what a file's duplicate-timestamp line adds when its rows also go backwards (not at a clock
+    reset, B73's own line): both repairs in one line, so that a batch is not re-run once per problem."""
+    back = np.flatnonzero(dt < 0)
+    if not back.size or clock_resets(t).size:
+        return ""
+    return (f"; the timestamps also go backwards {back.size} time(s) (first at line {line(back[0] + 1)}): "
+            f"{backward_fix} too (decision B477)")
+
+
+def _also_repeated(t: np.ndarray, line, duplicate_fix: str) -> str:
+    """Decision B477: what a file's backward-timestamp line adds when, sorted, some rows repeat an earlier row's
+    timestamp (duplicates the rows out of order keep apart): both repairs in one line."""
+    finite = t[np.isfinite(t)]
+    n = finite.size - np.unique(finite).size
+    if not n:
+        return ""
+    _, first = np.unique(t, return_index=True)
+    again = np.setdiff1d(np.flatnonzero(np.isfinite(t)), first)  # rows whose timestamp an earlier row has
+    return (f"; {n} row(s) also repeat an earlier row's timestamp (first at line {line(int(again[0]))}): once "
+            f"sorted, {duplicate_fix} too (decision B477)")
 
 
 #: plausible native sampling rates of a body-worn sensor file (Hz): barometers log at >= 1 Hz, IMUs up to

@@ -547,25 +547,53 @@ WALKING_GYRO_P99 = {"foot": 0.5, "waist": 0.1}
 TILT_WINDOW_S, TILT_RATIO_MIN, TILT_GYRO_RMS_MIN = 0.5, 0.3, 0.5
 
 
-def tilt_rate_ratio(acc_t: np.ndarray, acc: np.ndarray, gyro_t: np.ndarray, gyro: np.ndarray) -> tuple[float, float]:
+def tilt_rate_ratio(acc_t: np.ndarray, acc: np.ndarray, gyro_t: np.ndarray, gyro: np.ndarray, *,
+                    block_rows: int = 1 << 16) -> tuple[float, float]:
     """(RMS of the accelerometer's gravity-direction rate / RMS of the gyroscope's tilt rate, the latter in rad/s)
-    over the recording, both averaged over :data:`TILT_WINDOW_S` (decision B40); ``(nan, nan)`` when too short."""
+    over the recording, both averaged over :data:`TILT_WINDOW_S` (decision B40); ``(nan, nan)`` when too short.
+    Decision B476: summed over blocks of ``block_rows`` averaged samples (each with its neighbours, so the rates are
+    those of the whole array), so that ``read_session`` of a day-long recording holds a block's arrays, not the
+    day's."""
     fs = 1.0 / float(np.median(np.diff(gyro_t))) if gyro_t.size > 2 else 0.0
     w = int(round(TILT_WINDOW_S * fs)) if fs > 0 else 0
     if w < 2 or gyro.shape[0] < 4 * w:
         return float("nan"), float("nan")
     k = np.ones(w) / w
-    a = np.column_stack([np.convolve(np.interp(gyro_t, acc_t, acc[:, j]), k, mode="valid") for j in range(3)])
-    om = np.column_stack([np.convolve(gyro[:, j], k, mode="valid") for j in range(3)])
-    norm = np.linalg.norm(a, axis=1)
-    if not np.all(norm > 0):
-        return float("nan"), float("nan")
-    g = a / norm[:, None]
-    dg = np.gradient(g, axis=0) * fs  # d g / dt of a world-fixed direction in the sensor frame = -w x g
-    pred = np.cross(om, g)
-    rms_g = float(np.sqrt(np.mean(np.sum(pred * pred, axis=1))))
-    rms_a = float(np.sqrt(np.mean(np.sum(dg * dg, axis=1))))
+    m = gyro.shape[0] - w + 1  # averaged samples ("valid" convolution)
+    sum_g = sum_a = 0.0
+    for j0 in range(0, m, max(int(block_rows), 2)):
+        j1 = min(j0 + max(int(block_rows), 2), m)
+        e0, e1 = max(j0 - 1, 0), min(j1 + 1, m)  # one averaged neighbour each side: np.gradient's central difference
+        sl = slice(e0, e1 + w - 1)
+        a = np.column_stack([np.convolve(np.interp(gyro_t[sl], acc_t, acc[:, i]), k, mode="valid") for i in range(3)])
+        om = np.column_stack([np.convolve(gyro[sl, i], k, mode="valid") for i in range(3)])
+        norm = np.linalg.norm(a, axis=1)
+        if not np.all(norm > 0):
+            return float("nan"), float("nan")
+        g = a / norm[:, None]
+        dg = np.gradient(g, axis=0)[j0 - e0:j1 - e0] * fs  # d g / dt of a world-fixed direction = -w x g
+        pred = np.cross(om[j0 - e0:j1 - e0], g[j0 - e0:j1 - e0])
+        sum_g += float(np.sum(pred * pred))
+        sum_a += float(np.sum(dg * dg))
+    rms_g, rms_a = math.sqrt(sum_g / m), math.sqrt(sum_a / m)
     return (rms_a / rms_g if rms_g > 0 else float("nan")), rms_g
+
+
+def check_tilt_rate(acc_t: np.ndarray, acc: np.ndarray, gyro_t: np.ndarray, gyro: np.ndarray, where: str,
+                    fix: str) -> float:
+    """Decision B40: refuse a gyroscope (``gyro``, read as rad/s) whose tilt rate is more than
+    1 / :data:`TILT_RATIO_MIN` times the accelerometer's gravity-direction rate (:func:`tilt_rate_ratio`) while it
+    tilts at over :data:`TILT_GYRO_RMS_MIN` rad/s RMS: deg/s read as rad/s. One line naming ``where`` and ``fix``.
+    Import runs it (:func:`check_imu_pair`), and decision B476 ``read_session`` on a session folder's lower back.
+    Returns the ratio (NaN when too short to judge)."""
+    ratio, rms_tilt = tilt_rate_ratio(acc_t, acc, gyro_t, gyro)
+    if rms_tilt > TILT_GYRO_RMS_MIN and ratio < TILT_RATIO_MIN:  # decision B40
+        raise DataError(
+            f"{where}: the gyroscope says the unit tilts at {rms_tilt:.3g} rad/s (RMS) but the accelerometer's "
+            f"gravity direction turns {1 / ratio:.3g} times slower: the values look like deg/s read as rad/s "
+            f"(57.3 times too large); {fix}"
+        )
+    return ratio
 
 
 def check_imu_pair(acc_t: np.ndarray, acc: np.ndarray, gyro_t: np.ndarray, gyro: np.ndarray, placement: str,
@@ -594,13 +622,7 @@ def check_imu_pair(acc_t: np.ndarray, acc: np.ndarray, gyro_t: np.ndarray, gyro:
             f"(|acc| std {astd:.2g} m/s^2), far under a moving {placement}'s (over {bound:g} rad/s): the values "
             f"look like rad/s converted as deg/s (57.3 times too small); {gyro_fix}"
         )
-    ratio, rms_tilt = tilt_rate_ratio(acc_t, acc, gyro_t, gyro)
-    if rms_tilt > TILT_GYRO_RMS_MIN and ratio < TILT_RATIO_MIN:  # decision B40
-        raise DataError(
-            f"{where_gyro}: the gyroscope says the unit tilts at {rms_tilt:.3g} rad/s (RMS) but the accelerometer's "
-            f"gravity direction turns {1 / ratio:.3g} times slower: the values look like deg/s read as rad/s "
-            f"(57.3 times too large); {gyro_big_fix}"
-        )
+    check_tilt_rate(acc_t, acc, gyro_t, gyro, where_gyro, gyro_big_fix)  # decision B40
     fs = 1.0 / float(np.median(np.diff(gyro_t))) if gyro_t.size > 2 else 0.0
     if not fs > 0:
         return

@@ -804,7 +804,7 @@ def _stair_walk_too_fast(summary: dict, speed: float | None) -> bool:
         gait_speed > gait_ranges(_leg(summary))[1][1]
 
 
-def gait_range_warning(summary: dict) -> str | None:
+def gait_range_warning(summary: dict, *, consequence: str | None = None) -> str | None:
     """Decision L95: one line when the summary's median cadence or speed (``median_speed_mps``, else
     ``gait_speed_mps``) lies outside :data:`CADENCE_RANGE_SPM` / :data:`SPEED_RANGE_MPS`; None inside (or with
     neither figure); decision L148: the ranges scaled to the summary's ``leg_length_m`` (:func:`gait_ranges`, a
@@ -814,7 +814,8 @@ def gait_range_warning(summary: dict) -> str | None:
     Decision L179: stair strides are not straight (:func:`_speed_fields`); with fewer straight strides than that and
     at least as many stair strides (``n_stair_strides``) no speed is judged, only the cadence.
     Decision W144: a cadence above the range at a speed inside it or below is named short fast steps (festination)
-    or running; "looks like running" needs the speed above the range (or a cadence unknown)."""
+    or running; "looks like running" needs the speed above the range (or a cadence unknown). ``consequence``
+    (decision W617, calibrate's line): what the line says follows, instead of what of a track is not reliable."""
     info = summary.get("info") or {}
     if info.get("step_count_unusable") and session_range_side(summary) != "fast":
         # decision W480: W442's contacts are no step count (W476 withholds their cadence): a line that is not
@@ -856,6 +857,8 @@ def gait_range_warning(summary: dict) -> str | None:
         extra += f"; {NO_HEIGHT_HINT}"
     fast_steps = side == "fast" and gait != "running" and \
         not info.get("step_count_unusable")  # decision C192: a fast cadence at a walking speed
+    if consequence is not None:  # decision W617: calibrate's own consequence
+        return f"{figs}: {what}{validated}; {consequence}"
     return f"{figs}: {what}{validated}; {_unreliable(summary, info, slow, fast_steps)}{extra}"
 
 

@@ -439,6 +439,24 @@ def fit_length_gain(sessions: list[Session], pipeline: str, spec: str, params: W
                "(decision W460); check the tracked sum")
 
 
+def fast_gait_line(gait: dict | None, meta: dict | None, pipeline: str) -> str | None:
+    """Decision W617: ``track``'s walking-range line (L95, leg-scaled by L148: :func:`pdrlearn.track.gait.
+    gait_range_warning`) on the calibration walks' gait (:func:`calibration_gait`: their median cadence and the known
+    distance over the counted steps' time), when it lies above the range (running, or short fast steps); None inside
+    or below it (a slow walker's 10 m walk test is what calibrate is for)."""
+    from pdrlearn.track.gait import gait_range_warning, leg_length, session_range_side
+
+    if not gait:
+        return None
+    summary = {"median_cadence_spm": gait.get("median_cadence_spm"), "gait_speed_mps": gait.get("speed_mps"),
+               **leg_length(meta), "pipeline": pipeline, "info": {"pipeline": pipeline, "params_source": "calibrated"}}
+    if session_range_side(summary) != "fast":
+        return None
+    return "the calibration walks' " + gait_range_warning(summary, consequence=(
+        "the step length is fitted on this gait, where the waist step-length models are not validated, and does not "
+        "carry over to walking: calibrate on a walk of known length at the walker's walking pace (decision W617)"))
+
+
 def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] | None = None,
               turns: float | None = None, fit_turns: bool = False, params=None, shrink: bool = False,
               tau_k: float | None = None, spans: list[tuple[float | None, float | None]] | None = None,
@@ -557,8 +575,10 @@ def calibrate(sessions: list[Session], pipeline: str, *, distances: list[float] 
     fitted, how = _fit_with_pivots(walks, pipeline, base, out)  # W150: the walks with the fitted pivot factors
     if pipeline == "waist-pendulum":
         out.k, out.k_shrinkage, shrunk = shrink_pendulum_gain(fitted, out.k, out.f_m, how, shrink=shrink, tau=tau_k)
-    for n in implausible + notes_count:
+    running = fast_gait_line(out.gait, sessions[0].meta, pipeline)  # decision W617: track's L95 line, the fast side
+    for n in implausible + notes_count + ([running] if running else []):
         log.warning("calibrate: %s", n)
+    out.notes += [running] if running else []
     out.notes += belt_notes  # decision W378
     if distances is not None:  # decision W21: the known length must span the counted steps
         out.notes += [f"--distance {w.distance_m:g} m counted over {len(w.f_hz)} steps, {w.name} (give the "
