@@ -7,17 +7,42 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from pdrlearn.kernels.pedal import closed_loop_strides, pedal_line, unrested_strides
+from pdrlearn.decision_refs import decision_ref
+from pdrlearn.kernels.pedal import closed_loop_strides, pedal_line, spans_of, unrested_strides
+
+
+def pedal_verdict(fd, foot, g_rest: float, *, stride_travel_m: float | None = 1.0) -> tuple[np.ndarray, np.ndarray]:
+    """Decisions L611 / L799: ``(loop, kept)``, (B,) bool over the strides of ``fd`` (a fitted
+    :class:`~pdrlearn.displace.foot.FootDisplacement`): ``loop`` those that go round a closed loop (their raw heights
+    reverse, or they are unrested; :func:`~pdrlearn.kernels.pedal.closed_loop_strides`) on the foot unit ``foot``
+    (``g_rest``: its rest reading, L621); ``kept`` those L611 alone would have marked that decision L799 keeps: level
+    strides travelling ``stride_travel_m`` (m) or more (None: L611 alone, ``kept`` all False)."""
+    dz, start, end = fd.disp_[:, 2], fd.start_s_, fd.end_s_
+    unrested = unrested_strides(foot.t, foot.acc, start, end, g_rest)
+    travel = np.hypot(fd.disp_[:, 0], fd.disp_[:, 1])
+    loop = closed_loop_strides(dz, start, end, unrested, travel, stride_travel_m=stride_travel_m)
+    if stride_travel_m is None:
+        return loop, np.zeros(len(loop), dtype=bool)
+    return loop, closed_loop_strides(dz, start, end, unrested, travel) & ~loop
 
 
 def pedal_loops(fd, foot, g_rest: float) -> np.ndarray:
-    """Decision L611: (B,) bool over the strides of ``fd`` (a fitted
-    :class:`~pdrlearn.displace.foot.FootDisplacement`) that go round a closed loop: their raw heights reverse, or
-    they are unrested (:func:`~pdrlearn.kernels.pedal.closed_loop_strides`), on the foot unit ``foot``; ``g_rest``:
-   the foot's rest reading (L621)."""
-    return closed_loop_strides(fd.disp_[:, 2], fd.start_s_, fd.end_s_,
-                               unrested_strides(foot.t, foot.acc, fd.start_s_, fd.end_s_, g_rest),
-                               np.hypot(fd.disp_[:, 0], fd.disp_[:, 1]))
+    """Decision L611 (L799: a level stride travelling 1 m or more is kept): the closed-loop strides of
+    :func:`pedal_verdict`."""
+    return pedal_verdict(fd, foot, g_rest)[0]
+
+
+def travelling_line(kept: np.ndarray, fd, stride_travel_m: float = 1.0) -> str | None:
+    """Decision L799: the line naming the strides :func:`pedal_verdict` kept (None: none)."""
+    if not np.any(kept):
+        return None
+    travel = np.hypot(fd.disp_[kept, 0], fd.disp_[kept, 1])
+    where = ", ".join(f"{a:.2f}-{b:.2f} s ({k})" for a, b, k in spans_of(kept, fd.start_s_, fd.end_s_))
+    return (f"{int(np.sum(kept))} stride(s) at {where} kept although the foot did not rest at their ends: each "
+            f"travelled {stride_travel_m:g} m or more on the level (median {float(np.median(travel)):.2f} m) - a "
+            "stride, not a pedal stroke (L611's cycling strides travel under 0.3 m and rise and fall); a contact too "
+            "short for the foot to rest, as in running, which the pipelines are not validated on "
+            f"({decision_ref('L799')})")
 
 
 #: decision L625: what ``pdrlearn steps`` does with the pedalling rows, for the line
