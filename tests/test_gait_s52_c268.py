@@ -32,7 +32,7 @@ def run():
 
 
 def test_flight_is_per_cycle_and_per_step_c268(run):
-    w, cyc = run["walk"], run["cycles"]
+    w = run["walk"]
     flight = 0.5 * CYCLE - STANCE  # one step's flight: a toe-off to the other foot's contact
     assert w["n_flight_cycles"] > 0
     assert w["flight_time_s"] == pytest.approx(2 * flight)  # per cycle: its two flights summed (L729, unchanged)

@@ -8,40 +8,53 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.decision_refs import decision_ref
-from pdrlearn.kernels.pedal import closed_loop_strides, pedal_line, spans_of, unrested_strides
+from pdrlearn.kernels.pedal import (
+    TRACK_REMOVED,
+    closed_loop_strides,
+    pedal_line,
+    spans_of,
+    travelling_strides,
+    unrested_strides,
+)
 
 
-def pedal_verdict(fd, foot, g_rest: float, *, stride_travel_m: float | None = 1.0) -> tuple[np.ndarray, np.ndarray]:
-    """Decisions L611 / L799: ``(loop, kept)``, (B,) bool over the strides of ``fd`` (a fitted
+def pedal_verdict(fd, foot, g_rest: float, *, keep_travelling: bool = False,
+                  stride_travel_m: float = 1.0) -> tuple[np.ndarray, np.ndarray]:
+    """Decisions L611 / L799: ``(loop, going)``, (B,) bool over the strides of ``fd`` (a fitted
     :class:`~pdrlearn.displace.foot.FootDisplacement`): ``loop`` those that go round a closed loop (their raw heights
     reverse, or they are unrested; :func:`~pdrlearn.kernels.pedal.closed_loop_strides`) on the foot unit ``foot``
-    (``g_rest``: its rest reading, L621); ``kept`` those L611 alone would have marked that decision L799 keeps: level
-    strides travelling ``stride_travel_m`` (m) or more (None: L611 alone, ``kept`` all False)."""
+    (``g_rest``: its rest reading, L621); ``going`` those of L611's that are level and travel ``stride_travel_m`` (m)
+    or more (:func:`~pdrlearn.kernels.pedal.travelling_strides`: a running stride's unrested ends, not a crank).
+    ``keep_travelling`` (L799's candidate, not adopted): ``loop`` leaves them out (they are kept)."""
     dz, start, end = fd.disp_[:, 2], fd.start_s_, fd.end_s_
     unrested = unrested_strides(foot.t, foot.acc, start, end, g_rest)
     travel = np.hypot(fd.disp_[:, 0], fd.disp_[:, 1])
-    loop = closed_loop_strides(dz, start, end, unrested, travel, stride_travel_m=stride_travel_m)
-    if stride_travel_m is None:
-        return loop, np.zeros(len(loop), dtype=bool)
-    return loop, closed_loop_strides(dz, start, end, unrested, travel) & ~loop
+    loop = closed_loop_strides(dz, start, end, unrested, travel)
+    if keep_travelling:
+        kept = closed_loop_strides(dz, start, end, unrested, travel, stride_travel_m=stride_travel_m)
+        return kept, loop & ~kept
+    return loop, loop & travelling_strides(dz, travel, stride_travel_m)
 
 
 def pedal_loops(fd, foot, g_rest: float) -> np.ndarray:
-    """Decision L611 (L799: a level stride travelling 1 m or more is kept): the closed-loop strides of
-    :func:`pedal_verdict`."""
+    """Decision L611: the closed-loop strides of :func:`pedal_verdict`."""
     return pedal_verdict(fd, foot, g_rest)[0]
 
 
-def travelling_line(kept: np.ndarray, fd, stride_travel_m: float = 1.0) -> str | None:
-    """Decision L799: the line naming the strides :func:`pedal_verdict` kept (None: none)."""
-    if not np.any(kept):
+def travelling_line(going: np.ndarray, fd, *, kept: bool = False, stride_travel_m: float = 1.0) -> str | None:
+    """Decision L799: the line naming the travelling strides ``going`` of :func:`pedal_verdict` - removed by L611
+    (``kept``: kept, L799's candidate) - as what they look like: a contact too short for the foot to rest (running),
+    not cycling (None: none)."""
+    if not np.any(going):
         return None
-    travel = np.hypot(fd.disp_[kept, 0], fd.disp_[kept, 1])
-    where = ", ".join(f"{a:.2f}-{b:.2f} s ({k})" for a, b, k in spans_of(kept, fd.start_s_, fd.end_s_))
-    return (f"{int(np.sum(kept))} stride(s) at {where} kept although the foot did not rest at their ends: each "
-            f"travelled {stride_travel_m:g} m or more on the level (median {float(np.median(travel)):.2f} m) - a "
-            "stride, not a pedal stroke (L611's cycling strides travel under 0.3 m and rise and fall); a contact too "
-            "short for the foot to rest, as in running, which the pipelines are not validated on "
+    travel = np.hypot(fd.disp_[going, 0], fd.disp_[going, 1])
+    where = ", ".join(f"{a:.2f}-{b:.2f} s ({k})" for a, b, k in spans_of(going, fd.start_s_, fd.end_s_))
+    done = "kept" if kept else f"not walking? {TRACK_REMOVED}"
+    undo = "" if kept else "; --no-cycling keeps them"
+    return (f"{int(np.sum(going))} stride(s) at {where} {done}: the foot did not rest at their ends, yet each "
+            f"travelled {stride_travel_m:g} m or more on the level (median {float(np.median(travel)):.2f} m) - not "
+            "cycling (L611's pedal strokes travel under 0.3 m and rise and fall) but strides whose contact was too "
+            f"short for the foot to rest, as in running, which the pipelines do not support{undo} "
             f"({decision_ref('L799')})")
 
 

@@ -1063,7 +1063,7 @@ def _without_pedalling(fd: FootDisplacement, fd_kw: dict, foot, strides: pd.Data
     rest integrated again (nothing changes without them); ``g_rest``: the foot's rest reading (L621). Decision L639:
     so is a stride longer than ``RIDE_STRIDE_CAPS`` of the foot's stride cap (L605), with every detection inside it,
     unless it overlaps one of ``foot_gaps`` (B11's 0 m row). ``cycling=False`` (decision E304): no L611 check.
-    Decision L799: a level stride travelling 1 m or more is kept, with a line of its own.
+    Decision L799: L611's level strides travelling 1 m or more get a line of their own (running's, not cycling's).
     Returns (fd, strides, warning lines)."""
     from pdrlearn.track.pedalling import pedal_verdict, travelling_line
 
@@ -1072,10 +1072,11 @@ def _without_pedalling(fd: FootDisplacement, fd_kw: dict, foot, strides: pd.Data
                    else (none, none))  # decision E304: an activity without bicycles
     seated, seats = seated_strides(fd.start_s_, fd.end_s_, transfers)
     ride, cap = long_ride_strides(fd, foot, foot_gaps)  # decision L639
-    lines = [travelling_line(going & ~seated & ~ride, fd)]  # decision L799: kept, and said why
     if not (loop | seated | ride).any():
-        return fd, strides, [x for x in lines if x]
-    lines.insert(0, pedal_line(loop, seated, fd.start_s_, fd.end_s_, seats, ride, cap))
+        return fd, strides, []
+    # decision L799: L611's level strides that travel are named as running's, not as "cycling?"
+    lines = [pedal_line(loop & ~going, seated, fd.start_s_, fd.end_s_, seats, ride, cap),
+             travelling_line(going & ~seated & ~ride, fd)]
     lines = [x for x in lines if x]
     kept = strides.drop(index=strides.index[making_only(fd, fd_kw, foot, strides, stance, loop | seated | ride)])
     kept = kept.reset_index(drop=True)
