@@ -53,3 +53,15 @@ def test_the_track_names_them_as_running_not_cycling_l799():
     assert not kept.any() and going.all() and " kept: " in travelling_line(going, fd, kept=True)
     disp[:, 0] = 0.15  # a crank's short strokes: cycling, and not named as running
     assert pedal_verdict(fd, foot, G)[0].all() and not pedal_verdict(fd, foot, G)[1].any()
+
+
+def test_l617_names_running_l800():
+    import pandas as pd
+
+    from pdrlearn.track.freezes import walkless_freezes
+
+    rows = [{"freeze": 1, "start_s": 60.0, "end_s": 70.0, "peak_fi": 4.2}]
+    steps = pd.DataFrame({"start_s": [1.0, 2.0], "end_s": [2.0, 3.0]})
+    kept, lines = walkless_freezes(rows, steps)
+    assert kept == [] and len(lines) == 1 and "L617" in lines[0]
+    assert "as in running" in lines[0] and "L800" in lines[0]

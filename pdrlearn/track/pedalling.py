@@ -8,14 +8,7 @@ import numpy as np
 import pandas as pd
 
 from pdrlearn.decision_refs import decision_ref
-from pdrlearn.kernels.pedal import (
-    TRACK_REMOVED,
-    closed_loop_strides,
-    pedal_line,
-    spans_of,
-    travelling_strides,
-    unrested_strides,
-)
+from pdrlearn.kernels.pedal import TRACK_REMOVED, closed_loop_strides, pedal_line, spans_of, unrested_strides
 
 
 def pedal_verdict(fd, foot, g_rest: float, *, keep_travelling: bool = False,
@@ -23,9 +16,10 @@ def pedal_verdict(fd, foot, g_rest: float, *, keep_travelling: bool = False,
     """Decisions L611 / L799: ``(loop, going)``, (B,) bool over the strides of ``fd`` (a fitted
     :class:`~pdrlearn.displace.foot.FootDisplacement`): ``loop`` those that go round a closed loop (their raw heights
     reverse, or they are unrested; :func:`~pdrlearn.kernels.pedal.closed_loop_strides`) on the foot unit ``foot``
-    (``g_rest``: its rest reading, L621); ``going`` those of L611's that are level and travel ``stride_travel_m`` (m)
-    or more (:func:`~pdrlearn.kernels.pedal.travelling_strides`: a running stride's unrested ends, not a crank).
-    ``keep_travelling`` (L799's candidate, not adopted): ``loop`` leaves them out (they are kept)."""
+    (``g_rest``: its rest reading, L621); ``going`` those of L611's that travel ``stride_travel_m`` (m) or more (a
+    running stride's unrested ends, not a crank's stroke, for the line). ``keep_travelling`` (L799's candidate, not
+    adopted): ``loop`` leaves out the level ones (:func:`~pdrlearn.kernels.pedal.travelling_strides`: kept), and
+    ``going`` is those."""
     dz, start, end = fd.disp_[:, 2], fd.start_s_, fd.end_s_
     unrested = unrested_strides(foot.t, foot.acc, start, end, g_rest)
     travel = np.hypot(fd.disp_[:, 0], fd.disp_[:, 1])
@@ -33,7 +27,7 @@ def pedal_verdict(fd, foot, g_rest: float, *, keep_travelling: bool = False,
     if keep_travelling:
         kept = closed_loop_strides(dz, start, end, unrested, travel, stride_travel_m=stride_travel_m)
         return kept, loop & ~kept
-    return loop, loop & travelling_strides(dz, travel, stride_travel_m)
+    return loop, loop & (travel >= stride_travel_m)  # L799's line: a stride's travel, level or not (a crank's < 0.3 m)
 
 
 def pedal_loops(fd, foot, g_rest: float) -> np.ndarray:
@@ -52,7 +46,7 @@ def travelling_line(going: np.ndarray, fd, *, kept: bool = False, stride_travel_
     done = "kept" if kept else f"not walking? {TRACK_REMOVED}"
     undo = "" if kept else "; --no-cycling keeps them"
     return (f"{int(np.sum(going))} stride(s) at {where} {done}: the foot did not rest at their ends, yet each "
-            f"travelled {stride_travel_m:g} m or more on the level (median {float(np.median(travel)):.2f} m) - not "
+            f"travelled {stride_travel_m:g} m or more (median {float(np.median(travel)):.2f} m) - not "
             "cycling (L611's pedal strokes travel under 0.3 m and rise and fall) but strides whose contact was too "
             f"short for the foot to rest, as in running, which the pipelines do not support{undo} "
             f"({decision_ref('L799')})")
