@@ -11,7 +11,7 @@ import numpy as np
 
 from pdrlearn.kernels.pedal import closed_loop_strides, travelling_strides
 from pdrlearn.kernels.units import STANDARD_GRAVITY as G
-from pdrlearn.track.pedalling import pedal_loops, pedal_verdict, travelling_line
+from pdrlearn.track.pedalling import STEPS_REMOVED, pedal_loops, pedal_verdict, travelling_line
 
 N, T = 12, 0.66  # strides of a runner's 0.66 s cycle, back to back
 
@@ -49,6 +49,8 @@ def test_the_track_names_them_as_running_not_cycling_l799():
     assert line.startswith(f"{N} stride(s) at ") and "removed from the track" in line and "median 2.00 m" in line
     assert "running" in line and "--no-cycling keeps them" in line and "L799" in line and "cycling?" not in line
     assert travelling_line(np.zeros(N, dtype=bool), fd) is None
+    counted = travelling_line(going, fd, removed=STEPS_REMOVED)  # `pdrlearn steps` (L625): its own undo
+    assert STEPS_REMOVED in counted and "--no-cycling" not in counted and "running" in counted
     kept, going = pedal_verdict(fd, foot, G, keep_travelling=True)  # the candidate, not adopted
     assert not kept.any() and going.all() and " kept: " in travelling_line(going, fd, kept=True)
     disp[:, 0] = 0.15  # a crank's short strokes: cycling, and not named as running

@@ -35,16 +35,17 @@ def pedal_loops(fd, foot, g_rest: float) -> np.ndarray:
     return pedal_verdict(fd, foot, g_rest)[0]
 
 
-def travelling_line(going: np.ndarray, fd, *, kept: bool = False, stride_travel_m: float = 1.0) -> str | None:
+def travelling_line(going: np.ndarray, fd, *, kept: bool = False, removed: str | None = None,
+                    stride_travel_m: float = 1.0) -> str | None:
     """Decision L799: the line naming the travelling strides ``going`` of :func:`pedal_verdict` - removed by L611
-    (``kept``: kept, L799's candidate) - as what they look like: a contact too short for the foot to rest (running),
-    not cycling (None: none)."""
+    (``kept``: kept, L799's candidate; ``removed``: what was done with them, `pdrlearn steps`' L625 text, None: the
+    track's) - as what they look like: a contact too short for the foot to rest (running), not cycling (None: none)."""
     if not np.any(going):
         return None
     travel = np.hypot(fd.disp_[going, 0], fd.disp_[going, 1])
     where = ", ".join(f"{a:.2f}-{b:.2f} s ({k})" for a, b, k in spans_of(going, fd.start_s_, fd.end_s_))
-    done = "kept" if kept else f"not walking? {TRACK_REMOVED}"
-    undo = "" if kept else "; --no-cycling keeps them"
+    done = "kept" if kept else f"not walking? {removed or TRACK_REMOVED}"
+    undo = "" if kept or removed else "; --no-cycling keeps them"
     return (f"{int(np.sum(going))} stride(s) at {where} {done}: the foot did not rest at their ends, yet each "
             f"travelled {stride_travel_m:g} m or more (median {float(np.median(travel)):.2f} m) - not "
             "cycling (L611's pedal strokes travel under 0.3 m and rise and fall) but strides whose contact was too "
@@ -90,7 +91,7 @@ def pedalling_rows(session, table: pd.DataFrame, detections: pd.DataFrame | None
     fd_kw = {k: METHODS["M3"][k] for k in ("integrator", "zupt_end", "gyro_bias", "attitude")}
     stance = checked_stance(session, foot, use_force=force)[0]  # steps 52: a force detector's is track's
     fd = FootDisplacement(**fd_kw).estimate(foot, detections.reset_index(drop=True), stance=stance)
-    loop = pedal_loops(fd, foot, foot_rest_gravity(session))
+    loop, going = pedal_verdict(fd, foot, foot_rest_gravity(session))  # decision L799: going, for the line
     ride, cap = long_ride_strides(fd, foot, long_gaps(session, ("fAccelerometer", "fGyroscope")))  # decision L639
     if not (loop | ride).any():
         return rows, 0, None
@@ -99,6 +100,9 @@ def pedalling_rows(session, table: pd.DataFrame, detections: pd.DataFrame | None
     if not rows.any():
         return rows, 0, None
     made = FootDisplacement(**fd_kw).stride_bounds(foot, table, stance=stance)[2]
-    line = pedal_line(loop, np.zeros(len(loop), dtype=bool), fd.start_s_, fd.end_s_, ride=ride, cap_s=cap,
-                      removed=STEPS_KEPT if kept else STEPS_REMOVED)
+    removed = STEPS_KEPT if kept else STEPS_REMOVED
+    lines = (pedal_line(loop & ~going, np.zeros(len(loop), dtype=bool), fd.start_s_, fd.end_s_, ride=ride, cap_s=cap,
+                        removed=removed),
+             travelling_line(going & ~ride, fd, removed=removed))  # decision L799: running's, not cycling's
+    line = "; ".join(x for x in lines if x) or None
     return rows, int(np.isin(made, np.flatnonzero(rows)).sum()), line
