@@ -319,8 +319,12 @@ SESSIONS: tuple[Column, ...] = (
                                             "waist's, W416) under 0.3 g for more than 0.1 s (first to last low "
                                             "sample 0.1 s or more, W409; both feet off the ground: jumps, running; "
                                             "W363); the lower back's only of 0.2 s or more or at a step period under "
-                                            "0.4 s (W538: a brisk walker's bounce is no flight)"),
-    ("flight_time_s", "s", "number", "the flight phases' time in all (W363, W416)"),
+                                            "0.4 s (W538: a brisk walker's bounce is no flight). The unit's own free "
+                                            "fall: a foot swinging through a running stride's flight reads well "
+                                            "over 0.3 g, so a foot-tracked run counts 0 (jumps count); running's "
+                                            "flights per cycle are gait's n_flight_cycles (two feet; C269)"),
+    ("flight_time_s", "s", "number", "the flight phases' time in all (W363, W416): the tracked unit's own free fall "
+                                     "(C269)"),
     ("direction_changes", "count", "integer", "foot: changes of travel direction (steps.csv travel: forward / "
                                               "backward / left / right, turn and empty rows skipped; "
                                               "direction_changes.csv's rows, L412); a turn is not one; empty on "
@@ -1486,9 +1490,10 @@ GAIT_CYCLES: tuple[Column, ...] = (
                                           "0 where a toe-off falls on the other foot's contact (L736); empty "
                                           "without both toe-offs or with a flight (L729)"),
     ("single_support_pct", "%", "number", "the other foot's swing, % of the cycle (L262)"),
-    ("flight_time_s", "s", "number", "the time with neither foot on the ground: a toe-off before the other foot's "
-                                     "contact (a loss of contact, or a clock offset between the units; L729); 0 in "
-                                     "walking order, empty without both toe-offs"),
+    ("flight_time_s", "s", "number", "the time with neither foot on the ground in the cycle: both of its flights "
+                                     "(a toe-off before the other foot's contact: a loss of contact, running, or a "
+                                     "clock offset between the units; L729) summed - two steps' worth; per step: "
+                                     "half (C268); 0 in walking order, empty without both toe-offs"),
     ("flight_after", _ID, "text", "the foot whose toe-off started the cycle's flight, or both (flights after one "
                                   "foot's only: a clock offset's pattern; L729); empty without a flight"),
     ("kind", _ID, "text", "as gait_steps.csv's kind, of the cycle's two contacts after start_s (L538)"),
@@ -1541,7 +1546,11 @@ GAIT_BOUTS: tuple[Column, ...] = (
                                              "n_flight_cycles every cycle with both toe-offs"),
     ("n_flight_cycles", "count", "integer", "cycles with a flight: a toe-off before the other foot's contact (a loss "
                                             "of contact, or a clock offset; no double support; L729)"),
-    ("flight_time_s", "s", "number", "the mean flight time of those cycles (L729); empty without one"),
+    ("flight_time_s", "s", "number", "the mean flight time per gait cycle of those cycles, each cycle's two "
+                                     "flights summed (gait_cycles.csv's flight_time_s; L729, C268); empty without "
+                                     "one"),
+    ("step_flight_time_s", "s", "number", "the mean flight time per step: half of flight_time_s (a gait cycle holds "
+                                          "two steps; what runners call flight time; C268); empty without one"),
     ("double_support_pct", "%", "number", "mean double support, % of the gait cycle (L262; reads low, L285; by how "
                                           "much in this walk: reason, L703)"),
     *_pair("single_support_pct", "%", "single support (the other foot's swing), % of the gait cycle (L262)"),

@@ -65,7 +65,8 @@ def gait_lines(summary: dict, by_kind: dict | None = None) -> list[str]:
                      f"({w['n_support_cycles']} cycles)")
     if w.get("n_flight_cycles"):  # decision L729: cycles with a toe-off before the other foot's contact
         lines.append(f"flight (a loss of contact, or a clock offset between the units) in {w['n_flight_cycles']} "
-                     f"cycles, {1000 * w['flight_time_s']:.0f} ms on average (L729)")
+                     f"cycles, {1000 * w['flight_time_s']:.0f} ms per gait cycle on average (its two flights "
+                     f"summed), {1000 * w['flight_time_s'] / 2:.0f} ms per step (L729, C268)")
     if w.get("cadence_spm") is not None:  # decision L539
         lines.append(pace_line(w))
     angles = foot_angle_text(w)

@@ -63,8 +63,19 @@ def unrested_strides(t: np.ndarray, acc: np.ndarray, start_s: np.ndarray, end_s:
     return moving(start_s) & moving(end_s)
 
 
+def travelling_strides(dz: np.ndarray, travel: np.ndarray | None, stride_travel_m: float | None) -> np.ndarray:
+    """Decision L799: (B,) bool, the level strides that travel: raw horizontal ``travel`` (m) at least
+    ``stride_travel_m`` and raw height change ``dz`` (m) under L611's :data:`REVERSAL_MIN_DZ_M` - a stride, not a pedal
+    stroke (a crank's "strides" travel 0.012-0.254 m and rise or fall 0.07-0.9 m, L611 / L621). None: none."""
+    dz = np.asarray(dz, dtype=float)
+    if travel is None or stride_travel_m is None:
+        return np.zeros(len(dz), dtype=bool)
+    return (np.abs(np.asarray(travel, dtype=float)) >= float(stride_travel_m)) & (np.abs(dz) < REVERSAL_MIN_DZ_M)
+
+
 def closed_loop_strides(dz: np.ndarray, start_s: np.ndarray, end_s: np.ndarray,
-                        unrested: np.ndarray | None = None, travel: np.ndarray | None = None) -> np.ndarray:
+                        unrested: np.ndarray | None = None, travel: np.ndarray | None = None, *,
+                        stride_travel_m: float | None = None) -> np.ndarray:
     """Decision L611: (B,) bool, the strides whose neighbourhood (:data:`NEIGHBOURS` strides of their chain either
     side) holds :data:`MIN_REVERSALS` or more height reversals: two consecutive strides of one chain (the next starting
     within :data:`CHAIN_PAUSE_S` of the previous's end) whose raw height changes ``dz`` (m) have opposite signs, each at
@@ -72,14 +83,18 @@ def closed_loop_strides(dz: np.ndarray, start_s: np.ndarray, end_s: np.ndarray,
     (decision L621) each ``unrested`` or travelling less than :data:`TRAVEL_MAX_M`; or
     (second rule) :data:`MIN_UNRESTED` or more ``unrested`` strides
     (:func:`unrested_strides`). Decision L640: and a stride chained to one of those that travels under
-    :data:`TRAVEL_MAX_M` or whose own ``dz`` passes the reversal test (a mount's or a dismount's pedal stroke)."""
+    :data:`TRAVEL_MAX_M` or whose own ``dz`` passes the reversal test (a mount's or a dismount's pedal stroke).
+    Decision L799: with ``stride_travel_m`` (m; None: L611 as before) a level stride travelling that far
+    (:func:`travelling_strides`) is not unrested for the second rule, makes no reversal and is never marked (a running
+    stance too short for the foot to rest at the stride's ends)."""
     dz = np.asarray(dz, dtype=float)
     start_s, end_s = np.asarray(start_s, dtype=float), np.asarray(end_s, dtype=float)
     n = len(dz)
     if n < 3:
         return np.zeros(n, dtype=bool)
     chained = start_s[1:] - end_s[:-1] <= CHAIN_PAUSE_S  # (B-1,) pair i, i+1 in one chain
-    still = np.zeros(n, dtype=bool) if unrested is None else np.asarray(unrested, dtype=bool)
+    going = travelling_strides(dz, travel, stride_travel_m)  # decision L799: a level stride that travels
+    still = np.zeros(n, dtype=bool) if unrested is None else np.asarray(unrested, dtype=bool) & ~going
     big = np.abs(dz) >= REVERSAL_MIN_DZ_M
     if travel is not None:
         travel = np.abs(np.asarray(travel, dtype=float))
@@ -101,7 +116,7 @@ def closed_loop_strides(dz: np.ndarray, start_s: np.ndarray, end_s: np.ndarray,
     edge[1:] |= chained & out[:-1]
     edge[:-1] |= chained & out[1:]
     short = big if travel is None else big | (travel < TRAVEL_MAX_M)
-    return out | (edge & short)
+    return (out | (edge & short)) & ~going
 
 
 def seated_strides(start_s: np.ndarray, end_s: np.ndarray, transfers) -> tuple[np.ndarray, list[tuple[float, float]]]:

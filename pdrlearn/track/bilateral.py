@@ -548,7 +548,9 @@ def gait_measures(both: pd.DataFrame, steps: pd.DataFrame, cycles: pd.DataFrame)
     out["n_support_cycles"] = int(ok.sum())
     fl = cycles["flight_time_s"].to_numpy(float) > 0 if "flight_time_s" in cycles else np.zeros(len(cycles), bool)
     out["n_flight_cycles"] = int(fl.sum())  # decision L729: cycles with a toe-off before the other foot's contact
-    out["flight_time_s"] = mean_finite(cycles.loc[fl, "flight_time_s"]) if fl.any() else None
+    out["flight_time_s"] = mean_finite(cycles.loc[fl, "flight_time_s"]) if fl.any() else None  # per cycle (C268)
+    # decision C268: per step - a gait cycle holds two steps, and its flight_time_s sums the flights of both
+    out["step_flight_time_s"] = None if out["flight_time_s"] is None else out["flight_time_s"] / 2.0
     out["double_support_pct"] = mean_finite(cycles.loc[ok, "double_support_pct"])
     out.update(sides("single_support_pct", cycles, mask=ok))
     return out

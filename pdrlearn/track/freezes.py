@@ -17,6 +17,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from pdrlearn.decision_refs import decision_ref
 from pdrlearn.kernels.freeze import FI_STEP_S, FI_WINDOW_S, FREEZE_MIN_S, freeze_episodes, inside_episodes
 from pdrlearn.track.bouts import contact_times
 
@@ -145,7 +146,9 @@ def walkless_freezes(rows: list[dict] | None, steps) -> tuple[list[dict] | None,
     return kept, [f"{len(gone)} freeze-index episode(s) ({spans}{', ...' if len(gone) > 5 else ''}) are left out of "
                   f"freezes.csv: no stride of the track lies within {FREEZE_WALK_GAP_S:g} s of them, and a freeze "
                   "interrupts walking; the foot trembled without walking (a vehicle's floor, a bike, a seat; "
-                  "decision L617)"]
+                  "decision L617) - or it moved in strides the stride detectors could not cut: a contact too short "
+                  "for their 0.1 s rest of the foot, as in running, whose strides are then lost from the track and "
+                  f"the distance ({decision_ref('L800')})"]
 
 
 def walked_freezes(rows: list[dict] | None, steps, *, min_length_m: float = 0.15, max_stride_s: float = 3.0,

@@ -29,6 +29,13 @@ BACKWARD_FLIGHT = ("backward walking, which lands toe first and whose contact an
                    "covers (L329): no loss of contact or clock offset is read from them")
 
 
+def per_cycle(flights) -> str:
+    """Decision C268: the mean flight of ``flights`` (gait_cycles.csv rows with a flight) per gait cycle - its two
+    flights summed - and per step (half: a cycle holds two steps), for the line."""
+    mean = 1000 * float(flights["flight_time_s"].mean())
+    return f"{mean:.0f} ms per gait cycle on average (its two flights summed; {mean / 2:.0f} ms per step)"
+
+
 def flight_warning(walk: dict, cycles) -> str | None:
     """Decision L729: one line when the walk's cycles (``cycles``: gait_cycles.csv's rows with ``flight_time_s``
     and ``flight_after``) have a flight, naming both causes (a loss of contact; a clock offset, L284); None
@@ -43,7 +50,7 @@ def flight_warning(walk: dict, cycles) -> str | None:
     ref = decision_ref("L729", "L284", "L746") if back.any() else decision_ref("L729", "L284")
     if back.all():  # decision L746: only backward walking's cycles
         return (f"bilateral gait: {len(fl)} of {of} gait cycles have a toe-off before the other foot's contact "
-                f"({1000 * float(fl['flight_time_s'].mean()):.0f} ms on average), all of them in {BACKWARD_FLIGHT} "
+                f"({per_cycle(fl)}), all of them in {BACKWARD_FLIGHT} "
                 f"({ref})")
     fl, n_back = fl[~back], int(back.sum())
     by = {f: int((fl["flight_after"] == f).sum()) for f in ("left", "right", "both")}
@@ -51,7 +58,7 @@ def flight_warning(walk: dict, cycles) -> str | None:
     off_txt = "" if off is None else f" (clock_offset_s {1000 * off:+.0f} ms)"
     back_txt = "" if not n_back else f"; {n_back} more in {BACKWARD_FLIGHT}"
     return (f"bilateral gait: {len(fl)} of {of} gait cycles have a flight - a foot's toe-off before the other foot's "
-            f"contact, {1000 * float(fl['flight_time_s'].mean()):.0f} ms on average with neither foot on the ground "
+            f"contact, {per_cycle(fl)} with neither foot on the ground "
             f"(after the left foot's toe-off in {by['left']}, the right's in {by['right']}, both in {by['both']}): a "
             "loss of contact (race walking's fault, running) or a clock offset between the two units, which shortens "
             "the double support after one foot's toe-off and lengthens it after the other's - flights after one "

@@ -7,17 +7,50 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from pdrlearn.kernels.pedal import closed_loop_strides, pedal_line, unrested_strides
+from pdrlearn.decision_refs import decision_ref
+from pdrlearn.kernels.pedal import TRACK_REMOVED, closed_loop_strides, pedal_line, spans_of, unrested_strides
+
+
+def pedal_verdict(fd, foot, g_rest: float, *, keep_travelling: bool = False,
+                  stride_travel_m: float = 1.0) -> tuple[np.ndarray, np.ndarray]:
+    """Decisions L611 / L799: ``(loop, going)``, (B,) bool over the strides of ``fd`` (a fitted
+    :class:`~pdrlearn.displace.foot.FootDisplacement`): ``loop`` those that go round a closed loop (their raw heights
+    reverse, or they are unrested; :func:`~pdrlearn.kernels.pedal.closed_loop_strides`) on the foot unit ``foot``
+    (``g_rest``: its rest reading, L621); ``going`` those of L611's that travel ``stride_travel_m`` (m) or more (a
+    running stride's unrested ends, not a crank's stroke, for the line). ``keep_travelling`` (L799's candidate, not
+    adopted): ``loop`` leaves out the level ones (:func:`~pdrlearn.kernels.pedal.travelling_strides`: kept), and
+    ``going`` is those."""
+    dz, start, end = fd.disp_[:, 2], fd.start_s_, fd.end_s_
+    unrested = unrested_strides(foot.t, foot.acc, start, end, g_rest)
+    travel = np.hypot(fd.disp_[:, 0], fd.disp_[:, 1])
+    loop = closed_loop_strides(dz, start, end, unrested, travel)
+    if keep_travelling:
+        kept = closed_loop_strides(dz, start, end, unrested, travel, stride_travel_m=stride_travel_m)
+        return kept, loop & ~kept
+    return loop, loop & (travel >= stride_travel_m)  # L799's line: a stride's travel, level or not (a crank's < 0.3 m)
 
 
 def pedal_loops(fd, foot, g_rest: float) -> np.ndarray:
-    """Decision L611: (B,) bool over the strides of ``fd`` (a fitted
-    :class:`~pdrlearn.displace.foot.FootDisplacement`) that go round a closed loop: their raw heights reverse, or
-    they are unrested (:func:`~pdrlearn.kernels.pedal.closed_loop_strides`), on the foot unit ``foot``; ``g_rest``:
-   the foot's rest reading (L621)."""
-    return closed_loop_strides(fd.disp_[:, 2], fd.start_s_, fd.end_s_,
-                               unrested_strides(foot.t, foot.acc, fd.start_s_, fd.end_s_, g_rest),
-                               np.hypot(fd.disp_[:, 0], fd.disp_[:, 1]))
+    """Decision L611: the closed-loop strides of :func:`pedal_verdict`."""
+    return pedal_verdict(fd, foot, g_rest)[0]
+
+
+def travelling_line(going: np.ndarray, fd, *, kept: bool = False, removed: str | None = None,
+                    stride_travel_m: float = 1.0) -> str | None:
+    """Decision L799: the line naming the travelling strides ``going`` of :func:`pedal_verdict` - removed by L611
+    (``kept``: kept, L799's candidate; ``removed``: what was done with them, `pdrlearn steps`' L625 text, None: the
+    track's) - as what they look like: a contact too short for the foot to rest (running), not cycling (None: none)."""
+    if not np.any(going):
+        return None
+    travel = np.hypot(fd.disp_[going, 0], fd.disp_[going, 1])
+    where = ", ".join(f"{a:.2f}-{b:.2f} s ({k})" for a, b, k in spans_of(going, fd.start_s_, fd.end_s_))
+    done = "kept" if kept else f"not walking? {removed or TRACK_REMOVED}"
+    undo = "" if kept or removed else "; --no-cycling keeps them"
+    return (f"{int(np.sum(going))} stride(s) at {where} {done}: the foot did not rest at their ends, yet each "
+            f"travelled {stride_travel_m:g} m or more (median {float(np.median(travel)):.2f} m) - not "
+            "cycling (L611's pedal strokes travel under 0.3 m and rise and fall) but strides whose contact was too "
+            f"short for the foot to rest, as in running, which the pipelines do not support{undo} "
+            f"({decision_ref('L799')})")
 
 
 #: decision L625: what ``pdrlearn steps`` does with the pedalling rows, for the line
@@ -58,7 +91,7 @@ def pedalling_rows(session, table: pd.DataFrame, detections: pd.DataFrame | None
     fd_kw = {k: METHODS["M3"][k] for k in ("integrator", "zupt_end", "gyro_bias", "attitude")}
     stance = checked_stance(session, foot, use_force=force)[0]  # steps 52: a force detector's is track's
     fd = FootDisplacement(**fd_kw).estimate(foot, detections.reset_index(drop=True), stance=stance)
-    loop = pedal_loops(fd, foot, foot_rest_gravity(session))
+    loop, going = pedal_verdict(fd, foot, foot_rest_gravity(session))  # decision L799: going, for the line
     ride, cap = long_ride_strides(fd, foot, long_gaps(session, ("fAccelerometer", "fGyroscope")))  # decision L639
     if not (loop | ride).any():
         return rows, 0, None
@@ -67,6 +100,9 @@ def pedalling_rows(session, table: pd.DataFrame, detections: pd.DataFrame | None
     if not rows.any():
         return rows, 0, None
     made = FootDisplacement(**fd_kw).stride_bounds(foot, table, stance=stance)[2]
-    line = pedal_line(loop, np.zeros(len(loop), dtype=bool), fd.start_s_, fd.end_s_, ride=ride, cap_s=cap,
-                      removed=STEPS_KEPT if kept else STEPS_REMOVED)
+    removed = STEPS_KEPT if kept else STEPS_REMOVED
+    lines = (pedal_line(loop & ~going, np.zeros(len(loop), dtype=bool), fd.start_s_, fd.end_s_, ride=ride, cap_s=cap,
+                        removed=removed),
+             travelling_line(going & ~ride, fd, removed=removed))  # decision L799: running's, not cycling's
+    line = "; ".join(x for x in lines if x) or None
     return rows, int(np.isin(made, np.flatnonzero(rows)).sum()), line

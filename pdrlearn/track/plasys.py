@@ -1058,27 +1058,32 @@ def _placement_clause(session) -> str:
 
 def _without_pedalling(fd: FootDisplacement, fd_kw: dict, foot, strides: pd.DataFrame, stance: np.ndarray,
                        transfers, g_rest: float, foot_gaps=None,
-                       cycling: bool = True) -> tuple[FootDisplacement, pd.DataFrame, str | None]:
+                       cycling: bool = True) -> tuple[FootDisplacement, pd.DataFrame, list[str]]:
     """Decisions L611 / L612: the strides whose raw heights go up and down in a closed loop (cycling), or that lie in
     a span the lower-back unit's chair ``transfers`` call seated, are not walking: their detections are left out and the
     rest integrated again (nothing changes without them); ``g_rest``: the foot's rest reading (L621). Decision L639:
     so is a stride longer than ``RIDE_STRIDE_CAPS`` of the foot's stride cap (L605), with every detection inside it,
     unless it overlaps one of ``foot_gaps`` (B11's 0 m row). ``cycling=False`` (decision E304): no L611 check.
-    Returns (fd, strides, warning line or None)."""
-    from pdrlearn.track.pedalling import pedal_loops
+    Decision L799: L611's level strides travelling 1 m or more get a line of their own (running's, not cycling's).
+    Returns (fd, strides, warning lines)."""
+    from pdrlearn.track.pedalling import pedal_verdict, travelling_line
 
-    loop = (pedal_loops(fd, foot, g_rest) if cycling  # decision L611 (L625: shared with `pdrlearn steps`)
-            else np.zeros(len(fd.start_s_), dtype=bool))  # decision E304: an activity without bicycles
+    none = np.zeros(len(fd.start_s_), dtype=bool)
+    loop, going = (pedal_verdict(fd, foot, g_rest) if cycling  # decisions L611, L799 (L625: shared with `steps`)
+                   else (none, none))  # decision E304: an activity without bicycles
     seated, seats = seated_strides(fd.start_s_, fd.end_s_, transfers)
     ride, cap = long_ride_strides(fd, foot, foot_gaps)  # decision L639
     if not (loop | seated | ride).any():
-        return fd, strides, None
-    line = pedal_line(loop, seated, fd.start_s_, fd.end_s_, seats, ride, cap)
+        return fd, strides, []
+    # decision L799: L611's level strides that travel are named as running's, not as "cycling?"
+    lines = [pedal_line(loop & ~going, seated, fd.start_s_, fd.end_s_, seats, ride, cap),
+             travelling_line(going & ~seated & ~ride, fd)]
+    lines = [x for x in lines if x]
     kept = strides.drop(index=strides.index[making_only(fd, fd_kw, foot, strides, stance, loop | seated | ride)])
     kept = kept.reset_index(drop=True)
     if not len(kept):
-        return fd, kept, line
-    return FootDisplacement(**fd_kw).estimate(foot, kept, stance=stance), kept, line
+        return fd, kept, lines
+    return FootDisplacement(**fd_kw).estimate(foot, kept, stance=stance), kept, lines
 
 
 #: review R1 F6: two stride times (s) from the same ``stride_bounds`` call are the same stride within this much,
@@ -1439,13 +1444,13 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
     trunk = SimpleNamespace(info={})  # decision L612: W418's transfers, read once, before the strides are final
     if transfers:
         add_trunk_transfers(trunk, session)
-    fd, strides, pedal_warning = _without_pedalling(fd, fd_kw, foot, strides, stance, trunk.info.get("transfers"),
-                                                    foot_rest_gravity(session), foot_gaps,  # decisions L621, L639
-                                                    cycling=cycling)  # decision E304
+    fd, strides, pedal_warnings = _without_pedalling(fd, fd_kw, foot, strides, stance, trunk.info.get("transfers"),
+                                                     foot_rest_gravity(session), foot_gaps,  # decisions L621, L639
+                                                     cycling=cycling)  # decision E304
     if not len(strides):
-        raise NoStridesError(f"{session.where}: no walking strides: {_placement_clause(session)}{pedal_warning}"
-                             f"{_no_strides_hint(session)}")
-    fd_warnings = list(fd.warnings_) + ([pedal_warning] if pedal_warning else [])
+        raise NoStridesError(f"{session.where}: no walking strides: {_placement_clause(session)}"
+                             f"{'; '.join(pedal_warnings)}{_no_strides_hint(session)}")
+    fd_warnings = list(fd.warnings_) + pedal_warnings  # decisions L611, L799
     raw_disp = disp = fd.disp_
     if len(fd.rows_) < len(strides):
         log.info("%s: %d detected step(s) without a swing between two rests dropped", session.name,
