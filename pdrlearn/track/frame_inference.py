@@ -1104,6 +1104,7 @@ def right_handed_orientations() -> list[np.ndarray]:
 
 __all__ = ["FrameInferenceError", "InferredFrame", "infer_foot_frame", "infer_waist_frame", "frame_from_axes",
            "infer_session_frame", "frame_disagreement", "check_declared_frame", "declared_frame_warning",
-           "DeclaredCheck", "directions_off", "forward_reversal_deg", "forward_yaw_deg", "OPPOSED_DEG", "MISDECLARED_DEG", "misdeclared",
+           "DeclaredCheck", "directions_off", "forward_reversal_deg", "forward_yaw_deg", "OPPOSED_DEG",
+           "MISDECLARED_DEG", "misdeclared",
            "rest_to_rest", "rest_swings", "stride_displacements", "swing_pitch_extremes", "remount",
            "frame_after_negating", "right_handed_orientations", "INFER", "UNIT_STREAMS"]
