@@ -55,3 +55,13 @@ def test_the_mount_yaw_is_taken_off_the_compass(yawed_walk):
     assert true_mount > 5.0 and yaw == pytest.approx(-true_mount, abs=1.5)
     assert _median_deg(off) > 7.0  # the unit's forward, not the walk
     assert abs(_median_deg(on)) < 2.5
+
+
+def test_the_params_key_turns_it_off_offline_only(tmp_path):
+    from pdrlearn.cli.track import _track_params
+    from pdrlearn.errors import DataError
+
+    f = tmp_path / "p.json"
+    assert _track_params({"forward_yaw": False}, f, False)[1] == {"forward_yaw": False}
+    with pytest.raises(DataError, match="forward_yaw.*L796.*--streaming"):
+        _track_params({"forward_yaw": False}, f, True)
