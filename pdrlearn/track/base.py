@@ -297,6 +297,7 @@ def get_pipeline(name: str) -> Pipeline:
       ``waist_bridge`` (decisions L91 / L99: streamed on by default), ``warn_out_of_domain``, ``toe_off``
       (decision L73: the toe-off / stance / swing columns, offline), ``hard_iron_fit`` (decision L84),
       ``compass_sinusoid`` (decision L770: the waist compass's direction sinusoid off before the fused window),
+      ``forward_yaw`` (decision L796: the waist compass turned by D10's measured mount yaw; default on),
       ``cycling``
       (decision E304: False judges no stride pedalling, as ``--no-cycling``),
       ``contacts`` (decisions E49-E51: with ``streaming``, each stride's initial contact and stride time),

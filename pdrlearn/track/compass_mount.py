@@ -61,6 +61,14 @@ def declared_forward_off(session, placement: str = "waist") -> float | None:
     return None if chk is None else chk.forward_deg
 
 
+def declared_forward_yaw(session, placement: str = "waist") -> float | None:
+    """Decision L796: the signed angle (deg, + counter-clockwise) D10's check measured from ``placement``'s used
+    forward to the walking direction (:func:`pdrlearn.track.frame_inference.forward_yaw_deg`); None when not
+    measured, or the check was not judged (W415: a side or backward drill's travel is no forward)."""
+    chk = session.declared_check(placement)
+    return None if chk is None else chk.forward_yaw_deg
+
+
 def forward_power_ratio(session, placement: str = "waist") -> float | None:
     """Decision W435: the step-frequency power ratio of the forward D10's check measured (None: none measured)."""
     chk = session.declared_check(placement)

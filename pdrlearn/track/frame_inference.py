@@ -783,6 +783,20 @@ def forward_reversal_deg(declared: AxisFrame, up: np.ndarray | None, forward: np
     return float(np.degrees(np.arccos(np.clip(float(_unit(h) @ fw), -1.0, 1.0))))
 
 
+def forward_yaw_deg(declared: AxisFrame, up: np.ndarray | None, forward: np.ndarray | None) -> float | None:
+    """Decision L796: :func:`forward_reversal_deg`'s angle signed, about the measured ``up`` (deg, + = the measured
+    walking direction lies counter-clockwise, to the left, of the declared forward seen from above): what a compass
+    reading the declared forward's heading is to be turned by to read the walking direction (a unit yawed on its
+    belt); ``None`` as :func:`forward_reversal_deg`."""
+    mag = forward_reversal_deg(declared, up, forward)
+    if mag is None:
+        return None
+    u = _unit(up)
+    h = declared.matrix()[0]
+    h = h - (h @ u) * u
+    return mag if float(np.cross(h, forward) @ u) >= 0.0 else -mag
+
+
 @dataclass
 class DeclaredCheck:
     """What the data say of a declared frame (decisions D10, D22): ``message`` the warning or refusal text
@@ -806,6 +820,9 @@ class DeclaredCheck:
     #: decision W607: the frame the data give, used instead of the declared one (``mount_frame="inferred"``); None:
     #: the declared frame is used
     used_found: AxisFrame | None = None
+    #: decision L796: the signed angle (deg) from the used frame's forward to the measured walking direction
+    #: (:func:`forward_yaw_deg`; None: not measured)
+    forward_yaw_deg: float | None = None
 
     def summary(self) -> str:
         """``info``'s words for a check that raised nothing (decision D22: never "not contradicted" unchecked)."""
@@ -869,6 +886,7 @@ def check_declared_frame(session, placement: str, declared: AxisFrame, *, side_w
         if whole[1] is None:
             found, unchecked, off, evidence, up, fwd, compared, ratio = whole
     rev = forward_reversal_deg(declared, up, fwd)
+    yaw = forward_yaw_deg(declared, up, fwd)  # decision L796 (read by the compass-headed track)
     reverse = rev is not None and rev > OPPOSED_DEG
     if reverse and "forward" not in off:  # the heading reversed though the axis is pitched (D22)
         off["forward"] = rev
@@ -879,21 +897,23 @@ def check_declared_frame(session, placement: str, declared: AxisFrame, *, side_w
     skip = _waist_not_judged(session) if placement == "waist" else None
     if skip is not None:  # decision W415: no line but a left-handed one; D25 still reads the measured offset
         return DeclaredCheck(declared_frame_warning(placement, declared, None, origin, off={}), False, skip,
-                             compared, rev, side_drill=True, forward_power_ratio=ratio)
+                             compared, rev, side_drill=True, forward_power_ratio=ratio)  # L796: a drill's yaw is none
     if mount_frame == "inferred" and off and found is not None:  # decision W607: the data's frame, said once
         msg = declared_frame_warning(placement, declared, found, origin, off=off, data_used=True)
-        return DeclaredCheck(msg, False, unchecked, compared, rev, forward_power_ratio=ratio, used_found=found.frame)
+        return DeclaredCheck(msg, False, unchecked, compared, rev, forward_power_ratio=ratio, used_found=found.frame,
+                             forward_yaw_deg=forward_yaw_deg(found.frame, up, fwd))  # L796: the frame used
     forced = reverse and session.frame_forced(placement)  # decision D23's override
     refuse = reverse and not forced and placement in REFUSE_REVERSED  # D23 amended: the foot only
     used = 'the meta.json frame ("force_frame", decision D23)' if forced else "the meta.json frame"
     if refuse and weak_reversal(*evidence):  # decision L223: too little evidence to refuse
         return DeclaredCheck(weak_reversal_warning(placement, declared, origin, rev, *evidence, how=how), False,
-                             unchecked, compared, rev, forward_power_ratio=ratio)
+                             unchecked, compared, rev, forward_power_ratio=ratio, forward_yaw_deg=yaw)
     msg = declared_frame_warning(placement, declared, found, origin, used, off=off, refuse=refuse,
                                  unchecked=unchecked, how=how, command=command)  # decision W615
     if side_words and msg and placement == "waist" and UNIT_STREAMS["foot"][0] not in session.streams:
         msg = side_travel_words(rev) + msg if side_travel_words(rev) else msg  # decision W416
-    return DeclaredCheck(msg, refuse, unchecked, compared, rev, forced=forced, forward_power_ratio=ratio)
+    return DeclaredCheck(msg, refuse, unchecked, compared, rev, forced=forced, forward_power_ratio=ratio,
+                         forward_yaw_deg=yaw)
 
 
 #: decision W416 (b): D10's waist line on a session without a foot unit leads with side or backward travel when the
@@ -1087,6 +1107,7 @@ def right_handed_orientations() -> list[np.ndarray]:
 
 __all__ = ["FrameInferenceError", "InferredFrame", "infer_foot_frame", "infer_waist_frame", "frame_from_axes",
            "infer_session_frame", "frame_disagreement", "check_declared_frame", "declared_frame_warning",
-           "DeclaredCheck", "directions_off", "forward_reversal_deg", "OPPOSED_DEG", "MISDECLARED_DEG", "misdeclared",
+           "DeclaredCheck", "directions_off", "forward_reversal_deg", "forward_yaw_deg", "OPPOSED_DEG",
+           "MISDECLARED_DEG", "misdeclared",
            "rest_to_rest", "rest_swings", "stride_displacements", "swing_pitch_extremes", "remount",
            "frame_after_negating", "right_handed_orientations", "INFER", "UNIT_STREAMS"]
