@@ -207,7 +207,9 @@ def test_a_refusal_at_flush_is_given_once_and_the_next_flush_ends_the_stream(roo
     with pytest.raises(DataError, match=r"^fAccelerometer \(its first 3\.0 s pushed to the Tracker.*units of g"):
         tr.flush()
     tr.flush()  # the stream ends: the refusal is not repeated
-    assert tr.warnings[-1].startswith("1 of 1 fixes not used")  # D21
+    # D21, once (E350's slow-walking line, also given at the end of the stream, may follow it)
+    assert [w for w in tr.warnings if w.startswith("1 of 1 fixes not used")] != []
+    assert sum(w.startswith("1 of 1 fixes not used") for w in tr.warnings) == 1
 
 
 def test_a_foot_accelerometer_arriving_after_its_gyroscope_is_not_taken_as_movement():
