@@ -463,45 +463,10 @@ def runs_mask(n: int, runs: list[tuple[int, int, float]]) -> np.ndarray:
 STEP_TO_STEP_MAX_RISE_M = 0.12
 
 
-def step_to_step(height_m: float, n_steps: int) -> bool:
-    """Decision W433: whether a climb of ``height_m`` (m, signed) over ``n_steps`` steps is climbed step to step (its
-    |height| per step under :data:`STEP_TO_STEP_MAX_RISE_M`)."""
-    return abs(float(height_m)) / max(int(n_steps), 1) < STEP_TO_STEP_MAX_RISE_M
-
-
 def step_to_step_mask(n: int, climbs: list[tuple[int, int, float]]) -> np.ndarray:
     """Decision W433: the steps of the ``climbs`` (:func:`climb_runs` over ``n`` steps) whose |height| per step is
     under :data:`STEP_TO_STEP_MAX_RISE_M`: a step-to-step climb, whose steps move half a tread each."""
-    return runs_mask(n, [r for r in climbs if step_to_step(r[2], r[1] - r[0])])
-
-
-def climb_tread(height_m: float, n_steps: int) -> float:
-    """Decisions W91, W433: the most a step of a climb of ``height_m`` (m) over ``n_steps`` steps moves horizontally:
-    the tread (:data:`STAIR_TREAD_M`, thesis ch.7.3.2.1), half of it step to step (:func:`step_to_step`)."""
-    return 0.5 * STAIR_TREAD_M if step_to_step(height_m, n_steps) else STAIR_TREAD_M
-
-
-def live_climb_run(run: tuple[int, float, int, int] | None, sign: int, start_h: float, end_h: float, *,
-                   min_height_m: float = 0.5) -> tuple[tuple[int, float, int, int] | None, float | None]:
-    """Decision E351: W108's climb (:func:`climb_runs`) read causally, one reported step at a time, for the live
-    waist tracker's ``stairs_length="climbs"``. ``run`` is the open run ``(sign, start height, steps, unproposed
-    steps at its end)`` (None: none), ``sign`` the step's W91 proposal (+1 / -1 / 0), ``start_h`` / ``end_h`` its
-    altitude (m) at its start / end. A run is a maximal sequence of steps proposed with one sign, one unproposed step
-    inside it bridged (W433); it climbs once its height so far has that sign and reaches ``min_height_m`` (E351's
-    candidate: W230's 0.5 m, ~3 risers - W108's 1.5 m is reached only after ~9 steps, ~18 step to step, all of them
-    already reported). Returns the run after the step and the step's bound (m, :func:`climb_tread` of the run so far),
-    None when the step is not inside a climbing run."""
-    if sign == 0:
-        if run is None or run[3] >= 1:  # W433 bridges one unproposed step, not two
-            return None, None
-        run = (run[0], run[1], run[2] + 1, 1)  # bridged: part of the run while the next step continues it
-    elif run is None or run[0] != sign:
-        run = (int(sign), float(start_h), 1, 0)
-    else:
-        run = (run[0], run[1], run[2] + 1, 0)
-    height = float(end_h) - run[1]
-    climbing = run[0] * height >= min_height_m
-    return run, (climb_tread(height, run[2]) if climbing else None)
+    return runs_mask(n, [r for r in climbs if abs(r[2]) / (r[1] - r[0]) < STEP_TO_STEP_MAX_RISE_M])
 
 
 #: Decision W230: the largest barometric height change (m) one walking step can make. A step climbs one riser

@@ -177,7 +177,6 @@ class WaistStream(OwnGuard, FixInput):
         self._ba = np.zeros((0, 3))  # with it: navigation-frame specific force (m/s^2) and rate (rad/s)
         self._bg = np.zeros((0, 3))
         self._alt = None  # decision E106: the barometric altitude (kernels.barometer.LiveAltitude), once pushed
-        self._climb = None  # decision E351: the open run of W91's proposals (kernels.barometer.live_climb_run)
         self._z_prev = 0.0  # the altitude at the last reported step's end (0 at the track's first sample)
         self._baro_last = -np.inf
         # decision E146: W231's ride of a pause over RIDE_WINDOW_S, decided at its step's contact (a bundle exported
@@ -345,33 +344,17 @@ class WaistStream(OwnGuard, FixInput):
             self.warnings.append(msg)
             log.warning("live waist tracker: %s", msg)
 
-    def _on_stairs(self, row: dict) -> tuple[bool | None, int]:
+    def _on_stairs(self, row: dict) -> bool | None:
         """Decision W91's test (``track_waist``'s ``_stairs_steps`` without ``stairs_climb``) on the live altitude: the
-        altitude changes by STAIRS_RATE_MPS or more over STAIRS_RATE_WINDOW_S centred on the step's middle (None
-        without a (usable) barometer), and the proposal's sign (+1 up, -1 down, 0 none; W108's)."""
+        altitude changes by STAIRS_RATE_MPS or more over STAIRS_RATE_WINDOW_S centred on the step's middle; None
+        without a (usable) barometer."""
         from pdrlearn.kernels.barometer import STAIRS_RATE_WINDOW_S, stairs_rate_test
 
         if self._alt is None:
-            return None, 0
+            return None
         mid, half = 0.5 * (row["t"] + row["end"]), 0.5 * STAIRS_RATE_WINDOW_S
         a, b = self._alt.at(mid - half), self._alt.at(mid + half)
-        if a is None or b is None:
-            return None, 0
-        on = bool(stairs_rate_test(b - a))
-        return on, int(np.sign(b - a)) if on else 0
-
-    def _climb_bound(self, row: dict, sign: int, length: float) -> float:
-        """Decision E351: ``length`` bounded as offline ``stairs_length="climbs"`` bounds a step of W108's climbs
-        (:func:`pdrlearn.kernels.barometer.live_climb_run`, read causally); unchanged without a barometer."""
-        from pdrlearn.kernels.barometer import live_climb_run
-
-        a = None if self._alt is None else self._alt.at(row["t"])
-        b = None if self._alt is None else self._alt.at(row["end"])
-        if a is None or b is None:
-            self._climb = None
-            return length
-        self._climb, bound = live_climb_run(self._climb, sign, a, b)
-        return length if bound is None else min(length, bound)
+        return None if a is None or b is None else bool(stairs_rate_test(b - a))
 
     def _unit_check(self, t: np.ndarray) -> None:
         """Decision E29 as the runtime's: the first RATE_PROBE_MIN sample intervals give a rate more than
@@ -723,12 +706,10 @@ class WaistStream(OwnGuard, FixInput):
                 self._cur_gyro = self._cur_out = self._h_seq
             self._stop_cum = float(np.interp(row["t"], self._bt, self._bc))
             self._rest_a = row["t"]  # L308: the rest starts at the closing contact (offline's t_a)
-        stairs, sign = self._on_stairs(row)
-        # W91's option, as track_waist: at most the tread on stairs (E107); W156's "climbs": the steps of E351's
-        # causal climb (W108's read one reported step at a time), at most the tread (half of it step to step, W433)
-        if o.get("stairs_length") == "climbs":
-            length = self._climb_bound(row, sign, length)
-        elif stairs and o.get("stairs_length"):
+        stairs = self._on_stairs(row)
+        # W91's option, as track_waist: at most the tread on stairs (E107); W156's "climbs" needs the whole
+        # recording's climbs and is named as not applied live (unapplied_options_line)
+        if stairs and o.get("stairs_length") and o.get("stairs_length") != "climbs":
             from pdrlearn.kernels.barometer import STAIR_TREAD_M
 
             length = min(length, STAIR_TREAD_M)

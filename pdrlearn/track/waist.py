@@ -393,25 +393,6 @@ def _climb_runs(baro, steps: pd.DataFrame) -> list[tuple[int, int, float]]:
     return climb_runs(np.where(proposed, np.sign(rise), 0), start_h, end_h, sd)
 
 
-def live_climb_bounds(baro, steps: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:
-    """Decision E351: the steps the live waist tracker bounds under ``stairs_length="climbs"`` (W108's climbs read one
-    step at a time, :func:`pdrlearn.kernels.barometer.live_climb_run`) and each one's bound (m), for ``realtime``."""
-    from pdrlearn.kernels.barometer import live_climb_run
-
-    n = len(steps)
-    bound = np.full(n, np.inf)
-    if baro is not None and n:
-        proposed, rise, start_h, end_h = _stair_proposals(baro, steps)
-        run = None
-        for i, sign in enumerate(np.where(proposed, np.sign(rise), 0).astype(int)):
-            if not (np.isfinite(start_h[i]) and np.isfinite(end_h[i])):
-                run = None
-                continue
-            run, b = live_climb_run(run, int(sign), float(start_h[i]), float(end_h[i]))
-            bound[i] = np.inf if b is None else b
-    return np.isfinite(bound), bound
-
-
 #: decision W155: at least this many steps inside W108's climbs warn that ``stairs_length`` is off (a storey of the
 #: simulator's 0.17 m risers, 3 m, is ~18 steps; W108's shortest climb, 1.5 m, ~9)
 STAIRS_WARN_MIN_STEPS = 8
@@ -1390,8 +1371,6 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
             warnings.append(line)
     if bool(o["stairs_length"]):  # W91's candidate: the horizontal length of a stair step is at most the tread
         bounded = climbs if o["stairs_length"] == "climbs" else stairs  # W156: only W108's climbs
-        if o["stairs_length"] == "climbs" and realtime:  # E351: the live tracker's causal climbs, as it reads them
-            bounded, tread = live_climb_bounds(baro, steps)
         steps = steps.assign(length_m=np.where(bounded, np.minimum(steps["length_m"].to_numpy(float), tread),
                                                steps["length_m"].to_numpy(float)))
     still_mask = functools.cache(lambda: _still_samples(imu))  # L296's still samples: the IMU's own (W285, W354)

@@ -164,6 +164,9 @@ def unapplied_options_line(p) -> str | None:
     live = {k: live_value(k, given) for k in LIVE_UNAPPLIED_OPTIONS}
     unapplied = [k for k in LIVE_UNAPPLIED_OPTIONS if offline[k] != live[k]
                  and (k not in NAMED_WHEN_GIVEN or given.get(k) is not None)]
+    if given.get("stairs_length") == "climbs":  # W156's value reads the whole recording's climbs (W108): no bound
+        unapplied.append("stairs_length")
+        offline["stairs_length"], live["stairs_length"] = "climbs", False
     if given.get("pause_steps") in (True, "progression"):  # W165: live applies "standing" (W134) and false only
         unapplied.append("pause_steps")  # live_options turns these into false
         offline["pause_steps"], live["pause_steps"] = given["pause_steps"], False
