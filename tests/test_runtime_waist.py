@@ -13,6 +13,7 @@ import textwrap
 from pathlib import Path
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from pdrlearn.cli import main
@@ -173,9 +174,11 @@ def test_the_waist_runtime_gives_the_offline_barometric_altitude_and_floors(sim,
     # altitude change is read while the barometer arrives sample by sample), 1 s pushes before and after
     chunks = ([100] * 10 + [1] * 2500 + [100] * 30 if how == "one"
               else list(np.random.default_rng(3).integers(1, 300, 2000)))
+    sigmas = []
     for tr in (WaistTracker(load_waist_bundle(sim["bundle"]), fs=100.0),
                LiveWaistTracker(100.0, params=str(sim["cal"]), meta=stairs.meta, frame=stairs.require_frame("waist"))):
         out = _push_with_barometer(tr, stairs, chunks)
+        sigmas.append([o.pos_sigma_m for o in out])  # decision E352: each live step's radius
         assert len(out) == len(ref.steps)
         np.testing.assert_allclose([o.z for o in out], ref.trajectory["z"].to_numpy()[1:], atol=1e-6, rtol=0)
         np.testing.assert_allclose([o.dz_m for o in out], ref.steps["dz_m"].to_numpy(), atol=1e-6, rtol=0)
@@ -190,6 +193,11 @@ def test_the_waist_runtime_gives_the_offline_barometric_altitude_and_floors(sim,
     assert main(["run", "--no-plot", str(sim["bundle"]), str(walk), "--out", str(tmp_path / "r")]) == 0
     assert "floors up 2 / down 1" in capsys.readouterr().out
     summary = json.loads((tmp_path / "r" / "summary.json").read_text())
+    # decision E352: the radius each live step carries is run's trajectory.csv pos_sigma_m at that step, both trackers
+    written = pd.read_csv(tmp_path / "r" / "trajectory.csv")["pos_sigma_m"].to_numpy(float)[1:]
+    assert written[-1] > 1.0
+    for got in sigmas:
+        np.testing.assert_allclose(got, written, atol=1e-6, rtol=0)
     want = evaluate_track(ref, stairs)
     assert (summary["floors_up"], summary["floors_down"]) == (want["floors_up"], want["floors_down"]) == (2, 1)
     for k in ("altitude_change_m", "ascent_m", "descent_m"):

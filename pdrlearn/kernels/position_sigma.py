@@ -115,3 +115,117 @@ def position_covariance(length_m: np.ndarray, heading_rad: np.ndarray, t_end_s: 
 def sigma_radius(cov: np.ndarray) -> np.ndarray:
     """1-sigma radius ``sqrt(trace P)`` (m) of each 2x2 covariance in ``cov`` (N, 2, 2)."""
     return np.sqrt(np.maximum(cov[:, 0, 0] + cov[:, 1, 1], 0.0))
+
+
+#: decision L128: parameters per error regime, each the maximum-likelihood fit on simulated users 900-905
+#: (``experiments/position_sigma.py fit --variant V``, printed values rounded to 2 significant digits); decision
+#: L150: the streamed and foot-only regimes refitted on users 1160-1179, the maximum-likelihood parameters times
+#: one coverage scale (95.5 % of the strides, 17/20 finals within 2 sigma on those users)
+SIGMA_PARAMS: dict[str, dict[str, float]] = {
+    # plasys offline with a waist unit: foot yaw aligned to the waist compass ("fused", L17)
+    # (L220: the distance-walked term path_rel = 0.0149 was measured on top of these and not adopted, too large on
+    # routes of 3-4 loops: 20/20 finals within 2 sigma against the rule's 16-19; the kernel keeps it, 0 here)
+    # (L238: the per-metre compass term path_diffusion_m2 = PLACE_DIFFUSION_M2 was measured and not adopted, too small)
+    # (L239/L240: the bounded heading error on the route's extent, extent_heading_rad = EXTENT_HEADING_RAD, measured
+    # and not adopted: all its short-route strides within 2 sigma, over the rule's 99.5 %; sigma_params'
+    # extent_heading)
+    # (L241/L242: that error only on the part of the extent the track has come back from, extent_return_rad =
+    # EXTENT_HEADING_RAD, measured and not adopted: 20/25 long-route finals within 2 sigma, under the rule's 90 %;
+    # sigma_params' extent_return)
+    "plasys-fused": {"displacement_rel": 0.026, "heading_walk_rad": 0.0034, "bias_rps": 0.0, "point_m": 1.5},
+    # plasys with the foot's own yaw only (no waist unit, or `--units foot`; L150)
+    "plasys-foot": {"displacement_rel": 0.0017, "heading_walk_rad": 0.026, "bias_rps": 9.6e-11, "point_m": 0.044},
+    # plasys --streaming without a waist unit (or `--units foot`): the foot's own yaw, streamed. L150's refit
+    # (0.0055, 0.030, 2.5e-07, 0.0096) failed its rule (89.5 % of the test strides within 2 sigma, rule 93-98.5 %):
+    # L128's plasys-foot constants, as before L150 (uncalibrated, too large)
+    "plasys-foot-streaming": {"displacement_rel": 0.0021, "heading_walk_rad": 0.062, "bias_rps": 0.0,
+                              "point_m": 0.068},
+    # plasys --streaming with a waist unit: the waist gyroscope's heading (L99; L150). Decision E331: its heading was
+    # held off the walking direction from the first stride on (users 17870-17883: RMS 0.04674 rad, -2.10 to -3.18
+    # deg), a constant offset term; decision E337: after E336 removed that offset's cause (the pelvis' yaw at the
+    # stride's end) what remains (users 18400-18403: RMS 0.00723 rad), rounded up; decision E342 (E337's rule amended):
+    # kept on the shipped E336 + E338 code (users 18900-18919: mean share within 2 sigma 1.000, worst run 0.994,
+    # median sigma / RMS 1.38); a track with E336 off (info["cycle_yaw"] False) takes E331's 0.047 (sigma_params'
+    # boundary_offset_rad)
+    "plasys-streaming": {"displacement_rel": 0.029, "heading_walk_rad": 0.0070, "bias_rps": 0.00051,
+                         "point_m": 5.1e-174, "heading_offset_rad": 0.0073},
+    # decision L267: plasys offline after L226's fallback (L182 judged the compass disturbed): the heading is the
+    # waist gyroscope's, as the streamed one, so its radius takes the streamed regime's four L150 constants (not
+    # fitted on its own) without E331 / E337's heading_offset_rad: that offset was the streamed strides' (the pelvis'
+    # yaw at the foot's rest, E336), and this offline track was not measured for it (E331, E342)
+    "plasys-gyro-fallback": {"displacement_rel": 0.029, "heading_walk_rad": 0.0070, "bias_rps": 0.00051,
+                             "point_m": 5.1e-174},
+    # the lower-back pipelines (fitted on waist-pendulum; waist-pll shares them, not fitted)
+    "waist": {"displacement_rel": 0.0, "heading_walk_rad": 0.0083, "bias_rps": 0.00085, "point_m": 3.1},
+}
+
+
+def reach_bound(length: np.ndarray, heading: np.ndarray, missed_m: np.ndarray | None = None) -> np.ndarray:
+    """Decision L333: per stride, the radius R_k = s_k + |D_k| + l_k (m) about the track's position that holds the
+    true position when the track's distance walked s_k is not under the walker's (decision L342: s_k is the track's
+    own; a track that under-reads, e.g. a lower back's, can be cut below its error where the walker ended farther
+    from the start than s_k + l_k): the walker, starting where the track starts, is at most the distance walked s_k
+    (the summed |stride length|) from the start, and the track is |D_k| from it, so |error| <= s_k + |D_k|; l_k, the
+    longest |stride| so far, is the margin for the tracked point (a foot at rest) not being the reference point (a
+    pelvis between the feet: each within half a stride of the other, at the start and now). ``missed_m``: per stride,
+    walk the lengths do not hold, added to s_k (:func:`missed_walk`). Never decreasing (|D_k| shrinks by at most
+    |L_k| while s_k grows by it). Pure numpy; NaN-free inputs."""
+    L = np.asarray(length, float)
+    psi = np.asarray(heading, float)
+    walked = np.cumsum(np.abs(L))
+    if missed_m is not None:
+        walked = walked + np.cumsum(np.asarray(missed_m, float))
+    reach = np.hypot(np.cumsum(L * np.cos(psi)), np.cumsum(L * np.sin(psi)))
+    return walked + reach + np.maximum.accumulate(np.abs(L)) if len(L) else walked
+
+
+def missed_walk(length: np.ndarray, bad: np.ndarray, held_var_m2: np.ndarray | None) -> np.ndarray:
+    """Decision L333: per stride, the walk (m) :func:`reach_bound` adds to the lengths: a held gap (E127) its speed
+    x gap (sqrt(2 ``held_var_m2``)); a stride of unknown length or heading (L143, modelled as 0) twice the track's
+    longest known |stride| (the walk it may have been, and the track's own step the model left out)."""
+    L = np.abs(np.asarray(length, float))
+    known = L[~bad & np.isfinite(L)]
+    out = np.where(bad, 2.0 * (float(known.max()) if known.size else 0.0), 0.0)
+    return out if held_var_m2 is None else out + np.sqrt(2.0 * np.asarray(held_var_m2, float))
+
+def rest_clock(start: np.ndarray, end: np.ndarray, t0: float, rest_s: float, rests=None) -> np.ndarray:
+    """Decisions L297, L306: the numpy core of :func:`pdrlearn.track.position_sigma.bias_clock` - the steps' end times
+    ``end`` with every rest longer than ``rest_s`` between a step's end and the next one's ``start`` (before the first:
+    from ``t0``) taken out; with ``rests`` only those overlapping one of these (start, end) spans (and the lead-in)."""
+    start = np.asarray(start, float)
+    end = np.asarray(end, float)
+    if not len(end):
+        return end
+    prev = np.concatenate([[t0], end[:-1]])
+    gap = start - prev
+    long = np.isfinite(gap) & (gap > rest_s)
+    if rests is not None:  # decision L306: only the rests L296 corrected (and the lead-in: no heading yet)
+        spans = np.asarray(rests, float).reshape(-1, 2)
+        corrected = np.array([bool(np.any((np.minimum(b, spans[:, 1]) - np.maximum(a, spans[:, 0])) > 0))
+                              for a, b in zip(prev, start, strict=True)], dtype=bool)
+        corrected[0] = True
+        long &= corrected
+    skip = np.where(long, gap, 0.0)
+    return end - np.cumsum(skip)
+
+
+def stride_radius(length: np.ndarray, heading: np.ndarray, clock: np.ndarray, t0: float, params: dict[str, float],
+                  *, raw: np.ndarray | None = None, bad: np.ndarray | None = None,
+                  held_var_m2: np.ndarray | None = None) -> tuple[np.ndarray, bool]:
+    """The 1-sigma radius (m) after each stride (decision L128) under the model ``params``, never decreasing, and
+    never over half :func:`reach_bound` (decision L333), with whether the last stride's radius was cut to it; NaN at
+    the strides ``bad`` (L143: their ``length`` / ``heading`` given as 0, ``raw`` the lengths as tracked). ``clock``:
+    the bias term's clock (the strides' end times, or :func:`rest_clock`'s). Shared by the offline tracks'
+    ``pos_sigma_m`` (:func:`pdrlearn.track.position_sigma.sigma_per_row`) and the live waist tracker's per step
+    (decision E352), so the two are equal."""
+    length = np.asarray(length, float)
+    bad = np.zeros(len(length), bool) if bad is None else np.asarray(bad, bool)
+    raw = length if raw is None else raw
+    cov = position_covariance(length, heading, clock, t0, **params, held_var_m2=held_var_m2)
+    r = sigma_radius(cov)
+    r = np.maximum.accumulate(np.where(np.isfinite(r), r, 0.0))  # a radius never shrinks without a fix
+    cap = 0.5 * reach_bound(length, heading, missed_walk(raw, bad, held_var_m2))  # L333: 2 sigma <= the sure radius
+    cut = bool(len(r) and r[-1] > cap[-1])
+    r = np.minimum(r, cap)
+    r[bad] = np.nan
+    return r, cut

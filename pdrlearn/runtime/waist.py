@@ -63,7 +63,9 @@ class LiveStep:
     ``track_waist``'s ``z`` / ``dz_m`` / ``pause_dz_m``; decisions E106, W158) when barometer samples were pushed
     (:meth:`WaistStream.push_barometer`), else None; ``stairs``: W91's rate test on that altitude
     (``track_waist``'s ``stairs`` column without ``stairs_climb``; with the option ``stairs_length`` such a step is at
-    most the 0.30 m tread, decision E107), None without a barometer."""
+    most the 0.30 m tread, decision E107), None without a barometer; ``pos_sigma_m`` (m): the modelled 1-sigma radius of
+    the position after the step, `pdrlearn run`'s trajectory.csv ``pos_sigma_m`` at ``end_s`` (decisions L128, E352;
+    "within about 2 x pos_sigma_m"), None once a fix has been used (an aided track is outside the model, as run's)."""
 
     t: float
     end_s: float
@@ -81,6 +83,7 @@ class LiveStep:
     dz_m: float | None = None
     stairs: bool | None = None
     pause_dz_m: float | None = None
+    pos_sigma_m: float | None = None
 
 
 class WaistStream(OwnGuard, FixInput):
@@ -350,6 +353,27 @@ class WaistStream(OwnGuard, FixInput):
             msg = implausible_barometer_message(found, WAIST_EFFECT.replace("stays 0", "stays where it was"))
             self.warnings.append(msg)
             log.warning("live waist tracker: %s", msg)
+
+    def _pos_sigma(self, t: float, end: float, length: float, heading: float) -> float:
+        """Decision E352: the 1-sigma radius (m) of the position after this step, as `pdrlearn run`'s trajectory.csv
+        ``pos_sigma_m`` (decision L128's ``"waist"`` model, L297 / L306's clock over the rests L296 corrected live,
+        L309) over the steps reported so far and this one (the radius after a step reads no later step):
+        :func:`pdrlearn.kernels.position_sigma.stride_radius`, the kernel the offline tracks call."""
+        from pdrlearn.kernels.position_sigma import SIGMA_PARAMS, rest_clock, stride_radius
+
+        done = self.steps
+        start = np.array([s.t for s in done] + [t], dtype=float)
+        end_s = np.array([s.end_s for s in done] + [end], dtype=float)
+        length_m = np.array([s.length_m for s in done] + [length], dtype=float)
+        head = np.array([s.heading_rad for s in done] + [heading], dtype=float)
+        t0 = float(self._fixes.t_start)
+        clock = end_s
+        if self.rest_bias_rests is not None:  # decision L306 (L309: the rests L296 corrected live), as run's
+            from pdrlearn.kernels.rest_heading import REST_BIAS_MIN_S
+
+            clock = rest_clock(start, end_s, t0, REST_BIAS_MIN_S, self.rest_bias_rests)
+        r, _ = stride_radius(length_m, head, clock, t0, SIGMA_PARAMS["waist"])  # decision L128: the waist model
+        return float(r[-1])
 
     def _on_stairs(self, row: dict) -> bool | None:
         """Decision W91's test (``track_waist``'s ``_stairs_steps`` without ``stairs_climb``) on the live altitude: the
@@ -752,7 +776,8 @@ class WaistStream(OwnGuard, FixInput):
         self._pause_a = row["end"]
         step = LiveStep(t=row["t"], end_s=row["end"], length_m=length, heading_rad=enu, x=float(x), y=float(y),
                         has_next=row["has_next"], merged=merged, turning=turning, side=row["side"], lat=lat, lon=lon,
-                        z=z, dz_m=dz, pause_dz_m=pause_dz, stairs=stairs)
+                        z=z, dz_m=dz, pause_dz_m=pause_dz, stairs=stairs,
+                        pos_sigma_m=None if fused is not None else self._pos_sigma(row["t"], row["end"], length, enu))
         self.steps.append(step)
         return step
 
