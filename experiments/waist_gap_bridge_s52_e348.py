@@ -26,11 +26,15 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
 OUT = Path(os.environ.get("OUT", "/tmp/ff_meas"))
+#: E354 (session 52, FK): the first curve user and the two no-gap users (E348's by default)
+SPLIT = int(os.environ.get("SPLIT", "19355"))
+NOGAP = tuple(int(u) for u in os.environ.get("NOGAP", "19340,19355").split(","))
+JOBS = os.environ.get("JOBS", "before,after,offline").split(",")
 ROUTES = {"straight": "stand:3, straight:30, stand:2", "curve": "stand:3, straight:8, curve:90:4, straight:8, stand:2"}
 
 
 def kind_of(u: int) -> str:
-    return "straight" if u < 19355 else "curve"
+    return "straight" if u < SPLIT else "curve"
 
 
 def cli(code: Path, *args: str) -> None:
@@ -77,11 +81,13 @@ def run(u: int) -> None:
     base = Path(os.environ["BASE"])
     jobs = [("before", base, ["--streaming"]), ("after", ROOT, ["--streaming"]), ("offline", ROOT, [])]
     for name, code, extra in jobs:
+        if name not in JOBS:
+            continue
         out = OUT / f"gap_u{u}_{name}"
         if not out.exists():
             cli(code, "track", str(OUT / f"gap_u{u}"), *extra, "--out", str(out))
-    if u in (19340, 19355):  # E348 (d): without a gap, before / after byte-identical
-        for name, code in (("before", base), ("after", ROOT)):
+    if u in NOGAP:  # E348 (d): without a gap, before / after byte-identical
+        for name, code in [(n, c) for n, c in (("before", base), ("after", ROOT)) if n in JOBS]:
             out = OUT / f"u{u}_{name}"
             if not out.exists():
                 cli(code, "track", str(OUT / f"u{u}"), "--streaming", "--out", str(out))
@@ -117,7 +123,7 @@ def report(a: int, b: int) -> None:
     for (kind, name), v in errs.items():
         v = np.abs(v)
         print(f"{kind:8s} {name:8s} n={len(v)} median |err| {np.median(v):.2f} deg, max {np.max(v):.2f} deg")
-    for u in (19340, 19355):
+    for u in NOGAP:
         x, y = OUT / f"u{u}_before" / "steps.csv", OUT / f"u{u}_after" / "steps.csv"
         if x.exists() and y.exists():
             print(f"no gap u{u}: steps.csv byte-identical before / after: {filecmp.cmp(x, y, shallow=False)}")
