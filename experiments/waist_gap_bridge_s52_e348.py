@@ -3,6 +3,7 @@
     BASE=/tmp/ff_base python experiments/waist_gap_bridge_s52_e348.py sim U        # simulate user U (+ its gap copy)
     BASE=/tmp/ff_base python experiments/waist_gap_bridge_s52_e348.py run U        # track it (before / after / offline)
     python experiments/waist_gap_bridge_s52_e348.py report 19340 19370             # E348's numbers
+    python experiments/waist_gap_bridge_s52_e348.py live U      # E354: the live Tracker (pdrlearn run's replay)
 
 ``BASE``: a directory holding the ``pdrlearn`` package before E348 (``git archive 49511d75 pdrlearn | tar -x``).
 Users 19340-19354 walk straight (gap at 12 s), 19355-19369 walk into a 90 deg curve of 4 m radius (the gap opens
@@ -108,9 +109,11 @@ def across(steps: Path, t: np.ndarray, h: np.ndarray) -> tuple[float, float]:
     return math.degrees(math.remainder(err, 2 * math.pi)), math.degrees(tru[1] - tru[0])
 
 
-def report(a: int, b: int) -> None:
+def report(a: int, b: int, *more: int) -> None:
+    """E348's numbers over users ``a`` to ``b - 1`` (E354: and any further ranges ``c d ...``)."""
     errs: dict[tuple[str, str], list] = {}
-    for u in range(a, b):
+    bounds = (a, b, *more)
+    for u in [u for k in range(0, len(bounds), 2) for u in range(bounds[k], bounds[k + 1])]:
         sim = OUT / f"u{u}"
         t, h = truth(sim)
         g0, d = gap_of(u, sim)
@@ -129,11 +132,32 @@ def report(a: int, b: int) -> None:
             print(f"no gap u{u}: steps.csv byte-identical before / after: {filecmp.cmp(x, y, shallow=False)}")
 
 
+def live(u: int) -> None:
+    """Decision E354: the live ``Tracker`` (``pdrlearn run``'s replay of the sim bundle, 1 s chunks) on user U's gap
+    session, this tree: its heading change across the gap against the truth, and ``track --streaming``'s (after)."""
+    from pdrlearn.runtime.__main__ import replay
+
+    _, steps = replay(ROOT / "models" / "plasys-sim-default", OUT / f"gap_u{u}")
+    out = OUT / f"gap_u{u}_live"
+    out.mkdir(exist_ok=True)
+    keys = ("start_s", "end_s", "length_m", "heading_rad", "gap_s")
+    with open(out / "steps.csv", "w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(keys)
+        w.writerows([[getattr(st, k) for k in keys] for st in steps])
+    t, h = truth(OUT / f"u{u}")
+    for name in ("live", "after"):
+        e, tr = across(OUT / f"gap_u{u}_{name}" / "steps.csv", t, h)
+        print(f"u{u} {name:6s} heading change error {e:+7.2f} deg (true change {tr:+7.2f} deg)")
+
+
 if __name__ == "__main__":
     cmd = sys.argv[1]
     if cmd == "sim":
         simulate(int(sys.argv[2]))
     elif cmd == "run":
         run(int(sys.argv[2]))
+    elif cmd == "live":
+        live(int(sys.argv[2]))
     else:
-        report(int(sys.argv[2]), int(sys.argv[3]))
+        report(*(int(x) for x in sys.argv[2:]))
