@@ -3,6 +3,7 @@
     BASE=/tmp/ff_base python experiments/waist_gap_bridge_s52_e348.py sim U        # simulate user U (+ its gap copy)
     BASE=/tmp/ff_base python experiments/waist_gap_bridge_s52_e348.py run U        # track it (before / after / offline)
     python experiments/waist_gap_bridge_s52_e348.py report 19340 19370             # E348's numbers
+    python experiments/waist_gap_bridge_s52_e348.py live U      # E354: the live Tracker (pdrlearn run's replay)
 
 ``BASE``: a directory holding the ``pdrlearn`` package before E348 (``git archive 49511d75 pdrlearn | tar -x``).
 Users 19340-19354 walk straight (gap at 12 s), 19355-19369 walk into a 90 deg curve of 4 m radius (the gap opens
@@ -26,11 +27,15 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
 OUT = Path(os.environ.get("OUT", "/tmp/ff_meas"))
+#: E354 (session 52, FK): the first curve user and the two no-gap users (E348's by default)
+SPLIT = int(os.environ.get("SPLIT", "19355"))
+NOGAP = tuple(int(u) for u in os.environ.get("NOGAP", "19340,19355").split(","))
+JOBS = os.environ.get("JOBS", "before,after,offline").split(",")
 ROUTES = {"straight": "stand:3, straight:30, stand:2", "curve": "stand:3, straight:8, curve:90:4, straight:8, stand:2"}
 
 
 def kind_of(u: int) -> str:
-    return "straight" if u < 19355 else "curve"
+    return "straight" if u < SPLIT else "curve"
 
 
 def cli(code: Path, *args: str) -> None:
@@ -77,11 +82,13 @@ def run(u: int) -> None:
     base = Path(os.environ["BASE"])
     jobs = [("before", base, ["--streaming"]), ("after", ROOT, ["--streaming"]), ("offline", ROOT, [])]
     for name, code, extra in jobs:
+        if name not in JOBS:
+            continue
         out = OUT / f"gap_u{u}_{name}"
         if not out.exists():
             cli(code, "track", str(OUT / f"gap_u{u}"), *extra, "--out", str(out))
-    if u in (19340, 19355):  # E348 (d): without a gap, before / after byte-identical
-        for name, code in (("before", base), ("after", ROOT)):
+    if u in NOGAP:  # E348 (d): without a gap, before / after byte-identical
+        for name, code in [(n, c) for n, c in (("before", base), ("after", ROOT)) if n in JOBS]:
             out = OUT / f"u{u}_{name}"
             if not out.exists():
                 cli(code, "track", str(OUT / f"u{u}"), "--streaming", "--out", str(out))
@@ -102,9 +109,11 @@ def across(steps: Path, t: np.ndarray, h: np.ndarray) -> tuple[float, float]:
     return math.degrees(math.remainder(err, 2 * math.pi)), math.degrees(tru[1] - tru[0])
 
 
-def report(a: int, b: int) -> None:
+def report(a: int, b: int, *more: int) -> None:
+    """E348's numbers over users ``a`` to ``b - 1`` (E354: and any further ranges ``c d ...``)."""
     errs: dict[tuple[str, str], list] = {}
-    for u in range(a, b):
+    bounds = (a, b, *more)
+    for u in [u for k in range(0, len(bounds), 2) for u in range(bounds[k], bounds[k + 1])]:
         sim = OUT / f"u{u}"
         t, h = truth(sim)
         g0, d = gap_of(u, sim)
@@ -117,10 +126,29 @@ def report(a: int, b: int) -> None:
     for (kind, name), v in errs.items():
         v = np.abs(v)
         print(f"{kind:8s} {name:8s} n={len(v)} median |err| {np.median(v):.2f} deg, max {np.max(v):.2f} deg")
-    for u in (19340, 19355):
+    for u in NOGAP:
         x, y = OUT / f"u{u}_before" / "steps.csv", OUT / f"u{u}_after" / "steps.csv"
         if x.exists() and y.exists():
             print(f"no gap u{u}: steps.csv byte-identical before / after: {filecmp.cmp(x, y, shallow=False)}")
+
+
+def live(u: int) -> None:
+    """Decision E354: the live ``Tracker`` (``pdrlearn run``'s replay of the sim bundle, 1 s chunks) on user U's gap
+    session, this tree: its heading change across the gap against the truth, and ``track --streaming``'s (after)."""
+    from pdrlearn.runtime.__main__ import replay
+
+    _, steps = replay(ROOT / "models" / "plasys-sim-default", OUT / f"gap_u{u}")
+    out = OUT / f"gap_u{u}_live"
+    out.mkdir(exist_ok=True)
+    keys = ("start_s", "end_s", "length_m", "heading_rad", "gap_s")
+    with open(out / "steps.csv", "w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(keys)
+        w.writerows([[getattr(st, k) for k in keys] for st in steps])
+    t, h = truth(OUT / f"u{u}")
+    for name in ("live", "after"):
+        e, tr = across(OUT / f"gap_u{u}_{name}" / "steps.csv", t, h)
+        print(f"u{u} {name:6s} heading change error {e:+7.2f} deg (true change {tr:+7.2f} deg)")
 
 
 if __name__ == "__main__":
@@ -129,5 +157,7 @@ if __name__ == "__main__":
         simulate(int(sys.argv[2]))
     elif cmd == "run":
         run(int(sys.argv[2]))
+    elif cmd == "live":
+        live(int(sys.argv[2]))
     else:
-        report(int(sys.argv[2]), int(sys.argv[3]))
+        report(*(int(x) for x in sys.argv[2:]))

@@ -655,6 +655,60 @@ def waist_bridge_yaw(stream: Callable[[str], tuple[np.ndarray, np.ndarray]], t0:
                    max_dt_s=None if gap_line else WAIST_GAP_S)
 
 
+def waist_gap_s(stream: Callable[[str], tuple[np.ndarray, np.ndarray]], t0: float, t1: float) -> float:
+    """Decision E354: the total (s) of the waist gyroscope's sample intervals over :data:`WAIST_GAP_S` among the
+    samples :func:`waist_bridge_yaw` integrates over ``[t0, t1]`` (as :func:`gap_yaw` picks them): the waist's own
+    gap inside the bridged span; 0 without one or without waist gyroscope samples."""
+    if not t1 > t0:
+        return 0.0
+    try:
+        t = stream("wGyroscope")[0]
+    except KeyError:
+        return 0.0
+    i0, i1 = (int(i) for i in np.searchsorted(t, [float(t0) - TIE_S, float(t1) - TIE_S], side="left"))
+    dt = np.diff(t[i0:min(i1 + 1, len(t))])
+    return float(np.sum(dt[dt > WAIST_GAP_S]))
+
+
+def stride_mean_rate(stream: Callable[[str], tuple[np.ndarray, np.ndarray]], s0: float, s1: float) -> float:
+    """Decision E354: the waist's mean vertical rate (rad/s, CCW) over the stride ``[s0, s1]`` (s): the bridge
+    kernel's ungated turn over it (its own waist gap counting 0, E348's keyword) over its duration. A whole gait cycle
+    cancels the pelvis' zero-mean yaw oscillation and keeps a steady curve's rate; 0 when ``s1 <= s0``."""
+    if not s1 > s0:
+        return 0.0
+    return waist_bridge_yaw(stream, s0, s1, gap_line=False) / (float(s1) - float(s0))
+
+
+class CycleGapLine:
+    """Decision E354: the turn across the waist gyroscope's own gap inside L91's bridge as the straight line between
+    the gait-cycle mean rates either side (:func:`stride_mean_rate` of the last full stride before and of the first
+    stride measured after), ``0.5 * (before + after) * D`` (``D``: :func:`waist_gap_s`). :meth:`hold` at a bridged
+    stride or pause (whose own bridge then counts the gap 0, ``gap_line=False``), :meth:`take` at the next measured
+    stride (its turn gets the gap's). The live ``Tracker`` and ``track --streaming`` share it."""
+
+    def __init__(self) -> None:
+        self.gap_s, self.before = 0.0, None  # the gaps held (s), the mean rate before the first of them (rad/s)
+
+    def hold(self, stream: Callable[[str], tuple[np.ndarray, np.ndarray]], t0: float, t1: float,
+             before: tuple[float, float] | None) -> None:
+        """The bridged span ``[t0, t1]`` (s); ``before``: the stride before it (start, end) s, or None."""
+        d = waist_gap_s(stream, t0, t1)
+        if d > 0:
+            if not self.gap_s and before is not None:
+                self.before = stride_mean_rate(stream, *before)
+            self.gap_s += d
+
+    def take(self, stream: Callable[[str], tuple[np.ndarray, np.ndarray]], t0: float, t1: float) -> float:
+        """The held gaps' turn (rad, CCW) with the stride ``[t0, t1]`` (s) after them; 0 when none is held."""
+        if not self.gap_s:
+            return 0.0
+        after = stride_mean_rate(stream, t0, t1)
+        before = after if self.before is None else self.before
+        turn = 0.5 * (before + after) * self.gap_s
+        self.gap_s, self.before = 0.0, None
+        return turn
+
+
 #: Heading sources of a streamed stride: the foot's attitude change from rest to rest, the waist's
 #: levelled vertical rate integrated over the stride, or "auto" (the waist when the stride has waist
 #: samples, else the foot).

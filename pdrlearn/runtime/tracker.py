@@ -63,6 +63,7 @@ from pdrlearn.kernels.stride import (
     FINE_PAD_S,
     GAP_YAW_MAX_S,
     HEADING_SOURCES,
+    CycleGapLine,
     CyclePhase,
     StanceSegmenter,
     advance_xyz,
@@ -464,6 +465,10 @@ class Tracker(OwnGuard, FixInput):
         turn from the previous stride's end (the foot's rest before the gap) to its own end (the rest after it)
         when the waist heads the strides (decision L99, the default; L91's mechanism; ``pdrlearn track
         --streaming``'s ``waist_bridge``); False: it keeps the heading (E30, L90).
+    bridge_cycle : across the waist gyroscope's own gap inside that bridge (both units silent) the turn is the line
+        between the gait-cycle mean rates of the stride before and the stride after (decision E354, ``pdrlearn track
+        --streaming``'s ``bridge_cycle``; added to the stride after); False: L91's line between the two rates at the
+        gap's edges (W389).
     drop_neighbour : a stride across dropped foot samples over 0.25 s (under 1 s) takes the length (scaled by the
         durations) and height change of the clean stride before it (decision L167, an option; E101: a keyword, as
         ``track_plasys(streaming=True, drop_neighbour=...)``); False (default): its own (decision L549: no module
@@ -554,6 +559,7 @@ class Tracker(OwnGuard, FixInput):
     _pushed_drops: list | None = None  # decision E230 (likewise)
     _baro = None  # decision E232 (likewise: no barometer check)
     _first_walk = None  # decision E215 (a bare Tracker.__new__ has none)
+    bridge_cycle = False  # decision E354 (a bare Tracker.__new__: L91's line)
     _stop_bias = None  # decision E272 (a bare Tracker.__new__ has none)
     _drop_at_w = math.inf  # decision E285 (as _stop_bias)
     _pitch_ref: PitchReference | None = None  # decisions B474 / B475 (a bare Tracker.__new__ makes one at its first)
@@ -633,6 +639,7 @@ class Tracker(OwnGuard, FixInput):
         sensors=None,
         waist_gap_yaw: bool = True,
         waist_bridge: bool = True,
+        bridge_cycle: bool = True,
         contacts: bool = False,
         check_input: bool = True,
         drop_neighbour: bool = False,
@@ -827,6 +834,8 @@ class Tracker(OwnGuard, FixInput):
         #: this long (s) after that end: the longest stride, its closing stance and the wait before a step is measured
         self._chain_quiet_s = _pedal.CHAIN_PAUSE_S + self.segmenter.max_step_s + 2.0 + self._lookahead_s
         self.waist_bridge = bool(waist_bridge)  # decisions L91 / L99 (the default)
+        self.bridge_cycle = bool(bridge_cycle)  # decision E354
+        self._cycle = CycleGapLine()  # decision E354: a waist gap's turn held for the stride after it
         #: the input side (decision E22): streams at another rate than the bundle's are tracked at their own
         #: rate (``resample="native"``, the default, as ``pdrlearn track --streaming``), resampled to the
         #: bundle's (``True``) or refused (``False``); ``inputs.input_rates_hz`` / ``resampled_hz`` tell which
@@ -2355,7 +2364,10 @@ class Tracker(OwnGuard, FixInput):
             if gap:
                 bridge = 0.0
                 if self._bridged() and any(long and imu for _, long, imu in over):  # decision L91
-                    bridge = waist_bridge_yaw(self._stream, min(t0, t0 if prev is None else prev), t1)
+                    lo = min(t0, t0 if prev is None else prev)
+                    bridge = waist_bridge_yaw(self._stream, lo, t1, gap_line=not self.bridge_cycle)
+                    if self.bridge_cycle:  # decision E354: the waist gap's turn waits for the stride after it
+                        self._cycle.hold(self._stream, lo, t1, self._stride_before(before, prev))
                 self._prev_end = t1  # no L31 pivot across it either: the foot's turn inside the gap is unknown
                 self._contacts = (before + [(t0, math.nan)])[-2:]  # steps decision 87: no contact
                 return ("gap", t0, t1, _pedal.unjudged_row(t0, t1), gap, bridge)  # E280: in its chain, not judged
@@ -2394,7 +2406,9 @@ class Tracker(OwnGuard, FixInput):
         turn = dyaw  # decision E51: the stride's own turn, before the pivot between strides
         if pause_gap:  # decisions L90 / L91 (track --streaming's): no foot pivot over a foot gap; the waist's turn
             if self._bridged():
-                dyaw += waist_bridge_yaw(self._stream, prev, t0)
+                dyaw += waist_bridge_yaw(self._stream, prev, t0, gap_line=not self.bridge_cycle)
+                if self.bridge_cycle:  # decision E354 (taken below by this stride)
+                    self._cycle.hold(self._stream, prev, t0, self._stride_before(before, prev))
             elif not headed_by_foot(lev, self.heading_source):  # L61's waist look-back is measured, kept
                 dyaw += stride_gap_yaw(lev, self.heading_source, self._stream, prev, t0, foot=False,
                                        waist=self.waist_gap_yaw)
@@ -2419,6 +2433,8 @@ class Tracker(OwnGuard, FixInput):
             turn -= self._stop_bias.turn(t0, t1)
             dyaw -= self._stop_bias.turn(lo, t1)
         turn = _sideways.own_turn(lev, self.heading_source, turn)  # decision L699: the foot's own turn, as offline's
+        if self.bridge_cycle:  # decision E354: a held waist gap's turn (0 without one)
+            dyaw += self._cycle.take(self._stream, t0, t1)
         self._spun = None  # decision L742: taken by this stride (or by the waist's gap, or lost over a foot gap)
         self._prev_end = t1
         if bridged:  # decision E280: a stride across bridged samples (L167's) is in its chain, not judged
@@ -2431,6 +2447,12 @@ class Tracker(OwnGuard, FixInput):
         if self._toe_off is not None and (t0, t1) not in self._toe_offs:  # decision E326 (once per stride)
             self._toe_offs[(t0, t1)] = self._stride_toe_off(t0, t1, event_s)
         return ("stride", t0, t1, row, lev, classes, proba, disp, dyaw, turn, event_s, self._clipped(t0, t1))
+
+    @staticmethod
+    def _stride_before(before: list, prev: float | None) -> tuple[float, float] | None:
+        """Decision E354: the stride before a bridged span, (start, end) s from the contacts kept (steps decision
+        87), or None."""
+        return (before[-1][0], prev) if before and prev is not None and prev > before[-1][0] else None
 
     def _apply(self, rec: tuple, pedal: bool = False) -> Step | None:
         """Decision E280: place a measured stride (:meth:`_measure`): the rules, heading, position and the Step. A

@@ -2105,7 +2105,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                     warn_out_of_domain: float | None = None, contacts: bool = False,
                     drop_neighbour: bool = False, first_walk: bool = False,
                     gated_level_dz: bool | str = False, cycling: bool = True,
-                    cycle_yaw: bool = True) -> TrackResult:
+                    cycle_yaw: bool = True, bridge_cycle: bool = True) -> TrackResult:
     """PLASYS M2/M3 with the streaming runtime's stride-local kernel (issue 7 trajectory parity).
 
     Strides come from :class:`~pdrlearn.kernels.stride.StanceSegmenter` fed the whole foot gyroscope;
@@ -2129,7 +2129,10 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     turn in the gap before it (:func:`~pdrlearn.kernels.stride.stride_gap_yaw`). ``waist_bridge`` (decision L99,
     as the runtime's; L91's mechanism): a stride headed by the waist gyroscope across a foot-IMU gap over 1 s turns
     by the waist's turn from the previous stride's end (the foot's rest before the gap) to its own end (the rest
-    after it); False: 0 (L90). ``drop_neighbour=True`` (decision L167, an option, as the runtime ``Tracker``'s;
+    after it); False: 0 (L90). ``bridge_cycle`` (decision E354, as the runtime's): across the waist gyroscope's own
+    gap inside that bridge the turn is the line between the gait-cycle mean rates of the stride before and the stride
+    after (:class:`~pdrlearn.kernels.stride.CycleGapLine`, added to the stride after); False: L91's line between the
+    rates at the gap's edges. ``drop_neighbour=True`` (decision L167, an option, as the runtime ``Tracker``'s;
     E101: a keyword, False by default, L549): a stride across dropped foot samples over 0.25 s
     (under 1 s) takes the length (scaled by the durations) and height change of the clean stride before it.
     ``first_walk=True`` (decisions E215, E222, an option, as the runtime ``Tracker``'s): a foot-headed track's
@@ -2259,12 +2262,19 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     neighbour = bool(drop_neighbour)  # decisions E101, L549
     stop = KSB.StopBias() if "waist" in forward else None  # decision E272 (the runtime's: the waist unit tracked)
     pitch_ref = PitchReference()  # decisions B474 / B475: the most level rest pitch of the strides so far
+    cycle_line = SK.CycleGapLine()  # decision E354
+
+    def before_stride(k: int) -> tuple[float, float] | None:  # decision E354: the stride before stride k
+        return (float(strides[k - 1, 0]), float(strides[k - 1, 1])) if k else None
+
     for i, (t0, t1) in enumerate(strides):
         prev = float(strides[i - 1, 1]) if i else None
         if in_gap[i]:  # decision L91: the waist's turn from the previous stride's end, else 0 (L90)
             if bridged and imu_gap[i]:
-                dyaw[i] = SK.waist_bridge_yaw(streams.__getitem__, min(float(t0), prev if prev is not None
-                                                                      else float(t0)), float(t1))
+                lo = min(float(t0), prev if prev is not None else float(t0))
+                dyaw[i] = SK.waist_bridge_yaw(streams.__getitem__, lo, float(t1), gap_line=not bridge_cycle)
+                if bridge_cycle:  # decision E354: the waist gap's turn waits for the stride after it (the runtime's)
+                    cycle_line.hold(streams.__getitem__, lo, float(t1), before_stride(i))
             continue
         try:
             if "foot" in forward and pitch_ref.pitched(streams.__getitem__, forward["foot"], float(t0), float(t1),
@@ -2302,7 +2312,9 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                      and not foot_headed[i] and not pause else None)  # turn read once for both calls below (runtime's)
         if pause:  # L90: no foot pivot over a foot gap;
             if bridged:  # L91: the waist's turn over the whole pause
-                dyaw[i] += SK.waist_bridge_yaw(streams.__getitem__, prev, float(t0))
+                dyaw[i] += SK.waist_bridge_yaw(streams.__getitem__, prev, float(t0), gap_line=not bridge_cycle)
+                if bridge_cycle:  # decision E354 (taken below by this stride)
+                    cycle_line.hold(streams.__getitem__, prev, float(t0), before_stride(i))
             elif not foot_headed[i]:  # L61's waist look-back is measured, kept
                 dyaw[i] += SK.stride_gap_yaw(lev, heading, streams.__getitem__, prev, float(t0), foot=False,
                                              waist=waist_gap_yaw)
@@ -2324,6 +2336,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             turn[i] -= stop.turn(t0, t1)
             dyaw[i] -= stop.turn(lo, t1)
         turn[i] = KSW.own_turn(lev, heading, turn[i])  # decision L699: the foot's own turn, as offline's row
+        if bridge_cycle:  # decision E354: a held waist gap's turn (0 without one), the runtime's call
+            dyaw[i] += cycle_line.take(streams.__getitem__, float(t0), float(t1))
     if neighbour and (across & ~posture).any():
         warnings.append(drop_stride_warning(int((across & ~posture).sum()), streamed=True))
     if (hole > 0).any():  # decision L674: the runtime's line (for the first such stride) and its missing classes
