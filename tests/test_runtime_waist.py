@@ -149,17 +149,22 @@ def test_run_of_a_waist_bundle_counts_floors_in_the_storey_height_given(sim, sta
 
 def _push_with_barometer(tr, s, chunks) -> list:
     """As ``push_waist``, with each chunk's barometer samples (up to the chunk's last time) pushed before it."""
+    return [o for _, got in _pushes_with_barometer(tr, s, chunks) for o in got]
+
+
+def _pushes_with_barometer(tr, s, chunks):
+    """:func:`_push_with_barometer`, one ``(last pushed time, steps returned)`` per push (the flush's last)."""
     a, g, b = s["wAccelerometer"], s["wGyroscope"], s["wBarometer"]
-    out, i, j = [], 0, 0
+    i = j = 0
     for c in [*chunks, len(a.t)]:
         if i >= len(a.t):
             break
         k = int(np.searchsorted(b.t, a.t[min(i + c, len(a.t)) - 1], side="right"))
         tr.push_barometer(b.t[j:k], b.values[j:k, 0])
-        out += tr.push(a.t[i:i + c], a.values[i:i + c], g.values[i:i + c])
+        yield float(a.t[min(i + c, len(a.t)) - 1]), tr.push(a.t[i:i + c], a.values[i:i + c], g.values[i:i + c])
         i, j = i + c, max(j, k)
     tr.push_barometer(b.t[j:], b.values[j:, 0])
-    return out + tr.flush()
+    yield float(a.t[-1]), tr.flush()
 
 
 @pytest.mark.parametrize("how", ["one", "random"])
@@ -300,6 +305,36 @@ def test_stairs_length_climbs_is_named_as_not_applied_live_and_the_runtime_keeps
     plain = stairs_ref
     out = _push_with_barometer(WaistTracker(load_waist_bundle(tmp_path / "wb"), fs=100.0), stairs3040, [100] * 10_000)
     np.testing.assert_allclose([o.length_m for o in out], plain.steps["length_m"].to_numpy(), atol=1e-9, rtol=0)
+
+
+def test_live_climbs_hold_applies_stairs_length_climbs_live_as_the_realtime_track_e358(sim, stairs3040, stairs_ref,
+                                                                                       tmp_path, capsys):
+    """Decision E358: with ``"live_climbs": "hold"`` the live tracker applies ``stairs_length: "climbs"`` - the steps
+    of an open run of W91's proposals are held until it is a climb (W108's 1.5 m, read causally) or has ended -
+    and `export` no longer names it (E107); its steps equal ``track_waist(realtime=True)``'s with the same options
+    (the same kernel, ``kernels.barometer.live_climb_bounds``), held stair steps come out later than without the
+    option, and the positions and radii follow the steps in report order."""
+    cal = json.loads(sim["cal"].read_text())
+    p = tmp_path / "hold.json"
+    p.write_text(json.dumps({**cal, "options": {"stairs_length": "climbs", "live_climbs": "hold"}}))
+    assert main(["export", str(p), "--out", str(tmp_path / "wb"), "--frame", _frame_arg(stairs3040)]) == 0
+    assert not [ln for ln in capsys.readouterr().err.splitlines() if "E107" in ln and "stairs_length=" in ln]
+    ref = track_waist(stairs3040, pipeline="waist-pendulum", realtime=True, params=str(p)).steps
+    assert ref["length_m"].sum() < stairs_ref.steps["length_m"].sum() - 5.0  # the flights bounded
+    tr = WaistTracker(load_waist_bundle(tmp_path / "wb"), fs=100.0)
+    a = stairs3040["wAccelerometer"]
+    late = []  # (step start, the pushed time it was returned at)
+    for when, got in _pushes_with_barometer(tr, stairs3040, [50] * (len(a.t) // 50)):
+        late += [(o.t, when) for o in got]
+    out = list(tr.steps)
+    np.testing.assert_allclose([o.length_m for o in out], ref["length_m"].to_numpy(), atol=1e-9, rtol=0)
+    np.testing.assert_allclose(np.cumsum([o.length_m * np.cos(o.heading_rad) for o in out]), [o.x for o in out],
+                               atol=1e-9)
+    lag = np.array([w - t for t, w in late])
+    # a flight's first steps wait for its 1.5 m (~9 steps) beyond W64's / W31's usual report delay; a level step not
+    assert lag.max() - np.median(lag) > 3.0 and lag[:5].max() < 5.0
+    r = [o.pos_sigma_m for o in out]
+    assert all(b >= a for a, b in zip(r, r[1:], strict=False))  # L128's radius never decreases in report order
 
 
 def test_a_waist_run_without_a_barometer_says_so_and_a_live_implausible_one_is_one_warning(sim, tmp_path, capsys):

@@ -474,10 +474,97 @@ def runs_mask(n: int, runs: list[tuple[int, int, float]]) -> np.ndarray:
 STEP_TO_STEP_MAX_RISE_M = 0.12
 
 
+def step_to_step(height_m: float, n_steps: int) -> bool:
+    """Decision W433: whether a climb of ``height_m`` (m, signed) over ``n_steps`` steps is climbed step to step (its
+    |height| per step under :data:`STEP_TO_STEP_MAX_RISE_M`)."""
+    return abs(float(height_m)) / max(int(n_steps), 1) < STEP_TO_STEP_MAX_RISE_M
+
+
 def step_to_step_mask(n: int, climbs: list[tuple[int, int, float]]) -> np.ndarray:
     """Decision W433: the steps of the ``climbs`` (:func:`climb_runs` over ``n`` steps) whose |height| per step is
     under :data:`STEP_TO_STEP_MAX_RISE_M`: a step-to-step climb, whose steps move half a tread each."""
-    return runs_mask(n, [r for r in climbs if abs(r[2]) / (r[1] - r[0]) < STEP_TO_STEP_MAX_RISE_M])
+    return runs_mask(n, [r for r in climbs if step_to_step(r[2], r[1] - r[0])])
+
+
+def climb_tread(height_m: float, n_steps: int) -> float:
+    """Decisions W91, W433: the most a step of a climb of ``height_m`` (m) over ``n_steps`` steps moves horizontally:
+    the tread (:data:`STAIR_TREAD_M`, thesis ch.7.3.2.1), half of it step to step (:func:`step_to_step`)."""
+    return 0.5 * STAIR_TREAD_M if step_to_step(height_m, n_steps) else STAIR_TREAD_M
+
+
+class LiveClimbHold:
+    """Decision E358: W108's climbs (:func:`climb_runs`) read causally for the live waist tracker's
+    ``stairs_length="climbs"`` with the option ``live_climbs="hold"``: the steps of an OPEN run of W91's proposals
+    are held until the run is decided, then released in order with their bound (m, :func:`climb_tread`), or None
+    (unbounded). A run is consecutive steps proposed with one sign, a single unproposed step inside bridged (W433:
+    held while the run may go on); it is decided as a climb once its height from its first step's start to the
+    step's end has its sign and reaches ``min_height_m`` (W108's :data:`STAIR_CLIMB_MIN_M`, without its still-period
+    noise term: the still period after the walk is not known live) - its held steps and every later step of it are
+    released bounded by the run so far - or as no climb when it ends (another sign, two unproposed steps, a step
+    without altitude, :meth:`flush`): its held steps released unbounded. A step outside any run is released at once,
+    so level walking is never delayed. :meth:`push` / :meth:`flush` return ``[(key, bound or None), ...]``."""
+
+    def __init__(self, *, min_height_m: float = STAIR_CLIMB_MIN_M):
+        self.min_height_m = float(min_height_m)
+        self._run: list | None = None  # [sign, start height (m), steps, climbing]
+        self._held: list = []  # the open run's steps not released yet
+        self._gap = None  # the unproposed step after the run, held: W433 bridges it if the run goes on
+
+    def size(self) -> int:
+        """The steps held now."""
+        return len(self._held) + (self._gap is not None)
+
+    def flush(self) -> list[tuple[object, float | None]]:
+        """End of the run (and of the stream): the held steps, unbounded (a climb has released its own)."""
+        out = [(k, None) for k in self._held] + ([] if self._gap is None else [(self._gap, None)])
+        self._run, self._held, self._gap = None, [], None
+        return out
+
+    def push(self, key, sign: int, start_h: float | None, end_h: float | None) -> list[tuple[object, float | None]]:
+        """The step ``key`` with its W91 proposal ``sign`` (+1 up, -1 down, 0 none) and its altitude (m) at its start
+        / end (None: unknown, which ends the run): the steps released by it, in order."""
+        if start_h is None or end_h is None or not (np.isfinite(start_h) and np.isfinite(end_h)):
+            return self.flush() + [(key, None)]
+        run = self._run
+        if sign == 0:
+            if run is None:
+                return [(key, None)]
+            if self._gap is None:  # W433: bridged if the next step goes on with the run's sign
+                self._gap = key
+                return []
+            return self.flush() + [(key, None)]  # two unproposed steps: the run has ended
+        out = []
+        if run is not None and run[0] == sign:
+            if self._gap is not None:
+                self._held.append(self._gap)
+                self._gap, run[2] = None, run[2] + 1
+            run[2] += 1
+        else:
+            out = self.flush()
+            run = self._run = [int(sign), float(start_h), 1, False]
+        self._held.append(key)
+        height = float(end_h) - run[1]
+        if run[3] or sign * height >= self.min_height_m:  # W108: a climb of at least 1.5 m, decided now
+            run[3] = True
+            tread = climb_tread(height, run[2])  # W433: half the tread step to step
+            out += [(k, tread) for k in self._held]
+            self._held = []
+        return out
+
+
+def live_climb_bounds(proposed: np.ndarray, start_h: np.ndarray, end_h: np.ndarray, *,
+                      min_height_m: float = STAIR_CLIMB_MIN_M) -> tuple[np.ndarray, np.ndarray]:
+    """Decision E358: :class:`LiveClimbHold` over a whole track's steps in order (``track_waist(realtime=True)``'s
+    reference of the live tracker): each step's bound (m; inf: unbounded) and the step whose report released it
+    (its own index when not held; ``n`` at the end of the stream)."""
+    n = len(proposed)
+    bound, released = np.full(n, np.inf), np.full(n, n, dtype=int)
+    hold = LiveClimbHold(min_height_m=min_height_m)
+    for i in range(n + 1):
+        out = hold.flush() if i == n else hold.push(i, int(proposed[i]), float(start_h[i]), float(end_h[i]))
+        for k, b in out:
+            bound[k], released[k] = np.inf if b is None else b, i
+    return bound, released
 
 
 #: Decision W230: the largest barometric height change (m) one walking step can make. A step climbs one riser

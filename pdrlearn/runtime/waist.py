@@ -182,6 +182,13 @@ class WaistStream(OwnGuard, FixInput):
         self._alt = None  # decision E106: the barometric altitude (kernels.barometer.LiveAltitude), once pushed
         self._z_prev = 0.0  # the altitude at the last reported step's end (0 at the track's first sample)
         self._baro_last = -np.inf
+        # decision E358: under stairs_length "climbs" with live_climbs "hold", the open run of W91's proposals whose
+        # steps wait until it is a climb (W108's, read causally) or has ended (None: off, E107 names "climbs")
+        self._climbs = None
+        if options.get("stairs_length") == "climbs" and options.get("live_climbs") == "hold":
+            from pdrlearn.kernels.barometer import LiveClimbHold
+
+            self._climbs = LiveClimbHold()
         # decision E146: W231's ride of a pause over RIDE_WINDOW_S, decided at its step's contact (a bundle exported
         # before E146 has no such option: off); the drift left out: (pause start, pause end, m) and its sum
         self._ride = bool(options.get("pause_ride", False))
@@ -224,6 +231,7 @@ class WaistStream(OwnGuard, FixInput):
         n += len(self._side_scale)  # W138: at most FRAGMENT_CONTEXT_STEPS
         n += self._held_size()
         n += 0 if self._alt is None else self._alt.size()  # E106: the barometer samples a pending step reads
+        n += 0 if self._climbs is None else 16 * self._climbs.size()  # E358: the held steps (a run of proposals)
         p = self._proc
         if p is not None:
             n += sum(np.size(v) for v in p.buf.values()) + 4 * len(p.decided) + sum(np.size(r[1]) for r in p.raw)
@@ -375,17 +383,17 @@ class WaistStream(OwnGuard, FixInput):
         r, _ = stride_radius(length_m, head, clock, t0, SIGMA_PARAMS["waist"])  # decision L128: the waist model
         return float(r[-1])
 
-    def _on_stairs(self, row: dict) -> bool | None:
-        """Decision W91's test (``track_waist``'s ``_stairs_steps`` without ``stairs_climb``) on the live altitude: the
-        altitude changes by STAIRS_RATE_MPS or more over STAIRS_RATE_WINDOW_S centred on the step's middle; None
+    def _stairs_rise(self, row: dict) -> float | None:
+        """What decision W91's test (``track_waist``'s ``_stairs_steps`` without ``stairs_climb``) reads on the live
+        altitude: its change (m) over STAIRS_RATE_WINDOW_S centred on the step's middle (``stairs_rate_test``); None
         without a (usable) barometer."""
-        from pdrlearn.kernels.barometer import STAIRS_RATE_WINDOW_S, stairs_rate_test
+        from pdrlearn.kernels.barometer import STAIRS_RATE_WINDOW_S
 
         if self._alt is None:
             return None
         mid, half = 0.5 * (row["t"] + row["end"]), 0.5 * STAIRS_RATE_WINDOW_S
         a, b = self._alt.at(mid - half), self._alt.at(mid + half)
-        return None if a is None or b is None else bool(stairs_rate_test(b - a))
+        return None if a is None or b is None else float(b - a)
 
     def _unit_check(self, t: np.ndarray) -> None:
         """Decision E29 as the runtime's: the first RATE_PROBE_MIN sample intervals give a rate more than
@@ -506,11 +514,13 @@ class WaistStream(OwnGuard, FixInput):
             self._gap_warnings()
         out = []
         while self._next < self._n_rows and self._ready(self._next, final):
-            out.append(self._report(self._next))
+            out.extend(self._report(self._next))
             self._next += 1
             old = self._next - LOOKAHEAD_ROWS - FRAGMENT_CONTEXT_STEPS - 1
             if old in self._rows:
                 del self._rows[old]
+        if final and self._climbs is not None:  # decision E358: the stream's end ends the open run
+            out.extend(self._emit(q, bound) for q, bound in self._climbs.flush())
         if self._proc is not None:
             self._trim()
         return out
@@ -659,8 +669,10 @@ class WaistStream(OwnGuard, FixInput):
             self.pause_drifts.append((float(t_a), float(t_b), float(drop)))
         return drop
 
-    def _report(self, k: int) -> LiveStep:
+    def _report(self, k: int) -> list[LiveStep]:
+        """The steps reported once row ``k`` is final: its own, or (decision E358's hold) none or the held ones."""
         from pdrlearn.kernels import waist as K
+        from pdrlearn.kernels.barometer import stairs_rate_test
 
         p, o = self.params, self.options
         row = self._rows[k]
@@ -738,29 +750,15 @@ class WaistStream(OwnGuard, FixInput):
                 self._cur_gyro = self._cur_out = self._h_seq
             self._stop_cum = float(np.interp(row["t"], self._bt, self._bc))
             self._rest_a = row["t"]  # L308: the rest starts at the closing contact (offline's t_a)
-        stairs = self._on_stairs(row)
+        rise = self._stairs_rise(row)
+        stairs = None if rise is None else bool(stairs_rate_test(rise))
         # W91's option, as track_waist: at most the tread on stairs (E107); W156's "climbs" needs the whole
-        # recording's climbs and is named as not applied live (unapplied_options_line)
+        # recording's climbs: named as not applied live (unapplied_options_line) unless E358's hold reads them
         if stairs and o.get("stairs_length") and o.get("stairs_length") != "climbs":
             from pdrlearn.kernels.barometer import STAIR_TREAD_M
 
             length = min(length, STAIR_TREAD_M)
         enu = float(np.angle(np.exp(1j * (head + self._h0))))
-        self._sx += length * np.cos(enu)
-        self._sy += length * np.sin(enu)
-        x, y = self._xy0[0] + self._sx, self._xy0[1] + self._sy
-        self.position, self.heading = (float(x), float(y)), enu
-        fused = self._fuse_step(row["t"], row["end"], length, enu)  # decisions D19-D21
-        if fused is not None:
-            x, y = fused
-        lat = lon = None
-        if self._ll is not None:  # decision W137: the reported displacement, thesis eq. 56/57
-            from pdrlearn.kernels.geodetic import step_destination
-
-            dx, dy = float(x) - self._xy_reported[0], float(y) - self._xy_reported[1]
-            self._ll = step_destination(*self._ll, math.hypot(dx, dy), math.atan2(dy, dx))
-            lat, lon = math.degrees(self._ll[0]), math.degrees(self._ll[1])
-        self._xy_reported = (float(x), float(y))
         z = dz = pause_dz = None
         if self._alt is not None:  # decision E106: W89's altitude at the step's end, as track_waist's z / dz_m
             z = self._alt.at(row["end"])
@@ -774,10 +772,38 @@ class WaistStream(OwnGuard, FixInput):
                 self._drift += drop
                 z -= self._drift
         self._pause_a = row["end"]
-        step = LiveStep(t=row["t"], end_s=row["end"], length_m=length, heading_rad=enu, x=float(x), y=float(y),
-                        has_next=row["has_next"], merged=merged, turning=turning, side=row["side"], lat=lat, lon=lon,
-                        z=z, dz_m=dz, pause_dz_m=pause_dz, stairs=stairs,
-                        pos_sigma_m=None if fused is not None else self._pos_sigma(row["t"], row["end"], length, enu))
+        part = dict(t=row["t"], end_s=row["end"], length_m=length, heading_rad=enu, has_next=row["has_next"],
+                    merged=merged, turning=turning, side=row["side"], z=z, dz_m=dz, pause_dz_m=pause_dz, stairs=stairs)
+        if self._climbs is None:
+            return [self._emit(part)]
+        # decision E358: the steps of an open run of W91's proposals wait until it is a climb or has ended
+        a, b = (None, None) if self._alt is None else (self._alt.at(row["t"]), self._alt.at(row["end"]))
+        return [self._emit(q, bound) for q, bound in self._climbs.push(part, int(np.sign(rise)) if stairs else 0, a, b)]
+
+    def _emit(self, part: dict, bound: float | None = None) -> LiveStep:
+        """The reported step of ``part`` (its length at most ``bound``, m, E358's climb) on the track: its position,
+        fix (D19-D21), lat/lon (W137) and radius (E352), in the order the steps are reported."""
+        if bound is not None:
+            part = {**part, "length_m": min(part["length_m"], bound)}
+        length, enu = part["length_m"], part["heading_rad"]
+        self._sx += length * np.cos(enu)
+        self._sy += length * np.sin(enu)
+        x, y = self._xy0[0] + self._sx, self._xy0[1] + self._sy
+        self.position, self.heading = (float(x), float(y)), enu
+        fused = self._fuse_step(part["t"], part["end_s"], length, enu)  # decisions D19-D21
+        if fused is not None:
+            x, y = fused
+        lat = lon = None
+        if self._ll is not None:  # decision W137: the reported displacement, thesis eq. 56/57
+            from pdrlearn.kernels.geodetic import step_destination
+
+            dx, dy = float(x) - self._xy_reported[0], float(y) - self._xy_reported[1]
+            self._ll = step_destination(*self._ll, math.hypot(dx, dy), math.atan2(dy, dx))
+            lat, lon = math.degrees(self._ll[0]), math.degrees(self._ll[1])
+        self._xy_reported = (float(x), float(y))
+        step = LiveStep(**part, x=float(x), y=float(y), lat=lat, lon=lon,
+                        pos_sigma_m=None if fused is not None else self._pos_sigma(part["t"], part["end_s"], length,
+                                                                                    enu))
         self.steps.append(step)
         return step
 

@@ -737,7 +737,10 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "rest_frame": False,  # W285: harmonic headings less the AHRS frame's turn over a long rest
                    "climb_veto": False,  # L314's ramp veto from W108's climbs: opt-in (decision L330)
                    "ride_vibration": False,  # L402: a vibrating ride is a vehicle's; L403: not met, opt-in
-                   "walked_ride": False}  # W609: a ride shaking like walking is stairs; not met, opt-in
+                   "walked_ride": False,  # W609: a ride shaking like walking is stairs; not met, opt-in
+                   # E358: stairs_length "climbs" applied live by holding an open run's steps until it is decided
+                   # ("hold"); false: the live trackers do not apply "climbs" (E107's line names it)
+                   "live_climbs": False}
 #: decision W193: options that act on one pipeline / mode only - where each applies (said when it is set and does
 #: nothing) and the test of whether it acts: ``(pipeline, realtime, heading method, detector given, integrate_stops)``
 SCOPED_OPTIONS = {
@@ -781,6 +784,8 @@ SCOPED_OPTIONS = {
     "cadence_law": ("calibrated waist-pendulum tracks (W240)", lambda pl, rt, m, det, stops: pl == "waist-pendulum"),
     "short_step_check": ("the offline waist-pendulum (W207; an uncalibrated offline waist-pll track is judged so by "
                          "default, W208)", lambda pl, rt, m, det, stops: pl == "waist-pendulum" and not rt),
+    "live_climbs": ("realtime tracks and the live trackers, with stairs_length \"climbs\" (E358)",
+                    lambda pl, rt, m, det, stops: rt),
 }
 
 
@@ -812,7 +817,8 @@ FLAG_OPTIONS = tuple(k for k, v in OPTION_DEFAULTS.items()
                      if isinstance(v, bool) and k not in ("sit_veto", "pause_steps", "vault_veto", "stairs_length",
                                                           "parity_fill", "stand_veto", "contact_model", "fast_fill",
                                                           "cadence_law", "pll_edge_lock", "turn_bridge",
-                                                          "pelvic_rhythm_veto", "mount_drift", "slow_min_step"))
+                                                          "pelvic_rhythm_veto", "mount_drift", "slow_min_step",
+                                                          "live_climbs"))
 FLAG_RULES = {k: Rule("flag", ints=True) for k in FLAG_OPTIONS}  # B199: 0 / 1 pass (B206's shared check)
 #: the values of the ``sit_veto`` option: off, W104's veto, W109's veto sparing left/right step pairs, W180's
 #: sparing also an undecided contact between two same-side contacts of its sequence, W184's sparing instead an
@@ -854,7 +860,8 @@ CHOICE_OPTIONS = {"sit_veto": (SIT_VETO_VALUES, "W104, W109, W180, W184"),
                   "pelvic_rhythm_veto": (PELVIC_RHYTHM_VALUES, "W440"),
                   "slow_min_step": (SLOW_MIN_STEP_VALUES, "W591"),
                   # W576: "standing", the line only when the quiet standing moved with the walking upright
-                  "mount_drift": ((False, True, "standing"), "W565, W571, W576")}
+                  "mount_drift": ((False, True, "standing"), "W565, W571, W576"),
+                  "live_climbs": ((False, "hold"), "E358")}
 
 
 def resolve_options(p: WaistParams, given: dict) -> dict:
@@ -1134,6 +1141,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "climb_veto": None,  # L330: a PARAMS.json option only
              "ride_vibration": None,  # L402 / L403: a PARAMS.json option only
              "walked_ride": None,  # W609: a PARAMS.json option only
+             "live_climbs": None,  # E358: a PARAMS.json option only
              "lying_heading": None,  # W269: a PARAMS.json option only
              "rest_frame": None,  # W285: a PARAMS.json option only
              "pll_slow_check": None,  # W289: a PARAMS.json option only
@@ -1371,6 +1379,12 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
             warnings.append(line)
     if bool(o["stairs_length"]):  # W91's candidate: the horizontal length of a stair step is at most the tread
         bounded = climbs if o["stairs_length"] == "climbs" else stairs  # W156: only W108's climbs
+        if o["stairs_length"] == "climbs" and realtime and o["live_climbs"] == "hold" and baro is not None:
+            from pdrlearn.kernels.barometer import live_climb_bounds
+
+            proposed, rise, start_h, end_h = _stair_proposals(baro, steps)  # E358: the live trackers' climbs
+            tread, _ = live_climb_bounds(np.where(proposed, np.sign(rise), 0).astype(int), start_h, end_h)
+            bounded = np.isfinite(tread)
         steps = steps.assign(length_m=np.where(bounded, np.minimum(steps["length_m"].to_numpy(float), tread),
                                                steps["length_m"].to_numpy(float)))
     still_mask = functools.cache(lambda: _still_samples(imu))  # L296's still samples: the IMU's own (W285, W354)

@@ -74,7 +74,7 @@ def live_options(p, warnings: list[str], **given) -> dict:
     else the pipeline defaults: ``track_waist``'s :func:`~pdrlearn.track.waist.resolve_options`), with the lines
     about what the live tracker cannot do added to ``warnings``; shared by :class:`WaistTracker` and ``pdrlearn
     export CAL.json`` (the waist bundle's options, decision E57)."""
-    from pdrlearn.track.waist import CAUSAL_PAUSE_STEPS, resolve_options
+    from pdrlearn.track.waist import CAUSAL_PAUSE_STEPS, CHOICE_OPTIONS, resolve_options
 
     given = {"realtime": True, "heading": "gyro", "refine_ic": None, "initial_heading": None, "resolve_signs": None,
              "integrate_stops": None, "turn_factor": None, "rhythm": None, "merge_fragments": None,
@@ -83,10 +83,15 @@ def live_options(p, warnings: list[str], **given) -> dict:
              "pause_steps": None, "realtime_contact_shift": None,
              "freeze_index": None,  # W216: `run` computes the lower back's freeze index after the track, opt-in
              "pause_ride": None, "rest_bias": None,  # decisions E146, L308: a bundle's options
+             "live_climbs": None,  # decision E358: stairs_length "climbs" held live
              **given}
     o = resolve_options(p, given)
     if given["pause_ride"] is None:  # decision E146: only as the PARAMS.json (or the caller) gives it
         o["pause_ride"] = live_value("pause_ride", p.options)
+    values, codes = CHOICE_OPTIONS["live_climbs"]
+    if o["live_climbs"] not in values:  # decision E358: a misspelt value would track silently without it
+        raise DataError(f"live_climbs {o['live_climbs']!r} is not one of {', '.join(json.dumps(v) for v in values)} "
+                        f"(decision {codes}); fix the PARAMS.json \"options\"")
     if o["pause_steps"] != CAUSAL_PAUSE_STEPS:  # W165: the live trackers apply W134's value, or none
         o["pause_steps"] = False
     if o["length_smoothing"] != "none":
@@ -164,7 +169,9 @@ def unapplied_options_line(p) -> str | None:
     live = {k: live_value(k, given) for k in LIVE_UNAPPLIED_OPTIONS}
     unapplied = [k for k in LIVE_UNAPPLIED_OPTIONS if offline[k] != live[k]
                  and (k not in NAMED_WHEN_GIVEN or given.get(k) is not None)]
-    if given.get("stairs_length") == "climbs":  # W156's value reads the whole recording's climbs (W108): no bound
+    held = (given.get("live_climbs") if given.get("live_climbs") is not None
+            else OPTION_DEFAULTS["live_climbs"]) == "hold"  # decision E358: W108's climbs read live, held
+    if given.get("stairs_length") == "climbs" and not held:  # W156 reads the whole recording's climbs (W108)
         unapplied.append("stairs_length")
         offline["stairs_length"], live["stairs_length"] = "climbs", False
     if given.get("pause_steps") in (True, "progression"):  # W165: live applies "standing" (W134) and false only
