@@ -69,6 +69,35 @@ def declared_forward_yaw(session, placement: str = "waist") -> float | None:
     return None if chk is None else chk.forward_yaw_deg
 
 
+def trusted_forward_yaw(session, info: dict) -> tuple[float | None, str | None]:
+    """Decision L801 (amends L796): (the yaw in deg to turn the waist compass by, or None; a warning line or None).
+    The yaw D10's check measured (:func:`declared_forward_yaw`, recorded in ``info["forward_yaw_deg"]``) is not
+    applied when W435 does not trust the measured forward (its step-frequency power ratio under
+    :data:`pdrlearn.track.frame_inference.MIN_JUDGED_POWER_RATIO`: an asymmetric gait turns it by 12-50 deg) or when
+    meta.json's ``"force_frame"`` keeps the declared waist frame (W434: the user's forward, not the measurement's);
+    ``info["forward_yaw_skipped"]`` then names why and the line says the compass was not turned."""
+    from pdrlearn.decision_refs import decision_ref
+    from pdrlearn.track.frame_inference import MIN_JUDGED_POWER_RATIO
+
+    yaw = declared_forward_yaw(session)
+    info["forward_yaw_deg"] = yaw
+    if yaw is None:
+        return None, None
+    ratio = forward_power_ratio(session)
+    if _waist_forced(session):
+        info["forward_yaw_skipped"] = "force_frame"
+        why = ('meta.json\'s "force_frame" keeps the declared waist frame (W434: the unit is worn as declared), so '
+               "the compass reads the declared forward")
+    elif ratio is not None and ratio < MIN_JUDGED_POWER_RATIO:  # decision W435's bound (x10)
+        info["forward_yaw_skipped"] = "power_ratio"
+        why = (f"its step-frequency power ratio is only x{ratio:.1f} (under x{MIN_JUDGED_POWER_RATIO:g}): an "
+               "asymmetric gait (a hemiparesis, a prosthesis) can turn the measured forward by 12-50 deg (W435)")
+    else:
+        return yaw, None
+    return None, (f"the waist compass was not turned by the waist unit's measured mount yaw ({yaw:+.1f} deg, "
+                  f"L796): {why} ({decision_ref('L801')})")
+
+
 def forward_power_ratio(session, placement: str = "waist") -> float | None:
     """Decision W435: the step-frequency power ratio of the forward D10's check measured (None: none measured)."""
     chk = session.declared_check(placement)

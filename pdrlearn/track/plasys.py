@@ -1648,10 +1648,10 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                 relative + side_extra, disp, lateral, fd.yaw_change_)
         else:
             if forward_yaw and mount_info is not None:  # decision L796: the compass reads the unit's forward
-                from pdrlearn.track.compass_mount import declared_forward_yaw
+                from pdrlearn.track.compass_mount import trusted_forward_yaw
 
-                yaw_deg = declared_forward_yaw(work)
-                mount_info["forward_yaw_deg"] = yaw_deg
+                yaw_deg, yaw_line = trusted_forward_yaw(work, mount_info)  # L801: not when W435 / W434 say no
+                warnings += [yaw_line] if yaw_line else []
                 head = head + (np.radians(yaw_deg) if yaw_deg is not None else 0.0)
             from pdrlearn.track.stride_kinds import disp_kind_labels
 
