@@ -10,8 +10,8 @@ import logging
 import sys
 
 import numpy as np
-from offline_mount_yaw_s52_l796 import ROUTES, final_error
 
+from offline_mount_yaw_s52_l796 import ROUTES, final_error
 from pdrlearn.sim.route import parse_route
 from pdrlearn.sim.simulate import simulate_path
 from pdrlearn.sim.user import UserProfile
