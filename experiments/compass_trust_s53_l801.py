@@ -16,6 +16,7 @@ from pdrlearn.sim.route import parse_route
 from pdrlearn.sim.simulate import simulate_path
 from pdrlearn.sim.user import UserProfile
 from pdrlearn.track import compass_mount
+from pdrlearn.track.evaluate import evaluate_track
 from pdrlearn.track.plasys import track_plasys
 
 ASYM_ROUTE = "stand:3, straight:15, turn:90, straight:10, turn:-90, straight:10, stand:3"
@@ -46,10 +47,11 @@ def asym() -> None:
             s.meta["force_frame"] = ["waist"]
         off, on, old = track_plasys(s, forward_yaw=False), track_plasys(s), ungated(s)
         cm = on.info["compass_mount"] or {}
+        ev = [evaluate_track(r, s)["final_position_error_m"] for r in (off, old, on)]  # the review's measure
         print(f"user {uid} asym {a} forced {forced}: ratio {cm.get('forward_power_ratio')} yaw "
               f"{cm.get('forward_yaw_deg')} skipped {cm.get('forward_yaw_skipped')}; final error forward_yaw False "
-              f"{final_error(off, s):.3f} m, L796 {final_error(old, s):.3f} m, L801 {final_error(on, s):.3f} m",
-              flush=True)
+              f"{final_error(off, s):.3f} m, L796 {final_error(old, s):.3f} m, L801 {final_error(on, s):.3f} m "
+              f"(evaluate_track: {ev[0]:.3f}, {ev[1]:.3f}, {ev[2]:.3f} m)", flush=True)
 
 
 def fresh(u0: int, u1: int, rates: list[float]) -> None:
