@@ -3,7 +3,9 @@ the measured forward (step-frequency power ratio under x10) or the waist frame i
 
 Usage: ``PYTHONPATH=. python experiments/compass_trust_s53_l801.py asym`` (rule (a): review s53r1's asymmetric and
 forced walkers), ``... fresh U0 U1 [RATES]`` (rule (b): L796's design on users U0..U1-1, rates default ``100,50``;
-each run also without L801's gate, L796 as adopted, when the gate skipped the turn)."""
+each run also without L801's gate, L796 as adopted, when the gate skipped the turn). L801's gate is
+``track_plasys(forward_yaw_gate=True)`` (measured while it was this branch's default: the same code, the same
+numbers)."""
 from __future__ import annotations
 
 import logging
@@ -15,26 +17,10 @@ from offline_mount_yaw_s52_l796 import ROUTES, final_error
 from pdrlearn.sim.route import parse_route
 from pdrlearn.sim.simulate import simulate_path
 from pdrlearn.sim.user import UserProfile
-from pdrlearn.track import compass_mount
 from pdrlearn.track.evaluate import evaluate_track
 from pdrlearn.track.plasys import track_plasys
 
 ASYM_ROUTE = "stand:3, straight:15, turn:90, straight:10, turn:-90, straight:10, stand:3"
-
-
-def _l796_yaw(session, info):
-    info["forward_yaw_deg"] = yaw = compass_mount.declared_forward_yaw(session)
-    return yaw, None
-
-
-def ungated(session):
-    """L796 as adopted (session 52): the measured yaw applied whatever its trust."""
-    keep = compass_mount.trusted_forward_yaw
-    compass_mount.trusted_forward_yaw = _l796_yaw
-    try:
-        return track_plasys(session)
-    finally:
-        compass_mount.trusted_forward_yaw = keep
 
 
 def asym() -> None:
@@ -45,7 +31,7 @@ def asym() -> None:
                           paretic_side="right", rocker="smooth")
         if forced:
             s.meta["force_frame"] = ["waist"]
-        off, on, old = track_plasys(s, forward_yaw=False), track_plasys(s), ungated(s)
+        off, on, old = track_plasys(s, forward_yaw=False), track_plasys(s, forward_yaw_gate=True), track_plasys(s)
         cm = on.info["compass_mount"] or {}
         ev = [evaluate_track(r, s)["final_position_error_m"] for r in (off, old, on)]  # the review's measure
         print(f"user {uid} asym {a} forced {forced}: ratio {cm.get('forward_power_ratio')} yaw "
@@ -61,11 +47,11 @@ def fresh(u0: int, u1: int, rates: list[float]) -> None:
         for rate in rates:
             s = simulate_path(parse_route(ROUTES[u % 3]), user, rate_hz=rate, seed=0, name=f"l801_u{u}",
                               scenario="route")
-            before, after = track_plasys(s, forward_yaw=False), track_plasys(s)
+            before, after = track_plasys(s, forward_yaw=False), track_plasys(s, forward_yaw_gate=True)
             cm = after.info.get("compass_mount") or {}
             skipped = cm.get("forward_yaw_skipped")
             e0, e1 = final_error(before, s), final_error(after, s)
-            e796 = final_error(ungated(s), s) if skipped else e1
+            e796 = final_error(track_plasys(s), s) if skipped else e1  # L796, the default
             rows.append((e0, e1, e796, skipped))
             print(f"user {u} route {u % 3} {rate:g} Hz: ratio {cm.get('forward_power_ratio')} yaw "
                   f"{cm.get('forward_yaw_deg')} skipped {skipped}; final {e0:.3f} -> L801 {e1:.3f} m (L796 "

@@ -1706,7 +1706,10 @@ def _reference_point(point: str, par, params: Path | None, pipeline: str, stream
 #: decision L717: ``foot_ramps`` (ramps.csv from a foot track's own L39 heights, an option: its rule failed)
 #: decision L770: ``compass_sinusoid`` (the waist compass's direction sinusoid off before the fused window), offline
 #: decision L796: ``forward_yaw`` (the waist compass turned by D10's measured mount yaw; on by default), offline
-TRACK_PARAM_KEYS = ("waist_bias", "fused_climb", "hard_iron_fit", "foot_ramps", "compass_sinusoid", "forward_yaw")
+#: decision L801: ``forward_yaw_gate`` (not when W435's power ratio or W434's force_frame distrusts it; an option),
+#: offline
+TRACK_PARAM_KEYS = ("waist_bias", "fused_climb", "hard_iron_fit", "foot_ramps", "compass_sinusoid", "forward_yaw",
+                    "forward_yaw_gate")
 #: decision L615: the lower-back PARAMS ``options`` (``{"options": {...}}``) the plasys pipeline reads as well
 PLASYS_OPTION_KEYS = ("ride_vibration",)
 
@@ -1733,7 +1736,8 @@ def _track_params(par: dict, path: Path, streaming: bool) -> tuple[dict, dict]:
         raise DataError(f"{path}: \"waist_bias\" removes the waist gyroscope bias from the offline two-unit heading "
                         "(decisions W126, W422); the --streaming kernel removes instead, always, the bias read at "
                         "each stop of 10 s or more (decision E272): drop --streaming or the key")
-    for key, codes in (("hard_iron_fit", "L84, L636"), ("compass_sinusoid", "L770"), ("forward_yaw", "L796")):
+    for key, codes in (("hard_iron_fit", "L84, L636"), ("compass_sinusoid", "L770"), ("forward_yaw", "L796"),
+                       ("forward_yaw_gate", "L801")):
         if key in keys and streaming:  # decisions L636, L770
             raise DataError(f"{path}: \"{key}\" fits the waist compass of the offline fused heading (decisions "
                             f"{codes}); the --streaming kernel heads by the gyroscopes and reads no compass: drop "
