@@ -13,7 +13,7 @@ import sys
 
 import numpy as np
 
-from offline_mount_yaw_s52_l796 import ROUTES, final_error
+from offline_mount_yaw_s52_l796 import final_error, route_runs
 from pdrlearn.sim.route import parse_route
 from pdrlearn.sim.simulate import simulate_path
 from pdrlearn.sim.user import UserProfile
@@ -42,20 +42,16 @@ def asym() -> None:
 
 def fresh(u0: int, u1: int, rates: list[float]) -> None:
     rows = []
-    for u in range(u0, u1):
-        user = UserProfile.from_seed(u)
-        for rate in rates:
-            s = simulate_path(parse_route(ROUTES[u % 3]), user, rate_hz=rate, seed=0, name=f"l801_u{u}",
-                              scenario="route")
-            before, after = track_plasys(s, forward_yaw=False), track_plasys(s, forward_yaw_gate=True)
-            cm = after.info.get("compass_mount") or {}
-            skipped = cm.get("forward_yaw_skipped")
-            e0, e1 = final_error(before, s), final_error(after, s)
-            e796 = final_error(track_plasys(s), s) if skipped else e1  # L796, the default
-            rows.append((e0, e1, e796, skipped))
-            print(f"user {u} route {u % 3} {rate:g} Hz: ratio {cm.get('forward_power_ratio')} yaw "
-                  f"{cm.get('forward_yaw_deg')} skipped {skipped}; final {e0:.3f} -> L801 {e1:.3f} m (L796 "
-                  f"{e796:.3f} m)", flush=True)
+    for u, rate, _, s in route_runs(u0, u1, rates, "l801"):
+        before, after = track_plasys(s, forward_yaw=False), track_plasys(s, forward_yaw_gate=True)
+        cm = after.info.get("compass_mount") or {}
+        skipped = cm.get("forward_yaw_skipped")
+        e0, e1 = final_error(before, s), final_error(after, s)
+        e796 = final_error(track_plasys(s), s) if skipped else e1  # L796, the default
+        rows.append((e0, e1, e796, skipped))
+        print(f"user {u} route {u % 3} {rate:g} Hz: ratio {cm.get('forward_power_ratio')} yaw "
+              f"{cm.get('forward_yaw_deg')} skipped {skipped}; final {e0:.3f} -> L801 {e1:.3f} m (L796 "
+              f"{e796:.3f} m)", flush=True)
     e0, e1, e796 = (float(np.median([r[i] for r in rows])) for i in range(3))
     print(f"L801 {len(rows)} runs: median final {e0:.3f} -> {e1:.3f} m (ratio {e1 / e0:.3f}); L796 without the gate "
           f"{e796:.3f} m (ratio {e796 / e0:.3f}); gate skipped {sum(bool(r[3]) for r in rows)} runs")
