@@ -38,32 +38,38 @@ def first_leg_deg(res) -> float:
     return float(np.degrees(np.median(res.steps["heading_rad"].to_numpy(float)[1:5])))
 
 
-def main(u0: int, u1: int, rates: list[float]) -> None:
-    logging.disable(logging.WARNING)
-    rows = []
+def route_runs(u0: int, u1: int, rates: list[float], prefix: str = "l796"):
+    """L796's design: (user id, rate, profile, session) for users u0..u1-1, route ``ROUTES[u % 3]``, each rate (also
+    decision L801's)."""
     for u in range(u0, u1):
         user = UserProfile.from_seed(u)
         for rate in rates:
-            s = simulate_path(parse_route(ROUTES[u % 3]), user, rate_hz=rate, seed=0, name=f"l796_u{u}",
-                              scenario="route")
-            before, after = track_plasys(s, forward_yaw=False), track_plasys(s, forward_yaw=True)
-            yaw = (after.info.get("compass_mount") or {}).get("forward_yaw_deg")
-            row = dict(user=u, rate=rate, mount=mount_yaw_deg(user), measured=yaw,
-                       e0=final_error(before, s), e1=final_error(after, s),
-                       h0=first_leg_deg(before), h1=first_leg_deg(after))
-            extra = ""
-            if rate == rates[0] and u % 3 == 0:  # rule (d): the foot-only track reads no compass
-                foot = keep_units(s, ("foot",))
-                f0, f1 = track_plasys(foot, forward_yaw=False), track_plasys(foot, forward_yaw=True)
-                same = f0.trajectory.equals(f1.trajectory) and f0.steps.equals(f1.steps)
-                extra += f"; foot-only same {same} final {final_error(f0, s):.2f} m"
-            if rate == rates[0] and u < u0 + 6:  # W607's option beside it (D10 does not contradict a few degrees)
-                inf = track_plasys(dataclasses.replace(s, mount_frame="inferred"))
-                extra += f"; --mount-frame inferred final {final_error(inf, s):.2f} m"
-            rows.append(row)
-            print(f"user {u} route {u % 3} {rate:g} Hz: mount yaw {row['mount']:+.2f}, measured "
-                  f"{'none' if yaw is None else f'{yaw:+.2f}'} deg; first leg {row['h0']:+.2f} -> {row['h1']:+.2f} "
-                  f"deg; final {row['e0']:.2f} -> {row['e1']:.2f} m{extra}", flush=True)
+            yield u, rate, user, simulate_path(parse_route(ROUTES[u % 3]), user, rate_hz=rate, seed=0,
+                                               name=f"{prefix}_u{u}", scenario="route")
+
+
+def main(u0: int, u1: int, rates: list[float]) -> None:
+    logging.disable(logging.WARNING)
+    rows = []
+    for u, rate, user, s in route_runs(u0, u1, rates):
+        before, after = track_plasys(s, forward_yaw=False), track_plasys(s, forward_yaw=True)
+        yaw = (after.info.get("compass_mount") or {}).get("forward_yaw_deg")
+        row = dict(user=u, rate=rate, mount=mount_yaw_deg(user), measured=yaw,
+                   e0=final_error(before, s), e1=final_error(after, s),
+                   h0=first_leg_deg(before), h1=first_leg_deg(after))
+        extra = ""
+        if rate == rates[0] and u % 3 == 0:  # rule (d): the foot-only track reads no compass
+            foot = keep_units(s, ("foot",))
+            f0, f1 = track_plasys(foot, forward_yaw=False), track_plasys(foot, forward_yaw=True)
+            same = f0.trajectory.equals(f1.trajectory) and f0.steps.equals(f1.steps)
+            extra += f"; foot-only same {same} final {final_error(f0, s):.2f} m"
+        if rate == rates[0] and u < u0 + 6:  # W607's option beside it (D10 does not contradict a few degrees)
+            inf = track_plasys(dataclasses.replace(s, mount_frame="inferred"))
+            extra += f"; --mount-frame inferred final {final_error(inf, s):.2f} m"
+        rows.append(row)
+        print(f"user {u} route {u % 3} {rate:g} Hz: mount yaw {row['mount']:+.2f}, measured "
+              f"{'none' if yaw is None else f'{yaw:+.2f}'} deg; first leg {row['h0']:+.2f} -> {row['h1']:+.2f} "
+              f"deg; final {row['e0']:.2f} -> {row['e1']:.2f} m{extra}", flush=True)
     e0, e1 = np.median([r["e0"] for r in rows]), np.median([r["e1"] for r in rows])
     h0, h1 = np.median([abs(r["h0"]) for r in rows]), np.median([abs(r["h1"]) for r in rows])
     match = [abs(r["measured"] + r["mount"]) for r in rows if r["measured"] is not None]

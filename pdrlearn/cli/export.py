@@ -716,17 +716,18 @@ def run(
             # decision L177: run checked the clocks on the recording above (L170), the same numbers: no second line
             # decision E230: run said the intervals of dropped samples when it read the session (L77): not again
             fuse = altitude
-            if fuse == "fused" and "waist" not in use:  # decision E339, as track's L154: no waist barometer tracked
-                if units is not None:
-                    raise DataError(f"run: --altitude fused reads the waist barometer (wBarometer.csv), which --units "
-                                    f"{units} leaves out: add waist to --units (--units foot,waist) or drop --altitude")
-                import logging
+            has_baro = session.has("wBarometer") and len(session["wBarometer"])
+            if fuse == "fused" and "waist" not in use and units is not None:  # decision E339, as track's L154
+                raise DataError(f"run: --altitude fused reads the waist barometer (wBarometer.csv), which --units "
+                                f"{units} leaves out: add waist to --units (--units foot,waist) or drop --altitude")
+            if fuse == "fused" and ("waist" not in use or not has_baro):  # E339: no waist barometer tracked; E363:
+                import logging  # the session's file is missing, so its folder is named (as track's L154), not the
 
-                from pdrlearn.kernels.barometer import FUSED_WITHOUT_BAROMETER
+                from pdrlearn.kernels.barometer import FUSED_WITHOUT_BAROMETER  # bundle's
 
-                logging.getLogger("pdrlearn.cli").warning("%s: %s", session.name, FUSED_WITHOUT_BAROMETER)
+                logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, FUSED_WITHOUT_BAROMETER)
                 fuse = "foot"
-            if fuse == "fused" and "waist" in use and session.has("wBarometer") and len(session["wBarometer"]):
+            if fuse == "fused":
                 from pdrlearn.kernels.barometer import FUSED_EFFECT
                 from pdrlearn.track.barometer import usable_barometer
 
@@ -736,7 +737,7 @@ def run(
 
                     fuse = "foot"
                     for line in baro_lines:
-                        logging.getLogger("pdrlearn.cli").warning("%s: %s", session.name, line)
+                        logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, line)
             tracker = Tracker(bundle, heading_source=heading_source,  # decision E285
                               frames=frames_of(session, bundle, use), clock_check=False, stream_checks=False,
                               resample=resample_mode(resample, no_resample), rules=rules, min_confidence=min_confidence,

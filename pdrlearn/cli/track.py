@@ -30,7 +30,7 @@ from pdrlearn.cli.common import (
     walk_line,
 )
 from pdrlearn.cli.registry_help import LENGTH_NAMES
-from pdrlearn.errors import DataError
+from pdrlearn.errors import DataError, NoStridesError
 from pdrlearn.textfile import is_inline_json, read_json
 
 #: The tracking options, shared by ``track`` and ``track-all`` (one declaration each, so the two commands
@@ -1192,13 +1192,14 @@ def _track_session(session_dir: Path, settings: dict) -> dict:
         from pdrlearn.track.window import margin_session
 
         tracked_in = margin_session(session, *win, o["window_margin_s"])
-    if gait_quality:
-        from pdrlearn.waist.ahrs import kept_imus
-
-        with kept_imus() as imus:
-            result = fn(tracked_in, **kw)
-    else:
-        result = fn(tracked_in, **kw)
+    try:
+        result, imus = _run_pipeline(fn, tracked_in, kw, gait_quality)
+    except NoStridesError:
+        if tracked_in is session:
+            raise
+        # decision E363 (amends L792): no stride in the window and its margin is L105's empty window, not a session
+        # without strides: the whole session tracked, as without --window-margin (its note, exit 0)
+        result, imus = _run_pipeline(fn, session, kw, gait_quality)
     if o.get("length_reference", "model") != "model" and pipeline == "plasys":  # decision C126: the whole session's
         from pdrlearn.track.session_length import whole_session_length  # strides, before a window keeps some
 
@@ -1705,9 +1706,22 @@ def _reference_point(point: str, par, params: Path | None, pipeline: str, stream
 #: decision L717: ``foot_ramps`` (ramps.csv from a foot track's own L39 heights, an option: its rule failed)
 #: decision L770: ``compass_sinusoid`` (the waist compass's direction sinusoid off before the fused window), offline
 #: decision L796: ``forward_yaw`` (the waist compass turned by D10's measured mount yaw; on by default), offline
-TRACK_PARAM_KEYS = ("waist_bias", "fused_climb", "hard_iron_fit", "foot_ramps", "compass_sinusoid", "forward_yaw")
+#: decision L801: ``forward_yaw_gate`` (not when W435's power ratio or W434's force_frame distrusts it; an option),
+#: offline
+TRACK_PARAM_KEYS = ("waist_bias", "fused_climb", "hard_iron_fit", "foot_ramps", "compass_sinusoid", "forward_yaw",
+                    "forward_yaw_gate")
 #: decision L615: the lower-back PARAMS ``options`` (``{"options": {...}}``) the plasys pipeline reads as well
 PLASYS_OPTION_KEYS = ("ride_vibration",)
+
+
+def _run_pipeline(fn, session, kw: dict, gait_quality: bool):
+    """(the pipeline ``fn``'s result on ``session``, the waist AHRS states W353's gait quality keeps, or None)."""
+    if not gait_quality:
+        return fn(session, **kw), None
+    from pdrlearn.waist.ahrs import kept_imus
+
+    with kept_imus() as imus:
+        return fn(session, **kw), imus
 
 
 def _track_params(par: dict, path: Path, streaming: bool) -> tuple[dict, dict]:
@@ -1722,7 +1736,8 @@ def _track_params(par: dict, path: Path, streaming: bool) -> tuple[dict, dict]:
         raise DataError(f"{path}: \"waist_bias\" removes the waist gyroscope bias from the offline two-unit heading "
                         "(decisions W126, W422); the --streaming kernel removes instead, always, the bias read at "
                         "each stop of 10 s or more (decision E272): drop --streaming or the key")
-    for key, codes in (("hard_iron_fit", "L84, L636"), ("compass_sinusoid", "L770"), ("forward_yaw", "L796")):
+    for key, codes in (("hard_iron_fit", "L84, L636"), ("compass_sinusoid", "L770"), ("forward_yaw", "L796"),
+                       ("forward_yaw_gate", "L801")):
         if key in keys and streaming:  # decisions L636, L770
             raise DataError(f"{path}: \"{key}\" fits the waist compass of the offline fused heading (decisions "
                             f"{codes}); the --streaming kernel heads by the gyroscopes and reads no compass: drop "

@@ -340,9 +340,15 @@ FUSED_EFFECT = "the altitude is the foot's own, not fused with it (L154)"
 #: decision L154: the altitude sources of a foot track (``track --altitude``; E339: ``run --altitude``, the
 #: ``Tracker``'s ``altitude``): the strides' own height (the default) or fused with the waist barometer
 ALTITUDES = ("foot", "fused")
+def fused_without_barometer(lacks: str = "this session lacks") -> str:
+    """Decision L154's line for ``altitude="fused"`` without the waist barometer; ``lacks`` says what lacks it
+    (decision E363: the live ``Tracker``'s declared streams, not a session it never saw)."""
+    return (f"altitude \"fused\" needs the waist barometer (wBarometer.csv), which {lacks}: the altitude is the "
+            "foot's own (L39 / the terrain classes)")
+
+
 #: decision L154's line for ``altitude="fused"`` on a session without the waist barometer (E339: also ``run``'s)
-FUSED_WITHOUT_BAROMETER = ("altitude \"fused\" needs the waist barometer (wBarometer.csv), which this session "
-                           "lacks: the altitude is the foot's own (L39 / the terrain classes)")
+FUSED_WITHOUT_BAROMETER = fused_without_barometer()
 
 
 def implausible_barometer_message(found: tuple[float, float, float, float, float],

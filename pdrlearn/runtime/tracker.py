@@ -1045,7 +1045,7 @@ class Tracker(OwnGuard, FixInput):
 
     def _fusion(self, altitude: str, sensors, ends) -> FusedRows | None:
         """Decision E339: the barometric altitude's holder for ``altitude="fused"`` (None for ``"foot"``)."""
-        from pdrlearn.kernels.barometer import ALTITUDES, FUSED_WITHOUT_BAROMETER
+        from pdrlearn.kernels.barometer import ALTITUDES, fused_without_barometer
 
         if altitude not in ALTITUDES:
             raise DataError(f"altitude={altitude!r} is not one of {', '.join(ALTITUDES)} (foot: the strides' own "
@@ -1057,7 +1057,8 @@ class Tracker(OwnGuard, FixInput):
                             f"({'+'.join(self.units)}) of bundle {self.bundle.path} do not use: track the foot and "
                             "the waist unit, or altitude='foot' (decision E339)")
         if sensors is not None and "wBarometer" not in sensors:  # decision L154's line: the foot's own height
-            self._warn(FUSED_WITHOUT_BAROMETER)
+            # decision E363: the pushed streams lack it (`run` names its session's folder before it gets here)
+            self._warn(fused_without_barometer(f"the declared streams (sensors={', '.join(sensors)}) lack"))
             return None
         return FusedRows("wBarometer", end_s=(ends or {}).get("wBarometer"),
                          wait_s=float(self.bundle.manifest["displacement"].get("max_wait_s", 2.0)))

@@ -298,6 +298,7 @@ def get_pipeline(name: str) -> Pipeline:
       (decision L73: the toe-off / stance / swing columns, offline), ``hard_iron_fit`` (decision L84),
       ``compass_sinusoid`` (decision L770: the waist compass's direction sinusoid off before the fused window),
       ``forward_yaw`` (decision L796: the waist compass turned by D10's measured mount yaw; default on),
+      ``forward_yaw_gate`` (decision L801: not when W435's power ratio or W434's force_frame distrusts it; off),
       ``cycling``
       (decision E304: False judges no stride pedalling, as ``--no-cycling``),
       ``contacts`` (decisions E49-E51: with ``streaming``, each stride's initial contact and stride time),
