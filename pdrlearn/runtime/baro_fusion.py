@@ -41,9 +41,32 @@ class FusedRows:
     def push(self, t, values) -> tuple | None:
         """Hold barometer samples; B188's finding the first time they make the barometer implausible, else None."""
         t = np.asarray(t, dtype=float).reshape(-1)
+        v = np.asarray(values, dtype=float).reshape(len(t), -1)[:, 0]
+        held = self._alt.times
+        if held.size and len(t) and t[0] <= held[-1]:  # decision E356: a resumed tracker re-pushes samples held
+            keep = t > held[-1]
+            t, v = t[keep], v[keep]
         if not len(t):
             return None
-        return self._alt.push(t, np.asarray(values, dtype=float).reshape(len(t), -1)[:, 0])
+        return self._alt.push(t, v)
+
+    def state(self, row) -> dict:
+        """Decision E356: what :meth:`restore` needs to go on as this holder; ``row`` turns a held row into plain
+        numbers (the restart state is JSON)."""
+        return {"barometer": self._alt.state(), "filter": self._kf.state(), "held": [row(r) for r in self._held],
+                "started": self._started, "shift_m": self.shift_m, "foot_change_m": self.foot_change_m,
+                "n_fused": self.n_fused}
+
+    def restore(self, state: dict, row) -> None:
+        """Decision E356: go on from :meth:`state` (``row``: a held row from its plain numbers)."""
+        from pdrlearn.kernels.barometer import LiveAltitude
+
+        self._alt = LiveAltitude.from_state(state["barometer"])
+        self._kf.set_state(state["filter"])
+        self._held = [row(r) for r in state["held"]]
+        self._started = bool(state["started"])
+        self.shift_m, self.foot_change_m = float(state["shift_m"]), float(state["foot_change_m"])
+        self.n_fused = int(state["n_fused"])
 
     def _ready(self, ts: float, latest: float) -> bool:
         t = self._alt.times

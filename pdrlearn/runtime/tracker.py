@@ -540,7 +540,8 @@ class Tracker(OwnGuard, FixInput):
         once the barometer was pushed about a second past its end (W89's window; or its declared end, or the other
         streams 2 s further, or :meth:`flush`), with its fused ``dz_m`` and ``z``. Needs wBarometer among the
         tracked units' sensors (refused otherwise); declared ``sensors`` without it keep the foot's height with
-        L154's line. Not carried over by ``restart_state`` (a resumed tracker fuses anew from its first row).
+        L154's line. Carried over by ``restart_state`` (decision E356: the held barometer, the filter and the rows
+        not returned yet; a resumed tracker's ``altitude`` must be the saved one's).
     gait : decision E320: keep every returned stride's gait values (:class:`pdrlearn.runtime.gait.StrideGait`,
         numpy only; needs ``contacts=True``: a stride time is initial contact to initial contact):
         :meth:`gait_strides` per stride, :meth:`gait_summary` the session's (with the other foot's tracker, the
@@ -1932,9 +1933,12 @@ class Tracker(OwnGuard, FixInput):
     def _before(self) -> tuple:
         """Decision E280: the measuring state before a stride (the last stride's end, E272's bias): a restart state
         taken while strides are held (L611's verdict pending) restarts from the first held one's. Review R1 F3: and
-        L621's live foot rest reading (its readings and still-sample count), which measuring the stride adds to."""
-        stop, rest = self._stop_bias, self._foot_rest
-        return self._prev_end, None if stop is None else (stop.rps, stop.n_stops), (list(rest.readings), rest.n_still)
+        L621's live foot rest reading (its readings and still-sample count), which measuring the stride adds to.
+        Decision E356: and E354's held waist gap (its seconds and the mean rate before it), which measuring a bridged
+        stride holds and the stride after it takes."""
+        stop, rest, cycle = self._stop_bias, self._foot_rest, self._cycle
+        return (self._prev_end, None if stop is None else (stop.rps, stop.n_stops), (list(rest.readings), rest.n_still),
+                (cycle.gap_s, cycle.before))  # decision E356: E354's waist gap held for the stride after it
 
     @property
     def _restart_from(self) -> tuple:
