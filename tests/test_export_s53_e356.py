@@ -87,3 +87,10 @@ def test_a_state_saved_before_e356_restores_and_the_other_altitude_is_refused(dr
     assert any("saved before decision E356" in w for w in tr.warnings)
     foot = Tracker(bundle, resume=old, **KW)  # as before E356: no line
     assert not any("E356" in w for w in foot.warnings)
+    with pytest.raises(DataError, match=r"^Tracker\(resume=state\): .*not finite"):
+        Tracker(bundle, resume={**state, "bridge_cycle": {"gap_s": float("nan"), "before": None}}, altitude="fused",
+                **KW)
+    with pytest.raises(DataError, match=r"^Tracker\(resume=state\): .*gap_row, contacts, .* are malformed"):
+        Tracker(bundle, resume={**state, "gap_row": [9.0]}, altitude="fused", **KW)
+    with pytest.raises(DataError, match=r"^Tracker\(resume=state\): the state's fused altitude is malformed"):
+        Tracker(bundle, resume={**state, "fused": {"held": []}}, altitude="fused", **KW)

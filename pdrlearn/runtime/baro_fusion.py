@@ -13,9 +13,12 @@ its ``z`` the foot's plus the fused heights' difference so far: the tracker's ow
 
 from __future__ import annotations
 
+import logging
 import math
 
 import numpy as np
+
+from pdrlearn.errors import DataError
 
 
 class FusedRows:
@@ -104,3 +107,30 @@ class FusedRows:
             self.n_fused += 1
         st.z = st.z + self.shift_m
         return st
+
+
+def check_altitude(altitude: str, where: str) -> str:
+    """Decision E339's ``--altitude`` value (decision E357: ``pdrlearn run``'s and ``python -m pdrlearn.runtime``'s one
+    check): one of :data:`~pdrlearn.kernels.barometer.ALTITUDES`, else one line naming ``where`` (the command)."""
+    from pdrlearn.kernels.barometer import ALTITUDES
+
+    if altitude not in ALTITUDES:
+        raise DataError(f"{where}: --altitude {altitude!r} is not one of {', '.join(ALTITUDES)} (foot: the strides' "
+                        "own height; fused: with the waist barometer, decision E339)")
+    return altitude
+
+
+def replay_altitude(altitude: str, units, given: str | None, where: str, name: str) -> str:
+    """Decision E339 (amended while measuring; E357: shared by ``pdrlearn run`` and ``python -m pdrlearn.runtime``): the
+    altitude a replay of the session ``name`` tracks with the body ``units`` it tracks: ``"fused"`` needs the waist
+    unit (its barometer); a ``--units`` (``given``) that leaves it out is refused in one line, a session without the
+    waist unit keeps the foot's altitude with L154's line (as ``track --altitude fused``)."""
+    from pdrlearn.kernels.barometer import FUSED_WITHOUT_BAROMETER
+
+    if altitude != "fused" or "waist" in units:
+        return altitude
+    if given is not None:
+        raise DataError(f"{where}: --altitude fused reads the waist barometer (wBarometer.csv), which --units {given} "
+                        "leaves out: add waist to --units (--units foot,waist) or drop --altitude")
+    logging.getLogger("pdrlearn.cli").warning("%s: %s", name, FUSED_WITHOUT_BAROMETER)
+    return "foot"

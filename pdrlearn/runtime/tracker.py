@@ -241,6 +241,18 @@ def check_units(bundle: Bundle, units) -> tuple[str, ...]:
     return tuple(u for u in have if u in asked)
 
 
+def tracked_units(bundle: Bundle, units, sensors) -> tuple[str, ...]:
+    """The body units a :class:`Tracker` follows (decision E26): ``units`` checked (:func:`check_units`); without them
+    the bundle's, or the foot unit alone when the declared ``sensors`` lack a sensor the waist unit needs (decision
+    E32). Public for the lean replay, which needs them before its tracker (decision E357's ``--altitude``)."""
+    if units is None and sensors is not None and "foot" in bundle.body_units and not set(
+            bundle.sensors_of(("waist",))[0]) <= set(sensors):  # decision E32: the declared streams
+        units = ("foot",)  # lack a sensor the waist unit needs: tracked as a foot-only session (E26)
+        log.info("bundle %s: sensors %s lack the waist unit's: tracking the foot unit only (units=('foot',))",
+                 bundle.path, ", ".join(sensors))
+    return bundle.body_units if units is None else check_units(bundle, units)
+
+
 def forward_vector(frame: dict) -> np.ndarray:
     """Sensor-frame vector pointing body-forward for a declared frame ``{"x": "forward", ...}``."""
     try:
@@ -696,12 +708,7 @@ class Tracker(OwnGuard, FixInput):
         sensors = None if sensors is None else [str(n) for n in sensors]
         self._unchecked = sensors is None  # decision B140: the first step checks the pushed streams
         #: the body units tracked (decision E26), their required and used sensors
-        if units is None and sensors is not None and "foot" in self.bundle.body_units and not set(
-                self.bundle.sensors_of(("waist",))[0]) <= set(sensors):  # decision E32: the declared streams
-            units = ("foot",)  # lack a sensor the waist unit needs: tracked as a foot-only session (E26)
-            log.info("bundle %s: sensors %s lack the waist unit's: tracking the foot unit only (units=('foot',))",
-                     self.bundle.path, ", ".join(sensors))
-        self.units = self.bundle.body_units if units is None else check_units(self.bundle, units)
+        self.units = tracked_units(self.bundle, units, sensors)
         self.required, optional = self.bundle.sensors_of(self.units)
         if sensors is not None:  # decision E55: a declared stream set that lacks a required sensor, refused now
             self.bundle.check_streams(dict.fromkeys(sensors, math.nan), where=f"sensors={sensors}", units=self.units)
