@@ -14,7 +14,7 @@ import pytest
 
 from pdrlearn.errors import DataError
 from pdrlearn.runtime import Tracker, load_bundle
-from tests.runtime_helpers import without
+from tests.runtime_helpers import without, written_route
 
 SHIPPED = Path(__file__).resolve().parents[1] / "models" / "plasys-sim-default"
 KW = {"clock_check": False, "stream_checks": False}
@@ -22,14 +22,9 @@ KW = {"clock_check": False, "stream_checks": False}
 
 @pytest.fixture(scope="module")
 def dropout(tmp_path_factory):
-    from pdrlearn.io import read_session, write_session
-    from pdrlearn.sim import UserProfile, simulate_path
-    from pdrlearn.sim.route import parse_route
+    from pdrlearn.io import read_session
 
-    s = simulate_path(parse_route("stand:2, straight:20, stand:2"), UserProfile.from_seed(5356), seed=5356,
-                      scenario="route")
-    folder = tmp_path_factory.mktemp("e356") / "walk"
-    write_session(s, folder)
+    folder = written_route(tmp_path_factory.mktemp("e356") / "walk", "stand:2, straight:20, stand:2", 5356)
     return without(read_session(folder, streamed=True), 10.2, 13.2), load_bundle(SHIPPED)
 
 
@@ -77,8 +72,9 @@ def test_a_state_saved_before_e356_restores_and_the_other_altitude_is_refused(dr
     seen = []
     _run(s, bundle, 28, seen, altitude="fused")
     state = seen[0]
-    with pytest.raises(DataError, match=r"^Tracker\(resume=state\): the state was saved by a Tracker\(altitude='fused'\) "
-                                        r"and this one tracks altitude='foot'; resume with altitude='fused'"):
+    with pytest.raises(DataError, match=r"^Tracker\(resume=state\): the state was saved by a Tracker\("
+                                        r"altitude='fused'\) and this one tracks altitude='foot'; resume with "
+                                        r"altitude='fused'"):
         Tracker(bundle, resume=state, **KW)
     old = {k: v for k, v in state.items() if k not in ("bridge_cycle", "gap_row", "row_gaps", "contacts", "altitude",
                                                        "fused")}

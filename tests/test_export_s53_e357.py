@@ -13,21 +13,14 @@ import pytest
 
 from pdrlearn.kernels.barometer import FUSED_WITHOUT_BAROMETER, fuse_altitude
 from pdrlearn.runtime.__main__ import main
+from tests.runtime_helpers import written_route
 
 SHIPPED = Path(__file__).resolve().parents[1] / "models" / "plasys-sim-default"
 
 
 @pytest.fixture(scope="module")
 def hill(tmp_path_factory):
-    from pdrlearn.io import write_session
-    from pdrlearn.sim import UserProfile, simulate_path
-    from pdrlearn.sim.route import parse_route
-
-    s = simulate_path(parse_route("stand:2, straight:3, slope:16:12, stand:2"), UserProfile.from_seed(5357),
-                      seed=5357, scenario="route")
-    folder = tmp_path_factory.mktemp("e357") / "hill"
-    write_session(s, folder)
-    return folder
+    return written_route(tmp_path_factory.mktemp("e357") / "hill", "stand:2, straight:3, slope:16:12, stand:2", 5357)
 
 
 def _lean(args, capsys):

@@ -42,10 +42,11 @@ def restart_state(tracker) -> dict:
     (on its clock: already moved by the offsets), the offsets it applies now (a ``rebase_clock`` included; E237) and
     E272's waist gyroscope bias read at the last stop (``{"rps", "n_stops"}``, None without the waist unit; E281) and
     the last L611 rows judged (``pedal_history``, E280) and L621's live foot rest reading (``foot_rest``: ``{"readings",
-    "n_still"}``, review R1 F3) and E338's held end-phase yaw (``cycle_phase``, rad, or None). Decision E356: and E354's held waist gap (``bridge_cycle``: ``{"gap_s",
-    "before"}``), the last strides' contacts (``contacts``), E46's gap row not emitted yet (``gap_row``, ``row_gaps``),
-    the ``altitude`` tracked and E339's fused altitude (``fused``: the barometer held, L154's filter, the rows waiting
-    for the barometer; None for ``"foot"``). Strides held for their L611 verdict (E280) are not in it:
+    "n_still"}``, review R1 F3) and E338's held end-phase yaw (``cycle_phase``, rad, or None). Decision E356: and
+    E354's held waist gap (``bridge_cycle``: ``{"gap_s", "before"}``), the last strides' contacts (``contacts``), E46's
+    gap row not emitted yet (``gap_row``, ``row_gaps``), the ``altitude`` tracked and E339's fused altitude (``fused``:
+    the barometer held, L154's filter, the rows waiting for the barometer; None for ``"foot"``). Strides held for their
+    L611 verdict (E280) are not in it:
     ``last_end_s`` and the bias are those before the first held one, which the new tracker measures again. A
     tracker that resamples (``resample=True``, E22) is refused in one line (decision L140): its buffer holds
     resampled samples, and its low-pass filter holds the last raw ones (its delay, 0.84 s from 50 to 20 Hz), which
