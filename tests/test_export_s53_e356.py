@@ -90,3 +90,23 @@ def test_a_state_saved_before_e356_restores_and_the_other_altitude_is_refused(dr
         Tracker(bundle, resume={**state, "gap_row": [9.0]}, altitude="fused", **KW)
     with pytest.raises(DataError, match=r"^Tracker\(resume=state\): the state's fused altitude is malformed"):
         Tracker(bundle, resume={**state, "fused": {"held": []}}, altitude="fused", **KW)
+
+
+def test_a_restored_tracker_keeps_the_contacts_on_a_real_recording():
+    """E356's ``contacts`` (steps decision 87) on the real gaitmap_ms_left (foot only, ``contacts=True``): before E356 a
+    tracker restarted after 26 s gave 7 rows another ``event_s`` / ``stride_time_s`` (positions equal)."""
+    from pdrlearn.io import read_session
+    from pdrlearn.runtime.replay import session_frames
+
+    s = read_session(Path(__file__).resolve().parents[1] / "datasets" / "external" / "gaitmap_ms_left", streamed=True)
+    bundle = load_bundle(SHIPPED)
+    kw = {"units": ("foot",), "frames": session_frames(s.meta, bundle, ("foot",), "gaitmap_ms_left"), "contacts": True,
+          "sensors": list(s.streams)}
+    t0 = min(st.t[0] for st in s.streams.values())
+    for st in s.streams.values():
+        st.t = st.t - t0  # 1 s chunks from the first sample, as _run's 0.5 s ones from 0
+    ref, got = _run(s, bundle, **kw), _run(s, bundle, 52, **kw)
+    assert len(got) == len(ref) > 60
+    for a, r in zip(got, ref, strict=True):
+        np.testing.assert_allclose([a.event_s, a.stride_time_s, a.x, a.y, a.heading_rad],
+                                   [r.event_s, r.stride_time_s, r.x, r.y, r.heading_rad], rtol=0, atol=1e-9)
