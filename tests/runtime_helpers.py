@@ -390,3 +390,15 @@ def gap_dtw_terrain_case():
     finally:
         training.DTW_CALIBRATION = kept
     return model, sim("D", user_seed=5, speed="fast")
+
+
+def written_route(folder: Path, route: str, seed: int) -> Path:
+    """Simulated user ``seed`` walking ``route`` (``pdrlearn simulate --route``'s grammar), written as a PLASYS
+    session folder ``folder`` (what ``pdrlearn run`` and the lean command read); returns ``folder``."""
+    from pdrlearn.io import write_session
+    from pdrlearn.sim import UserProfile, simulate_path
+    from pdrlearn.sim.route import parse_route
+
+    s = simulate_path(parse_route(route), UserProfile.from_seed(seed), seed=seed, scenario="route")
+    write_session(s, folder)
+    return folder

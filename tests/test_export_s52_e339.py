@@ -14,20 +14,16 @@ import pytest
 from pdrlearn.errors import DataError
 from pdrlearn.kernels.barometer import FUSED_WITHOUT_BAROMETER, fuse_altitude, relative_altitude
 from pdrlearn.runtime import Tracker, load_bundle
+from tests.runtime_helpers import written_route
 
 SHIPPED = Path(__file__).resolve().parents[1] / "models" / "plasys-sim-default"
 
 
 @pytest.fixture(scope="module")
 def hill(tmp_path_factory):
-    from pdrlearn.io import read_session, write_session
-    from pdrlearn.sim import UserProfile, simulate_path
-    from pdrlearn.sim.route import parse_route
+    from pdrlearn.io import read_session
 
-    s = simulate_path(parse_route("stand:2, straight:4, slope:24:12, stand:2"), UserProfile.from_seed(5339),
-                      seed=5339, scenario="route")
-    folder = tmp_path_factory.mktemp("e339") / "hill"
-    write_session(s, folder)
+    folder = written_route(tmp_path_factory.mktemp("e339") / "hill", "stand:2, straight:4, slope:24:12, stand:2", 5339)
     return read_session(folder, streamed=True), folder, load_bundle(SHIPPED)  # what `run` reads
 
 

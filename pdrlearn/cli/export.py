@@ -492,11 +492,9 @@ def run(
         from pdrlearn.kernels.relative_length import check_length_reference
 
         check_length_reference(length_reference)  # decision C117: before any output
-        from pdrlearn.kernels.barometer import ALTITUDES
+        from pdrlearn.runtime.baro_fusion import check_altitude
 
-        if altitude not in ALTITUDES:  # decision E339: track's values, before any output
-            raise DataError(f"run: --altitude {altitude!r} is not one of {', '.join(ALTITUDES)} (foot: the strides' "
-                            "own height; fused: with the waist barometer, decision E339)")
+        check_altitude(altitude, "run")  # decision E339: track's values, before any output (E357: the lean's check)
         from pdrlearn.track.grade import check_stair_grade, record_stair_grade
 
         stair_grade_pct = check_stair_grade(stair_grade)  # decision L469, as `track`: before any output
@@ -715,15 +713,15 @@ def run(
             # before its end is in a gap, which the steps wait for (E22/E23: chunk sizes give the same steps)
             # decision L177: run checked the clocks on the recording above (L170), the same numbers: no second line
             # decision E230: run said the intervals of dropped samples when it read the session (L77): not again
-            fuse = altitude
-            has_baro = session.has("wBarometer") and len(session["wBarometer"])
-            if fuse == "fused" and "waist" not in use and units is not None:  # decision E339, as track's L154
-                raise DataError(f"run: --altitude fused reads the waist barometer (wBarometer.csv), which --units "
-                                f"{units} leaves out: add waist to --units (--units foot,waist) or drop --altitude")
-            if fuse == "fused" and ("waist" not in use or not has_baro):  # E339: no waist barometer tracked; E363:
-                import logging  # the session's file is missing, so its folder is named (as track's L154), not the
+            from pdrlearn.runtime.baro_fusion import replay_altitude
 
-                from pdrlearn.kernels.barometer import FUSED_WITHOUT_BAROMETER  # bundle's
+            # decision E339, as track's L154: no waist barometer tracked (E357: the lean replay's rule too); E363: the
+            # session's file is missing, so its folder is named (as track's L154), not the bundle's
+            fuse = replay_altitude(altitude, use, units, "run", session.where)
+            if fuse == "fused" and not (session.has("wBarometer") and len(session["wBarometer"])):
+                import logging
+
+                from pdrlearn.kernels.barometer import FUSED_WITHOUT_BAROMETER
 
                 logging.getLogger("pdrlearn.cli").warning("%s: %s", session.where, FUSED_WITHOUT_BAROMETER)
                 fuse = "foot"

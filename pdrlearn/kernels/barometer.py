@@ -168,6 +168,25 @@ class LiveAltitude:
     def size(self) -> int:
         return int(self._t.size + self._p.size)
 
+    def state(self) -> dict:
+        """Decision E356: what :meth:`from_state` needs to go on as this holder (plain numbers and lists)."""
+        return {"t": self._t.tolist(), "p": self._p.tolist(), "origin_s": self._origin_s, "ref": self._ref,
+                "implausible": None if self.implausible is None else list(self.implausible)}
+
+    @classmethod
+    def from_state(cls, state: dict, smooth_s: float = ALTITUDE_SMOOTH_S) -> LiveAltitude:
+        """Decision E356: a holder that goes on as the one :meth:`state` was taken of: its held samples (B188's
+        incremental check rebuilt on them: the same answers, :class:`PlausibleWatch`), origin, reference and finding."""
+        alt = cls(smooth_s)
+        found = None if state["implausible"] is None else tuple(float(v) for v in state["implausible"])
+        if found is None:
+            alt.push(np.asarray(state["t"], float), np.asarray(state["p"], float))
+        else:  # read no further (B188): the samples are kept for their size only
+            alt._t, alt._p, alt.implausible = np.asarray(state["t"], float), np.asarray(state["p"], float), found
+        alt._origin_s = None if state["origin_s"] is None else float(state["origin_s"])
+        alt._ref = None if state["ref"] is None else float(state["ref"])
+        return alt
+
 
 #: decision B188: the fastest a wearer travels vertically (m/s): the fastest passenger elevators run 18-21 m/s
 #: (Shanghai Tower 18 m/s, CTF Finance Centre Guangzhou 21 m/s); near sea level ~2.4 hPa/s (0.12 hPa per m)
@@ -733,6 +752,17 @@ class AltitudeFusion:
         self.t_prev: float | None = None
 
     _OBS = np.array([1.0, 0.0, 1.0, 0.0, 0.0])
+
+    def state(self) -> dict:
+        """Decision E356: the filter's state (its options are the constructor's): ``x``, ``p``, ``ref``, ``t_prev``."""
+        return {"x": self.x.tolist(), "p": self.p.tolist(), "ref": float(self.ref), "t_prev": self.t_prev}
+
+    def set_state(self, state: dict) -> None:
+        """Decision E356: go on from :meth:`state` of a filter with the same options."""
+        self.x = np.asarray(state["x"], float).reshape(5)
+        self.p = np.asarray(state["p"], float).reshape(5, 5)
+        self.ref = float(state["ref"])
+        self.t_prev = None if state["t_prev"] is None else float(state["t_prev"])
 
     def _update(self, z: float) -> None:
         obs, x, p = self._OBS, self.x, self.p

@@ -68,48 +68,179 @@ def position_covariance(length_m: np.ndarray, heading_rad: np.ndarray, t_end_s: 
     held_var_m2 : per-stride per-axis variance added at the stride and kept after it (m^2; decision E127).
     heading_offset_rad : sd of a heading error held the same from the start (rad; decision E331): it moves the
         position by delta C_k, so P_k += delta^2 C_k C_k^T.
+
+    The whole track through one fresh :class:`RadiusState` (decision E355: the live tracker carries one).
     """
-    L = np.asarray(length_m, float)
-    psi = np.asarray(heading_rad, float)
-    t = np.asarray(t_end_s, float) - float(t0_s)
-    if not (L.shape == psi.shape == t.shape) or L.ndim != 1:
-        raise ValueError("length_m, heading_rad and t_end_s must be 1-D arrays of one length")
-    n = np.stack([-np.sin(psi), np.cos(psi)], axis=1) * L[:, None]  # d(stride displacement)/d(heading) = L_k n_k
+    params = {"displacement_rel": displacement_rel, "heading_walk_rad": heading_walk_rad, "bias_rps": bias_rps,
+              "point_m": point_m, "path_rel": path_rel, "path_diffusion_m2": path_diffusion_m2,
+              "extent_heading_rad": extent_heading_rad, "extent_return_rad": extent_return_rad,
+              "heading_offset_rad": heading_offset_rad}
+    return RadiusState(t0_s, params).covariance(length_m, heading_rad, t_end_s, held_var_m2)
 
-    def outer(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-        return a[:, :, None] * b[:, None, :]
 
-    C = np.cumsum(n, axis=0)  # the displacement from the start turned by 90 deg: |C_k| = |D_k|
-    eye = np.eye(2)[None]
-    P = (displacement_rel ** 2 * np.sum(C ** 2, axis=1))[:, None, None] * eye + point_m ** 2 * eye
-    B = np.cumsum(n * t[:, None], axis=0)  # bias: dpsi_j = b t_j, dp_k = b sum_j L_j n_j t_j
-    P = P + bias_rps ** 2 * outer(B, B)
-    if path_rel:  # decision L220: the distance walked, not the displacement from the start
-        P = P + (path_rel * np.cumsum(np.abs(L)))[:, None, None] ** 2 * eye
-    if path_diffusion_m2:  # decision L237: variance per metre walked
-        P = P + (path_diffusion_m2 * np.cumsum(np.abs(L)))[:, None, None] * eye
-    dist = np.hypot(C[:, 0], C[:, 1])  # |C_k| = |D_k|, the displacement from the start
-    extent = np.maximum.accumulate(dist)  # the farthest the track has been from its start
-    if extent_heading_rad:  # decision L239
-        P = P + (extent_heading_rad * extent)[:, None, None] ** 2 * eye
-    if extent_return_rad:  # decision L241: what a heading error held the same (on |D_k|) would not give
-        P = P + (extent_return_rad ** 2 * np.maximum(extent ** 2 - dist ** 2, 0.0))[:, None, None] * eye
-    if heading_offset_rad:  # decision E331: one heading error from the first stride on, along C_k
-        P = P + heading_offset_rad ** 2 * outer(C, C)
-    if held_var_m2 is not None:  # decision E127: a held position's missed displacement, kept by later strides
-        held = np.asarray(held_var_m2, float)
-        if held.shape != L.shape:
-            raise ValueError("held_var_m2 must have one value per stride")
-        P = P + np.cumsum(held)[:, None, None] * eye
-    # random walk: dp_k = sum_{i<=k} w_i (C_k - C_{i-1}) (C_0 = 0), so its covariance is
-    # sum_i (C_k - C_{i-1})(C_k - C_{i-1})^T = k C_k C_k^T - C_k S1_k^T - S1_k C_k^T + S2_k, with the cumulative
-    # sums S1_k = sum_{i<=k} C_{i-1}, S2_k = sum_{i<=k} C_{i-1} C_{i-1}^T
-    C_prev = np.vstack([np.zeros((1, 2)), C[:-1]])
-    S1 = np.cumsum(C_prev, axis=0)
-    S2 = np.cumsum(outer(C_prev, C_prev), axis=0)
-    k = np.arange(1, len(L) + 1, dtype=float)[:, None, None]
-    P = P + heading_walk_rad ** 2 * (k * outer(C, C) - outer(C, S1) - outer(S1, C) + S2)
-    return 0.5 * (P + np.swapaxes(P, 1, 2))
+def _carried(carry, x: np.ndarray, op=np.add) -> np.ndarray:
+    """Decision E355: ``op.accumulate`` of ``x`` along its first axis continued from ``carry`` (the value after the
+    strides before): the same additions (or maxima), in the same order, as one accumulation over the whole track."""
+    x = np.asarray(x, float)
+    return op.accumulate(np.concatenate([np.asarray(carry, float)[None], x]), axis=0)[1:]
+
+
+class RadiusState:
+    """Decision E355: the state of L128's covariance, the never-decreasing radius and L333's cap after the strides
+    given so far (cumulative sums, running maxima, the stride count), so a live tracker adds a stride in O(1)
+    (:meth:`extend` with one stride) and gets, within floating point, what :func:`stride_radius` gives over the whole
+    track so far; :func:`position_covariance`, :func:`stride_radius`, :func:`reach_bound`, :func:`missed_walk` and
+    :func:`rest_clock` are one fresh state over the whole track (one mechanism). ``t0``: the track's start (s);
+    ``params``: a model of :data:`SIGMA_PARAMS` (missing terms 0); ``rest_s``: L297's rest for :meth:`clock`."""
+
+    #: L128's terms (:func:`position_covariance`'s keywords); another key is refused, as the keyword call refused it
+    terms = ("displacement_rel", "heading_walk_rad", "bias_rps", "point_m", "path_rel", "path_diffusion_m2",
+             "extent_heading_rad", "extent_return_rad", "heading_offset_rad")
+
+    def __init__(self, t0: float, params: dict[str, float], *, rest_s: float | None = None):
+        unknown = sorted(set(params) - set(self.terms))
+        if unknown:
+            raise TypeError(f"RadiusState: unknown position-sigma term(s) {', '.join(unknown)}")
+        self.t0 = float(t0)
+        self.params = {k: float(v) for k, v in params.items()}
+        self.rest_s = rest_s
+        self.n = 0  # strides so far
+        self.C = np.zeros(2)  # L128: sum of L_k n_k (the displacement turned by 90 deg)
+        self.B = np.zeros(2)  # and of L_k n_k t_k (the bias term)
+        self.S1 = np.zeros(2)  # the random walk's sums of C_{i-1} and C_{i-1} C_{i-1}^T
+        self.S2 = np.zeros((2, 2))
+        self.walked = 0.0  # the summed |L| (L220, L237)
+        self.extent = 0.0  # the farthest |D| so far (L239, L241)
+        self.held = 0.0  # the summed held variance (E127)
+        self.r_max = 0.0  # the radius so far (never decreasing)
+        self.reach_walked = 0.0  # L333: the summed |L| and missed walk, the displacement D, the longest |L|
+        self.reach_missed = 0.0
+        self.D = np.zeros(2)
+        self.longest = 0.0
+        self.known_max: float | None = None  # the longest known |stride| (missed_walk)
+        self.clock_prev: float | None = None  # L297: the last stride's end and the rest time taken out so far
+        self.clock_skip = 0.0
+
+    def covariance(self, length, heading, t_end, held_var_m2=None) -> np.ndarray:
+        """L128's covariance (m^2, (N, 2, 2)) after each of the strides given, following those given before."""
+        L = np.asarray(length, float)
+        psi = np.asarray(heading, float)
+        t = np.asarray(t_end, float) - self.t0
+        if not (L.shape == psi.shape == t.shape) or L.ndim != 1:
+            raise ValueError("length_m, heading_rad and t_end_s must be 1-D arrays of one length")
+        q = self.params.get
+        n = np.stack([-np.sin(psi), np.cos(psi)], axis=1) * L[:, None]  # d(stride displacement)/d(heading) = L_k n_k
+
+        def outer(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+            return a[:, :, None] * b[:, None, :]
+
+        C = _carried(self.C, n)  # the displacement from the start turned by 90 deg: |C_k| = |D_k|
+        eye = np.eye(2)[None]
+        P = (q("displacement_rel", 0.0) ** 2 * np.sum(C ** 2, axis=1))[:, None, None] * eye
+        P = P + q("point_m", 0.0) ** 2 * eye
+        B = _carried(self.B, n * t[:, None])  # bias: dpsi_j = b t_j, dp_k = b sum_j L_j n_j t_j
+        P = P + q("bias_rps", 0.0) ** 2 * outer(B, B)
+        walked = _carried(self.walked, np.abs(L))
+        if q("path_rel", 0.0):  # decision L220: the distance walked, not the displacement from the start
+            P = P + (q("path_rel") * walked)[:, None, None] ** 2 * eye
+        if q("path_diffusion_m2", 0.0):  # decision L237: variance per metre walked
+            P = P + (q("path_diffusion_m2") * walked)[:, None, None] * eye
+        dist = np.hypot(C[:, 0], C[:, 1])  # |C_k| = |D_k|, the displacement from the start
+        extent = _carried(self.extent, dist, np.maximum)  # the farthest the track has been from its start
+        if q("extent_heading_rad", 0.0):  # decision L239
+            P = P + (q("extent_heading_rad") * extent)[:, None, None] ** 2 * eye
+        if q("extent_return_rad", 0.0):  # decision L241: what a heading error held the same (on |D_k|) would not give
+            P = P + (q("extent_return_rad") ** 2 * np.maximum(extent ** 2 - dist ** 2, 0.0))[:, None, None] * eye
+        if q("heading_offset_rad", 0.0):  # decision E331: one heading error from the first stride on, along C_k
+            P = P + q("heading_offset_rad") ** 2 * outer(C, C)
+        held = None
+        if held_var_m2 is not None:  # decision E127: a held position's missed displacement, kept by later strides
+            h = np.asarray(held_var_m2, float)
+            if h.shape != L.shape:
+                raise ValueError("held_var_m2 must have one value per stride")
+            held = _carried(self.held, h)
+            P = P + held[:, None, None] * eye
+        # random walk: dp_k = sum_{i<=k} w_i (C_k - C_{i-1}) (C_0 = 0), so its covariance is
+        # sum_i (C_k - C_{i-1})(C_k - C_{i-1})^T = k C_k C_k^T - C_k S1_k^T - S1_k C_k^T + S2_k, with the cumulative
+        # sums S1_k = sum_{i<=k} C_{i-1}, S2_k = sum_{i<=k} C_{i-1} C_{i-1}^T
+        C_prev = np.vstack([self.C[None], C[:-1]])
+        S1 = _carried(self.S1, C_prev)
+        S2 = _carried(self.S2, outer(C_prev, C_prev))
+        k = np.arange(self.n + 1, self.n + len(L) + 1, dtype=float)[:, None, None]
+        P = P + q("heading_walk_rad", 0.0) ** 2 * (k * outer(C, C) - outer(C, S1) - outer(S1, C) + S2)
+        if len(L):  # the carry: the values after the last stride given
+            self.n += len(L)
+            self.C, self.B, self.S1, self.S2 = C[-1], B[-1], S1[-1], S2[-1]
+            self.walked, self.extent = float(walked[-1]), float(extent[-1])
+            if held is not None:
+                self.held = float(held[-1])
+        return 0.5 * (P + np.swapaxes(P, 1, 2))
+
+    def reach(self, length, heading, missed_m=None) -> np.ndarray:
+        """:func:`reach_bound` of the strides given, following those given before."""
+        L = np.asarray(length, float)
+        psi = np.asarray(heading, float)
+        walked = _carried(self.reach_walked, np.abs(L))
+        if len(L):
+            self.reach_walked = float(walked[-1])
+        if missed_m is not None:
+            missed = _carried(self.reach_missed, np.asarray(missed_m, float))
+            walked = walked + missed
+            if len(L):
+                self.reach_missed = float(missed[-1])
+        D = _carried(self.D, np.stack([L * np.cos(psi), L * np.sin(psi)], axis=1).reshape(-1, 2))
+        if not len(L):
+            return walked
+        longest = _carried(self.longest, np.abs(L), np.maximum)
+        self.D, self.longest = D[-1], float(longest[-1])
+        return walked + np.hypot(D[:, 0], D[:, 1]) + longest
+
+    def missed(self, length, bad, held_var_m2=None) -> np.ndarray:
+        """:func:`missed_walk` of the strides given: a bad stride reads the longest known |stride| of the strides given
+        so far and in this call (one call over the whole track: the whole track's, as before E355)."""
+        L = np.abs(np.asarray(length, float))
+        bad = np.asarray(bad, bool)
+        known = L[~bad & np.isfinite(L)]
+        if known.size:
+            self.known_max = max(float(known.max()), -np.inf if self.known_max is None else self.known_max)
+        out = np.where(bad, 2.0 * (self.known_max if self.known_max is not None else 0.0), 0.0)
+        return out if held_var_m2 is None else out + np.sqrt(2.0 * np.asarray(held_var_m2, float))
+
+    def clock(self, start, end, rests=None) -> np.ndarray:
+        """:func:`rest_clock` of the strides given (``start``, ``end`` s), following those given before: the end
+        times less every rest over ``rest_s`` before each (L297; with ``rests`` only those overlapping a span, L306)."""
+        start = np.asarray(start, float)
+        end = np.asarray(end, float)
+        if not len(end):
+            return end
+        prev = np.concatenate([[self.t0 if self.clock_prev is None else self.clock_prev], end[:-1]])
+        gap = start - prev
+        long = np.isfinite(gap) & (gap > self.rest_s)
+        if rests is not None:  # decision L306: only the rests L296 corrected (and the lead-in: no heading yet)
+            spans = np.asarray(rests, float).reshape(-1, 2)
+            corrected = np.array([bool(np.any((np.minimum(b, spans[:, 1]) - np.maximum(a, spans[:, 0])) > 0))
+                                  for a, b in zip(prev, start, strict=True)], dtype=bool)
+            if self.clock_prev is None:
+                corrected[0] = True
+            long &= corrected
+        skip = _carried(self.clock_skip, np.where(long, gap, 0.0))
+        self.clock_prev, self.clock_skip = float(end[-1]), float(skip[-1])
+        return end - skip
+
+    def extend(self, length, heading, clock, *, raw=None, bad=None, held_var_m2=None) -> tuple[np.ndarray, bool]:
+        """:func:`stride_radius` of the strides given, following those given before (decision E355)."""
+        length = np.asarray(length, float)
+        bad = np.zeros(len(length), bool) if bad is None else np.asarray(bad, bool)
+        raw = length if raw is None else raw
+        r = sigma_radius(self.covariance(length, heading, clock, held_var_m2))
+        r = _carried(self.r_max, np.where(np.isfinite(r), r, 0.0), np.maximum)  # a radius never shrinks without a fix
+        if len(r):
+            self.r_max = float(r[-1])
+        cap = 0.5 * self.reach(length, heading, self.missed(raw, bad, held_var_m2))  # L333: 2 sigma <= the sure radius
+        cut = bool(len(r) and r[-1] > cap[-1])
+        r = np.minimum(r, cap)
+        r[bad] = np.nan
+        return r, cut
 
 
 def sigma_radius(cov: np.ndarray) -> np.ndarray:
@@ -170,43 +301,21 @@ def reach_bound(length: np.ndarray, heading: np.ndarray, missed_m: np.ndarray | 
     pelvis between the feet: each within half a stride of the other, at the start and now). ``missed_m``: per stride,
     walk the lengths do not hold, added to s_k (:func:`missed_walk`). Never decreasing (|D_k| shrinks by at most
     |L_k| while s_k grows by it). Pure numpy; NaN-free inputs."""
-    L = np.asarray(length, float)
-    psi = np.asarray(heading, float)
-    walked = np.cumsum(np.abs(L))
-    if missed_m is not None:
-        walked = walked + np.cumsum(np.asarray(missed_m, float))
-    reach = np.hypot(np.cumsum(L * np.cos(psi)), np.cumsum(L * np.sin(psi)))
-    return walked + reach + np.maximum.accumulate(np.abs(L)) if len(L) else walked
+    return RadiusState(0.0, {}).reach(length, heading, missed_m)
 
 
 def missed_walk(length: np.ndarray, bad: np.ndarray, held_var_m2: np.ndarray | None) -> np.ndarray:
     """Decision L333: per stride, the walk (m) :func:`reach_bound` adds to the lengths: a held gap (E127) its speed
     x gap (sqrt(2 ``held_var_m2``)); a stride of unknown length or heading (L143, modelled as 0) twice the track's
     longest known |stride| (the walk it may have been, and the track's own step the model left out)."""
-    L = np.abs(np.asarray(length, float))
-    known = L[~bad & np.isfinite(L)]
-    out = np.where(bad, 2.0 * (float(known.max()) if known.size else 0.0), 0.0)
-    return out if held_var_m2 is None else out + np.sqrt(2.0 * np.asarray(held_var_m2, float))
+    return RadiusState(0.0, {}).missed(length, bad, held_var_m2)
+
 
 def rest_clock(start: np.ndarray, end: np.ndarray, t0: float, rest_s: float, rests=None) -> np.ndarray:
     """Decisions L297, L306: the numpy core of :func:`pdrlearn.track.position_sigma.bias_clock` - the steps' end times
     ``end`` with every rest longer than ``rest_s`` between a step's end and the next one's ``start`` (before the first:
     from ``t0``) taken out; with ``rests`` only those overlapping one of these (start, end) spans (and the lead-in)."""
-    start = np.asarray(start, float)
-    end = np.asarray(end, float)
-    if not len(end):
-        return end
-    prev = np.concatenate([[t0], end[:-1]])
-    gap = start - prev
-    long = np.isfinite(gap) & (gap > rest_s)
-    if rests is not None:  # decision L306: only the rests L296 corrected (and the lead-in: no heading yet)
-        spans = np.asarray(rests, float).reshape(-1, 2)
-        corrected = np.array([bool(np.any((np.minimum(b, spans[:, 1]) - np.maximum(a, spans[:, 0])) > 0))
-                              for a, b in zip(prev, start, strict=True)], dtype=bool)
-        corrected[0] = True
-        long &= corrected
-    skip = np.where(long, gap, 0.0)
-    return end - np.cumsum(skip)
+    return RadiusState(t0, {}, rest_s=rest_s).clock(start, end, rests)
 
 
 def stride_radius(length: np.ndarray, heading: np.ndarray, clock: np.ndarray, t0: float, params: dict[str, float],
@@ -218,14 +327,5 @@ def stride_radius(length: np.ndarray, heading: np.ndarray, clock: np.ndarray, t0
     the bias term's clock (the strides' end times, or :func:`rest_clock`'s). Shared by the offline tracks'
     ``pos_sigma_m`` (:func:`pdrlearn.track.position_sigma.sigma_per_row`) and the live waist tracker's per step
     (decision E352), so the two are equal."""
-    length = np.asarray(length, float)
-    bad = np.zeros(len(length), bool) if bad is None else np.asarray(bad, bool)
-    raw = length if raw is None else raw
-    cov = position_covariance(length, heading, clock, t0, **params, held_var_m2=held_var_m2)
-    r = sigma_radius(cov)
-    r = np.maximum.accumulate(np.where(np.isfinite(r), r, 0.0))  # a radius never shrinks without a fix
-    cap = 0.5 * reach_bound(length, heading, missed_walk(raw, bad, held_var_m2))  # L333: 2 sigma <= the sure radius
-    cut = bool(len(r) and r[-1] > cap[-1])
-    r = np.minimum(r, cap)
-    r[bad] = np.nan
-    return r, cut
+    return RadiusState(t0, params).extend(length, heading, clock, raw=raw, bad=bad, held_var_m2=held_var_m2)
+

@@ -40,6 +40,9 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--gait", metavar="OTHER_FOOT_SESSION", type=Path, help="not in the lean install: gait's tables "
                    "need pandas and scipy; refused in one line naming `pdrlearn run BUNDLE SESSION --gait "
                    "OTHER_FOOT_SESSION` (decision E311)")
+    p.add_argument("--altitude", default="foot", metavar="foot|fused", help="the altitude: the strides' own height "
+                   "(foot, the default) or fused with the session's waist barometer as it streams (fused: as pdrlearn "
+                   "run --altitude fused, L154's filter; decisions E339, E357)")
     p.add_argument("--json", action="store_true", help="print one JSON summary object")
     p.add_argument("--force", action="store_true", help="replace the --out folder of an earlier replay by this "
                    "command (nothing else: a session or another command's output is refused; decision E276)")
@@ -48,7 +51,8 @@ def _parser() -> argparse.ArgumentParser:
 
 def replay(bundle_dir: Path, session_dir: Path, *, chunk_s: float = 1.0, units: str | None = None,
            method: str | None = None, fallback_line: bool = True, domain_line: bool = True,
-           block_rows: int | None = None, clip_lines: bool = True, contacts: bool = False, gait: bool = False):
+           block_rows: int | None = None, clip_lines: bool = True, contacts: bool = False, gait: bool = False,
+           altitude: str = "foot"):
     """The tracker after replaying ``session_dir`` through ``bundle_dir`` and its steps, as ``pdrlearn run`` pushes
     a session (same input rates, stream ends, frames when the session declares them; decision E76).
     ``fallback_line=False``: no E26 line about the foot unit only (``evaluate`` says it its own way, E196);
@@ -60,11 +64,17 @@ def replay(bundle_dir: Path, session_dir: Path, *, chunk_s: float = 1.0, units: 
     decision E274: bounded memory, the same pushes as the whole files'; a file the block reader finds unusual is
     read whole, as before).
     ``contacts``, ``gait``: the :class:`~pdrlearn.runtime.tracker.Tracker`'s (decisions E49, E320: with both, the
-    tracker's :meth:`~pdrlearn.runtime.tracker.Tracker.gait_strides` / ``gait_summary`` after the replay)."""
+    tracker's :meth:`~pdrlearn.runtime.tracker.Tracker.gait_strides` / ``gait_summary`` after the replay).
+    ``altitude``: ``"foot"`` or ``"fused"`` (decision E357: ``pdrlearn run --altitude``'s check and units rule,
+    :func:`~pdrlearn.runtime.baro_fusion.replay_altitude`; the Tracker's E339 fusion)."""
     from pdrlearn.errors import DataError
     from pdrlearn.runtime import Tracker, load_bundle
     from pdrlearn.runtime import chunked as _chunked
+    from pdrlearn.runtime.baro_fusion import check_altitude, replay_altitude
     from pdrlearn.runtime.replay import read_streams, replay_chunks, session_frames
+    from pdrlearn.runtime.tracker import tracked_units
+
+    check_altitude(altitude, PROG)  # decision E357: run's check, before the session is read
 
     if not (chunk_s > 0 and chunk_s < float("inf")):
         raise DataError(f"--chunk-s {chunk_s}: give the replay chunk length in seconds (> 0, e.g. 1)")
@@ -80,12 +90,14 @@ def replay(bundle_dir: Path, session_dir: Path, *, chunk_s: float = 1.0, units: 
         ends = {n: float(t[-1]) for n, (t, _) in streams.items() if len(t)}
         pushes = replay_chunks(streams, chunk_s)
     asked = None if units is None else [u for u in units.split(",") if u.strip()]
+    if altitude != "foot":  # decision E357: run's rule on the units the tracker will follow
+        altitude = replay_altitude(altitude, tracked_units(bundle, asked, list(ends)), units, PROG, str(session_dir))
     tracker = Tracker(bundle, frames=session_frames(meta, bundle, asked or bundle.body_units, f"session {session_dir}"),
                       units=asked, sensors=list(ends), methods=methods,
                       input_rates_hz={n: 1.0 / p if p > 0 else float("nan") for n, p in periods.items()},
                       stream_ends_s=ends, check_domain=True,  # decision E105: C61's out-of-domain line, as pdrlearn run
                       full_scale=(meta or {}).get("full_scale"),  # decision B456: the session's declared ranges
-                      contacts=contacts, gait=gait)  # decisions E49, E320
+                      contacts=contacts, gait=gait, altitude=altitude)  # decisions E49, E320, E357
     if not domain_line:  # decision E198: checked, never said
         tracker.quiet_domain()
     if not clip_lines:  # decision E303: said when the caller read the session
@@ -157,7 +169,10 @@ def _summary(args, tracker, steps, warnings=None) -> dict:
             "final_position": dict(zip("xyz", (float(v) for v in tracker.position), strict=True)),
             "methods": {t: f"{c.method}/{c.unit}" for t, c in tracker.classifiers.items()},
             "warnings": list(tracker.warnings) if warnings is None else list(warnings),
-            "out": None if args.out is None else str(args.out)}
+            "out": None if args.out is None else str(args.out),
+            # decision E357: as run's summary (E339), the altitude's source when the barometer was fused
+            **({} if tracker.foot_altitude_change_m is None else {
+                "altitude_source": "fused", "foot_altitude_change_m": tracker.foot_altitude_change_m})}
 
 
 def _replay_and_write(args) -> dict:
@@ -179,7 +194,8 @@ def _replay_and_write(args) -> dict:
     from pdrlearn.warning_lines import captured_warnings, merged_warnings
 
     with captured_warnings(echo=True) as logged:  # decision E317: the lines said, in replay.json as run's (E154)
-        tracker, steps = replay(args.bundle, args.session, chunk_s=args.chunk_s, units=args.units, method=args.method)
+        tracker, steps = replay(args.bundle, args.session, chunk_s=args.chunk_s, units=args.units, method=args.method,
+                                altitude=args.altitude)  # decision E357
         travel_warnings(travel_table(_rows(steps)), tracker.bundle, str(args.session))  # run's C137 / L578 / L652
     summary = _summary(args, tracker, steps, merged_warnings(tracker.warnings, logged, str(args.session)))
     if args.out is not None:

@@ -13,9 +13,12 @@ its ``z`` the foot's plus the fused heights' difference so far: the tracker's ow
 
 from __future__ import annotations
 
+import logging
 import math
 
 import numpy as np
+
+from pdrlearn.errors import DataError
 
 
 class FusedRows:
@@ -41,9 +44,32 @@ class FusedRows:
     def push(self, t, values) -> tuple | None:
         """Hold barometer samples; B188's finding the first time they make the barometer implausible, else None."""
         t = np.asarray(t, dtype=float).reshape(-1)
+        v = np.asarray(values, dtype=float).reshape(len(t), -1)[:, 0]
+        held = self._alt.times
+        if held.size and len(t) and t[0] <= held[-1]:  # decision E356: a resumed tracker re-pushes samples held
+            keep = t > held[-1]
+            t, v = t[keep], v[keep]
         if not len(t):
             return None
-        return self._alt.push(t, np.asarray(values, dtype=float).reshape(len(t), -1)[:, 0])
+        return self._alt.push(t, v)
+
+    def state(self, row) -> dict:
+        """Decision E356: what :meth:`restore` needs to go on as this holder; ``row`` turns a held row into plain
+        numbers (the restart state is JSON)."""
+        return {"barometer": self._alt.state(), "filter": self._kf.state(), "held": [row(r) for r in self._held],
+                "started": self._started, "shift_m": self.shift_m, "foot_change_m": self.foot_change_m,
+                "n_fused": self.n_fused}
+
+    def restore(self, state: dict, row) -> None:
+        """Decision E356: go on from :meth:`state` (``row``: a held row from its plain numbers)."""
+        from pdrlearn.kernels.barometer import LiveAltitude
+
+        self._alt = LiveAltitude.from_state(state["barometer"])
+        self._kf.set_state(state["filter"])
+        self._held = [row(r) for r in state["held"]]
+        self._started = bool(state["started"])
+        self.shift_m, self.foot_change_m = float(state["shift_m"]), float(state["foot_change_m"])
+        self.n_fused = int(state["n_fused"])
 
     def _ready(self, ts: float, latest: float) -> bool:
         t = self._alt.times
@@ -81,3 +107,30 @@ class FusedRows:
             self.n_fused += 1
         st.z = st.z + self.shift_m
         return st
+
+
+def check_altitude(altitude: str, where: str) -> str:
+    """Decision E339's ``--altitude`` value (decision E357: ``pdrlearn run``'s and ``python -m pdrlearn.runtime``'s one
+    check): one of :data:`~pdrlearn.kernels.barometer.ALTITUDES`, else one line naming ``where`` (the command)."""
+    from pdrlearn.kernels.barometer import ALTITUDES
+
+    if altitude not in ALTITUDES:
+        raise DataError(f"{where}: --altitude {altitude!r} is not one of {', '.join(ALTITUDES)} (foot: the strides' "
+                        "own height; fused: with the waist barometer, decision E339)")
+    return altitude
+
+
+def replay_altitude(altitude: str, units, given: str | None, where: str, name: str) -> str:
+    """Decision E339 (amended while measuring; E357: shared by ``pdrlearn run`` and ``python -m pdrlearn.runtime``): the
+    altitude a replay of the session ``name`` tracks with the body ``units`` it tracks: ``"fused"`` needs the waist
+    unit (its barometer); a ``--units`` (``given``) that leaves it out is refused in one line, a session without the
+    waist unit keeps the foot's altitude with L154's line (as ``track --altitude fused``)."""
+    from pdrlearn.kernels.barometer import FUSED_WITHOUT_BAROMETER
+
+    if altitude != "fused" or "waist" in units:
+        return altitude
+    if given is not None:
+        raise DataError(f"{where}: --altitude fused reads the waist barometer (wBarometer.csv), which --units {given} "
+                        "leaves out: add waist to --units (--units foot,waist) or drop --altitude")
+    logging.getLogger("pdrlearn.cli").warning("%s: %s", name, FUSED_WITHOUT_BAROMETER)
+    return "foot"

@@ -27,6 +27,11 @@ STATE_VERSION = 3
 _KEYS = ("version", "position", "heading_rad", "last_end_s", "last_step", "n_steps", "samples")
 _CLOCKS = ("waist_clock_offset_s", "foot_clock_offset_s")  # decision E237: version 2 on
 _STOP = ("stop_bias", "pedal_history")  # decisions E281, E280: version 3 on
+#: decision E356 (as E338's ``cycle_phase``, still version 3): E354's held waist gap (``bridge_cycle``) and the contacts
+#: it reads the stride before from (``contacts``), E46's gap row not emitted yet (``gap_row``, ``row_gaps``) and E339's
+#: fused altitude (``altitude``, ``fused``); a state without them
+#: (saved before E356) starts them empty, as before (one warning line for ``altitude="fused"``)
+_HELD = ("bridge_cycle", "gap_row", "row_gaps", "contacts", "altitude", "fused")
 
 
 def restart_state(tracker) -> dict:
@@ -37,7 +42,10 @@ def restart_state(tracker) -> dict:
     (on its clock: already moved by the offsets), the offsets it applies now (a ``rebase_clock`` included; E237) and
     E272's waist gyroscope bias read at the last stop (``{"rps", "n_stops"}``, None without the waist unit; E281) and
     the last L611 rows judged (``pedal_history``, E280) and L621's live foot rest reading (``foot_rest``: ``{"readings",
-    "n_still"}``, review R1 F3) and E338's held end-phase yaw (``cycle_phase``, rad, or None). Strides held for their
+    "n_still"}``, review R1 F3) and E338's held end-phase yaw (``cycle_phase``, rad, or None). Decision E356: and
+    E354's held waist gap (``bridge_cycle``: ``{"gap_s", "before"}``), the last strides' contacts (``contacts``), E46's
+    gap row not emitted yet (``gap_row``, ``row_gaps``), the ``altitude`` tracked and E339's fused altitude (``fused``:
+    the barometer held, L154's filter, the rows waiting for the barometer; None for ``"foot"``). Strides held for their
     L611 verdict (E280) are not in it:
     ``last_end_s`` and the bias are those before the first held one, which the new tracker measures again. A
     tracker that resamples (``resample=True``, E22) is refused in one line (decision L140): its buffer holds
@@ -52,7 +60,9 @@ def restart_state(tracker) -> dict:
                         "track at the data's own rate (resample='native', the default) to restart whole "
                         "(decision L140)")
     kept = tracker._kept
-    prev_end, stop, rest = tracker._restart_from  # decision E280: strides held for L611's verdict are measured again
+    # decision E280: strides held for L611's verdict are measured again (E356: E354's held gap as before the first)
+    prev_end, stop, rest, cycle = tracker._restart_from
+    fused = tracker._fused
     phase = None if tracker._cycle_phase is None else tracker._cycle_phase.psi  # E338: set by placed strides only
     return {
         "version": STATE_VERSION,
@@ -68,7 +78,29 @@ def restart_state(tracker) -> dict:
         "pedal_history": [list(r) for r in tracker._loops.history],  # decision E280: the verdicts' neighbours
         "foot_rest": {"readings": [float(v) for v in rest[0]], "n_still": int(rest[1])},  # review R1 F3 (L621)
         "cycle_phase": None if phase is None else float(phase),  # decision E338: the held end-phase yaw (rad)
+        # decision E356: E354's held waist gap, E46's pending gap row and E339's fused altitude
+        "bridge_cycle": {"gap_s": float(cycle[0]), "before": None if cycle[1] is None else float(cycle[1])},
+        "gap_row": None if tracker._gap_row is None else [float(v) for v in tracker._gap_row],
+        "row_gaps": [[float(a), float(b)] for a, b in tracker._row_gaps],
+        # the last strides' (start, contact) (steps decision 87): E354's stride before a bridged span is read from them
+        "contacts": [[float(a), float(c)] for a, c in tracker._contacts],
+        "altitude": "foot" if fused is None else "fused",
+        "fused": None if fused is None else fused.state(step_record),
     }
+
+
+def step_record(step) -> dict:
+    """Decision E356: a :class:`~pdrlearn.runtime.tracker.Step` as plain numbers, lists and dicts (JSON)."""
+    from dataclasses import asdict
+
+    return {**asdict(step), "flags": list(step.flags)}
+
+
+def step_from_record(record: dict):
+    """Decision E356: the :class:`~pdrlearn.runtime.tracker.Step` of :func:`step_record`."""
+    from pdrlearn.runtime.tracker import Step
+
+    return Step(**{**record, "flags": tuple(record["flags"])})
 
 
 def resume(tracker, state: dict) -> list:
@@ -104,15 +136,23 @@ def resume(tracker, state: dict) -> list:
         rest = None if rest is None else ([float(v) for v in rest["readings"]], float(rest["n_still"]))
         phase = state.get("cycle_phase")  # decision E338: absent (an older state) or None = no straight stride yet
         phase = None if phase is None else float(phase)
-    except (TypeError, ValueError, KeyError) as exc:
+        cycle = state.get("bridge_cycle")  # decision E356: absent (a state saved before E356) = no gap held
+        cycle = (0.0, None) if cycle is None else (float(cycle["gap_s"]),
+                                                    None if cycle["before"] is None else float(cycle["before"]))
+        gap_row = state.get("gap_row")  # decision E356 (E46): absent or None = no gap row pending
+        gap_row = None if gap_row is None else [float(gap_row[0]), float(gap_row[1])]
+        row_gaps = [(float(a), float(b)) for a, b in state.get("row_gaps") or []]
+        contacts = [(float(a), float(c)) for a, c in state.get("contacts") or []]  # E356: absent = none (as before)
+    except (TypeError, ValueError, KeyError, IndexError) as exc:
         raise DataError(f"{where}: the state's position, heading_rad, last_end_s, samples, clock offsets, foot_rest, "
-                        f"stop_bias or pedal_history are malformed ({exc}); give what "
+                        f"bridge_cycle, gap_row, contacts, stop_bias or pedal_history are malformed ({exc}); give what "
                         "Tracker.restart_state() returned (decision L134)") from None
     if not (np.isfinite(position).all() and math.isfinite(heading) and all(map(math.isfinite, clocks.values()))
             and (stop is None or (math.isfinite(stop[0]) and _count(stop[1])))
             and all(math.isfinite(v) for r in history for v in (r[0], r[1], r[2], r[4]))
             and (rest is None or (all(math.isfinite(v) and v > 0 for v in rest[0]) and _count(rest[1])))
-            and (phase is None or math.isfinite(phase))):
+            and (phase is None or math.isfinite(phase))
+            and all(v is None or math.isfinite(v) for v in (*cycle, *(gap_row or ())))):
         raise DataError(f"{where}: the state's position {position.tolist()}, heading {heading}, clock offsets "
                         f"{clocks}, stop_bias {stop}, pedal_history or foot_rest are not finite (or a count is not a "
                         "whole number >= 0); give what Tracker.restart_state() returned (decision L134, review R1 F5)")
@@ -139,6 +179,10 @@ def resume(tracker, state: dict) -> list:
     if rest is not None:  # review R1 F3: L621's reading before the first held stride, which is measured again
         tracker._foot_rest.readings, tracker._foot_rest.n_still = rest[0], int(rest[1])
     tracker._loops.history, tracker._loops.seen = history, len(history)  # decision E280
+    tracker._cycle.gap_s, tracker._cycle.before = cycle  # decision E356: E354's gap turn, taken by the next stride
+    tracker._gap_row, tracker._row_gaps = gap_row, row_gaps  # decision E356: E46's gap row, emitted before it
+    tracker._contacts = contacts  # decision E356: steps decision 87's contacts (E354's stride before a gap)
+    _resume_fused(tracker, state, where)  # decision E356: E339's barometer, filter and rows not returned yet
     for k, v in clocks.items():  # decision E237: the state's clock wins; a different given value is said
         if v != getattr(tracker, k):
             tracker._warn(f"{where}: the state's {k} = {v:g} s replaces the {getattr(tracker, k):g} s given (the "
@@ -151,6 +195,30 @@ def resume(tracker, state: dict) -> list:
     finally:
         for k, v in {**kept, **clocks}.items():
             setattr(tracker, k, v)
+
+
+def _resume_fused(tracker, state: dict, where: str) -> None:
+    """Decision E356: the saved ``Tracker(altitude="fused")``'s holder (the barometer held, L154's filter, the rows
+    waiting for the barometer) is the new tracker's; a state saved with the other ``altitude`` is refused in one line
+    (the rows it holds would be lost, or the altitude would change its origin); a state saved before E356 (no
+    ``altitude``) restarts the fusion at the next row, with one line."""
+    mine = "foot" if tracker._fused is None else "fused"
+    saved = state.get("altitude")
+    if saved is None:
+        if mine == "fused":
+            tracker._warn(f"{where}: the state was saved before decision E356 and holds no fused altitude: L154's "
+                          "filter starts again at the next row (from the state's z), and rows the saved tracker held "
+                          "for the barometer are lost")
+        return
+    if saved != mine:
+        raise DataError(f"{where}: the state was saved by a Tracker(altitude={saved!r}) and this one tracks "
+                        f"altitude={mine!r}; resume with altitude={saved!r} (decision E356)")
+    if mine == "fused":
+        try:
+            tracker._fused.restore(state["fused"], step_from_record)
+        except (TypeError, ValueError, KeyError, IndexError) as exc:
+            raise DataError(f"{where}: the state's fused altitude is malformed ({exc}); give what "
+                            "Tracker.restart_state() returned (decisions L134, E356)") from None
 
 
 def _count(v: float) -> bool:

@@ -241,6 +241,18 @@ def check_units(bundle: Bundle, units) -> tuple[str, ...]:
     return tuple(u for u in have if u in asked)
 
 
+def tracked_units(bundle: Bundle, units, sensors) -> tuple[str, ...]:
+    """The body units a :class:`Tracker` follows (decision E26): ``units`` checked (:func:`check_units`); without them
+    the bundle's, or the foot unit alone when the declared ``sensors`` lack a sensor the waist unit needs (decision
+    E32). Public for the lean replay, which needs them before its tracker (decision E357's ``--altitude``)."""
+    if units is None and sensors is not None and "foot" in bundle.body_units and not set(
+            bundle.sensors_of(("waist",))[0]) <= set(sensors):  # decision E32: the declared streams
+        units = ("foot",)  # lack a sensor the waist unit needs: tracked as a foot-only session (E26)
+        log.info("bundle %s: sensors %s lack the waist unit's: tracking the foot unit only (units=('foot',))",
+                 bundle.path, ", ".join(sensors))
+    return bundle.body_units if units is None else check_units(bundle, units)
+
+
 def forward_vector(frame: dict) -> np.ndarray:
     """Sensor-frame vector pointing body-forward for a declared frame ``{"x": "forward", ...}``."""
     try:
@@ -540,7 +552,8 @@ class Tracker(OwnGuard, FixInput):
         once the barometer was pushed about a second past its end (W89's window; or its declared end, or the other
         streams 2 s further, or :meth:`flush`), with its fused ``dz_m`` and ``z``. Needs wBarometer among the
         tracked units' sensors (refused otherwise); declared ``sensors`` without it keep the foot's height with
-        L154's line. Not carried over by ``restart_state`` (a resumed tracker fuses anew from its first row).
+        L154's line. Carried over by ``restart_state`` (decision E356: the held barometer, the filter and the rows
+        not returned yet; a resumed tracker's ``altitude`` must be the saved one's).
     gait : decision E320: keep every returned stride's gait values (:class:`pdrlearn.runtime.gait.StrideGait`,
         numpy only; needs ``contacts=True``: a stride time is initial contact to initial contact):
         :meth:`gait_strides` per stride, :meth:`gait_summary` the session's (with the other foot's tracker, the
@@ -695,12 +708,7 @@ class Tracker(OwnGuard, FixInput):
         sensors = None if sensors is None else [str(n) for n in sensors]
         self._unchecked = sensors is None  # decision B140: the first step checks the pushed streams
         #: the body units tracked (decision E26), their required and used sensors
-        if units is None and sensors is not None and "foot" in self.bundle.body_units and not set(
-                self.bundle.sensors_of(("waist",))[0]) <= set(sensors):  # decision E32: the declared streams
-            units = ("foot",)  # lack a sensor the waist unit needs: tracked as a foot-only session (E26)
-            log.info("bundle %s: sensors %s lack the waist unit's: tracking the foot unit only (units=('foot',))",
-                     self.bundle.path, ", ".join(sensors))
-        self.units = self.bundle.body_units if units is None else check_units(self.bundle, units)
+        self.units = tracked_units(self.bundle, units, sensors)
         self.required, optional = self.bundle.sensors_of(self.units)
         if sensors is not None:  # decision E55: a declared stream set that lacks a required sensor, refused now
             self.bundle.check_streams(dict.fromkeys(sensors, math.nan), where=f"sensors={sensors}", units=self.units)
@@ -1933,9 +1941,12 @@ class Tracker(OwnGuard, FixInput):
     def _before(self) -> tuple:
         """Decision E280: the measuring state before a stride (the last stride's end, E272's bias): a restart state
         taken while strides are held (L611's verdict pending) restarts from the first held one's. Review R1 F3: and
-        L621's live foot rest reading (its readings and still-sample count), which measuring the stride adds to."""
-        stop, rest = self._stop_bias, self._foot_rest
-        return self._prev_end, None if stop is None else (stop.rps, stop.n_stops), (list(rest.readings), rest.n_still)
+        L621's live foot rest reading (its readings and still-sample count), which measuring the stride adds to.
+        Decision E356: and E354's held waist gap (its seconds and the mean rate before it), which measuring a bridged
+        stride holds and the stride after it takes."""
+        stop, rest, cycle = self._stop_bias, self._foot_rest, self._cycle
+        return (self._prev_end, None if stop is None else (stop.rps, stop.n_stops), (list(rest.readings), rest.n_still),
+                (cycle.gap_s, cycle.before))  # decision E356: E354's waist gap held for the stride after it
 
     @property
     def _restart_from(self) -> tuple:
