@@ -1,7 +1,7 @@
 """Decision L801 (amends L796): L796's measured mount yaw is not trusted when W435's step-frequency power ratio is
 under x10 (an asymmetric gait turns the measured forward) or W434's ``"force_frame"`` keeps the declared waist frame:
-the default turns the compass all the same and says so in one line; ``forward_yaw_gate=True`` (measured, not
-adopted) leaves the compass unturned and says why."""
+the default (L801's gate since decision L803) leaves the compass unturned and says why; ``forward_yaw_gate=False``
+turns it all the same and says so in one line."""
 
 from __future__ import annotations
 
@@ -30,15 +30,16 @@ class _Session:
                                                 (9.3, True, "force_frame")])
 def test_an_untrusted_yaw_is_said_and_gated_l801(ratio, forced, why):
     info = {}
-    yaw, line = trusted_forward_yaw(_Session(-39.5, ratio, forced), info)  # L796's default: turned, said
+    yaw, line = trusted_forward_yaw(_Session(-39.5, ratio, forced), info, gate=False)  # L796's turn: turned, said
     assert yaw == -39.5 and info["forward_yaw_untrusted"] == why and "forward_yaw_skipped" not in info
     assert line.startswith("the waist compass was turned by the waist unit's measured mount yaw (-39.5 deg, L796)")
     assert "forward_yaw_gate" in line and "docs/decisions/localization.md L801" in line
     info = {}
-    yaw, line = trusted_forward_yaw(_Session(-39.5, ratio, forced), info, gate=True)
+    yaw, line = trusted_forward_yaw(_Session(-39.5, ratio, forced), info)  # L803's default: the gate
     assert yaw is None and info == {"forward_yaw_deg": -39.5, "forward_yaw_skipped": why}
     assert line.startswith("the waist compass was not turned by the waist unit's measured mount yaw (-39.5 deg")
     assert ("x6.1 (under x10)" if why == "power_ratio" else '"force_frame"') in line
+    assert '"forward_yaw_gate\": false' in line and "L803" in line
 
 
 @pytest.mark.parametrize("gate", [False, True])
@@ -53,7 +54,8 @@ def test_a_trusted_yaw_is_applied_without_a_line_l801(gate):
 
 def test_the_track_turns_a_forced_frame_only_without_the_gate_l801():
     """A noise-free two-unit walk whose waist unit is turned 10 deg on its belt, its frame forced (W434): the default
-    takes the measured yaw off (L796, one L801 line), the gate leaves the compass's 10 deg in."""
+    (L801's gate, L803) keeps the declared forward, the compass's 10 deg in; ``forward_yaw_gate=False`` takes the
+    measured yaw off (L796, one L801 line)."""
     from pdrlearn.sim.route import parse_route
     from pdrlearn.sim.simulate import simulate_path
     from pdrlearn.sim.user import UserProfile
@@ -64,7 +66,7 @@ def test_the_track_turns_a_forced_frame_only_without_the_gate_l801():
     s.meta["force_frame"] = ["waist"]
     logging.disable(logging.WARNING)
     try:
-        on, gated = track_plasys(s), track_plasys(s, forward_yaw_gate=True)
+        on, gated = track_plasys(s, forward_yaw_gate=False), track_plasys(s)
     finally:
         logging.disable(logging.NOTSET)
 

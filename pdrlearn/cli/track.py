@@ -1706,8 +1706,8 @@ def _reference_point(point: str, par, params: Path | None, pipeline: str, stream
 #: decision L717: ``foot_ramps`` (ramps.csv from a foot track's own L39 heights, an option: its rule failed)
 #: decision L770: ``compass_sinusoid`` (the waist compass's direction sinusoid off before the fused window), offline
 #: decision L796: ``forward_yaw`` (the waist compass turned by D10's measured mount yaw; on by default), offline
-#: decision L801: ``forward_yaw_gate`` (not when W435's power ratio or W434's force_frame distrusts it; an option),
-#: offline
+#: decision L801: ``forward_yaw_gate`` (not when W435's power ratio or W434's force_frame distrusts it; on by default
+#: since L803), offline
 TRACK_PARAM_KEYS = ("waist_bias", "fused_climb", "hard_iron_fit", "foot_ramps", "compass_sinusoid", "forward_yaw",
                     "forward_yaw_gate")
 #: decision L615: the lower-back PARAMS ``options`` (``{"options": {...}}``) the plasys pipeline reads as well

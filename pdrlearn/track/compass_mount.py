@@ -69,15 +69,16 @@ def declared_forward_yaw(session, placement: str = "waist") -> float | None:
     return None if chk is None else chk.forward_yaw_deg
 
 
-def trusted_forward_yaw(session, info: dict, *, gate: bool = False) -> tuple[float | None, str | None]:
+def trusted_forward_yaw(session, info: dict, *, gate: bool = True) -> tuple[float | None, str | None]:
     """Decision L801 (amends L796): (the yaw in deg to turn the waist compass by, or None; a warning line or None).
     The yaw D10's check measured (:func:`declared_forward_yaw`, recorded in ``info["forward_yaw_deg"]``) is not
     trusted when W435 does not trust the measured forward (its step-frequency power ratio under
     :data:`pdrlearn.track.frame_inference.MIN_JUDGED_POWER_RATIO`: an asymmetric gait turns it by 12-50 deg) or when
     meta.json's ``"force_frame"`` keeps the declared waist frame (W434: the user's forward, not the measurement's).
-    ``gate`` (L801's candidate, measured and not adopted: an option): an untrusted yaw is not applied,
-    ``info["forward_yaw_skipped"]`` names why and the line says the compass was not turned; without it (L796, the
-    default) the yaw is applied and ``info["forward_yaw_untrusted"]`` and the line say it may be the gait's."""
+    ``gate`` (L801's candidate; the default since decision L803): an untrusted yaw is not applied,
+    ``info["forward_yaw_skipped"]`` names why and the line says the compass was not turned; ``gate=False`` (L796's
+    turn, ``--params '{"forward_yaw_gate": false}'``) applies the yaw and ``info["forward_yaw_untrusted"]`` and the
+    line say it may be the gait's."""
     from pdrlearn.decision_refs import decision_ref
     from pdrlearn.track.frame_inference import MIN_JUDGED_POWER_RATIO
 
@@ -98,11 +99,14 @@ def trusted_forward_yaw(session, info: dict, *, gate: bool = False) -> tuple[flo
     measured = f"the waist unit's measured mount yaw ({yaw:+.1f} deg, L796)"
     if gate:
         info["forward_yaw_skipped"] = why
-        return None, f"the waist compass was not turned by {measured}: {words} ({decision_ref('L801')})"
+        return None, (f"the waist compass was not turned by {measured}: {words}; if the unit really is turned on its "
+                      "belt, --params '{\"forward_yaw_gate\": false}' turns it all the same "
+                      f"({decision_ref('L801')}, {decision_ref('L803')})")
     info["forward_yaw_untrusted"] = why
     return yaw, (f"the waist compass was turned by {measured}, though {words}; if the gait or the declared frame "
-                 "turned that measurement, --params '{\"forward_yaw_gate\": true}' leaves the compass unturned here "
-                 f"(or '{{\"forward_yaw\": false}}' never turns it) ({decision_ref('L801')})")
+                 "turned that measurement, leave \"forward_yaw_gate\": false out of --params (the default, L803, "
+                 f"leaves the compass unturned here; '{{\"forward_yaw\": false}}' never turns it) "
+                 f"({decision_ref('L801')})")
 
 
 def forward_power_ratio(session, placement: str = "waist") -> float | None:

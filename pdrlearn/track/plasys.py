@@ -1154,7 +1154,7 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
                  gated_level_dz: bool | str = False, fused_climb: bool = False,
                  fused_straight: bool = True, ride_vibration: bool = True, cycling: bool = True,
                  foot_ramps: bool = False, compass_sinusoid: bool = False, forward_yaw: bool = True,
-                 forward_yaw_gate: bool = False,
+                 forward_yaw_gate: bool = True,
                  **opts) -> TrackResult:
     """Track a foot (+ waist) session with PLASYS method M1, M2 or M3 (thesis ch.7).
 
@@ -1251,9 +1251,10 @@ def track_plasys(session: Session, *, method: str = "auto", model=None, start=No
         belt by a few degrees; decision L796, adopted: fresh users 18950-18979, median final error 1.495 -> 0.932 m;
         ``info["compass_mount"]["forward_yaw_deg"]``); False: as before L796. Decision L801: one warning line when
         W435's power ratio (under x10) or W434's ``"force_frame"`` does not trust the measured yaw
-    forward_yaw_gate : decision L801 (measured, not adopted: an option): with ``forward_yaw``, do not turn the
-        compass when W435's power ratio or W434's ``"force_frame"`` does not trust the measured yaw (review s53r1:
-        a hemiparetic walker's 20.8 m final error 2.7 m again); ``info["compass_mount"]["forward_yaw_skipped"]``
+    forward_yaw_gate : decision L801 (the default since L803): with ``forward_yaw``, do not turn the compass when
+        W435's power ratio or W434's ``"force_frame"`` does not trust the measured yaw (review s53r1: a hemiparetic
+        walker's 20.8 m final error 2.7 m again; fresh symmetric users: no run changed);
+        ``info["compass_mount"]["forward_yaw_skipped"]``; False: L796's turn all the same, with L801's line
     waist_bias : heading "waist"/"fused": when W125's bias warning fires, remove the waist gyroscope's vertical-rate
         bias read at its standstills (decision W126; None = on, W423's adopted default: users 10160-10169 at 52 Hz,
         18/18 biased sessions where W105 fired improved, median 34.81 -> 3.65 m)
