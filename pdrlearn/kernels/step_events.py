@@ -704,6 +704,11 @@ class AccelProcessor:
         self.lp = lowpass(cutoff_below(det.cutoff_hz, fs), fs, order=det.order)
         self.lp_event = lowpass(cutoff_below(det.event_cutoff_hz, fs), fs, order=2)
         self.delay = delay(cutoff_below(det.event_cutoff_hz, fs), fs, order=2)
+        band = float(getattr(det, "event_band_hz", 0.0))  # steps decision 97: the axes band-limited before |acc|
+        bo = int(getattr(det, "event_band_order", 2))
+        self.lp_band = lowpass(cutoff_below(band, fs), fs, order=bo) if band > 0 else None
+        if self.lp_band is not None:
+            self.delay += delay(cutoff_below(band, fs), fs, order=bo)
         self.w = max(MIN_STILL_WINDOW_SAMPLES, int(round(det.still_window_s * fs)))
         self.tail: np.ndarray | None = None
         self.state = BurstState()
@@ -731,7 +736,12 @@ class AccelProcessor:
             self.tail = np.full(self.w - 1, m[0])
         mean, std, self.tail = trailing_window_std(m, self.tail, self.w)
         still = (std < self.det.still_std) & (np.abs(mean - self.det.gravity) < self.det.still_level_tol)
-        ev, self.state = burst_kernel(t, a, still, self.state, self.params, e=self.lp_event.push(m), m=m)
+        mb = m if self.lp_band is None else magnitude(self.lp_band.push(v))  # steps decision 97
+        if getattr(self.det, "event_power", False):
+            e = np.sqrt(np.maximum(self.lp_event.push(mb * mb), 0.0))
+        else:
+            e = self.lp_event.push(mb)
+        ev, self.state = burst_kernel(t, a, still, self.state, self.params, e=e, m=mb)
         return shift_events(ev, self.delay)
 
     def flush(self) -> list:

@@ -134,7 +134,8 @@ class AccelStepDetector(StepDetector):
                  short_period_s: float = SHORT_PERIOD_S,  # steps decisions 87, 88
                  fast_period_s: float = FAST_PERIOD_S, fast_event_cutoff_hz: float = FAST_EVENT_CUTOFF_HZ,
                  impact_cluster_s: float = IMPACT_CLUSTER_S,  # steps decision 91
-                 short_min_rate_hz: float = SHORT_MIN_RATE_HZ, short_max_amp: float = SHORT_MAX_AMP):  # steps 93, 94
+                 short_min_rate_hz: float = SHORT_MIN_RATE_HZ, short_max_amp: float = SHORT_MAX_AMP,  # steps 93, 94
+                 event_band_hz: float = 0.0, event_band_order: int = 2, event_power: bool = False):
         if int(quiet_rank) != quiet_rank or quiet_rank < 1:
             raise DataError(f"accel detector: quiet_rank must be an integer >= 1 (1 = the longest recent rest, "
                             f"decision 14; 2 = the second longest, decision 16), got {quiet_rank!r}")
