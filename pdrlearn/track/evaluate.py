@@ -1670,7 +1670,7 @@ def summary_warnings(summary: dict, *, foot_clip_g: float | None = None) -> list
         gait_speed_warning,
     )
     from pdrlearn.track.position_sigma import position_sigma_range_warning, position_sigma_warning
-    from pdrlearn.track.toeoff import stance_range_warning  # decision L414
+    from pdrlearn.track.toeoff import contact_rate_warning, stance_range_warning  # decision L414, steps 97
 
     return [w for w in (gait_range_warning(summary), contact_cadence_warning(summary),  # L431
                         gait_speed_warning(summary),  # L353: adopted by its rule
@@ -1684,7 +1684,8 @@ def summary_warnings(summary: dict, *, foot_clip_g: float | None = None) -> list
                         ramps_need_fused_warning(summary),  # decision L574
                         lower_back_grade_warning(summary),  # decision W463
                         position_sigma_warning(summary), position_sigma_range_warning(summary),
-                        stationary_reference_warning(summary), stance_range_warning(summary)) if w]
+                        stationary_reference_warning(summary), stance_range_warning(summary),
+                        contact_rate_warning(summary)) if w]
 
 
 def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts=None, bout_table=None,
