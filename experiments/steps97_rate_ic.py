@@ -177,16 +177,18 @@ def run(part: str) -> str:
     text = []
     if part in ("real", "all"):
         mv = real_moves()
-        text += ["# (a) moved ICs (> 10 ms from the native IC) per recording, variant and rate", mv.to_string(index=False),
-                 "", "# (b) native rate: score_steps_events", native_scores().to_string(index=False), "",
-                 "# (b) native rate: track --toe-off (matched non-composed strides)", native_lengths().to_string(index=False),
-                 ""]
+        text += ["# (a) moved ICs (> 10 ms from the native IC) per recording, variant and rate",
+                 mv.to_string(index=False), "", "# (b) native rate: score_steps_events",
+                 native_scores().to_string(index=False), "",
+                 "# (b) native rate: track --toe-off (matched non-composed strides)",
+                 native_lengths().to_string(index=False), ""]
     if part in ("sim", "all"):
         df, spread = sim()
         piv = df.pivot_table(index="user", columns=["variant", "rate"], values="stance_bias_ms")
         text += ["# (c) straight-stride stance bias (ms) per user, variant, rate", piv.round(2).to_string(), "",
                  "# (c) spread across 100 / 50 / 25 Hz (max - min, ms) per user", spread.to_string(), "",
-                 f"# (c) median spread: before {spread['before'].median():.2f} ms, after {spread['after'].median():.2f} ms",
+                 f"# (c) median spread: before {spread['before'].median():.2f} ms, "
+                 f"after {spread['after'].median():.2f} ms",
                  ""]
     return "\n".join(text) + "\n"
 
