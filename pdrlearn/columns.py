@@ -1390,7 +1390,8 @@ FOOT_STEPS: tuple[Column, ...] = (
                                       "with this row, its row in the session's steps.csv from 0; empty: unpaired"),
     ("ref_length_m", "m", "number", "that labelled stride's length_m"),
     ("ref_stride_time_s", "s", "number", "its stride time: ic - pre_ic, or the IC of the labelled stride ending "
-                                         "where it starts (E135); empty otherwise"),
+                                         "where it starts (E135); empty otherwise, and on ref_composed rows (steps "
+                                         "98: the labelled stride spans the tiles; so are the ref_tc_s ... columns)"),
     ("ref_composed", _ID, "true/false", "the row is one of two or more tracked rows tiling one labelled stride"),
     ("pair_length_m", "m", "number", "the pair's estimated length: |length_m|, or the tiles' vector sum on each "
                                      "tile; stride_length_mae_* = these pairs, one per ref_match (L252)"),

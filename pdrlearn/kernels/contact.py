@@ -225,21 +225,34 @@ def split_head(peak_t, peak_values, k: int, cluster_s: float, ratio: float = IMP
     return best
 
 
+def event_envelope(m: np.ndarray, b: np.ndarray, a: np.ndarray, power: bool = False) -> np.ndarray:
+    """The impact's event signal of the magnitude ``m`` (n,): ``m`` low-passed by the biquad ``(b, a)``
+    (:func:`lowpass2`, decision E49); steps decision 97 with ``power``: the RMS envelope sqrt(low-pass(m^2)), whose
+    input, the squared magnitude, is band-limited to twice the axes' band and so reads alike on every sample grid
+    that resolves the axes (|acc|, a square root, is not band-limited: its rectified ringing folds into the low band
+    differently at each rate)."""
+    m = np.asarray(m, dtype=float)
+    if not power:
+        return lowpass2(m, b, a)
+    return np.sqrt(np.maximum(lowpass2(m * m, b, a), 0.0))
+
+
 def impact_peak(t: np.ndarray, m: np.ndarray, rest: float, peak_frac: float, cutoff_hz: float,
                 subsample: bool, prominence: float = PEAK_PROMINENCE,
-                cluster_s: float = 0.0) -> tuple[float, float, float]:
+                cluster_s: float = 0.0, power: bool = False) -> tuple[float, float, float]:
     """Decision E49's rule on the magnitude ``m`` (n,) at times ``t`` (n,) s at one cutoff (Hz, below 0.45 x the
     rate): (IC (s) less the filter's group delay at 1 Hz, the peak's filtered value, the largest filtered value);
     the IC is NaN with fewer than 3 samples or no peak reaching ``peak_frac`` of the largest rise above ``rest``.
     Steps decision 91: with ``cluster_s`` > 0 the peak is the head of a split impact among the last one reaching the
-    level and those up to ``cluster_s`` (s) before it (:func:`split_head`). :func:`impact_time` and the offline
-    detector's rhythm cutoff (steps decision 88) share it."""
+    level and those up to ``cluster_s`` (s) before it (:func:`split_head`). Steps decision 97: ``power`` reads the
+    RMS envelope (:func:`event_envelope`). :func:`impact_time` and the offline detector's rhythm cutoff (steps
+    decision 88) share it."""
     t = np.asarray(t, dtype=float)
     if len(t) < 3:
         return math.nan, math.nan, math.nan
     fs = 1.0 / float(np.median(np.diff(t)))
     b, a = butter2(min(cutoff_hz, MAX_CUTOFF_FRAC * fs), fs)
-    e = lowpass2(m, b, a)
+    e = event_envelope(m, b, a, power)  # steps decision 97
     pk = local_maxima(e)
     dips = [math.inf] + [float(e[i + 1:j + 1].min()) for i, j in zip(pk[:-1], pk[1:], strict=True)]
     pk = pk[bump_peaks(e[pk], dips, prominence)]  # steps decision 89
@@ -256,7 +269,7 @@ def impact_time(t: np.ndarray, acc: np.ndarray, *, rest: float = GRAVITY, peak_f
                 cutoff_hz: float = EVENT_CUTOFF_HZ, prominence: float = PEAK_PROMINENCE, prev_ic_s: float = math.nan,
                 short_period_s: float = SHORT_PERIOD_S, fast_period_s: float = FAST_PERIOD_S,
                 fast_cutoff_hz: float = FAST_EVENT_CUTOFF_HZ, cluster_s: float = IMPACT_CLUSTER_S,
-                min_rate_hz: float = SHORT_MIN_RATE_HZ, max_amp: float = SHORT_MAX_AMP) -> float:
+                min_rate_hz: float = SHORT_MIN_RATE_HZ, max_amp: float = SHORT_MAX_AMP, power: bool = False) -> float:
     """Decision E49: the IC (s) of one stride from its foot accelerometer samples ``t`` (n,) s, ``acc`` (n, 3)
     m/s^2 (stance to stance): |acc| low-passed by :func:`butter2` (cutoff below 0.45 x the rate), the last bump
     (steps decision 89: local maxima grouped by ``prominence``, :func:`bump_peaks`) reaching ``peak_frac`` of the
@@ -265,13 +278,14 @@ def impact_time(t: np.ndarray, acc: np.ndarray, *, rest: float = GRAVITY, peak_f
     rhythm's cutoff (:func:`rhythm_cutoff_hz`) when it comes less than ``short_period_s`` after ``prev_ic_s``, the
     previous stride's contact; steps decision 91: there the head of a split impact (:func:`split_head`); steps
     decision 93: only at a rate of ``min_rate_hz`` and up; steps decision 94: only when the stride's
-    :func:`swing_span` is at most ``max_amp``."""
+    :func:`swing_span` is at most ``max_amp``; steps decision 97: ``power`` dates it on the RMS envelope
+    (:func:`event_envelope`)."""
     t = np.asarray(t, dtype=float)
     if len(t) < 3:
         return math.nan
     acc = np.asarray(acc, dtype=float)
     m = np.sqrt(np.einsum("ij,ij->i", acc, acc))
-    ic = impact_peak(t, m, rest, peak_frac, cutoff_hz, SUBSAMPLE, prominence)[0]
+    ic = impact_peak(t, m, rest, peak_frac, cutoff_hz, SUBSAMPLE, prominence, power=power)[0]
     fs = 1.0 / float(np.median(np.diff(t)))
     if fs < min_rate_hz:  # steps decision 93: only at the rate the re-take was measured at
         short_period_s = 0.0
@@ -279,7 +293,7 @@ def impact_time(t: np.ndarray, acc: np.ndarray, *, rest: float = GRAVITY, peak_f
     if f != cutoff_hz and max_amp > 0:  # steps decision 94: a race walker's swing keeps the 8 Hz impact
         f = f if short_stride(0.0, 1.0, swing_span(m, fs), max_amp) else cutoff_hz
     if f != cutoff_hz:  # steps decision 88 (no peak at the rhythm's cutoff: the 8 Hz one stays, as offline)
-        ic2 = impact_peak(t, m, rest, peak_frac, f, SUBSAMPLE, prominence, cluster_s)[0]
+        ic2 = impact_peak(t, m, rest, peak_frac, f, SUBSAMPLE, prominence, cluster_s, power)[0]
         ic = ic2 if ic2 == ic2 else ic
     return ic if ic >= t[0] else math.nan
 

@@ -91,6 +91,7 @@ class BurstParams:
     pre_n: int = 0
     cluster_s: float = 0.0  # steps decision 91: at the rhythm's cutoff the head of a split impact (contact.split_head)
     max_amp: float = 0.0  # steps decision 94: a swing spanning more than this keeps the 8 Hz impact (0: none)
+    power: bool = False  # steps decision 97: the re-take on the RMS envelope (contact.event_envelope)
 
 
 @dataclass
@@ -206,7 +207,7 @@ def burst_kernel(t: np.ndarray, a: np.ndarray, still: np.ndarray, state: BurstSt
                 f = rhythm_cutoff_hz(period, p.event_cutoff_hz, p.short_period_s, p.fast_period_s, p.fast_cutoff_hz)
                 rt, rm = zip(*s.raw, strict=True)
                 ic, e_f, emx_f = impact_peak(np.array(rt), np.array(rm), p.rest, p.peak_frac, f, p.subsample,
-                                             p.prominence, p.cluster_s)  # steps decision 91
+                                             p.prominence, p.cluster_s, p.power)  # steps decisions 91, 97
                 if ic == ic:
                     t_ev, e_ev, emx = ic + p.event_delay_s, e_f, emx_f
             if short:
@@ -721,7 +722,7 @@ class AccelProcessor:
             fast_period_s=det.fast_period_s,
             fast_cutoff_hz=det.fast_event_cutoff_hz, event_cutoff_hz=det.event_cutoff_hz, event_delay_s=self.delay,
             pre_n=int(round(PRE_SWING_S * fs)), cluster_s=det.impact_cluster_s,  # steps decision 91
-            max_amp=det.short_max_amp)  # steps decision 94
+            max_amp=det.short_max_amp, power=bool(det.event_power))  # steps decisions 94, 97
         self.state.need_n = self.params.max_still_n if det.quiet_frac > 0 else self.params.min_still_n
 
     def process(self, t: np.ndarray, v: np.ndarray) -> list:
@@ -731,7 +732,11 @@ class AccelProcessor:
             self.tail = np.full(self.w - 1, m[0])
         mean, std, self.tail = trailing_window_std(m, self.tail, self.w)
         still = (std < self.det.still_std) & (np.abs(mean - self.det.gravity) < self.det.still_level_tol)
-        ev, self.state = burst_kernel(t, a, still, self.state, self.params, e=self.lp_event.push(m), m=m)
+        if self.params.power:  # steps decision 97: the RMS envelope, sqrt(low-pass(|acc|^2))
+            e = np.sqrt(np.maximum(self.lp_event.push(m * m), 0.0))
+        else:
+            e = self.lp_event.push(m)
+        ev, self.state = burst_kernel(t, a, still, self.state, self.params, e=e, m=m)
         return shift_events(ev, self.delay)
 
     def flush(self) -> list:

@@ -115,6 +115,9 @@ class AccelStepDetector(StepDetector):
     short_min_rate_hz, short_max_amp : the rhythm's re-take only at a foot rate of ``short_min_rate_hz`` (Hz) and up
         and for a swing whose ``amplitude`` is at most ``short_max_amp`` (m/s^2; steps decision 94: a race walker's
         long quick swing spans more than a child's); 0 = every rate / every swing
+    event_power : the impact on the RMS envelope sqrt(low-pass(|acc|^2)) instead of low-pass(|acc|), for the 8 Hz
+        impact and the rhythm's re-take (steps decision 97: the squared magnitude is band-limited, so an up-sampled
+        copy of a walk keeps its contacts); False = before
     """
 
     name = "accel"
@@ -134,7 +137,8 @@ class AccelStepDetector(StepDetector):
                  short_period_s: float = SHORT_PERIOD_S,  # steps decisions 87, 88
                  fast_period_s: float = FAST_PERIOD_S, fast_event_cutoff_hz: float = FAST_EVENT_CUTOFF_HZ,
                  impact_cluster_s: float = IMPACT_CLUSTER_S,  # steps decision 91
-                 short_min_rate_hz: float = SHORT_MIN_RATE_HZ, short_max_amp: float = SHORT_MAX_AMP):  # steps 93, 94
+                 short_min_rate_hz: float = SHORT_MIN_RATE_HZ, short_max_amp: float = SHORT_MAX_AMP,  # steps 93, 94
+                 event_power: bool = False):  # steps decision 97
         if int(quiet_rank) != quiet_rank or quiet_rank < 1:
             raise DataError(f"accel detector: quiet_rank must be an integer >= 1 (1 = the longest recent rest, "
                             f"decision 14; 2 = the second longest, decision 16), got {quiet_rank!r}")

@@ -1222,7 +1222,9 @@ def with_reference_columns(result: TrackResult, session: Session | None) -> pd.D
     ``stride_length_mae_m`` / ``_pct`` / ``stride_length_matched`` are these pairs, one per ``ref_match``.
     Decision D52: on a ``--toe-off`` track whose labels give toe-offs, :data:`TIMING_REFERENCE_COLUMNS` too (the
     :func:`_timing_pairs`, :func:`reference_timings`); without labelled lengths ``ref_match`` and
-    ``ref_stride_time_s`` then come from those pairs and the length columns are left out."""
+    ``ref_stride_time_s`` then come from those pairs and the length columns are left out. Steps decision 98: on a
+    composed pair's rows the temporal columns (``ref_stride_time_s`` and :data:`TIMING_REFERENCE_COLUMNS`) stay
+    empty: the labelled stride spans both tiles, so no row's own time has a reference."""
     steps = result.steps
     if session is None or not len(steps) or "unit" not in steps or not (steps["unit"] == "foot").all():
         return steps
@@ -1241,8 +1243,11 @@ def with_reference_columns(result: TrackResult, session: Session | None) -> pd.D
     for rows, j, est in pairs or []:
         for i in rows:
             match[i] = steps_row(session, j)  # decision E138: steps.csv's row, also under --window
-            ref_len[i], ref_t[i], pair_len[i] = float(st["length_m"].iloc[j]), times[j], abs(est)
             composed[i] = len(rows) > 1
+            # steps decision 98: a tile of a composed pair is no labelled stride in time (two tracked strides carry
+            # one labelled stride): its temporal reference stays empty, its length pairs by pair_length_m
+            ref_len[i], ref_t[i], pair_len[i] = (float(st["length_m"].iloc[j]), np.nan if composed[i] else times[j],
+                                                 abs(est))
     cols = {}
     if pairs is not None:
         cols = dict(ref_match=match, ref_length_m=ref_len, ref_stride_time_s=ref_t, ref_composed=composed,
@@ -1251,6 +1256,8 @@ def with_reference_columns(result: TrackResult, session: Session | None) -> pd.D
         ref = reference_timings(st)
         vals = [np.full(n, np.nan) for _ in TIMING_REFERENCE_COLUMNS]
         for i, j in timing:
+            if composed[i]:  # steps decision 98: no temporal reference on a composed pair's tile
+                continue
             if pairs is None:
                 match[i], ref_t[i] = steps_row(session, j), times[j]
             for v, r in zip(vals, ref, strict=True):
@@ -1663,7 +1670,7 @@ def summary_warnings(summary: dict, *, foot_clip_g: float | None = None) -> list
         gait_speed_warning,
     )
     from pdrlearn.track.position_sigma import position_sigma_range_warning, position_sigma_warning
-    from pdrlearn.track.toeoff import stance_range_warning  # decision L414
+    from pdrlearn.track.toeoff import contact_rate_warning, stance_range_warning  # decision L414, steps 97
 
     return [w for w in (gait_range_warning(summary), contact_cadence_warning(summary),  # L431
                         gait_speed_warning(summary),  # L353: adopted by its rule
@@ -1677,7 +1684,8 @@ def summary_warnings(summary: dict, *, foot_clip_g: float | None = None) -> list
                         ramps_need_fused_warning(summary),  # decision L574
                         lower_back_grade_warning(summary),  # decision W463
                         position_sigma_warning(summary), position_sigma_range_warning(summary),
-                        stationary_reference_warning(summary), stance_range_warning(summary)) if w]
+                        stationary_reference_warning(summary), stance_range_warning(summary),
+                        contact_rate_warning(summary)) if w]
 
 
 def evaluate_track(result: TrackResult, session: Session | None = None, *, bouts=None, bout_table=None,

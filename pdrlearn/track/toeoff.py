@@ -12,7 +12,7 @@ from pdrlearn.kernels.toeoff import LOWPASS_HZ, MIN_VOTE_ANGLE_RAD, sagittal_axi
 from pdrlearn.warning_lines import coded
 
 __all__ = ["LOWPASS_HZ", "MIN_VOTE_ANGLE_RAD", "TOE_OFF_MIN_CHECKED_STANCE_S", "TOE_OFF_STANCE_BIAS_MS",
-           "sagittal_axis", "stance_range_warning", "toe_off_times"]
+           "contact_rate_warning", "sagittal_axis", "stance_range_warning", "toe_off_times"]
 
 #: decision L414: the shortest median stance time (s) at which L73 checked the stance times against a contact
 #: reference - the smaller of `track datasets/real/gaitmap_level_{left,right} --toe-off`'s medians (0.692 / 0.701 s,
@@ -45,3 +45,28 @@ def stance_range_warning(summary: dict) -> str | None:
             f"and get this line. The known bias, in this walk's terms (L703): {terms}{share} (decision L414)",
                  "L414")  # decision E170
 
+
+
+def contact_rate_warning(summary: dict, *, low_hz: float = 90.0, high_hz: float = 300.0) -> str | None:
+    """Steps decision 97 (not adopted, its fallback): one line when a ``--toe-off`` track's IMU-only contacts (the
+    impact on the 8 Hz |acc|, decision 3) were dated at a foot rate under ``low_hz`` or over ``high_hz`` (Hz), where
+    the same walk's contacts move with the rate (steps decisions 89, 93, 97); None otherwise, with force insoles'
+    contacts, or without stance times or rate."""
+    from pdrlearn.decision_refs import decision_ref
+    from pdrlearn.track.support_bias import setup_of
+
+    rate, stance = summary.get("rate_hz"), summary.get("median_stance_time_s")
+    if rate is None or stance is None or not (np.isfinite(rate) and np.isfinite(stance)):
+        return None
+    if low_hz <= rate <= high_hz or setup_of((summary.get("info") or {}).get("stance_source")) == "force":
+        return None
+    if rate < low_hz:  # steps 97's simulated users 20600-20619, main's detector, printed
+        why = ("on simulated feet the straight-stride stance bias moved by a median 48.5 ms per walker between 100, "
+               "50 and 25 Hz (-77.1..-2.5 ms at 100 Hz, -141.4..+54.4 ms at 25 Hz)")
+    else:  # steps 89 / 97: gaitmap level left (204.8 Hz) resampled to 999.9 Hz, printed
+        why = ("the impact's ringing makes extra maxima (gaitmap level left resampled from 204.8 to 999.9 Hz: 6 of "
+               "32 contacts moved, up to 33.3 ms)")
+    return (f"foot rate {rate:g} Hz: the IMU-only contacts, and so stance and swing times, were checked against "
+            f"motion capture at 102.4-204.8 Hz; outside {low_hz:g}-{high_hz:g} Hz they move with the rate: {why}; "
+            f"compare contacts and stance times at one rate, or resample to it first "
+            f"({decision_ref(89, 97, topic='steps')})")
