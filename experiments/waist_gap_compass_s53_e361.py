@@ -1,6 +1,7 @@
 """Decision E361 (session 53, I4): the real check of the compass re-anchoring after a waist gyroscope gap.
 
-    python experiments/waist_gap_compass_s53_e361.py real [DIR ...]
+    python experiments/waist_gap_compass_s53_e361.py real [DIR ...]    # E361's arms: before / after
+    ARMS=before,e361,e362 python experiments/waist_gap_compass_s53_e361.py real   # E362: the Earth's-field gate too
 
 The real lower-back recordings (datasets/external/mobgap_*, /work/shared/data/mobgap_*; the same recording once)
 have no foot unit, so ``track --streaming`` cannot run on them: the streamed chain is driven here by the kernels the
@@ -16,6 +17,7 @@ from __future__ import annotations
 
 import csv
 import math
+import os
 import sys
 from pathlib import Path
 
@@ -27,6 +29,8 @@ from pdrlearn.kernels.stride import CycleGapLine, waist_bridge_yaw, waist_gap_s
 ROOT = Path(__file__).resolve().parents[1]
 DIRS = [ROOT / "datasets" / "external", Path("/work/main/datasets/external"), Path("/work/shared/data")]
 NAMES = ("wAccelerometer", "wGyroscope", "wMagneticField")
+#: the arms: E354's line ("before"), E361's compass without E362's field gate ("after" / "e361"), with it ("e362")
+ARMS = {"before": None, "after": {"field_ut": None}, "e361": {"field_ut": None}, "e362": {}}
 
 
 def load(rec: Path) -> dict:
@@ -60,17 +64,17 @@ def chains(rec: Path) -> list[list[tuple[float, float]]]:
     return [r for r in out if len(r) >= 5]
 
 
-def heading_chain(stream, strides, compass: bool) -> list[float]:
+def heading_chain(stream, strides, compass: dict | None) -> list[float]:
     """The streamed heading after each stride: the waist's turn from the previous stride's end (a waist gap inside it
     counting 0), E354's line across a gap (held at the gap, taken by the stride after) and, with ``compass``,
-    E361's turn."""
-    line, anchor, h, out, prev = CycleGapLine(), GapCompass(), 0.0, [], None
+    E361's turn (``compass``: :class:`GapCompass`'s keywords; None: no compass)."""
+    line, anchor, h, out, prev = CycleGapLine(), GapCompass(**(compass or {})), 0.0, [], None
     for k, (a, b) in enumerate(strides):
         lo = a if prev is None else prev
         if prev is not None and waist_gap_s(stream, prev, a) > 0:
             line.hold(stream, prev, a, strides[k - 1])
         dyaw = waist_bridge_yaw(stream, lo, b, gap_line=False) + line.take(stream, a, b)
-        if compass:
+        if compass is not None:
             dyaw += anchor.stride(stream, a, b, dyaw, line.spread)
         h += dyaw
         out.append(h)
@@ -79,33 +83,34 @@ def heading_chain(stream, strides, compass: bool) -> list[float]:
 
 
 def real(dirs: list[Path]) -> None:
-    seen, pooled = set(), {"before": [], "after": []}
+    arms = os.environ.get("ARMS", "before,after").split(",")
+    seen, pooled = set(), {a: [] for a in arms}
     for d in dirs:
         for rec in sorted(d.glob("mobgap_*")):
             if rec.name in seen or not (rec / "steps.csv").exists():
                 continue
             seen.add(rec.name)
             full = load(rec)
-            errs = {"before": [], "after": []}
+            errs = {a: [] for a in arms}
             for run in chains(rec):
                 for j in range(2, len(run) - 2):
                     kept = run[:j] + run[j + 2:]  # the 2 strides inside the gap leave no row
                     gap = cut(full, run[j][0], run[j + 1][1])
-                    ref = heading_chain(full.__getitem__, run, False)
+                    ref = heading_chain(full.__getitem__, run, None)
                     true = ref[j + 2] - ref[j - 1]
-                    for name, comp in (("before", False), ("after", True)):
-                        h = heading_chain(gap.__getitem__, kept, comp)
+                    for name in arms:
+                        h = heading_chain(gap.__getitem__, kept, ARMS[name])
                         e = math.degrees(math.remainder((h[j] - h[j - 1]) - true, 2 * math.pi))
                         errs[name].append(abs(e))
             if not errs["before"]:
                 continue
             line = [f"{rec.name:28s} n={len(errs['before']):3d}"]
-            for name in ("before", "after"):
+            for name in arms:
                 v = np.array(errs[name])
                 pooled[name] += list(v)
                 line.append(f"{name} median |diff| {np.median(v):6.2f} deg, max {np.max(v):6.2f}")
             print("  ".join(line))
-    for name in ("before", "after"):
+    for name in arms:
         v = np.array(pooled[name])
         print(f"pooled {name:6s} n={len(v)} median |diff| {np.median(v):.2f} deg, max {np.max(v):.2f} deg")
 

@@ -1,7 +1,8 @@
-"""Decision E361 (session 53, I4; E354's open part): after a waist gyroscope gap (a dropout of both units) the live
+"""Decisions E361 / E362 (session 53, I4; E354's open part): after a waist gyroscope gap (a dropout of both units) the live
 ``Tracker`` and ``track --streaming`` re-anchor the heading to the waist compass (``kernels.gap_compass.GapCompass``),
 weighed against E354's line between the gait-cycle mean rates either side: a gap longer than the rest of a curve no
-longer loses the curve's turn, a straight walk keeps E354's line."""
+longer loses the curve's turn, a straight walk keeps E354's line; E362: only a field of the Earth's size (25-65 uT)
+is read as a compass (an uncalibrated unit's hard iron is not)."""
 
 from __future__ import annotations
 
@@ -23,10 +24,10 @@ ROOT = __import__("pathlib").Path(__file__).resolve().parents[1]
 GAP = (60.01, 63.6)  # the sample at 60 s (the stride before's end) kept
 
 
-def _walk(curve_end: float | None, fs: float = 50.0, seed: int = 361):
+def _walk(curve_end: float | None, fs: float = 50.0, seed: int = 361, hard_iron_ut: float = 0.0):
     """A waist walking 50-80 s: the pelvis' +-0.4 rad/s yaw oscillation over a 1.2 s cycle, turning 0.3 rad/s from
     55 s to ``curve_end`` (None: straight), a 20 uT horizontal field with 0.7 uT noise, no sample in ``GAP``; the
-    stream and the true heading's function."""
+    stream and the true heading's function. ``hard_iron_ut``: a constant offset on the body's x axis."""
     t = np.arange(50.0, 80.0, 1.0 / fs)
     t = t[(t < GAP[0]) | (t >= GAP[1])]
     w = 2 * math.pi / 1.2
@@ -42,16 +43,18 @@ def _walk(curve_end: float | None, fs: float = 50.0, seed: int = 361):
     h = heading(t)  # the body's x axis at heading h: north (+y) seen at angle pi/2 - h from it, CCW
     rng = np.random.default_rng(seed)
     mag = np.column_stack([20 * np.sin(h), 20 * np.cos(h), np.full_like(t, -40.0)]) + rng.normal(0, 0.7, (len(t), 3))
+    mag[:, 0] += hard_iron_ut
     s = {"wGyroscope": (t, gyr), "wAccelerometer": (t, acc), "wMagneticField": (t, mag)}
     return s.__getitem__, heading
 
 
-def _track(stream, compass: bool) -> list[tuple[float, float, float]]:
+def _track(stream, compass: bool | dict) -> list[tuple[float, float, float]]:
     """The streamed chain on 1.2 s strides before and after ``GAP``: each stride's own turn, E354's line across the
-    gap (held at the gap, taken by the stride after) and, with ``compass``, E361's turn; (start, end, heading)."""
+    gap (held at the gap, taken by the stride after) and, with ``compass`` (True or :class:`GapCompass`'s keywords),
+    E361's turn; (start, end, heading)."""
     strides = [(50.4 + 1.2 * k, 51.6 + 1.2 * k) for k in range(8)] + [(63.6 + 1.2 * k, 64.8 + 1.2 * k)
                                                                       for k in range(5)]
-    line, anchor, h, out = CycleGapLine(), GapCompass(), 0.0, []
+    line, anchor, h, out = CycleGapLine(), GapCompass(**(compass if isinstance(compass, dict) else {})), 0.0, []
     for i, (a, b) in enumerate(strides):
         if a == GAP[1]:
             line.hold(stream, strides[i - 1][1], a, strides[i - 1])
@@ -90,6 +93,17 @@ def test_a_straight_walk_keeps_the_line_and_a_walk_without_gap_is_untouched():
         a, b = 50.4 + 1.2 * k, 51.6 + 1.2 * k
         assert anchor.stride(stream, a, b, stride_mean_rate(stream, a, b) * 1.2, None) == 0.0
     assert len(anchor.offsets) == 8
+
+
+def test_a_field_that_is_not_the_earths_is_no_compass():
+    """E362: a 200 uT hard iron (the field's norm ~200 uT, as the real mobgap MS001's 255 uT) gives no offset, so
+    the gap keeps E354's line; without the gate (E361 alone) the compass turns it."""
+    stream, heading = _walk(63.0, hard_iron_ut=200.0)
+    line = _error(_track(stream, False), heading)
+    assert _error(_track(stream, True), heading) == line
+    assert abs(_error(_track(stream, {"field_ut": None}), heading) - line) > 5.0
+    assert compass_offset(stream, 50.4, 51.6, 0.0, field_ut=(25.0, 65.0)) is None
+    assert compass_offset(stream, 50.4, 51.6, 0.0) is not None
 
 
 def test_the_offset_cancels_the_pelvis_and_the_weight_needs_two_offsets():

@@ -28,14 +28,15 @@ def _in(t: np.ndarray, t0: float, t1: float) -> slice:
     return slice(int(np.searchsorted(t, t0, side="left")), int(np.searchsorted(t, t1, side="right")))
 
 
-def compass_offset(stream: Stream, t0: float, t1: float, heading_end: float, axis: int | None = None
-                   ) -> tuple[float, int] | None:
+def compass_offset(stream: Stream, t0: float, t1: float, heading_end: float, axis: int | None = None,
+                   field_ut: tuple[float, float] | None = None) -> tuple[float, int] | None:
     """Decision E361: the circular mean (rad) over the waist magnetometer's samples in ``[t0, t1]`` (s) of the
     tilt-compensated compass heading of a level body axis (thesis eq. 33-35, the stride's mean specific force as up;
     ``axis``: the body axis, None = :func:`level_axis`) less the streamed heading at that sample: ``heading_end``
     (rad, the heading after the stride) less the waist's vertical rate integrated (trapezoid) from the sample to
     ``t1``; the pelvis' yaw oscillation, seen by both, cancels. Returns (offset, axis), or None without at least two
-    samples of ``wMagneticField``, ``wGyroscope`` and ``wAccelerometer`` in the stride."""
+    samples of ``wMagneticField``, ``wGyroscope`` and ``wAccelerometer`` in the stride, or (decision E362) when the
+    stride's mean field norm is outside ``field_ut`` (uT; None: any)."""
     try:
         (tm, mag), (tg, gyr), (ta, acc) = (stream(n) for n in ("wMagneticField", "wGyroscope", "wAccelerometer"))
     except KeyError:
@@ -58,6 +59,8 @@ def compass_offset(stream: Stream, t0: float, t1: float, heading_end: float, axi
     fwd = fwd / nf
     left = np.cross(up, fwd)
     m = np.asarray(mag[sm], dtype=float)
+    if field_ut is not None and not field_ut[0] <= float(np.mean(np.sqrt(np.add.reduce(m * m, axis=1)))) <= field_ut[1]:
+        return None  # decision E362: not the Earth's field (hard iron, steel, a wrong unit): no compass
     compass = -np.arctan2(m @ left, m @ fwd)  # thesis eq. 35 (up to the constant pi/2: the offset absorbs it)
     t, rate = tg[sg], np.asarray(gyr[sg], dtype=float) @ up
     turned = np.concatenate([[0.0], np.cumsum(0.5 * (rate[1:] + rate[:-1]) * np.diff(t))])  # from t[0]
@@ -86,11 +89,14 @@ class GapCompass:
     :meth:`stride` returns the turn (rad, CCW) to add to that stride: 0 unless ``spread`` (E354's
     :attr:`~pdrlearn.kernels.stride.CycleGapLine.spread` of the gap it took, None without) says a gap was just
     bridged, else ``w * wrap(o_after - o_before)`` (:func:`gap_weight`; ``o_before`` the circular mean offset of the
-    strides in the ``window_s`` (60 s, L17's window) before it). The live ``Tracker`` and ``track --streaming``
-    share it; a session without a waist gap gets 0 at every stride."""
+    strides in the ``window_s`` (60 s, L17's window) before it). ``field_ut`` (decision E362): a stride whose mean
+    magnetometer norm is outside this range (uT) has no compass reading (None: any). The live ``Tracker`` and ``track
+    --streaming`` share it; a session without a waist gap gets 0 at every stride."""
 
-    def __init__(self, *, window_s: float = 60.0) -> None:  # decision L17: +-60 s of strides
-        self.window_s = float(window_s)
+    # decision E362: the Earth's field is 25-65 uT (the physical range kernels.units judges a magnetometer's unit by)
+    def __init__(self, *, window_s: float = 60.0, field_ut: tuple[float, float] | None = (25.0, 65.0)) -> None:
+        self.window_s = float(window_s)  # decision L17: +-60 s of strides
+        self.field_ut = field_ut
         self.heading = 0.0  # the streamed heading's change so far (rad): only differences of offsets are read
         self.axis: int | None = None  # the body axis the compass reads, fixed at the first reading
         self.offsets: deque[tuple[float, float]] = deque()  # (stride end s, offset rad)
@@ -102,7 +108,7 @@ class GapCompass:
     def stride(self, stream: Stream, t0: float, t1: float, dyaw: float, spread: float | None) -> float:
         """The waist-headed stride ``[t0, t1]`` (s) turning by ``dyaw`` (rad); returns the turn to add to it."""
         end = self.heading + float(dyaw)
-        got = compass_offset(stream, float(t0), float(t1), end, self.axis)
+        got = compass_offset(stream, float(t0), float(t1), end, self.axis, self.field_ut)
         turn = 0.0
         while self.offsets and self.offsets[0][0] < float(t0) - self.window_s:
             self.offsets.popleft()
