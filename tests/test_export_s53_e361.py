@@ -1,8 +1,8 @@
-"""Decisions E361 / E362 (session 53, I4; E354's open part): after a waist gyroscope gap (a dropout of both units) the live
-``Tracker`` and ``track --streaming`` re-anchor the heading to the waist compass (``kernels.gap_compass.GapCompass``),
-weighed against E354's line between the gait-cycle mean rates either side: a gap longer than the rest of a curve no
-longer loses the curve's turn, a straight walk keeps E354's line; E362: only a field of the Earth's size (25-65 uT)
-is read as a compass (an uncalibrated unit's hard iron is not)."""
+"""Decisions E361 / E362 (session 53, I4; E354's open part): after a waist gyroscope gap (a dropout of both units)
+the live ``Tracker`` and ``track --streaming`` re-anchor the heading to the waist compass
+(``kernels.gap_compass.GapCompass``), weighed against E354's line between the gait-cycle mean rates either side: a gap
+longer than the rest of a curve no longer loses the curve's turn, a straight walk keeps E354's line; E362: only a
+field of the Earth's size (25-65 uT) is read as a compass (an uncalibrated unit's hard iron is not)."""
 
 from __future__ import annotations
 
