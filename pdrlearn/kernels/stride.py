@@ -688,6 +688,9 @@ class CycleGapLine:
 
     def __init__(self) -> None:
         self.gap_s, self.before = 0.0, None  # the gaps held (s), the mean rate before the first of them (rad/s)
+        #: decision E361: after :meth:`take`, the line's spread (rad) when it took a gap (half the difference of the
+        #: mean rates either side times the gaps' length), else None
+        self.spread: float | None = None
 
     def hold(self, stream: Callable[[str], tuple[np.ndarray, np.ndarray]], t0: float, t1: float,
              before: tuple[float, float] | None) -> None:
@@ -700,11 +703,13 @@ class CycleGapLine:
 
     def take(self, stream: Callable[[str], tuple[np.ndarray, np.ndarray]], t0: float, t1: float) -> float:
         """The held gaps' turn (rad, CCW) with the stride ``[t0, t1]`` (s) after them; 0 when none is held."""
+        self.spread = None
         if not self.gap_s:
             return 0.0
         after = stride_mean_rate(stream, t0, t1)
         before = after if self.before is None else self.before
         turn = 0.5 * (before + after) * self.gap_s
+        self.spread = 0.5 * abs(before - after) * self.gap_s  # decision E361
         self.gap_s, self.before = 0.0, None
         return turn
 

@@ -54,6 +54,7 @@ from pdrlearn.kernels.fixes import wrap_angle
 from pdrlearn.kernels.frames import DIRECTIONS
 from pdrlearn.kernels.gait_range import running_stride, streamed_slow_line
 from pdrlearn.kernels.gait_values import cadence_speed
+from pdrlearn.kernels.gap_compass import GapCompass
 from pdrlearn.kernels.gaps import MIN_GAP_S, drop_stride_disp, streamed_drops_line
 from pdrlearn.kernels.order import first_out_of_order, reorder_hint, repeated, repeats_dropped_line
 from pdrlearn.kernels.stride import (
@@ -481,6 +482,9 @@ class Tracker(OwnGuard, FixInput):
         between the gait-cycle mean rates of the stride before and the stride after (decision E354, ``pdrlearn track
         --streaming``'s ``bridge_cycle``; added to the stride after); False: L91's line between the two rates at the
         gap's edges (W389).
+    gap_compass : after such a gap the heading is also re-anchored to the waist compass, weighed against that line
+        (decision E361, :class:`~pdrlearn.kernels.gap_compass.GapCompass`; ``pdrlearn track --streaming``'s
+        ``gap_compass``); False: the line alone (E354).
     drop_neighbour : a stride across dropped foot samples over 0.25 s (under 1 s) takes the length (scaled by the
         durations) and height change of the clean stride before it (decision L167, an option; E101: a keyword, as
         ``track_plasys(streaming=True, drop_neighbour=...)``); False (default): its own (decision L549: no module
@@ -573,6 +577,7 @@ class Tracker(OwnGuard, FixInput):
     _baro = None  # decision E232 (likewise: no barometer check)
     _first_walk = None  # decision E215 (a bare Tracker.__new__ has none)
     bridge_cycle = False  # decision E354 (a bare Tracker.__new__: L91's line)
+    _compass: GapCompass | None = None  # decision E361 (a bare Tracker.__new__: none)
     _stop_bias = None  # decision E272 (a bare Tracker.__new__ has none)
     _drop_at_w = math.inf  # decision E285 (as _stop_bias)
     _pitch_ref: PitchReference | None = None  # decisions B474 / B475 (a bare Tracker.__new__ makes one at its first)
@@ -653,6 +658,7 @@ class Tracker(OwnGuard, FixInput):
         waist_gap_yaw: bool = True,
         waist_bridge: bool = True,
         bridge_cycle: bool = True,
+        gap_compass: bool = True,
         contacts: bool = False,
         check_input: bool = True,
         drop_neighbour: bool = False,
@@ -844,6 +850,7 @@ class Tracker(OwnGuard, FixInput):
         self.waist_bridge = bool(waist_bridge)  # decisions L91 / L99 (the default)
         self.bridge_cycle = bool(bridge_cycle)  # decision E354
         self._cycle = CycleGapLine()  # decision E354: a waist gap's turn held for the stride after it
+        self._compass = GapCompass() if gap_compass else None  # decision E361
         #: the input side (decision E22): streams at another rate than the bundle's are tracked at their own
         #: rate (``resample="native"``, the default, as ``pdrlearn track --streaming``), resampled to the
         #: bundle's (``True``) or refused (``False``); ``inputs.input_rates_hz`` / ``resampled_hz`` tell which
@@ -1747,6 +1754,11 @@ class Tracker(OwnGuard, FixInput):
         return (self.heading_source == "auto" and "foot" in self.units and all(n.startswith("w") for n in names)
                 and bool({"wAccelerometer", "wGyroscope"}.intersection(names)))
 
+    def _compassed(self) -> bool:
+        """Decision E361: the waist compass re-anchors the heading after a waist gap (E354's line bridges it and the
+        waist unit has a magnetometer)."""
+        return self._compass is not None and self.bridge_cycle and "wMagneticField" in self._buf and self._bridged()
+
     def _bridged(self) -> bool:
         """Decision L91: a stride across a foot IMU gap turns by the waist gyroscope (the waist heads the
         strides: heading_source auto / waist-gyro with the waist unit's accelerometer and gyroscope)."""
@@ -2381,6 +2393,8 @@ class Tracker(OwnGuard, FixInput):
                     if self.bridge_cycle:  # decision E354: the waist gap's turn waits for the stride after it
                         self._cycle.hold(self._stream, lo, t1, self._stride_before(before, prev))
                 self._prev_end = t1  # no L31 pivot across it either: the foot's turn inside the gap is unknown
+                if self._compassed():  # decision E361: the row's turn in the compass's heading
+                    self._compass.row(bridge)
                 self._contacts = (before + [(t0, math.nan)])[-2:]  # steps decision 87: no contact
                 return ("gap", t0, t1, _pedal.unjudged_row(t0, t1), gap, bridge)  # E280: in its chain, not judged
             bridged = bool(over)  # a shorter gap in the foot accelerometer / gyroscope: no classes (B11)
@@ -2447,6 +2461,11 @@ class Tracker(OwnGuard, FixInput):
         turn = _sideways.own_turn(lev, self.heading_source, turn)  # decision L699: the foot's own turn, as offline's
         if self.bridge_cycle:  # decision E354: a held waist gap's turn (0 without one)
             dyaw += self._cycle.take(self._stream, t0, t1)
+        if self._compassed():  # decision E361 (track --streaming's call)
+            if headed_by_foot(lev, self.heading_source):
+                self._compass.row(dyaw)
+            else:
+                dyaw += self._compass.stride(self._stream, t0, t1, dyaw, self._cycle.spread)
         self._spun = None  # decision L742: taken by this stride (or by the waist's gap, or lost over a foot gap)
         self._prev_end = t1
         if bridged:  # decision E280: a stride across bridged samples (L167's) is in its chain, not judged

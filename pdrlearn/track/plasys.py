@@ -78,6 +78,7 @@ from pdrlearn.kernels.distance import (
 )
 from pdrlearn.kernels.first_walk import FirstWalk
 from pdrlearn.kernels.foot_rhythm import foot_period
+from pdrlearn.kernels.gap_compass import GapCompass
 from pdrlearn.kernels.lull import join_lulls
 from pdrlearn.kernels.pedal import closed_loop_strides, pedal_line, ride_strides, seated_strides, unrested_strides
 from pdrlearn.kernels.spin import foot_gap_start, spin_line, spin_turn, turns_in_place
@@ -2111,7 +2112,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                     warn_out_of_domain: float | None = None, contacts: bool = False,
                     drop_neighbour: bool = False, first_walk: bool = False,
                     gated_level_dz: bool | str = False, cycling: bool = True,
-                    cycle_yaw: bool = True, bridge_cycle: bool = True) -> TrackResult:
+                    cycle_yaw: bool = True, bridge_cycle: bool = True, gap_compass: bool = True) -> TrackResult:
     """PLASYS M2/M3 with the streaming runtime's stride-local kernel (issue 7 trajectory parity).
 
     Strides come from :class:`~pdrlearn.kernels.stride.StanceSegmenter` fed the whole foot gyroscope;
@@ -2138,7 +2139,9 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     after it); False: 0 (L90). ``bridge_cycle`` (decision E354, as the runtime's): across the waist gyroscope's own
     gap inside that bridge the turn is the line between the gait-cycle mean rates of the stride before and the stride
     after (:class:`~pdrlearn.kernels.stride.CycleGapLine`, added to the stride after); False: L91's line between the
-    rates at the gap's edges. ``drop_neighbour=True`` (decision L167, an option, as the runtime ``Tracker``'s;
+    rates at the gap's edges. ``gap_compass`` (decision E361, as the runtime's): after such a gap the heading is also
+    re-anchored to the waist compass, weighed against that line (:class:`~pdrlearn.kernels.gap_compass.GapCompass`);
+    False: the line alone. ``drop_neighbour=True`` (decision L167, an option, as the runtime ``Tracker``'s;
     E101: a keyword, False by default, L549): a stride across dropped foot samples over 0.25 s
     (under 1 s) takes the length (scaled by the durations) and height change of the clean stride before it.
     ``first_walk=True`` (decisions E215, E222, an option, as the runtime ``Tracker``'s): a foot-headed track's
@@ -2269,6 +2272,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     stop = KSB.StopBias() if "waist" in forward else None  # decision E272 (the runtime's: the waist unit tracked)
     pitch_ref = PitchReference()  # decisions B474 / B475: the most level rest pitch of the strides so far
     cycle_line = SK.CycleGapLine()  # decision E354
+    compass = (GapCompass() if gap_compass and bridge_cycle and bridged and "wMagneticField" in streams
+               else None)  # decision E361 (the runtime's)
 
     def before_stride(k: int) -> tuple[float, float] | None:  # decision E354: the stride before stride k
         return (float(strides[k - 1, 0]), float(strides[k - 1, 1])) if k else None
@@ -2281,6 +2286,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                 dyaw[i] = SK.waist_bridge_yaw(streams.__getitem__, lo, float(t1), gap_line=not bridge_cycle)
                 if bridge_cycle:  # decision E354: the waist gap's turn waits for the stride after it (the runtime's)
                     cycle_line.hold(streams.__getitem__, lo, float(t1), before_stride(i))
+            if compass is not None:  # decision E361: the row's turn in the compass's heading
+                compass.row(dyaw[i])
             continue
         try:
             if "foot" in forward and pitch_ref.pitched(streams.__getitem__, forward["foot"], float(t0), float(t1),
@@ -2344,6 +2351,11 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         turn[i] = KSW.own_turn(lev, heading, turn[i])  # decision L699: the foot's own turn, as offline's row
         if bridge_cycle:  # decision E354: a held waist gap's turn (0 without one), the runtime's call
             dyaw[i] += cycle_line.take(streams.__getitem__, float(t0), float(t1))
+        if compass is not None:  # decision E361 (the runtime's call)
+            if foot_headed[i]:
+                compass.row(dyaw[i])
+            else:
+                dyaw[i] += compass.stride(streams.__getitem__, float(t0), float(t1), dyaw[i], cycle_line.spread)
     if neighbour and (across & ~posture).any():
         warnings.append(drop_stride_warning(int((across & ~posture).sum()), streamed=True))
     if (hole > 0).any():  # decision L674: the runtime's line (for the first such stride) and its missing classes
