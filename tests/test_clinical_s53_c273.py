@@ -57,8 +57,8 @@ def test_the_page_opens_with_one_visit_by_measure_table_c273(batch):
     _, page = batch
     lines = page.splitlines()
     head = next(i for i, x in enumerate(lines) if x.startswith("| visit |"))
-    assert lines[head] == ("| visit | 10 m walk (m/s) | gait speed (m/s) | cadence (steps/min) | stride (m) | TUG (s) | "
-                           "stairs up (s) | stairs down (s) |")
+    assert lines[head] == ("| visit | 10 m walk (m/s) | gait speed (m/s) | cadence (steps/min) | stride (m) | "
+                           "TUG (s) | stairs up (s) | stairs down (s) |")
     # the walking measures are the 10 m walk session's (C276), not the TUG's 0.73 m nor the stairs' 0.29 m strides
     assert lines[head + 2] == "| w02 | 0.53 | 0.51 | 82 | 0.75 | 31.2 | 6.5 | 5.7 |"
     assert lines[head + 3] == "| w12 | 0.87 | 0.85 | 100 | 1.03 | 21.5 | 3.4 | 2.6 |"
@@ -98,7 +98,8 @@ def test_change_line_gives_stairs_metrics_and_a_derived_t25fw_c275(batch):
 
 
 def test_a_tug_or_stairs_sessions_stride_length_is_left_out_of_changes_c276():
-    rows = [{"path": f"P1/{v}/{t}", "subject": "P1", "group": "", "visit": v, "test": t, "status": "ok", "pipeline": "plasys",
+    rows = [{"path": f"P1/{v}/{t}", "subject": "P1", "group": "", "visit": v, "test": t, "status": "ok",
+             "pipeline": "plasys",
              "tug_time_s": 30.0 if t == "tug" else None, "n_stair_strides": 8 if t == "stairs" else 0,
              "median_stride_length_m": s, "median_cadence_spm": c}
             for v, t, s, c in (("w02", "10mwt", 0.75, 82.0), ("w12", "10mwt", 1.03, 100.0),

@@ -89,7 +89,7 @@ def visit_values(rows: list) -> dict[str, float | None]:
                                                        "median_stride_length_m", "median_stance_pct",
                                                        "step_time_asymmetry_pct")}
     out["tug_time_s"] = _mean(r[3].get("tug_time_s") for r in rows)
-    times = [flight_times(r[1]) for r in rows]
+    times = [flight_times(r[1]) for r in rows if r[1] is not None]
     for way in ("up", "down"):
         out[f"stairs_{way}_time_s"] = _mean(t.get(way) for t in times)
     return out
@@ -164,7 +164,7 @@ def batch_metrics(rows: list) -> list[str]:
     """Decision C275: the measures of ``track-all --metrics`` (run.json ``options.metrics`` of the nearest track-all
     output folder above the patient's tracks), in their order; [] without one."""
     for r in rows:
-        if r[0] != "track":
+        if r[0] != "track" or r[1] is None:
             continue
         for up in Path(r[1]).parents:
             run = up / "run.json"
@@ -199,7 +199,7 @@ def change_frame_extras(rows: list, skip=()) -> tuple[list[dict], dict[str, tupl
              **{m: (f"{m} (walk session)", "%" if m.endswith("_pct") else "", 2) for m in extras}}
     values = []
     for r in tracks:
-        times = flight_times(r[1])
+        times = flight_times(r[1]) if r[1] is not None else {}
         values.append({"stairs_up_time_s": times.get("up"), "stairs_down_time_s": times.get("down"),
                        **{m: r[3].get(m) if id(r) in walking else None for m in extras}})
     return values, names
