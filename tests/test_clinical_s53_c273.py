@@ -86,6 +86,10 @@ def test_not_timed_only_on_a_walk_tests_block_c274(batch, tmp_path):
                "ten_m_walk_zones_m": [2.0, 10.0, 2.0]}
     assert any("10 m walk: not timed" in x for x in clinical_lines(summary, tmp_path))  # no test named: said
     assert not any("not timed" in x for x in clinical_lines({**summary, "tug_time_s": 20.0}, tmp_path))
+    from pdrlearn.report.visit_table import names_another_test
+
+    assert names_another_test("stairs") and names_another_test("TUG") and names_another_test("5xSTS")
+    assert not names_another_test("Test5") and not names_another_test("10mwt") and not names_another_test(None)
 
 
 def test_change_line_gives_stairs_metrics_and_a_derived_t25fw_c275(batch):

@@ -46,13 +46,19 @@ def tug_or_stairs_session(summary: dict) -> bool:
     return bool(tug_or_stairs(pd.DataFrame([{k: summary.get(k) for k in keys}])).iloc[0])
 
 
+def names_another_test(test: str | None) -> bool:
+    """Decision C274: whether a meta.json ``test`` names a test that is no walk test (a TUG, stairs, sit-to-stand,
+    chair or balance test); an unknown label (mobgap's "Test5") is not taken for one."""
+    return bool(test) and not looks_like_walk_test(test) and re.search(
+        r"tug|up.?and.?go|stair|sit|sts|chair|balance", str(test), re.IGNORECASE) is not None
+
+
 def walk_not_timed_said(summary: dict) -> bool:
     """Decision C274: whether a session's clinical block says its declared 10 m walk was not timed (C194): not for a
-    session that timed a TUG, nor one whose meta.json ``test`` names another test than a walk."""
+    session that timed a TUG, nor one whose meta.json ``test`` names another test (:func:`names_another_test`)."""
     if summary.get("tug_time_s") is not None or summary.get("n_tug_trials"):
         return False
-    test = session_test(summary)
-    return test is None or looks_like_walk_test(test)
+    return not names_another_test(session_test(summary))
 
 
 def walking_rows(rows: list) -> list:
