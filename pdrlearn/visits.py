@@ -577,7 +577,22 @@ def walkway_why(walkways: str) -> str:
     return "mixed walkways within a visit" if base == later else "walkways differ"
 
 
-def change_table(sessions, metrics=CHANGE_METRICS, visit_map: dict[str, str] | None = None, by: str | None = None):
+def tug_or_stairs(sessions):
+    """Decision C276: a boolean Series over sessions.csv's rows: the session timed a TUG (``tug_time_s`` or
+    ``tug_trials_median_s``) or walked stair strides (``n_stair_strides`` > 0) - its strides are a TUG's turn and
+    closing strides of two short legs, or stair and landing strides, not the walk's."""
+    import pandas as pd
+
+    def number(c):
+        return pd.to_numeric(sessions[c], errors="coerce") if c in sessions else pd.Series(float("nan"),
+                                                                                           index=sessions.index)
+
+    return (number("tug_time_s").notna() | number("tug_trials_median_s").notna()
+            | (number("n_stair_strides").fillna(0) > 0))
+
+
+def change_table(sessions, metrics=CHANGE_METRICS, visit_map: dict[str, str] | None = None, by: str | None = None,
+                 walk_strides_only=("median_stride_length_m", "stride_length_cv_pct", "median_speed_mps")):
     """changes.csv from sessions.csv (a DataFrame), or ``None`` when the sessions naming a subject and a visit name
     fewer than two visits (decision C22). Visit names are first made one per visit (:func:`canonical_visits`,
     decisions C28, C29: ``BL`` and ``baseline`` one visit). One row per subject (natural order) and later visit: the
@@ -600,7 +615,10 @@ def change_table(sessions, metrics=CHANGE_METRICS, visit_map: dict[str, str] | N
     visits are paired as without it, but each of the subject's values on its own - its Test5 at the follow-up against
     its Test5 at baseline, never a visit's tests averaged (C172's finding) - one row per subject, value (natural
     order, sessions naming none last with it empty) and later visit, the column after ``visit``; a test the subject
-    did at one of the two visits only is ``missing`` there, listed."""
+    did at one of the two visits only is ``missing`` there, listed. Decision C276: the measures of
+    ``walk_strides_only`` are left empty for a TUG or stairs session (:func:`tug_or_stairs`: its strides are the turns'
+    and the stairs', not the walk's: trial s53t1's TUG stride length read -28.6 % while the walk's grew +36.6 %) and
+    the row's ``reason`` says so."""
     import numpy as np
     import pandas as pd
 
@@ -609,6 +627,11 @@ def change_table(sessions, metrics=CHANGE_METRICS, visit_map: dict[str, str] | N
     if "subject" not in sessions or "visit" not in sessions:  # a sessions.csv written before C22
         return None
     named = _labelled(sessions)
+    mixed = tug_or_stairs(named)  # decision C276: a TUG's / stairs' strides are no walk's
+    left_out = [m for m in walk_strides_only if m in named and mixed.any()
+                and pd.to_numeric(named.loc[mixed, m], errors="coerce").notna().any()]
+    named.loc[mixed, left_out] = np.nan
+    mixed_paths = set(named.loc[mixed, "path"].astype(str)) if left_out and "path" in named else set()
     named["visit_as_written"] = named["visit"]  # decision C82
     named["visit"] = named["visit"].map(canonical_visits(named["visit"], visit_map)[0])
     visits = visit_order(named["visit"])
@@ -646,6 +669,11 @@ def change_table(sessions, metrics=CHANGE_METRICS, visit_map: dict[str, str] | N
                 reasons.append(problem[1])
             elif status == "ok":  # decision C20's copy; C84: of each trial averaged
                 reasons += [f"{p} holds the same recording as {d} (duplicate_of)" for p, d in _copies(b_row, v_row)]
+            out_paths = {p for r in (b_row, v_row) if r is not None for p in str(r["path"]).split("; ")}
+            gone = [m for m in left_out if m in measures] if out_paths & mixed_paths else []
+            if gone:  # decision C276
+                reasons.append(f"{', '.join(gone)} of a TUG / stairs session left out: its strides are the turns' "
+                               "and the stairs', not the walk's (C276)")
             apart = {m: walkways_differ(mine[mine["visit"] == base], mine[mine["visit"] == visit], m)
                      for m in measures} if status == "ok" else {}  # decision C211: one walkway at both visits
             reasons += [WALKWAY_REASON.format(measure=m, why=walkway_why(w), walkways=w,

@@ -144,10 +144,11 @@ def test_report_clinical_writes_a_short_summary_per_patient_w420(patient):
     assert line.endswith("chair transfers: lower-back unit")
     assert f"- 10 m walk: {walk['ten_m_walk_speed_mps']:.2f} m/s" in text
     assert f"- Gait speed {walk['gait_speed_mps']:.2f} m/s, cadence" in text
-    # C209 (session 49): each track warning's own text (its fix and its decision) is listed under the count line;
-    # W420's rule - no research terms - holds for the clinical lines themselves, their sub-lines (pace, rests) too
+    # C209 (session 49): each track warning's own text (its fix and its decision) is given; C273 (session 53): once,
+    # in the page's technical notes; W420's rule - no research terms - holds for the clinical lines themselves, their
+    # sub-lines (pace, rests) too
     clinical = clinical_lines(text)
-    assert any(x.startswith("  - E153: no model") for x in text.splitlines())
+    assert any(x.startswith("- E153: ") and ": no model" in x for x in text.splitlines())
     assert "- Track warnings: " in clinical and "  - E153: no model" not in clinical
     for research in ("error", "MAE", "no model", "decision"):
         assert research not in clinical, research
@@ -156,8 +157,11 @@ def test_report_clinical_writes_a_short_summary_per_patient_w420(patient):
 def clinical_lines(text: str) -> str:
     """clinical.md less C209's warning items (the indented lines right under a "- Track warnings:" line): the lines
     W420's no-research-terms rule reads (review R1 F5 of session 50: the pace and rests sub-lines stay in)."""
-    kept, in_warnings = [], False
+    kept, in_warnings, in_notes = [], False, False
     for x in text.splitlines():
+        in_notes = x.startswith("Technical notes (") or (in_notes and x.startswith("- "))  # decision C273
+        if in_notes:
+            continue
         in_warnings = x.startswith("- Track warnings:") or (in_warnings and x.startswith("  - "))
         if not (in_warnings and x.startswith("  - ")):
             kept.append(x)

@@ -100,6 +100,8 @@ def test_the_change_line_names_the_recordings_of_each_measure_c252():
         ("t25_right", {"t25fw_time_s": t}))]
     (line,) = change_lines(rows)
     assert "walk test distance 248 -> 214 m (-34 m, -14 %) [from 6mwt_left, 6mwt_right; C252]" in line
-    assert "T25FW 6.6 -> 7.8 s (+1.2 s, +18 %) [from t25_right; C252]" in line
+    # C275: the T25FW is L387's first 7.62 m of a walk, said to be derived
+    assert "T25FW (derived from the walk's first 7.62 m, L387) 6.6 -> 7.8 s (+1.2 s, +18 %) [from t25_right; C252]" \
+        in line
     (alone,) = change_lines([r for r in rows if r[1] == "t25_right"])  # one session a visit: nothing to tell apart
     assert "C252" not in alone

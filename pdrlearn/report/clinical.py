@@ -26,6 +26,16 @@ from pdrlearn.report.daily_living import daily_living_lines
 from pdrlearn.report.spatiotemporal import gait_spatiotemporal_line, measured_leg, normalised_line, spatiotemporal_line
 from pdrlearn.report.stairs_asymmetry import asymmetry_line, stairs_line
 from pdrlearn.report.travel import travel_lines
+from pdrlearn.report.visit_table import (
+    change_frame_extras,
+    session_meta,
+    session_test,
+    technical_notes,
+    tug_or_stairs_session,
+    visit_table_lines,
+    walk_not_timed_said,
+    warnings_pointer,
+)
 from pdrlearn.report.walking import walking_line
 from pdrlearn.track.stair_lead import FLIGHT_WORDS, flight_line
 
@@ -243,7 +253,8 @@ def walk_test_rests_line(summary: dict) -> str | None:
 #: decision C177: clinical.md's change-from-baseline measures (visits.CLINICAL_MEASURES): (name, unit, digits)
 CHANGE_LINE_MEASURES = {"walk_test_distance_m": ("walk test distance", "m", 0), "fatigue_index": ("fatigue index", "",
                         2), "tug_time_s": ("TUG", "s", 1), "ten_m_walk_speed_mps": ("10 m walk", "m/s", 2),
-                        "t25fw_time_s": ("T25FW", "s", 1),
+                        # decision C275: no T25FW is run, L387 times the walk's first 7.62 m from standing
+                        "t25fw_time_s": ("T25FW (derived from the walk's first 7.62 m, L387)", "s", 1),
                         # decision W562: the lower back's gait speed on the corridor's scale (trial s49t1 F2)
                         "gait_speed_corridor_mps": ("gait speed (corridor's scale, W562)", "m/s", 2)}
 
@@ -282,13 +293,16 @@ def change_lines(rows: list) -> list[str]:
     tracks = [r[3] for r in rows if r[0] == "track" and r[3].get("subject") and r[3].get("visit")]
     if len({str(s["visit"]) for s in tracks}) < 2:
         return []
+    extra, named = change_frame_extras(rows, skip=CHANGE_LINE_MEASURES)  # decision C275: --metrics, stair times
+    line_measures = {**CHANGE_LINE_MEASURES, **named}
     frame = pd.DataFrame([{"subject": str(r[3]["subject"]), "group": "", "visit": str(r[3]["visit"]), "path": r[2],
                            "status": "ok", "pipeline": r[3].get("pipeline"),
                            "ten_m_walk_timed_m": walkway_timed_m(r[3]),  # decision C211: the speed's walkway
-                           **{m: r[3].get(m) for m in CHANGE_LINE_MEASURES}}
-                          for r in rows if r[0] == "track" and r[3].get("subject") and r[3].get("visit")])
-    frame[list(CHANGE_LINE_MEASURES)] = frame[list(CHANGE_LINE_MEASURES)].apply(pd.to_numeric, errors="coerce")
-    measures = [m for m in CHANGE_LINE_MEASURES if frame[m].notna().any()]
+                           **{m: r[3].get(m) for m in CHANGE_LINE_MEASURES}, **more}
+                          for r, more in zip([r for r in rows if r[0] == "track" and r[3].get("subject")
+                                              and r[3].get("visit")], extra, strict=True)])
+    frame[list(line_measures)] = frame[list(line_measures)].apply(pd.to_numeric, errors="coerce")
+    measures = [m for m in line_measures if frame[m].notna().any()]
     if not measures:
         return []
     changes = change_table(frame, metrics=measures)
@@ -299,10 +313,10 @@ def change_lines(rows: list) -> list[str]:
             base, change = row.get(f"{m}_baseline"), row.get(f"{m}_change")
             apart = walkway_reason(row.get("reason"), m)  # decision C211: a speed on two walkways is not compared
             if apart:
-                parts.append(f"{walk_names(tracks, row).get(m, CHANGE_LINE_MEASURES[m][0])} not compared: {apart}")
+                parts.append(f"{walk_names(tracks, row).get(m, line_measures[m][0])} not compared: {apart}")
             if pd.isna(base) or pd.isna(change):
                 continue
-            name, unit, k = CHANGE_LINE_MEASURES[m]
+            name, unit, k = line_measures[m]
             name = walk_names(tracks, row).get(m, name)  # decision C211: the walkway's own name
             parts.append(change_part(name, unit, k, base, change, row.get(f"{m}_change_pct"))
                          + measure_sources(frame, row, m))  # decision C252: which recordings
@@ -461,7 +475,7 @@ def clinical_lines(summary: dict, folder: Path) -> list[str]:
         from pdrlearn.track.walk_test import declared_refusal, walk_test_name
 
         refused = declared_refusal(summary)  # decision C194: a declared test not timed says so, before the speed
-        if refused:  # decision C206: the walkway's own name
+        if refused and walk_not_timed_said(summary):  # decision C274: not on a TUG's / another test's block; C206
             lines.append(f"- {walk_test_name(summary)}: not timed ({refused[0]}; {unit}): {refused[1]}")
     speed = gait_speed_line(summary, unit)
     if speed:
@@ -472,15 +486,16 @@ def clinical_lines(summary: dict, folder: Path) -> list[str]:
                            uncalibrated=not own)  # decision C222
     if walking:
         lines.append(walking)
-    lines += [x for x in (spatiotemporal_line(summary, unit, stride_given=own),  # decisions C195, C197
-                          _normalised(summary, unit, speed is not None and own, own)) if x]  # decisions C196, C197
+    if not tug_or_stairs_session(summary):  # decision C276: a TUG's / stairs' strides are not the walk's
+        lines += [x for x in (spatiotemporal_line(summary, unit, stride_given=own),  # decisions C195, C197
+                              _normalised(summary, unit, speed is not None and own, own)) if x]  # C196, C197
     lines += [x for x in (stairs_line(summary, folder, unit), asymmetry_line(summary, unit)) if x]  # decision C190
     contact = contact_line(summary, unit)  # decision L756: a toe walker's outcome
     if contact:
         lines.append(contact)
     lines += travel_lines(summary, folder, unit)  # decision L582: backward / side strides, turns
     lines += daily_living_lines(summary, folder)
-    warnings = warnings_line(summary)
+    warnings = warnings_pointer(summary)  # decision C273: C209's texts once, in the page's technical notes
     if warnings:
         lines.append(warnings)
     return lines
@@ -605,17 +620,6 @@ def _pairs_row(folder: Path, root: Path) -> dict:
     return {}
 
 
-def _meta(session: str | Path | None) -> dict:
-    path = Path(session) / "meta.json" if session else None
-    if path is None or not path.is_file():
-        return {}
-    try:
-        data = json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, ValueError):
-        return {}
-    return data if isinstance(data, dict) else {}
-
-
 def _same(a, b) -> bool:
     try:
         return bool(a) and bool(b) and Path(a).resolve() == Path(b).resolve()
@@ -641,12 +645,13 @@ def _gait_walks(root: Path) -> list[dict]:
         side = {s: (sessions.get(s) or {}).get("session") if isinstance(sessions.get(s), dict) else None
                 for s in ("left", "right")}
         row = _pairs_row(path.parent, root)
-        subject = row.get("subject") or _meta(side["left"]).get("subject") or _meta(side["right"]).get("subject")
+        meta = {s: session_meta(side[s]) for s in ("left", "right")}
+        subject = row.get("subject") or meta["left"].get("subject") or meta["right"].get("subject")
         rel = path.parent.relative_to(root).as_posix() if path.parent != root else path.parent.name
         names = {s: row.get(f"session_{s}") or (Path(side[s]).name if side[s] else "?") for s in ("left", "right")}
-        found = leg_length(_meta(side["left"]) or _meta(side["right"]))  # decision C196: a measured leg only
+        found = leg_length(meta["left"] or meta["right"])  # decision C196: a measured leg only
         # decision C238: the visit too (gait_pairs.csv's, else meta.json's), so C221 orders the gait rows
-        visit = row.get("visit") or meta_visit(_meta(side["left"])) or meta_visit(_meta(side["right"]))
+        visit = row.get("visit") or meta_visit(meta["left"]) or meta_visit(meta["right"])
         walks.append({"folder": path.parent, "rel": rel, "subject": subject or None, "visit": visit or None,
                       "walk": walk, **side,
                       "names": names, "stairs": summary.get("stairs"),  # L561: stairs
@@ -684,13 +689,17 @@ def _patients(source: str | Path) -> dict[str, list]:
 
 def _patient_lines(rows: list) -> list[str]:
     """Decision W420: one patient's blocks (C221's visit order) and (C177) change-from-baseline lines."""
-    out: list[str] = []
     rows = in_visit_order(rows)  # decision C221: the baseline's sessions first, as the change line pairs them
+    table = visit_table_lines(rows)  # decision C273: one visit x measure table first
+    out: list[str] = table + [""] if table else []
+    changes = change_lines(rows) + gait_change_lines(rows)  # decision C177; cohort C242: the gait outputs'
+    if changes:  # decision C273: the changes under the table, the sessions' details after them
+        out += changes + [""]
     for block in walk_blocks(rows):
         out += block + [""]
-    changes = change_lines(rows) + gait_change_lines(rows)  # decision C177; cohort C242: the gait outputs'
-    if changes:
-        out += changes + [""]
+    notes = technical_notes(rows)  # decision C273: each warning once, at the end
+    if notes:
+        out += notes + [""]
     return out
 
 
@@ -759,7 +768,10 @@ def _track_block(folder: Path, rel: str, summary: dict, head: str = "Session") -
     date = recording_date(summary, folder)
     when = f"recorded {date}" if date else "recording date unknown (no meta.json recording_start)"
     visit = f", visit {summary['visit']}" if summary.get("visit") else ""  # decision C177
-    return [f"{head} {summary.get('session')} ({rel}){visit}, {when}:",
+    test = session_test(summary)  # decision C273: the test's name, not the recording's file name
+    first = (f"{test}{visit} ({rel})" if test and head == "Session"
+             else f"{head} {summary.get('session')} ({rel}){visit}")
+    return [f"{first}, {when}:",
             *(clinical_lines(summary, folder) or ["- no clinical test measured"])]
 
 
@@ -775,7 +787,7 @@ def walk_blocks(rows: list) -> list[list[str]]:
     feet: dict[str, dict[str, list]] = {}
     for r in tracks:
         session = r[3].get("input_dir")
-        foot = session_foot(_meta(session)) if session else None  # decision L260's meta.json keys
+        foot = session_foot(session_meta(session)) if session else None  # decision L260's meta.json keys
         if foot is not None:
             feet.setdefault(str(Path(session).parent), {}).setdefault(foot, []).append(r)
     paired = {id(v[0]): k for k, d in feet.items() if all(len(d.get(s, [])) == 1 for s in ("left", "right"))

@@ -83,3 +83,17 @@ def asymmetry_line(summary: dict, unit: str) -> str | None:
         notes.append(f"{side}, {left:.3f} / {right:.3f} s L/R")
     source = "foot + lower-back units" if se is not None and unit == "foot unit" else unit
     return f"- Step-time asymmetry {pct:.1f} % ({'; '.join(notes)}) ({source})"
+
+
+def flight_times(folder: Path) -> dict[str, float]:
+    """Decisions C273, C275: ``{"up": s, "down": s}``: the track ``folder``'s stairs.csv flights' ``time_s`` summed
+    per direction (C190's line's times), a direction without a timed flight left out; {} without stairs.csv."""
+    table = _csv(Path(folder) / "stairs.csv")
+    if table is None or "direction" not in table or "time_s" not in table:
+        return {}
+    out = {}
+    for way in ("up", "down"):
+        time = pd.to_numeric(table.loc[table["direction"].astype(str) == way, "time_s"], errors="coerce")
+        if len(time) and time.notna().all():
+            out[way] = float(time.sum())
+    return out
