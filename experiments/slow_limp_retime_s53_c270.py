@@ -9,7 +9,8 @@ pendulum bounce, realistic pelvis, variability 1.5, paretic side right, foot uni
 0.6-0.85 s and the step length for a speed 0.5-1.0 m/s (seeded by the user id); step_time_asymmetry 0 for every
 fourth user (20500, 20504, ...), else drawn 0.03-0.22. Truth: L416's function on the simulator's true contacts.
 
-Run: PYTHONPATH=. .venv/bin/python experiments/slow_limp_retime_s53_c270.py FIRST_USER LAST_USER
+Run: PYTHONPATH=. .venv/bin/python experiments/slow_limp_retime_s53_c270.py FIRST_USER LAST_USER (in parts, each
+printing its walks), then ``pool OUT1 OUT2 ...``: the summaries over the walks the parts printed.
 """
 
 from __future__ import annotations
@@ -97,5 +98,25 @@ def main(users) -> None:
     print(summary(rows, "cand"), flush=True)
 
 
+def pool(paths) -> None:
+    """The summaries over the walks printed by parts of ``main`` (their output files ``paths``)."""
+    import re
+
+    pat = re.compile(r"user (\d+) .* A ([\d.]+): truth +([\d.]+) % before +(\S+) candidate +(\S+) ")
+    rows = []
+    for p in paths:
+        for line in open(p):
+            if m := pat.match(line):
+                num = (lambda v: None if v == "-" else float(v))
+                rows.append({"uid": int(m[1]), "a": float(m[2]), "truth": float(m[3]), "before": num(m[4]),
+                             "cand": num(m[5])})
+    print(f"pooled {len(rows)} walks (users {min(r['uid'] for r in rows)}-{max(r['uid'] for r in rows)})")
+    print(summary(rows, "before"))
+    print(summary(rows, "cand"))
+
+
 if __name__ == "__main__":
-    main(range(int(sys.argv[1]), int(sys.argv[2]) + 1))
+    if sys.argv[1] == "pool":
+        pool(sys.argv[2:])
+    else:
+        main(range(int(sys.argv[1]), int(sys.argv[2]) + 1))
