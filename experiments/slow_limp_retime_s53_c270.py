@@ -73,6 +73,14 @@ def walk(uid: int) -> dict:
             "se_before": before["standard_error_points"], "n": before["n_strides"]}
 
 
+def _fmt(v) -> str:
+    return "-" if v is None else f"{v:5.2f}"
+
+
+def _num(text: str) -> float | None:
+    return None if text == "-" else float(text)
+
+
 def summary(rows: list[dict], key: str) -> str:
     err = np.array([np.nan if r[key] is None else r[key] - r["truth"] for r in rows])
     ok = np.isfinite(err)
@@ -90,9 +98,8 @@ def main(users) -> None:
     for uid in users:
         r = walk(uid)
         rows.append(r)
-        fmt = (lambda v: "-" if v is None else f"{v:5.2f}")
         print(f"user {uid} step {r['step']:.2f} s speed {r['speed']:.2f} m/s A {r['a']:.3f}: truth {r['truth']:5.2f} "
-              f"% before {fmt(r['before'])} candidate {fmt(r['cand'])} (n {r['n']}, SE {r['se_before']:.1f})",
+              f"% before {_fmt(r['before'])} candidate {_fmt(r['cand'])} (n {r['n']}, SE {r['se_before']:.1f})",
               flush=True)
     print(summary(rows, "before"), flush=True)
     print(summary(rows, "cand"), flush=True)
@@ -107,9 +114,8 @@ def pool(paths) -> None:
     for p in paths:
         for line in open(p):
             if m := pat.match(line):
-                num = (lambda v: None if v == "-" else float(v))
-                rows.append({"uid": int(m[1]), "a": float(m[2]), "truth": float(m[3]), "before": num(m[4]),
-                             "cand": num(m[5])})
+                rows.append({"uid": int(m[1]), "a": float(m[2]), "truth": float(m[3]), "before": _num(m[4]),
+                             "cand": _num(m[5])})
     print(f"pooled {len(rows)} walks (users {min(r['uid'] for r in rows)}-{max(r['uid'] for r in rows)})")
     print(summary(rows, "before"))
     print(summary(rows, "cand"))

@@ -856,7 +856,7 @@ def uncertain_note(n_uncertain, n_subjects) -> str:
 
     if pd.isna(n_uncertain) or not int(n_uncertain):
         return ""
-    return f", {int(n_uncertain)} of {int(n_subjects)} uncertain ({decision_ref('C271', topic='localization')})"
+    return f", {int(n_uncertain)} of {int(n_subjects)} uncertain ({decision_ref('C271', topic='cohort')})"
 
 
 def changes_text(summary):

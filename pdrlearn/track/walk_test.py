@@ -592,10 +592,12 @@ def short_walk_note(longest: float, need: float = 2 * ZONE_M + TIMED_M,
     note = (f"no walking bout of {need:g} m ({zones[0]:g} m to accelerate, {zones[1]:g} m timed, {zones[2]:g} m to "
             f"decelerate; the longest {shown:.2f} m; decision L313): a shorter walk is not timed")
     if need - RUN_OUT_M <= longest < need:  # L349: a 14 m walkway walked end to end can track a few cm short
+        from pdrlearn.decision_refs import decision_ref
+
         default = not declared and tuple(zones) == (ZONE_M, TIMED_M, ZONE_M)
         declare = (f"if this is the standard 14 m walkway (2 m run-in, 10 m timed, 2 m run-out) declare it: "
                    f"track --ten-m-walk 2,10,2 times a pass tracked up to {100 * DECLARED_SHORT_SHARE:g} % short "
-                   "(decisions C193, C272); or ") if default else ""
+                   f"({decision_ref('C193', 'C272', topic='cohort')}); or ") if default else ""
         return (note + f" - the walk tracked {need - longest:.2f} m short of {need:g} m: {declare}have the walker "
                 f"start and stop at least one step beyond the walkway's ends (a run-out), so the bout is longer than "
                 f"{need:g} m (decision L349); or " + _ZONES_HINT)
