@@ -372,6 +372,12 @@ SESSIONS: tuple[Column, ...] = (
                                                           "error of step_time_asymmetry_pct (L490; counting the lower "
                                                           "back's lag, L677); an index under "
                                                           "1.96 x it is within noise (L671); empty otherwise"),
+    ("step_time_asymmetry_uncertain", _ID, "true/false", "a foot track with the lower-back unit too: true when "
+                                                          "step_time_asymmetry_pct is within noise (under 1.96 x "
+                                                          "step_time_asymmetry_se_points, L671) or its standard error "
+                                                          "is over 3 points (L490): not to be read as a measurement; a "
+                                                          "unit on each foot (pdrlearn gait) times it (C271); empty "
+                                                          "without an index"),
     ("step_time_s_left", "s", "number", "lower back: mean step time onto the left foot (the step ending at a left "
                                         "contact, W129's side; as gait's step_time_s_left; W250; turning steps "
                                         "and steps over 1.5 median steps left out, W512); a foot track with the "
@@ -793,6 +799,14 @@ CHANGES: tuple[Column, ...] = (
                                             "single and dual (C81); empty when the baseline is 0; not written "
                                             "for a percent error, distance_error_pct or any *error*_pct / *mae*_pct "
                                             "(its change is in points, C101)"),
+    ("step_time_asymmetry_pct_change_se", "points", "number", "with step_time_asymmetry_pct compared: the "
+                                                              "change's standard error, the two visits' "
+                                                              "step_time_asymmetry_se_points in quadrature (C271)"),
+    ("step_time_asymmetry_pct_change_uncertain", _ID, "true/false", "with step_time_asymmetry_pct compared: true "
+                                                                    "when the change is under 1.96 x its standard "
+                                                                    "error or that is over 3 points: no change can "
+                                                                    "be read from one foot + the lower back; two "
+                                                                    "foot units (gait-all) time it (C271)"),
 )
 
 #: cohort C242: gait-all's gait_changes.csv, changes.csv's columns (no test) over the pairs' gait_summary.json walks;
@@ -801,7 +815,8 @@ _GAIT_CHANGE_TEXT = {"group": "the pair's first folder under ROOT (track-all's -
                      "baseline_path": "the baseline visit's folder(s) under ROOT (gait_pairs.csv path), ; -separated",
                      "path": "the later visit's folder(s) under ROOT, ; -separated (a visit's walks averaged, C83)"}
 GAIT_CHANGES: tuple[Column, ...] = tuple((name, unit, kind, _GAIT_CHANGE_TEXT.get(name, text))
-                                         for name, unit, kind, text in CHANGES if name != "test")
+                                         for name, unit, kind, text in CHANGES
+                                         if name != "test" and not name.startswith("step_time_asymmetry_pct_"))
 
 #: decisions C23, C81, C85: track-all's changes_summary.csv, one row per later visit, baseline (test, C174) and measure
 CHANGES_SUMMARY: tuple[Column, ...] = (
@@ -825,6 +840,9 @@ CHANGES_SUMMARY: tuple[Column, ...] = (
     ("pct_ci95_high", "%", "number", "its high end"),
     ("n_not_paired", "count", "integer", "subjects of the visit whose changes.csv row is not ok (C23)"),
     ("not_paired", _ID, "text", "those subjects, ; -separated"),
+    ("n_uncertain", "count", "integer", "step_time_asymmetry_pct only: subjects whose change is uncertain "
+                                        "(changes.csv step_time_asymmetry_pct_change_uncertain, C271); the printed "
+                                        "change says 'k of n uncertain'; empty for the other measures"),
 )
 
 BOUTS: tuple[Column, ...] = (

@@ -696,14 +696,53 @@ def change_table(sessions, metrics=CHANGE_METRICS, visit_map: dict[str, str] | N
                 row[f"{m}_change"] = v - b  # later visit minus baseline (decision C22)
                 if "change_pct" in change_kinds(m):  # decision C101: none of a percent error
                     row[f"{m}_change_pct"] = pct_change(b, v)  # decision C81
+                se_col = standard_error_column(m)
+                if se_col is not None and se_col in sessions:  # decision C271: the change's standard error
+                    row.update(change_uncertainty(m, v - b, [pair_se(mine[mine["visit"] == w], r, se_col)
+                                                             for w, r in ((base, b_row), (visit, v_row))]))
             rows.append({**row, **({by: label} if by else {})})
     columns = list(CHANGE_COLUMNS)
     if by:
         columns.insert(columns.index("visit") + 1, by)
-    out = pd.DataFrame(rows).reindex(columns=[*columns, *(f"{m}_{k}" for m in measures for k in change_kinds(m))])
+    out = pd.DataFrame(rows).reindex(columns=[*columns, *(f"{m}_{k}" for m in measures for k in change_kinds(m)),
+                                              *(c for m in measures if standard_error_column(m) in sessions
+                                                for c in (f"{m}_change_se", f"{m}_change_uncertain"))])  # C271
     for c in ("baseline_n_trials", "n_trials"):
         out[c] = out[c].astype("Int64")
     return out
+
+
+def standard_error_column(measure: str) -> str | None:
+    """Decision C271: the sessions.csv column holding ``measure``'s standard error, None for a measure without one:
+    the foot + lower-back step-time asymmetry's (L490, L677, L686)."""
+    return "step_time_asymmetry_se_points" if measure == "step_time_asymmetry_pct" else None
+
+
+def pair_se(rows, row, column: str) -> float:
+    """Decision C271: the standard error (``column``) of one visit's value in changes.csv: the session's own, or of
+    its trials' mean (C83) sqrt(sum se^2) / n over the tracked trials with one; NaN without."""
+    import numpy as np
+    import pandas as pd
+
+    if row is None:
+        return float("nan")
+    if column in row.index:
+        return float(pd.to_numeric(row[column], errors="coerce"))
+    se = pd.to_numeric(rows.loc[rows["status"] == "ok", column], errors="coerce").dropna() if column in rows else []
+    return float(np.sqrt(np.sum(np.square(se))) / len(se)) if len(se) else float("nan")
+
+
+def change_uncertainty(measure: str, change: float, ses) -> dict:
+    """Decision C271: changes.csv's ``<measure>_change_se`` (the two visits' standard errors in quadrature; NaN
+    without both) and ``<measure>_change_uncertain`` (:func:`pdrlearn.track.labelled_asymmetry.asymmetry_uncertain`
+    of |change| and that standard error: within noise, under 1.96 of it, or it over 3 points; empty without)."""
+    import numpy as np
+
+    from pdrlearn.track.labelled_asymmetry import asymmetry_uncertain
+
+    se = float(np.hypot(*ses)) if all(np.isfinite(ses)) else float("nan")
+    flag = asymmetry_uncertain(abs(change), se) if np.isfinite(change) else None
+    return {f"{measure}_change_se": se, f"{measure}_change_uncertain": flag}
 
 
 #: each measure's columns in changes.csv, in order (decisions C22, C81; C101: a percent error has no ``change_pct``)
@@ -799,7 +838,9 @@ def change_summary(changes, metrics=None, by: str | None = None):
     columns = list(SUMMARY_COLUMNS)
     if by:
         columns.insert(columns.index("baseline_visit") + 1, by)
-    return pd.DataFrame(rows, columns=columns)  # B327: its columns without a measure too
+    out = pd.DataFrame(rows, columns=columns)  # B327: its columns without a measure too
+    out["n_uncertain"] = pd.to_numeric(out["n_uncertain"], errors="coerce").astype("Int64")  # C271: a count
+    return out
 
 
 def _summary_rows(at, metrics, keys: dict) -> list[dict]:
@@ -823,14 +864,27 @@ def _summary_rows(at, metrics, keys: dict) -> list[dict]:
             row.update({"n_subjects" if kind == "change" else "n_pct_subjects": len(d)})  # C85: both counts
             row.update({f"mean_{name}": mean, f"sd_{name}": sd, f"{pre}ci95_low": float(low),
                         f"{pre}ci95_high": float(high)})
-        rows.append({**row, "n_not_paired": len(unpaired), "not_paired": "; ".join(unpaired) or None})
+        flags = at.loc[pd.to_numeric(at[f"{m}_change"], errors="coerce").notna(), f"{m}_change_uncertain"] \
+            if f"{m}_change_uncertain" in at else None  # decision C271: the subjects' changes within their noise
+        rows.append({**row, "n_not_paired": len(unpaired), "not_paired": "; ".join(unpaired) or None,
+                     "n_uncertain": None if flags is None else int((flags == True).sum())})  # noqa: E712 (object)
     return rows
 
 
 #: changes_summary.csv's columns (decisions C23, C81; C85: ``n_pct_subjects``, the subjects of the percent change)
 SUMMARY_COLUMNS = ("visit", "baseline_visit", "measure", "n_subjects", "mean_change", "sd_change", "ci95_low",
                    "ci95_high", "n_pct_subjects", "mean_pct_change", "sd_pct_change", "pct_ci95_low", "pct_ci95_high",
-                   "n_not_paired", "not_paired")
+                   "n_not_paired", "not_paired", "n_uncertain")  # C271: n_uncertain
+
+
+def uncertain_note(n_uncertain, n_subjects) -> str:
+    """Decision C271: what the printed change of a measure with a standard error adds when some subjects' changes
+    are within their noise (changes.csv ``<measure>_change_uncertain``): ", k of n uncertain (C271)"; "" otherwise."""
+    import pandas as pd
+
+    if pd.isna(n_uncertain) or not int(n_uncertain):
+        return ""
+    return f", {int(n_uncertain)} of {int(n_subjects)} uncertain ({decision_ref('C271', topic='cohort')})"
 
 
 def changes_text(summary):
@@ -855,8 +909,9 @@ def changes_text(summary):
                                                                  strict=True)],
                          **{c: summary[c].fillna("") for c in split},
                          "measure": summary["measure"], "n_subjects": summary["n_subjects"],
-                         "mean change [95 % CI]": [cell(*r) for r in zip(
-                             summary["mean_change"], summary["ci95_low"], summary["ci95_high"], strict=True)],
+                         "mean change [95 % CI]": [cell(*r) + uncertain_note(u, n) for *r, u, n in zip(
+                             summary["mean_change"], summary["ci95_low"], summary["ci95_high"],
+                             summary.get("n_uncertain", nan), summary["n_subjects"], strict=True)],
                          "mean % change [95 % CI]": [cell(*r) for r in zip(*pct, strict=True)],
                          "n % change": ["" if pd.isna(n) else int(n) for n in  # C85: a zero baseline: 0
                                         summary.get("n_pct_subjects", nan)],  # C101: a percent error none at all

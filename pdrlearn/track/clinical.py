@@ -1315,7 +1315,8 @@ def step_time_asymmetry_report(steps: pd.DataFrame) -> dict:
 LEG_KEYS = ("n_steps_left", "n_steps_right", "n_steps_side_undecided", "step_time_asymmetry_pct",
             "step_time_asymmetry_raw_pct", "n_step_time_asymmetry_steps", "step_time_asymmetry_reason",
             "step_time_s_left", "step_time_s_right", "step_time_s_ratio",  # W250: the asymmetry's direction
-            "step_time_asymmetry_se_points")  # L671: L490's standard error of a foot + lower-back index
+            "step_time_asymmetry_se_points",  # L671: L490's standard error of a foot + lower-back index
+            "step_time_asymmetry_uncertain")  # C271: that index within noise or uncertain
 
 
 def rhythm_step_times(steps: pd.DataFrame) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

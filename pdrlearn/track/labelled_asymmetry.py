@@ -309,15 +309,31 @@ def short_step_withheld(summary: dict) -> str | None:
     return None
 
 
+def asymmetry_uncertain(pct, se) -> bool | None:
+    """Decision C271: True when a step-time asymmetry index ``pct`` (%) with standard error ``se`` (points) carries
+    one of :func:`asymmetry_flags`' words - within noise (under 1.96 standard errors: the standard error is
+    comparable to the index) or uncertain (a standard error over 3 points); None without both numbers."""
+    try:
+        pct, se = float(pct), float(se)
+    except (TypeError, ValueError):
+        return None
+    if not (np.isfinite(pct) and np.isfinite(se)):
+        return None
+    return bool(asymmetry_flags(pct, se))
+
+
 def side_keys(res: dict, session) -> dict:
     """Decision L671: :func:`labelled_step_asymmetry`'s result ``res`` (an index given) as the summary's
-    ``step_time_asymmetry_se_points`` (L490's standard error) and, when ``session``'s meta.json names the
+    ``step_time_asymmetry_se_points`` (L490's standard error), ``step_time_asymmetry_uncertain``
+    (:func:`asymmetry_uncertain`, decision C271) and, when ``session``'s meta.json names the
     instrumented foot (L260's keys), ``step_time_s_left`` / ``_right`` (the step landing on that foot:
     ``step_time_s_instrumented``, on the other ``step_time_s_other``, as W250's) and ``step_time_s_ratio`` = left /
     right; without the side those stay empty (a foot unit does not know which foot it is on)."""
     from pdrlearn.track.bilateral import session_foot
 
-    out = {"step_time_asymmetry_se_points": float(res["standard_error_points"])}
+    out = {"step_time_asymmetry_se_points": float(res["standard_error_points"]),
+           "step_time_asymmetry_uncertain": asymmetry_uncertain(res["step_time_asymmetry_pct"],
+                                                                res["standard_error_points"])}  # decision C271
     meta = getattr(session, "meta", None)
     side = session_foot(meta if isinstance(meta, dict) else {})
     if side is not None:

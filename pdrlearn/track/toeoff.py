@@ -27,11 +27,18 @@ def stance_range_warning(summary: dict) -> str | None:
     :data:`TOE_OFF_MIN_CHECKED_STANCE_S`, the shortest contacts L73 checked (None otherwise, or without stance
     times). Decision L703: it states the known stance bias of the track's set-up (``info["stance_source"]``: force
     insoles or the IMU) in ms, in % of this walk's stance and in points of its gait cycle
-    (``median_stride_time_s``)."""
+    (``median_stride_time_s``). Decision L802: the line also when L285's "under 55 % of the gait cycle" line fired
+    (a warning coded L285 in ``info["warnings"]``) at a longer stance - a slow walker's - so that line's reader
+    knows the stance times' own bias; it then says so instead of "below 0.69 s"."""
     from pdrlearn.track.support_bias import STANCE_BIAS, bias_terms, setup_of, stance_bias_ms
+    from pdrlearn.warning_lines import warning_code
 
     stance = summary.get("median_stance_time_s")
-    if stance is None or not np.isfinite(stance) or stance >= TOE_OFF_MIN_CHECKED_STANCE_S:
+    if stance is None or not np.isfinite(stance):
+        return None
+    short_share = any(warning_code(str(w)) == "L285" or getattr(w, "code", None) == "L285"
+                      for w in (summary.get("info") or {}).get("warnings", ()) or ())  # decision L802
+    if stance >= TOE_OFF_MIN_CHECKED_STANCE_S and not short_share:
         return None
     setup = setup_of((summary.get("info") or {}).get("stance_source"))
     cycle, rate = summary.get("median_stride_time_s"), summary.get("rate_hz")  # decision L737: the foot's rate
@@ -39,6 +46,16 @@ def stance_range_warning(summary: dict) -> str | None:
     ms = [r for r in (stance_bias_ms(k, cycle, rate) for k in ([setup] if setup else STANCE_BIAS)) if r is not None]
     share = (f" ({100 * -max(r[1] for r in ms) / 1000 / stance:.0f}-{100 * -min(r[0] for r in ms) / 1000 / stance:.0f}"
              f" % of this walk's {stance:.3f} s stance)") if ms else ""
+    if stance >= TOE_OFF_MIN_CHECKED_STANCE_S:  # decision L802: L285's short stance at a checked contact length
+        from pdrlearn.track.bilateral import STANCE_MIN_PCT
+
+        pct = summary.get("median_stance_pct")
+        of = f", {pct:.1f} % of the gait cycle," if isinstance(pct, float | int) and np.isfinite(pct) else ""
+        return coded(f"median stance (contact) time {stance:.3f} s{of} is under "
+                     f"{STANCE_MIN_PCT:.0f} % of the cycle (the L285 line): "
+                     "--toe-off's stance times read short by a known bias (gaitmap's level walks with mocap, "
+                     f"decision L73), in this walk's terms (L703): {terms}{share}; part of a short stance is this "
+                     "bias, not the walker's (decisions L802, L414)", "L802")  # decision E170
     return coded(f"median stance (contact) time {stance:.3f} s is below {TOE_OFF_MIN_CHECKED_STANCE_S:.2f} s, the "
             "range at which --toe-off's stance times were checked against a reference: one walk, gaitmap's level "
             "walks with mocap at 0.69-0.70 s median contact (decision L73); most ordinary walks have shorter contacts "

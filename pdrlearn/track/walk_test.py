@@ -332,7 +332,8 @@ def ten_metre_walk(steps: pd.DataFrame, zones: tuple[float, float, float] | None
     short = declared_short_share(steps, zones, calibrated)  # decisions C193, C205: a declared walkway only
     more = LOWER_BACK_SHORT_NOTE if zones and calibrated and _is_lower_back(steps) else ""  # decision C205
     out = timed_walk(steps, accel, timed, KEYS, lower_back_note(accel, timed, calibrated),
-                     lambda longest, need: short_walk_note(longest, need, (accel, timed, decel)) + more, decel_m=decel,
+                     lambda longest, need: short_walk_note(longest, need, (accel, timed, decel),
+                                                           declared=zones is not None) + more, decel_m=decel,  # C272
                      max_bout_m=_bout_limit(zones), passes=True, ramps=ramps, short_share=short,  # decision L673
                      any_recording=any_recording)  # decision L779
     trials = ten_metre_walk_trials(steps, zones, calibrated, ramps=ramps, any_recording=any_recording)
@@ -580,16 +581,25 @@ def timed_walk(steps: pd.DataFrame, zone_m: float, timed_m: float, keys: tuple[s
 
 
 def short_walk_note(longest: float, need: float = 2 * ZONE_M + TIMED_M,
-                    zones: tuple[float, float, float] = (ZONE_M, TIMED_M, ZONE_M)) -> str:
+                    zones: tuple[float, float, float] = (ZONE_M, TIMED_M, ZONE_M), *, declared: bool = True) -> str:
     """Decision L349: the note of a walk whose longest bout ``longest`` (m) is under ``need``: the longest shown
     rounded DOWN to 2 decimals (13.998 m read "14.0 m" beside "no walking bout of 14 m"), and when it falls short by
-    under :data:`RUN_OUT_M` the advice to walk past the walkway's ends (an exact 14 m walk can track a little short)."""
+    under :data:`RUN_OUT_M` the advice to walk past the walkway's ends (an exact 14 m walk can track a little short).
+    Decision C272: with no walkway declared (``declared`` False: no ``track --ten-m-walk``) and a walk that fell short
+    of the default 14 m walkway by under :data:`RUN_OUT_M`, the advice names ``--ten-m-walk 2,10,2`` first: declaring
+    the standard 14 m walkway times a pass tracked a little short (C193's share)."""
     shown = math.floor(longest * 100.0 + 1e-6) / 100.0  # + 1e-6: a cumulative sum of 12.25 m is 12.2499...
     note = (f"no walking bout of {need:g} m ({zones[0]:g} m to accelerate, {zones[1]:g} m timed, {zones[2]:g} m to "
             f"decelerate; the longest {shown:.2f} m; decision L313): a shorter walk is not timed")
     if need - RUN_OUT_M <= longest < need:  # L349: a 14 m walkway walked end to end can track a few cm short
-        return (note + f" - the walk tracked {need - longest:.2f} m short of {need:g} m: have the walker start "
-                f"and stop at least one step beyond the walkway's ends (a run-out), so the bout is longer than "
+        from pdrlearn.decision_refs import decision_ref
+
+        default = not declared and tuple(zones) == (ZONE_M, TIMED_M, ZONE_M)
+        declare = (f"if this is the standard 14 m walkway (2 m run-in, 10 m timed, 2 m run-out) declare it: "
+                   f"track --ten-m-walk 2,10,2 times a pass tracked up to {100 * DECLARED_SHORT_SHARE:g} % short "
+                   f"({decision_ref('C193', 'C272', topic='cohort')}); or ") if default else ""
+        return (note + f" - the walk tracked {need - longest:.2f} m short of {need:g} m: {declare}have the walker "
+                f"start and stop at least one step beyond the walkway's ends (a run-out), so the bout is longer than "
                 f"{need:g} m (decision L349); or " + _ZONES_HINT)
     return note + " - " + _ZONES_HINT
 
