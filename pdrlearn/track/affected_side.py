@@ -34,12 +34,13 @@ def sides_note(affected: str | None) -> str:
     return f"{affected} = affected" if affected in ("left", "right") else ""
 
 
-def toe_clearance_text(walk: dict, affected: str | None = None, *, error_m: float = ERROR_PLACEHOLDER) -> str | None:
+def toe_clearance_text(walk: dict, affected: str | None = None, *,
+                       side_error_m: tuple[float, float] = (0.0056, 0.0381)) -> str | None:
     """Decision L795 (cohort C260): "toe clearance (minimum in mid-swing, medians) left x.xxx m / right y.yyy m", and
     ": left lower" when ``walk``'s ``toe_clearance_lower`` names the clearly lower side (a foot drop), the sides
     worded by ``affected`` (C245); None without either side's ``min_toe_clearance_m_left`` / ``_right``. Decision
-    L804: with both sides, the gap and ``error_m`` - the largest error of the tracked side difference against the
-    simulated toe's (L804's measured users) - so a gap within it reads as within the measure's error."""
+    L804: a named side says the gap and the measure's error - ``side_error_m``, the median and the largest |error| of
+    the tracked side difference against the simulated toe's over L804's 10 symmetric walkers (users 20710-20719)."""
     v = {s: walk.get(f"min_toe_clearance_m_{s}") for s in ("left", "right")}
     if all(x is None for x in v.values()):
         return None
@@ -47,12 +48,9 @@ def toe_clearance_text(walk: dict, affected: str | None = None, *, error_m: floa
         f"{side_word(s, affected) if affected in ('left', 'right') else s} "
         f"{'-' if v[s] is None else format(v[s], '.3f')} m" for s in ("left", "right"))
     low = walk.get("toe_clearance_lower")
-    gap = None if None in v.values() else 1000.0 * abs(float(v["left"]) - float(v["right"]))
-    err = f"{1000.0 * error_m:.0f} mm"  # decision L804: the measured error of the side difference
-    if low in ("left", "right"):
-        text += (f": {side_word(low, affected)} lower (a dragging toe, e.g. foot drop; {gap:.0f} mm apart, past the "
-                 f"{err} the tracked side difference can err, L804)")
-    elif gap is not None:
-        text += (f": {gap:.0f} mm apart, within the {err} the tracked side difference can err against the toe's "
-                 "(no side named, L804)")
+    if low in ("left", "right") and None not in v.values():
+        gap = 1000.0 * abs(float(v["left"]) - float(v["right"]))
+        text += (f": {side_word(low, affected)} lower by {gap:.0f} mm (a dragging toe, e.g. foot drop - or the "
+                 f"measure's error: in simulated symmetric walkers the sides' difference read off by a median "
+                 f"{1000.0 * side_error_m[0]:.0f} mm, up to {1000.0 * side_error_m[1]:.0f} mm, L804)")
     return text + " (L795)"
