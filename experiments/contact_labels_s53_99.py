@@ -80,8 +80,9 @@ def one(root: Path, uid: int, first: int) -> dict:
 
 def real(root: Path) -> None:
     top = Path(__file__).resolve().parents[1]
-    dirs = sorted([*Path("/work/shared/data").glob("gaitmap_level_*"), *(top / "datasets/external").glob("gaitmap_ms_*"),
-                   *(top / "datasets/external").glob("gaitmap_walk4x10_*")])
+    ext = top / "datasets/external"
+    dirs = sorted([*Path("/work/shared/data").glob("gaitmap_level_*"), *ext.glob("gaitmap_ms_*"),
+                   *ext.glob("gaitmap_walk4x10_*")])
     for d in dirs:
         out = root / f"real_{d.name}"
         cli("track", str(d), "--toe-off", "--out", str(out), "--force")

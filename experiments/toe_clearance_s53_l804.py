@@ -20,8 +20,8 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
-import toe_clearance_s51_l795 as l795
 
+import toe_clearance_s51_l795 as l795
 from pdrlearn.track.bilateral import lower_clearance_side
 
 SPEEDS = ("slow", "normal", "fast")
