@@ -2215,7 +2215,8 @@ def markdown(tables: list[str] | None = None) -> str:
              "by default also the clinical tests' walk_test_distance_m, fatigue_index, tug_time_s, "
              "ten_m_walk_speed_mps, t25fw_time_s where a session has them, first, C177). "
              "Empty cell = not measured for that session (a failed "
-             "session, another pipeline, no reference).", "", STEP_COUNT_LINE, ""]
+             "session, another pipeline, no reference). The gait events (initial contact, toe-off, mid-stance) "
+             "and each temporal and spatial column's window: docs/gait-definitions.md.", "", STEP_COUNT_LINE, ""]
     for name in tables or list(TABLES):
         lines += [f"## {name}", ""] + ([NOTES[name], ""] if name in NOTES else [])
         lines += ["| column | unit | type | meaning |", "|---|---|---|---|"]

@@ -34,10 +34,13 @@ def sides_note(affected: str | None) -> str:
     return f"{affected} = affected" if affected in ("left", "right") else ""
 
 
-def toe_clearance_text(walk: dict, affected: str | None = None) -> str | None:
+def toe_clearance_text(walk: dict, affected: str | None = None, *,
+                       side_error_m: tuple[float, float] = (0.0056, 0.0381)) -> str | None:
     """Decision L795 (cohort C260): "toe clearance (minimum in mid-swing, medians) left x.xxx m / right y.yyy m", and
     ": left lower" when ``walk``'s ``toe_clearance_lower`` names the clearly lower side (a foot drop), the sides
-    worded by ``affected`` (C245); None without either side's ``min_toe_clearance_m_left`` / ``_right``."""
+    worded by ``affected`` (C245); None without either side's ``min_toe_clearance_m_left`` / ``_right``. Decision
+    L804: a named side says the gap and the measure's error - ``side_error_m``, the median and the largest |error| of
+    the tracked side difference against the simulated toe's over L804's 10 symmetric walkers (users 20710-20719)."""
     v = {s: walk.get(f"min_toe_clearance_m_{s}") for s in ("left", "right")}
     if all(x is None for x in v.values()):
         return None
@@ -45,6 +48,9 @@ def toe_clearance_text(walk: dict, affected: str | None = None) -> str | None:
         f"{side_word(s, affected) if affected in ('left', 'right') else s} "
         f"{'-' if v[s] is None else format(v[s], '.3f')} m" for s in ("left", "right"))
     low = walk.get("toe_clearance_lower")
-    if low in ("left", "right"):
-        text += f": {side_word(low, affected)} lower (a dragging toe, e.g. foot drop)"
+    if low in ("left", "right") and None not in v.values():
+        gap = 1000.0 * abs(float(v["left"]) - float(v["right"]))
+        text += (f": {side_word(low, affected)} lower by {gap:.0f} mm (a dragging toe, e.g. foot drop - or the "
+                 f"measure's error: in simulated symmetric walkers the sides' difference read off by a median "
+                 f"{1000.0 * side_error_m[0]:.0f} mm, up to {1000.0 * side_error_m[1]:.0f} mm, L804)")
     return text + " (L795)"

@@ -46,6 +46,51 @@ def match_by_overlap(est: pd.DataFrame, ref: pd.DataFrame, *, min_iou: float = 0
     return sorted(pairs)
 
 
+def contact_windows(ref: pd.DataFrame, *, tol_s: float = 1e-3) -> np.ndarray:
+    """Steps decision 99: which labelled strides of ``ref`` are windows from contact to contact - ``end_s`` their own
+    ``ic_s`` within ``tol_s``, and ``start_s`` their ``pre_ic_s`` within ``tol_s`` or, without ``pre_ic_s``, another
+    labelled stride's ``ic_s`` (a chain; ``import --steps``' footfall strides, B338). Native labels (gaitmap's and
+    the simulator's mid-stance windows) end after their contact: False."""
+    n = len(ref)
+    if not n or "ic_s" not in ref:
+        return np.zeros(n, dtype=bool)
+    ic = pd.to_numeric(ref["ic_s"], errors="coerce").to_numpy(float)
+    s, e = ref["start_s"].to_numpy(float), ref["end_s"].to_numpy(float)
+    pre = (pd.to_numeric(ref["pre_ic_s"], errors="coerce").to_numpy(float) if "pre_ic_s" in ref
+           else np.full(n, np.nan))
+    with np.errstate(invalid="ignore"):
+        ends = np.abs(e - ic) <= tol_s
+        opens = np.where(np.isfinite(pre), np.abs(s - pre) <= tol_s, False)
+    chained = np.array([bool(np.any(np.abs(ic[np.isfinite(ic)] - x) <= tol_s)) for x in s], dtype=bool)
+    return ends & (opens | (~np.isfinite(pre) & chained))
+
+
+def match_strides(est: pd.DataFrame, ref: pd.DataFrame, *, min_iou: float = 0.5,
+                  by_contact: bool = True) -> list[tuple[int, int]]:
+    """Pairs (est row, ref row) of tracked and labelled strides: steps decision 99 - a contact-to-contact labelled
+    stride (:func:`contact_windows`) pairs with the tracked row whose initial contact ``event_s`` is its ``ic_s``,
+    one-to-one, closest first, within the event tolerance of ``pdrlearn steps`` (steps decision 36's
+    ``match_events``, ``DEFAULT_TOLERANCE_S``); every other one by window overlap (:func:`match_by_overlap`, IoU >=
+    ``min_iou``) among the tracked rows left. ``by_contact=False``: the overlap alone (before decision 99)."""
+    if len(est) == 0 or len(ref) == 0:
+        return []
+    est, ref = est.reset_index(drop=True), ref.reset_index(drop=True)
+    cw = contact_windows(ref) if by_contact and "event_s" in est else np.zeros(len(ref), dtype=bool)
+    if not cw.any():
+        return match_by_overlap(est, ref, min_iou=min_iou)
+    from pdrlearn.steps.evaluate import DEFAULT_TOLERANCE_S, match_events
+
+    ev = pd.to_numeric(est["event_s"], errors="coerce").to_numpy(float)
+    ok, rows = np.flatnonzero(np.isfinite(ev)), np.flatnonzero(cw)
+    i_d, i_r = match_events(ev[ok], ref["ic_s"].to_numpy(float)[rows], DEFAULT_TOLERANCE_S)  # steps decision 99
+    pairs = [(int(ok[i]), int(rows[j])) for i, j in zip(i_d, i_r, strict=True)]
+    left_e = np.setdiff1d(np.arange(len(est)), [i for i, _ in pairs])
+    left_r = np.flatnonzero(~cw)
+    pairs += [(int(left_e[i]), int(left_r[j])) for i, j in
+              match_by_overlap(est.iloc[left_e], ref.iloc[left_r], min_iou=min_iou)]
+    return sorted(pairs)
+
+
 def straight_legs(heading_deg: np.ndarray, *, max_change_deg: float = 20.0, min_strides: int = 4) -> list[list[int]]:
     """Runs of consecutive strides whose heading changes by less than ``max_change_deg`` from one stride to
     the next (the straight legs of a walk), keeping runs of at least ``min_strides``: stride indices."""
@@ -1149,9 +1194,11 @@ def reference_stride_times(st: pd.DataFrame) -> np.ndarray:
     return t
 
 
-def stride_pairs(result: TrackResult, session: Session) -> list[tuple[list[int], int, float]] | None:
+def stride_pairs(result: TrackResult, session: Session, *,
+                 by_contact: bool = True) -> list[tuple[list[int], int, float]] | None:
     """Decision E135: the (tracked rows, labelled stride, estimated length) pairs the stride-length metrics score:
-    one tracked row matched to one labelled stride with a length (IoU >= 0.5, :func:`match_by_overlap`; a gap or
+    one tracked row matched to one labelled stride with a length (IoU >= 0.5, :func:`match_strides`: a
+    contact-to-contact label by its initial contact, steps decision 99; a gap or
     impossible row left out, decisions E30 / L67 / L97), then the unmatched labelled strides two or more tracked rows
     tile (:func:`_composed_strides`, the vector sum of the rows). The labelled stride is its row in ``session.steps``
     (0 = steps.csv's first row). None without labelled stride lengths."""
@@ -1160,7 +1207,7 @@ def stride_pairs(result: TrackResult, session: Session) -> list[tuple[list[int],
         return None
     keep = np.flatnonzero(st["length_m"].notna().to_numpy())
     ref = st.iloc[keep].reset_index(drop=True)
-    pairs = match_by_overlap(result.steps, ref)
+    pairs = match_strides(result.steps, ref, by_contact=by_contact)  # steps decision 99
     # decisions E30 / L67: a row across a foot-stream gap (gap_s > 0) is 0 m by rule, no estimate of the
     # labelled stride it overlaps: that stride is not scored (nor composed of its neighbours)
     gap = (result.steps["gap_s"].to_numpy(float) > 0 if "gap_s" in result.steps
@@ -1199,7 +1246,7 @@ def reference_timings(st: pd.DataFrame) -> tuple[np.ndarray, ...]:
 
 def _timing_pairs(result: TrackResult, session: Session) -> list[tuple[int, int]]:
     """Decision D52: (tracked row, labelled stride) pairs for the timing reference: one tracked stride matched to one
-    labelled stride with a toe-off (IoU >= 0.5, :func:`match_by_overlap`, as the stride lengths), on a track with
+    labelled stride with a toe-off (:func:`match_strides`, as the stride lengths), on a track with
     toe-offs (``--toe-off``); a gap or impossible row left out (no stance of its own, L67 / L97)."""
     st, steps = session.steps, result.steps
     if st is None or "tc_s" not in st or "tc_s" not in steps:
@@ -1210,7 +1257,7 @@ def _timing_pairs(result: TrackResult, session: Session) -> list[tuple[int, int]
     from pdrlearn.track.gait import stride_rows
 
     valid = stride_rows(steps)
-    return [(i, int(keep[j])) for i, j in match_by_overlap(steps, st.iloc[keep].reset_index(drop=True)) if valid[i]]
+    return [(i, int(keep[j])) for i, j in match_strides(steps, st.iloc[keep].reset_index(drop=True)) if valid[i]]
 
 
 def with_reference_columns(result: TrackResult, session: Session | None) -> pd.DataFrame:
@@ -1315,7 +1362,7 @@ def _class_agreement(result: TrackResult, session: Session, out: dict) -> None:
     if not tasks:
         return
     lab = lab.reset_index(drop=True)
-    pairs = match_by_overlap(st, lab)
+    pairs = match_strides(st, lab)  # steps decision 99
     n = 0
     for c in tasks:
         both = [(st[c].iloc[i], lab[c].iloc[j]) for i, j in pairs
@@ -1347,7 +1394,7 @@ def _foot_stride_f1(result: TrackResult, session: Session, out: dict) -> None:
     if ref is None or not ref.ground_truth:
         return
     est = result.steps.reset_index(drop=True)
-    pairs = match_by_overlap(est, st)
+    pairs = match_strides(est, st)  # steps decision 99
     used_est, used_ref = {i for i, _ in pairs}, {j for _, j in pairs}
     tp = len(pairs) + len(_composed_strides(est, st, used_est, used_ref))  # adds the tiles to used_est
     # decision L249: a tracked stride matched to (or tiling) a labelled stride is always scored, as every labelled
