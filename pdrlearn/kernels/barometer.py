@@ -35,14 +35,19 @@ def altitude_m(p_hpa: np.ndarray, p0_hpa: float = STANDARD_P0_HPA) -> np.ndarray
 
 
 def relative_altitude(t: np.ndarray, p_hpa: np.ndarray, at: np.ndarray,
-                      smooth_s: float = ALTITUDE_SMOOTH_S) -> np.ndarray:
+                      smooth_s: float = ALTITUDE_SMOOTH_S, *, noise_window: bool = True,
+                      smoothing: tuple[float, float | None] | None = None) -> np.ndarray:
     """Altitude (m) at the times ``at`` relative to the first of them, from a barometer ``(t, p_hpa)``
     (s, hPa): the pressure averaged over a centred ``smooth_s`` window (fewer samples at the ends), converted
     with :func:`altitude_m` and interpolated (held beyond the stream's ends). Thesis ch.4.3.1.4: the
     differential of the pressure from a reference point. Non-finite samples are skipped; with none finite
-    the altitude is 0 throughout."""
+    the altitude is 0 throughout. ``noise_window`` (decision W621): the window is :func:`noise_window_s`'s, at
+    least ``smooth_s`` and longer for a barometer whose noise per second is higher (a phone's 1 Hz samples), read
+    as :func:`noise_smoothing` says; ``smoothing``: that pair given (the live tracker's, read on its first samples)."""
     at = np.asarray(at, dtype=float).ravel()
-    t, h = _smoothed_altitude(t, p_hpa, smooth_s)
+    if smoothing is None:
+        smoothing = noise_smoothing(t, p_hpa, smooth_s) if noise_window else (float(smooth_s), None)
+    t, h = _altitude_series(t, p_hpa, smoothing)
     if not len(t) or not len(at):
         return np.zeros(len(at))
     h = np.interp(at, t, h)
@@ -71,6 +76,83 @@ def held_altitude(t: np.ndarray, p_hpa: np.ndarray, at: np.ndarray, windows,
     return (held - held[0] if n else held), raw
 
 
+def altitude_noise(t: np.ndarray, p_hpa: np.ndarray, *, first_n: int = 64) -> tuple[float, float]:
+    """Decision W621: ``(sigma, dt)``: the white noise (m, 1 SD) of one sample of a barometer's altitude and its
+    median sample interval (s), from its first ``first_n`` finite samples: each inner sample's difference from the
+    line through its two neighbours (a climb at a steady rate, the weather's drift, cancel), scaled to one sample's
+    noise, its median absolute value as a robust SD (1.4826 MAD: a ride's start or a door's transient is a few
+    outliers). ``(0, 0)`` with under 8 such samples or times that do not increase."""
+    t, p = np.asarray(t, dtype=float).ravel(), np.asarray(p_hpa, dtype=float).ravel()
+    ok = np.isfinite(t) & np.isfinite(p)
+    t, h = t[ok][:first_n], altitude_m(p[ok][:first_n])
+    dt = np.diff(t)
+    if len(t) < 10 or not np.all(dt > 0):
+        return 0.0, 0.0
+    a = dt[:-1] / (dt[:-1] + dt[1:])  # the middle sample's place between its neighbours
+    r = (h[1:-1] - (1.0 - a) * h[:-2] - a * h[2:]) / np.sqrt(1.0 + a * a + (1.0 - a) ** 2)
+    return float(1.4826 * np.median(np.abs(r))), float(np.median(dt))
+
+
+def noise_window_s(t: np.ndarray, p_hpa: np.ndarray, smooth_s: float = ALTITUDE_SMOOTH_S, *, sds: float = 3.0,
+                   first_n: int = 64) -> float:
+    """Decision W621: the window (s) W89's centred mean averages a barometer over: ``smooth_s``, or longer where the
+    barometer's noise density ``n = sigma sqrt(dt)`` (m s^0.5, :func:`altitude_noise`) would leave W91's rise (the
+    change of that mean over :data:`STAIRS_RATE_WINDOW_S`, D) a noise SD over 1 / ``sds`` of its threshold
+    ``STAIRS_RATE_MPS * D``. A window W's mean has noise SD ``n / sqrt(W)``; two of them D apart differ by SD
+    ``n sqrt(2 / W)`` (W <= D, disjoint) or ``n sqrt(2 D) / W`` (W >= D, overlapping): the least W meeting the bound.
+    Its seconds follow the noise, not the sample rate: the simulator's 50 Hz barometer (W89's BMP280, n ~0.03) keeps
+    1 s; a phone's 1 Hz samples of ~0.27 m (n ~0.27) are averaged over ~8 s - one sample a second read as the altitude
+    made every second level step a stair (trial s53t2)."""
+    sigma, dt = altitude_noise(t, p_hpa, first_n=first_n)
+    d = STAIRS_RATE_WINDOW_S
+    x = sds * sigma * np.sqrt(dt) / (STAIRS_RATE_MPS * d)  # the rise's SD bound is STAIRS_RATE_MPS * D / sds
+    need = 2.0 * x * x if 2.0 * x * x <= d else x * np.sqrt(2.0 * d)
+    return float(max(smooth_s, need))
+
+
+def noise_smoothing(t: np.ndarray, p_hpa: np.ndarray, smooth_s: float = ALTITUDE_SMOOTH_S, *,
+                    first_n: int = 64) -> tuple[float, float | None]:
+    """Decision W621: ``(window_s, mean_s)``: :func:`noise_window_s`'s window and, where it is longer than
+    ``smooth_s``, the short mean of :func:`median_altitude` (over W91's rise window, :data:`STAIRS_RATE_WINDOW_S`);
+    else ``(smooth_s, None)``: W89's plain mean, as before W621."""
+    w = noise_window_s(t, p_hpa, smooth_s, first_n=first_n)
+    return (w, STAIRS_RATE_WINDOW_S) if w > smooth_s else (float(smooth_s), None)
+
+
+def _altitude_series(t: np.ndarray, p_hpa: np.ndarray, smoothing: tuple[float, float | None]
+                     ) -> tuple[np.ndarray, np.ndarray]:
+    """``(t, h)`` before interpolation for a ``smoothing`` of :func:`noise_smoothing`: W89's mean, or W621's running
+    median over ``pi / 2`` times the window (the median's Gaussian efficiency is 2 / pi) and the short mean."""
+    w, mean_s = smoothing
+    return _smoothed_altitude(t, p_hpa, w) if mean_s is None else median_altitude(t, p_hpa, 0.5 * np.pi * w, mean_s)
+
+
+def median_altitude(t: np.ndarray, p_hpa: np.ndarray, window_s: float, mean_s: float,
+                    chunk: int = 2048) -> tuple[np.ndarray, np.ndarray]:
+    """Decision W621: ``(t, h)``: the finite samples' times and the altitude's running median over a centred
+    ``window_s`` (fewer samples at the ends), then its mean over a centred ``mean_s``. A long window's mean would
+    spread a lift ride's rise (5 m in a few seconds) over the steps walked ``window_s / 2`` either side of it, and a
+    flight's ends; a median keeps a monotone noiseless signal as it is (its window's middle sample) and averages
+    a level's noise (its Gaussian efficiency 2 / pi: over ``pi / 2`` times a mean's window, the mean's noise); on
+    a ramp it holds about one sample's noise, which the short mean takes down."""
+    t, p = np.asarray(t, dtype=float).ravel(), np.asarray(p_hpa, dtype=float).ravel()
+    ok = np.isfinite(t) & np.isfinite(p)
+    t, h = t[ok], altitude_m(p[ok])
+    if not len(t):
+        return t, h
+    lo = np.searchsorted(t, t - 0.5 * window_s, side="left")
+    hi = np.searchsorted(t, t + 0.5 * window_s, side="right")
+    med = np.empty(len(t))
+    for a in range(0, len(t), chunk):  # rows of a padded (samples x window) table, a chunk at a time
+        b = min(a + chunk, len(t))
+        idx = lo[a:b, None] + np.arange(int((hi[a:b] - lo[a:b]).max()))[None, :]
+        med[a:b] = np.nanmedian(np.where(idx < hi[a:b, None], h[np.minimum(idx, len(t) - 1)], np.nan), axis=1)
+    cs = np.concatenate([[0.0], np.cumsum(med)])
+    lo = np.searchsorted(t, t - 0.5 * mean_s, side="left")
+    hi = np.searchsorted(t, t + 0.5 * mean_s, side="right")
+    return t, (cs[hi] - cs[lo]) / (hi - lo)
+
+
 def _smoothed_altitude(t: np.ndarray, p_hpa: np.ndarray, smooth_s: float) -> tuple[np.ndarray, np.ndarray]:
     """``(t, h)``: the finite samples' times and the altitude (m, :func:`altitude_m`) of their pressure averaged
     over a centred ``smooth_s`` window (fewer samples at the ends; W89's smoothing)."""
@@ -94,10 +176,16 @@ class LiveAltitude:
     what no later ``at(ts >= before)`` reads. Equal to the offline altitude wherever the samples up to ``ts +
     smooth_s`` were pushed before ``at(ts)`` (the window's right half; else the window is shorter: causal).
     :attr:`implausible` is B188's finding (:func:`implausible_pressure` on the held samples) once one was seen, after
-    which ``at`` returns None (the offline track reads no part of such a barometer)."""
+    which ``at`` returns None (the offline track reads no part of such a barometer). ``noise_window`` (decision
+    W621, as :func:`relative_altitude`'s): the window is :func:`noise_window_s`'s, read on the first samples pushed
+    (:attr:`window_s`; the offline one once they number ``first_n``, which the origin's altitude waits for)."""
 
-    def __init__(self, smooth_s: float = ALTITUDE_SMOOTH_S):
+    def __init__(self, smooth_s: float = ALTITUDE_SMOOTH_S, *, noise_window: bool = True, first_n: int = 64):
         self.smooth_s = float(smooth_s)
+        self.noise_window, self.first_n = bool(noise_window), int(first_n)
+        self._head_t: list[float] = []  # W621: the first first_n finite samples, for the noise window
+        self._head_p: list[float] = []
+        self._smoothing: tuple[float, float | None] | None = None  # W621's, once read on first_n samples
         self._t = np.zeros(0)
         self._p = np.zeros(0)
         self._origin_s: float | None = None
@@ -111,6 +199,13 @@ class LiveAltitude:
         t, p = np.asarray(t, dtype=float).ravel(), np.asarray(p_hpa, dtype=float).ravel()
         self._t = np.concatenate([self._t, t])
         self._p = np.concatenate([self._p, p])
+        if self._smoothing is None and self.noise_window:
+            ok = np.isfinite(t) & np.isfinite(p)
+            room = self.first_n - len(self._head_t)
+            self._head_t += t[ok][:room].tolist()
+            self._head_p += p[ok][:room].tolist()
+            if len(self._head_t) >= self.first_n:
+                self._smoothing = self._noise_smoothing()
         if self.implausible is None:
             if not self._watch.push(t, p):
                 found = implausible_pressure(self._t, self._p, self.smooth_s)
@@ -118,6 +213,22 @@ class LiveAltitude:
                     self.implausible = found
                     return found
         return None
+
+    def _noise_smoothing(self) -> tuple[float, float | None]:
+        return noise_smoothing(np.array(self._head_t), np.array(self._head_p), self.smooth_s, first_n=self.first_n)
+
+    @property
+    def smoothing(self) -> tuple[float, float | None]:
+        """Decision W621: :func:`noise_smoothing`'s ``(window_s, mean_s)`` (W89's ``(smooth_s, None)`` without
+        ``noise_window``; before ``first_n`` samples, read on those pushed so far)."""
+        if not self.noise_window:
+            return self.smooth_s, None
+        return self._smoothing if self._smoothing is not None else self._noise_smoothing()
+
+    @property
+    def window_s(self) -> float:
+        """Decision W621: the window (s) the altitude is averaged over (:attr:`smoothing`'s)."""
+        return self.smoothing[0]
 
     @property
     def times(self) -> np.ndarray:
@@ -129,19 +240,27 @@ class LiveAltitude:
         if self._origin_s is None:
             self._origin_s = float(t0)
 
-    def _h(self, at: np.ndarray) -> np.ndarray | None:
-        t, h = _smoothed_altitude(self._t, self._p, self.smooth_s)
+    def _h(self, at: np.ndarray, upto: float | None = None) -> np.ndarray | None:
+        k = self._t.size if upto is None else int(np.searchsorted(self._t, upto, side="right"))
+        t, h = _altitude_series(self._t[:k], self._p[:k], self.smoothing)
         return np.interp(at, t, h) if len(t) else None
 
-    def at(self, ts: float) -> float | None:
-        """The altitude (m) at ``ts`` relative to the origin; None without a usable sample or origin."""
+    def at(self, ts: float, *, upto: float | None = None) -> float | None:
+        """The altitude (m) at ``ts`` relative to the origin; None without a usable sample or origin. ``upto``
+        (decision W622): read on the samples held up to that time only (a rise's earlier end on a window cut on
+        its right as its later end's: both lag alike)."""
         if self.implausible is not None or self._origin_s is None:
             return None
-        h = self._h(np.array([self._origin_s, float(ts)]))
+        h = self._h(np.array([self._origin_s]))
         if h is None:
             return None
+        hs = self._h(np.array([float(ts)]), upto)
+        if hs is None:
+            return None
+        h = np.array([h[0], hs[0]])
         ref = self._ref if self._ref is not None else float(h[0])
-        if self._ref is None and self._t[-1] >= self._origin_s + self.smooth_s:
+        final = self._smoothing is not None or not self.noise_window  # W621: the window is the offline one
+        if self._ref is None and final and self._t[-1] >= self._origin_s + self.window_s:
             self._ref = ref  # its window is complete: the offline value, kept when older samples are trimmed
         return float(h[1] - ref)
 
@@ -149,7 +268,7 @@ class LiveAltitude:
         """Drop the samples no ``at(ts)`` with ``ts >= before`` reads (kept while the origin's altitude is open)."""
         if self._ref is None or not self._t.size:
             return
-        drop = int(np.searchsorted(self._t, float(before) - 2.0 * self.smooth_s))
+        drop = int(np.searchsorted(self._t, float(before) - 2.0 * self.window_s))
         drop = min(drop, self._t.size - 2)  # the last two samples stay: interpolation past the end holds
         if drop > 0:
             self._watch.trim(int(np.count_nonzero(np.isfinite(self._t[:drop]) & np.isfinite(self._p[:drop]))))
@@ -163,7 +282,7 @@ class LiveAltitude:
             return None
         from pdrlearn.kernels.pause_ride import pause_ride_dz
 
-        return pause_ride_dz(self._t, self._p, float(a), float(b))[0]
+        return pause_ride_dz(self._t, self._p, float(a), float(b), smoothing=self.smoothing)[0]
 
     def size(self) -> int:
         return int(self._t.size + self._p.size)

@@ -30,14 +30,16 @@ RIDE_GRID_S = 1.0
 PAUSE_DRIFT_WARN_M = 1.0
 
 
-def pause_ride_dz(t: np.ndarray, p_hpa: np.ndarray, a: float, b: float) -> tuple[float, float]:
+def pause_ride_dz(t: np.ndarray, p_hpa: np.ndarray, a: float, b: float, *,
+                  smoothing: tuple[float, float | None] | None = None) -> tuple[float, float]:
     """Decision W231: ``(ride, whole)``: the barometric altitude change (m) from ``a`` to ``b`` (s) that is a ride
     and the whole change (W158's ``pause_dz_m``). A pause up to :data:`RIDE_WINDOW_S` long is all ride. In a longer
     one, every span of :data:`RIDE_WINDOW_S` (on a :data:`RIDE_GRID_S` grid) whose altitude changes by
     :data:`RIDE_MIN_M` or more is marked, and the ride is the change over the marked grid intervals (their union:
-    a long lift ride is several windows); the rest is drift."""
+    a long lift ride is several windows); the rest is drift. ``smoothing``: the altitude's (decision W621's window
+    and mean: the live tracker's, whose held samples are not the stream's first), else :func:`relative_altitude`'s."""
     grid = np.append(np.arange(a, b, RIDE_GRID_S), b)
-    h = relative_altitude(t, p_hpa, grid)
+    h = relative_altitude(t, p_hpa, grid, smoothing=smoothing)
     whole = float(h[-1] - h[0])
     if b - a <= RIDE_WINDOW_S or len(grid) < 3:
         return whole, whole

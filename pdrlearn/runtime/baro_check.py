@@ -48,7 +48,7 @@ class BaroCheck:
     def _read(self, final: bool) -> None:
         t = self._alt._t
         last = float(t[-1]) if t.size else -np.inf
-        while self._pending and (final or self._pending[0] + self._alt.smooth_s <= last):
+        while self._pending and (final or self._pending[0] + self._alt.window_s <= last):
             ts = self._pending.pop(0)
             z = self._alt.at(ts)
             self._at.append(ts)

@@ -74,10 +74,10 @@ class FusedRows:
     def _ready(self, ts: float, latest: float) -> bool:
         t = self._alt.times
         last = float(t[-1]) if t.size else -math.inf
-        if last >= self.end_s or ts + self._alt.smooth_s <= latest - self.wait_s:
+        if last >= self.end_s or ts + self._alt.window_s <= latest - self.wait_s:
             return True
         j = int(np.searchsorted(t, ts, side="left"))  # W89: the first sample at or after ts, and its window
-        return j < t.size and last >= float(t[j]) + 0.5 * self._alt.smooth_s
+        return j < t.size and last >= float(t[j]) + 0.5 * self._alt.window_s
 
     def rows(self, steps: list, latest: float, final: bool = False) -> list:
         """Hold ``steps`` (emitted rows, in order) behind the ones held; release those whose barometric altitude is

@@ -390,7 +390,10 @@ class WaistStream(OwnGuard, FixInput):
         if self._alt is None:
             return None
         mid, half = 0.5 * (row["t"] + row["end"]), 0.5 * STAIRS_RATE_WINDOW_S
-        a, b = self._alt.at(mid - half), self._alt.at(mid + half)
+        last = float(self._alt.times[-1]) if self._alt.times.size else mid + half  # (none: at() is None)
+        # decision W622: both ends' windows (W621's, long at a low rate) cut alike on their right by the samples not
+        # yet pushed, so the rise lags a flight alike at both ends instead of shrinking it
+        a, b = self._alt.at(mid - half, upto=last - 2.0 * half), self._alt.at(mid + half)
         return None if a is None or b is None else float(b - a)
 
     def _unit_check(self, t: np.ndarray) -> None:

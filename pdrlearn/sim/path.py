@@ -235,7 +235,9 @@ class Lift:
 @dataclass(frozen=True)
 class Escalator:
     """Stand on an escalator that rises ``rise_m`` metres (> 0 up, < 0 down) on a 30 deg incline straight ahead:
-    horizontal and vertical travel without a step (decision S45, :mod:`pdrlearn.sim.ride`)."""
+    horizontal and vertical travel without a step (decision S45, :mod:`pdrlearn.sim.ride`). Decision S129: the
+    incline is 30 deg; the level landings' 0.8 m runs and the 1 m transitions add horizontal travel, so a 5 m rise
+    travels 10.8 m ahead (24.9 deg overall, :func:`pdrlearn.sim.ride.escalator_travel_m`)."""
 
     rise_m: float
 

@@ -100,6 +100,14 @@ def check_rise(kind: str, rise_m: float, what: str) -> None:
                         + (f", at least {low:g}" if low else "") + f" (+H up, -H down), not {rise_m!r}")
 
 
+def escalator_travel_m(rise_m: float) -> float:
+    """Decision S129: the horizontal travel (m) of an escalator ride rising ``rise_m`` (either sign): the
+    :data:`ESCALATOR_INCLINE_DEG` incline plus the two landings' :data:`ESCALATOR_FLAT_M` runs and the
+    :data:`ESCALATOR_RADIUS_M` transitions (5 m: 10.8 m, 24.9 deg overall; ``rise / tan 30 deg`` alone is 8.7 m)."""
+    th, r = math.radians(ESCALATOR_INCLINE_DEG), ESCALATOR_RADIUS_M
+    return 2 * ESCALATOR_FLAT_M + 2 * r * math.sin(th) + _incline_m(abs(rise_m)) * math.cos(th)
+
+
 def _incline_m(rise: float) -> float:
     th, r = math.radians(ESCALATOR_INCLINE_DEG), ESCALATOR_RADIUS_M
     return (rise - 2.0 * r * (1.0 - math.cos(th))) / math.sin(th)

@@ -19,7 +19,7 @@
 | ``sit:S`` | sit down on a chair, stay seated S seconds, stand up (no steps; decision S36) |
 | ``lie:S[:TURNS_PER_H]`` | sit on a bed edge, lie S s turning over TURNS_PER_H an hour (2), get up (no steps; S58) |
 | ``lift:H`` | stand in a lift riding H metres (+H up, -H down; no steps; decision S45) |
-| ``escalator:H`` | stand on a 30 deg escalator rising H metres straight ahead (+H up, -H down; 1-60; S45) |
+| ``escalator:H`` | stand on an escalator rising H m (+H up, -H down; 1-60): 30 deg incline, level landings (S129) |
 | ``vehicle:S[:RMS[:RISE]]`` | ride a bus or train for S s (20-3600), vibrating RMS (S71), climbing RISE m (S75) |
 | ``cycle:S`` | get on a bicycle, pedal seated S s (20-3600; the foot round the crank), get off (no steps; S99) |
 | ``trolley:M[:GAIT]`` | walk M metres straight pushing a trolley (pelvic rotation halved, S46; no walking aid, W456) |
