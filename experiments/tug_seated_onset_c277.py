@@ -61,7 +61,7 @@ def run(users: range, tmp: Path, onset: float) -> None:
                 assert main(["simulate", "--route", ROUTE, *COMMON, *opts, "--user-seed", str(u),
                              "--out", str(d)]) == 0
             true_s, rise, seated = truth(d)
-            (t0, r0), (t1, r1) = track(d, None), track(d, onset)
+            (t0, _), (t1, r1) = track(d, None), track(d, onset)
             e0 = None if t0 is None else t0 - true_s
             e1 = None if t1 is None else t1 - true_s
             if e0 is not None:
