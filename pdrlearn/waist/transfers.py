@@ -230,6 +230,38 @@ def with_slow_edges(imu: WaistIMU, tilt: np.ndarray, rows: pd.DataFrame, contact
     return _with_added(rows, added)
 
 
+def seated_side_bounds(t: np.ndarray, tilt: np.ndarray, rows: pd.DataFrame, fs: float, *,
+                       onset_dps: float = 1.0, max_s: float = 1.0) -> pd.DataFrame:
+    """Decision C277 (a pure kernel): ``rows`` (transfers.csv's) with each chair transfer's seated side dated where
+    the trunk starts or stops moving: a sit-to-stand's ``start_s`` moved back over the samples before it where the
+    tilt's rate (W182's :func:`tilt_rate_dps`) still flexes toward the peak at ``onset_dps`` (deg/s) or more, a
+    stand-to-sit's ``end_s`` forward over those after it where the trunk still straightens as fast; by at most
+    ``max_s`` (s: a seated trunk's slow sway does not carry it further) and never past the row before / after.
+    W182's :data:`MOVING_DPS` dates a slow (4-6 s) transfer's seated end 0.4-0.6 s inside the movement (a smooth
+    onset passes 10 deg/s late): a TUG's timer starts at the first movement to rise and stops when seated
+    (Podsiadlo & Richardson 1991, as recalled). ``duration_s`` follows; the kind, peak and height stay."""
+    if not len(rows):
+        return rows
+    rate = tilt_rate_dps(t, tilt, fs)
+    out = rows.copy()
+    starts, ends = out["start_s"].to_numpy(float).copy(), out["end_s"].to_numpy(float).copy()
+    for k, kind in enumerate(out["kind"]):
+        if kind == SIT_TO_STAND:
+            floor = max(ends[k - 1] if k else -np.inf, starts[k] - max_s)
+            a = int(np.clip(np.searchsorted(t, starts[k]), 0, len(t) - 1))
+            while a > 0 and t[a - 1] >= floor and rate[a - 1] >= onset_dps:
+                a -= 1
+            starts[k] = min(starts[k], float(t[a]))
+        elif kind == STAND_TO_SIT:
+            ceil = min(starts[k + 1] if k + 1 < len(out) else np.inf, ends[k] + max_s)
+            b = int(np.clip(np.searchsorted(t, ends[k]), 0, len(t) - 1))
+            while b < len(t) - 1 and t[b + 1] <= ceil and rate[b + 1] <= -onset_dps:
+                b += 1
+            ends[k] = max(ends[k], float(t[b]))
+    out["start_s"], out["end_s"], out["duration_s"] = starts, ends, ends - starts
+    return out
+
+
 def not_upright_s(t: np.ndarray, tilt: np.ndarray, t0: float, t1: float) -> float:
     """Decision W555 (a pure kernel): the time (s) from ``t0`` to ``t1`` (0 when ``t1 <= t0``) less that of the
     samples (times ``t``, s) where the trunk's ``tilt`` (deg from the track's upright) is under W222's
@@ -363,14 +395,24 @@ def still_upright_transfers(imu: WaistIMU) -> tuple[pd.DataFrame, np.ndarray | N
     return transfers_from_tilt(imu, _tilt_deg(imu, up)), up
 
 
-def chair_transfers_upright(imu: WaistIMU, steps: pd.DataFrame, *, slow_pairs: bool = True
-                            ) -> tuple[pd.DataFrame, np.ndarray | None, str]:
+def chair_transfers_upright(imu: WaistIMU, steps: pd.DataFrame, *, slow_pairs: bool = True,
+                            seated_onset_dps: float | None = 1.0) -> tuple[pd.DataFrame, np.ndarray | None, str]:
     """Decisions W182, W277: ``(rows, upright, source)`` of a lower-back track. ``source`` ``"walking"``: W102's
     walking upright of ``steps``' contacts (``event_s``, ``has_next``), when they hold a walking sequence
     (:func:`~pdrlearn.waist.upright.walking_is_reliable`); ``"still"``: else the still standing upright
     (:func:`still_upright_transfers`); ``"none"``: neither (no rows, upright None); ``"walking"`` with no rows and
     upright None also when the AHRS gave no up direction or there is no contact at all to go by. ``slow_pairs``
-    (decision W583, adopted; False: without it): and :func:`with_slow_pairs`' seated periods."""
+    (decision W583, adopted; False: without it): and :func:`with_slow_pairs`' seated periods.
+    ``seated_onset_dps`` (decision C277; None: without it): each transfer's seated side dated by
+    :func:`seated_side_bounds` with that ``onset_dps``."""
+    rows, up, source = _chair_transfers_upright(imu, steps, slow_pairs=slow_pairs)
+    if seated_onset_dps is not None and up is not None and len(rows):
+        rows = seated_side_bounds(imu.t, _tilt_deg(imu, up), rows, imu.fs, onset_dps=seated_onset_dps)
+    return rows, up, source
+
+
+def _chair_transfers_upright(imu: WaistIMU, steps: pd.DataFrame, *, slow_pairs: bool
+                             ) -> tuple[pd.DataFrame, np.ndarray | None, str]:
     if imu.up_body is None:
         return _empty(), None, "walking"
     ev = steps["event_s"].to_numpy(float) if len(steps) and "event_s" in steps else np.zeros(0)
