@@ -1955,10 +1955,10 @@ class Tracker(OwnGuard, FixInput):
         taken while strides are held (L611's verdict pending) restarts from the first held one's. Review R1 F3: and
         L621's live foot rest reading (its readings and still-sample count), which measuring the stride adds to.
         Decision E356: and E354's held waist gap (its seconds and the mean rate before it), which measuring a bridged
-        stride holds and the stride after it takes."""
+        stride holds and the stride after it takes; decision E365: and the last measured stride's mean rate."""
         stop, rest, cycle = self._stop_bias, self._foot_rest, self._cycle
         return (self._prev_end, None if stop is None else (stop.rps, stop.n_stops), (list(rest.readings), rest.n_still),
-                (cycle.gap_s, cycle.before))  # decision E356: E354's waist gap held for the stride after it
+                (cycle.gap_s, cycle.before, cycle.last))  # decision E356: E354's waist gap held (E365: the last rate)
 
     @property
     def _restart_from(self) -> tuple:
@@ -2391,7 +2391,7 @@ class Tracker(OwnGuard, FixInput):
                     lo = min(t0, t0 if prev is None else prev)
                     bridge = waist_bridge_yaw(self._stream, lo, t1, gap_line=not self.bridge_cycle)
                     if self.bridge_cycle:  # decision E354: the waist gap's turn waits for the stride after it
-                        self._cycle.hold(self._stream, lo, t1, self._stride_before(before, prev))
+                        self._cycle.hold(self._stream, lo, t1)
                 self._prev_end = t1  # no L31 pivot across it either: the foot's turn inside the gap is unknown
                 if self._compassed():  # decision E361: the row's turn in the compass's heading
                     self._compass.row(bridge)
@@ -2434,7 +2434,7 @@ class Tracker(OwnGuard, FixInput):
             if self._bridged():
                 dyaw += waist_bridge_yaw(self._stream, prev, t0, gap_line=not self.bridge_cycle)
                 if self.bridge_cycle:  # decision E354 (taken below by this stride)
-                    self._cycle.hold(self._stream, prev, t0, self._stride_before(before, prev))
+                    self._cycle.hold(self._stream, prev, t0)
             elif not headed_by_foot(lev, self.heading_source):  # L61's waist look-back is measured, kept
                 dyaw += stride_gap_yaw(lev, self.heading_source, self._stream, prev, t0, foot=False,
                                        waist=self.waist_gap_yaw)
@@ -2461,6 +2461,8 @@ class Tracker(OwnGuard, FixInput):
         turn = _sideways.own_turn(lev, self.heading_source, turn)  # decision L699: the foot's own turn, as offline's
         if self.bridge_cycle:  # decision E354: a held waist gap's turn (0 without one)
             dyaw += self._cycle.take(self._stream, t0, t1)
+            if self._bridged():  # decision E365: the rate before a next gap, recorded as the stride is measured
+                self._cycle.note(self._stream, t0, t1)
         if self._compassed():  # decision E361 (track --streaming's call)
             if headed_by_foot(lev, self.heading_source):
                 self._compass.row(dyaw)
@@ -2478,12 +2480,6 @@ class Tracker(OwnGuard, FixInput):
         if self._toe_off is not None and (t0, t1) not in self._toe_offs:  # decision E326 (once per stride)
             self._toe_offs[(t0, t1)] = self._stride_toe_off(t0, t1, event_s)
         return ("stride", t0, t1, row, lev, classes, proba, disp, dyaw, turn, event_s, self._clipped(t0, t1))
-
-    @staticmethod
-    def _stride_before(before: list, prev: float | None) -> tuple[float, float] | None:
-        """Decision E354: the stride before a bridged span, (start, end) s from the contacts kept (steps decision
-        87), or None."""
-        return (before[-1][0], prev) if before and prev is not None and prev > before[-1][0] else None
 
     def _apply(self, rec: tuple, pedal: bool = False) -> Step | None:
         """Decision E280: place a measured stride (:meth:`_measure`): the rules, heading, position and the Step. A
