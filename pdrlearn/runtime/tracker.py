@@ -55,7 +55,7 @@ from pdrlearn.kernels.frames import DIRECTIONS
 from pdrlearn.kernels.gait_range import running_stride, streamed_slow_line
 from pdrlearn.kernels.gait_values import cadence_speed
 from pdrlearn.kernels.gap_compass import GapCompass
-from pdrlearn.kernels.gaps import MIN_GAP_S, drop_stride_disp, streamed_drops_line
+from pdrlearn.kernels.gaps import MIN_GAP_S, drop_stride_disp, streamed_drops_line, waist_gap_turn
 from pdrlearn.kernels.order import first_out_of_order, reorder_hint, repeated, repeats_dropped_line
 from pdrlearn.kernels.stride import (
     DEFAULT_DOWN_MODE,
@@ -374,17 +374,26 @@ def calibration_record(displacement: dict) -> dict | None:
 #: decision L91's clause of a long foot gap's line (the waist heads the strides), and E299's when the waist gyroscope
 #: has its own gap there (a later wGyroscope gap rewrites the first into the second: review R3 F5)
 _L91_TURN = "turns with the waist gyroscope (L91)"
-_E299_TURN = ("turns by a straight line across the waist gyroscope's own gap, a turn inside it not measured: every "
-              "later stride's heading may be off by that turn (decision E299)")
 
 
-def heading_gap_line(a: float, b: float) -> str:
+def _e299_turn(cycle: bool = True) -> str:
+    """Decision E299 (E365, review s53r1: one wording with ``track --streaming``'s,
+    :func:`~pdrlearn.kernels.gaps.waist_gap_turn`): what a foot gap's line says of the turn when the waist gyroscope
+    was silent too (``cycle``: E354's ``bridge_cycle``)."""
+    return (f"turns with the waist gyroscope (L91), across its own gap {waist_gap_turn(cycle)}: every later stride's "
+            "heading may be off by that turn")
+
+
+def heading_gap_line(a: float, b: float, cycle: bool = False) -> str:
     """Decision E299: the line for a gap of ``a``-``b`` s (over B11's 1 s) in the waist gyroscope that heads the
-    strides: the turn inside it is not measured."""
+    strides: the turn inside it is not measured. ``cycle`` (decision E365): the gap lies inside a foot gap that E354's
+    line bridges (:func:`~pdrlearn.kernels.gaps.waist_gap_turn`)."""
+    how = ("across it " + waist_gap_turn(True) if cycle else
+           "carried across it on a straight line between its samples around it, so a turn inside the gap is not "
+           "measured")
     return (f"wGyroscope: no samples for {b - a:.2f} s ({a:.2f}-{b:.2f} s) while it heads the strides: the heading "
-            "is carried across it on a straight line between its samples around it, so a turn inside the gap is "
-            "not measured and every later stride's heading may be off by that turn (trial T2: 18-60 deg after "
-            "1.6-4 s gaps in a turn; decision E299)")
+            f"is {how} and every later stride's heading may be off by that turn (trial T2: 18-60 deg after 1.6-4 s "
+            "gaps in a turn; decision E299)")
 
 
 def _no_samples(tv) -> bool:
@@ -1716,7 +1725,8 @@ class Tracker(OwnGuard, FixInput):
                 new.append([a, b, long, [name]])
         for a, b, long, names in new:
             self._gap_marks.append([a, b, long])
-            turn = ((_L91_TURN if not any(x < b and y > a for x, y in self._heading_gaps) else _E299_TURN)
+            turn = ((_L91_TURN if not any(x < b and y > a for x, y in self._heading_gaps)
+                     else _e299_turn(self.bridge_cycle))
                     if self._bridged() else
                     "keeps the heading: the turn inside the gap is unknown, the heading after it is uncertain (L90)"
                     ) if _FOOT_IMU.intersection(names) else "keeps the heading"  # decision L92
@@ -1743,10 +1753,11 @@ class Tracker(OwnGuard, FixInput):
         clause (the foot's gap pushed first, the usual order when the waist's packets lag); else E299's line."""
         for x, y, at in self._l91_lines:
             if x < b and y > a and _L91_TURN in self.warnings[at]:
-                self.warnings[at] = self.warnings[at].replace(_L91_TURN, _E299_TURN)
+                self.warnings[at] = self.warnings[at].replace(_L91_TURN, _e299_turn(self.bridge_cycle))
                 log.warning("bundle %s: %s", self.bundle.path, self.warnings[at])
                 return
-        self._warn(heading_gap_line(a, b))
+        self._warn(heading_gap_line(a, b, self.bridge_cycle and any(  # decision E365: inside E354's bridge
+            long and imu and x < b and y > a for x, y, long, imu in self._foot_gaps)))
 
     def _waist_gap_foot_heads(self, names) -> bool:
         """Decision B231: whether the gap of the streams ``names`` (waist streams only) holds a waist accelerometer /

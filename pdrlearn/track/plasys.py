@@ -2200,7 +2200,9 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     warnings: list[str] = unit_gap_warnings(session, foot_gaps,
                                             "no displacement is counted inside them (a stride across a foot gap "
                                             "moves 0 m, as the runtime, E30)"
-                                            + gap_heading_clause(foot_gaps, "bridged" if bridged else "none"),
+                                            + gap_heading_clause(foot_gaps, "bridged" if bridged else "none",  # E365
+                                                                 long_gaps(session, ("wGyroscope",)).get(
+                                                                     "wGyroscope", []), bridge_cycle),
                                             waist_how)
     warnings += [spin_line(int(spins.sum()))] if spins.any() else []  # decision L742
     if heading == "auto" and not ("waist" in forward and "waist_gyr" in available):  # as offline M2/M3 say
