@@ -29,8 +29,7 @@ def waist_gap_turn(cycle: bool = True) -> str:
     follows "across its own gap": ``cycle`` (``bridge_cycle``, the default) the strides either side's mean rates,
     re-anchored to the waist compass; False: E299's straight line between its samples around it."""
     if not cycle:
-        return ("a straight line between its samples around it, so a turn inside the gap is not measured (decision "
-                "E299)")
+        return "a straight line between its samples around it, so a turn inside the gap is not measured (W389)"
     return ("the mean rates of the strides either side (decisions E354, E364), re-anchored to the waist compass where "
             "it reads the Earth's field (E361, E362): a turn on the spot inside the gap is lost")
 

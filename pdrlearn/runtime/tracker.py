@@ -380,15 +380,15 @@ def _e299_turn(cycle: bool = True) -> str:
     """Decision E299 (E365, review s53r1: one wording with ``track --streaming``'s,
     :func:`~pdrlearn.kernels.gaps.waist_gap_turn`): what a foot gap's line says of the turn when the waist gyroscope
     was silent too (``cycle``: E354's ``bridge_cycle``)."""
-    return (f"turns with the waist gyroscope (L91), across its own gap {waist_gap_turn(cycle)}: every later stride's "
-            "heading may be off by that turn")
+    return (f"turns with the waist gyroscope where it recorded, across its own gap by {waist_gap_turn(cycle)}: "
+            "every later stride's heading may be off by that turn (decision E299)")
 
 
 def heading_gap_line(a: float, b: float, cycle: bool = False) -> str:
     """Decision E299: the line for a gap of ``a``-``b`` s (over B11's 1 s) in the waist gyroscope that heads the
     strides: the turn inside it is not measured. ``cycle`` (decision E365): the gap lies inside a foot gap that E354's
     line bridges (:func:`~pdrlearn.kernels.gaps.waist_gap_turn`)."""
-    how = ("across it " + waist_gap_turn(True) if cycle else
+    how = ("carried across it by " + waist_gap_turn(True) if cycle else
            "carried across it on a straight line between its samples around it, so a turn inside the gap is not "
            "measured")
     return (f"wGyroscope: no samples for {b - a:.2f} s ({a:.2f}-{b:.2f} s) while it heads the strides: the heading "

@@ -43,7 +43,7 @@ def gap_heading_clause(foot_gaps: dict[str, list[tuple[float, float]]], how: str
         return ""
     silent = any(a < y and b > x for n in FOOT_IMU for x, y in foot_gaps.get(n, ()) for a, b in waist_gaps)
     if how == "bridged" and silent:
-        return "; the turn inside them is the waist gyroscope's (L91), across its own gap " + waist_gap_turn(cycle)
+        return "; the turn inside them is the waist gyroscope's (L91), across its own gap by " + waist_gap_turn(cycle)
     return {"bridged": "; the turn inside them is the waist gyroscope's (L91)",
             "fused": "; the foot's turn inside them is unknown: the heading of each stretch between them is aligned "
                      "to the waist heading on its own (L90)",
