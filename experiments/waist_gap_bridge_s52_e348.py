@@ -118,7 +118,7 @@ def report(a: int, b: int, *more: int) -> None:
         t, h = truth(sim)
         g0, d = gap_of(u, sim)
         line = [f"u{u} {kind_of(u):8s} gap {g0:6.2f}+{d:.0f}s"]
-        for name in ("before", "after", "offline"):
+        for name in [n for n in ("before", "after", "offline") if n in JOBS]:  # E364: JOBS=before,after
             e, tr = across(OUT / f"gap_u{u}_{name}" / "steps.csv", t, h)
             errs.setdefault((kind_of(u), name), []).append(e)
             line.append(f"{name} {e:+7.2f}")

@@ -2,6 +2,7 @@
 
     python experiments/waist_gap_compass_s53_e361.py real [DIR ...]    # E361's arms: before / after
     ARMS=before,e361,e362 python experiments/waist_gap_compass_s53_e361.py real   # E362: the Earth's-field gate too
+    ARMS=before,e364,e362,e364c python experiments/waist_gap_compass_s53_e361.py real   # E364 (line alone, compass)
 
 The real lower-back recordings (datasets/external/mobgap_*, /work/shared/data/mobgap_*; the same recording once)
 have no foot unit, so ``track --streaming`` cannot run on them: the streamed chain is driven here by the kernels the
@@ -31,6 +32,10 @@ DIRS = [ROOT / "datasets" / "external", Path("/work/main/datasets/external"), Pa
 NAMES = ("wAccelerometer", "wGyroscope", "wMagneticField")
 #: the arms: E354's line ("before"), E361's compass without E362's field gate ("after" / "e361"), with it ("e362")
 ARMS = {"before": None, "after": {"field_ut": None}, "e361": {"field_ut": None}, "e362": {}}
+#: decision E364 (session 53, FB): these arms run E354's line with the rate after limited to the rate before's size
+#: (``CycleGapLine(limit_after=True)``, E364's default); the others run E354's line as it was
+LIMITED = {"e364": None, "e364c": {}}
+ARMS.update(LIMITED)
 
 
 def load(rec: Path) -> dict:
@@ -64,16 +69,18 @@ def chains(rec: Path) -> list[list[tuple[float, float]]]:
     return [r for r in out if len(r) >= 5]
 
 
-def heading_chain(stream, strides, compass: dict | None) -> list[float]:
+def heading_chain(stream, strides, compass: dict | None, limit_after: bool = False) -> list[float]:
     """The streamed heading after each stride: the waist's turn from the previous stride's end (a waist gap inside it
-    counting 0), E354's line across a gap (held at the gap, taken by the stride after) and, with ``compass``,
-    E361's turn (``compass``: :class:`GapCompass`'s keywords; None: no compass)."""
-    line, anchor, h, out, prev = CycleGapLine(), GapCompass(**(compass or {})), 0.0, [], None
-    for k, (a, b) in enumerate(strides):
+    counting 0), E354's line across a gap (held at the gap, taken by the stride after; ``limit_after``: E364's) and,
+    with ``compass``, E361's turn (``compass``: :class:`GapCompass`'s keywords; None: no compass)."""
+    line = CycleGapLine(limit_after=limit_after)
+    anchor, h, out, prev = GapCompass(**(compass or {})), 0.0, [], None
+    for a, b in strides:
         lo = a if prev is None else prev
         if prev is not None and waist_gap_s(stream, prev, a) > 0:
-            line.hold(stream, prev, a, strides[k - 1])
+            line.hold(stream, prev, a)  # decision E365: the rate before is the last stride noted
         dyaw = waist_bridge_yaw(stream, lo, b, gap_line=False) + line.take(stream, a, b)
+        line.note(stream, a, b)
         if compass is not None:
             dyaw += anchor.stride(stream, a, b, dyaw, line.spread)
         h += dyaw
@@ -99,7 +106,7 @@ def real(dirs: list[Path]) -> None:
                     ref = heading_chain(full.__getitem__, run, None)
                     true = ref[j + 2] - ref[j - 1]
                     for name in arms:
-                        h = heading_chain(gap.__getitem__, kept, ARMS[name])
+                        h = heading_chain(gap.__getitem__, kept, ARMS[name], name in LIMITED)
                         e = math.degrees(math.remainder((h[j] - h[j - 1]) - true, 2 * math.pi))
                         errs[name].append(abs(e))
             if not errs["before"]:

@@ -57,8 +57,9 @@ def _track(stream, compass: bool | dict) -> list[tuple[float, float, float]]:
     line, anchor, h, out = CycleGapLine(), GapCompass(**(compass if isinstance(compass, dict) else {})), 0.0, []
     for i, (a, b) in enumerate(strides):
         if a == GAP[1]:
-            line.hold(stream, strides[i - 1][1], a, strides[i - 1])
+            line.hold(stream, strides[i - 1][1], a)
         dyaw = stride_mean_rate(stream, a, b) * (b - a) + line.take(stream, a, b)
+        line.note(stream, a, b)  # decision E365: the rate before a next gap
         if compass:
             dyaw += anchor.stride(stream, a, b, dyaw, line.spread)
         h += dyaw

@@ -23,6 +23,17 @@ STREAMED_DROPS = ("%s: %s have %s interval(s) of dropped samples of 1 s or less 
                   "counts as one sample interval, E36); if they are many, " + DROPS_CAUSE)
 
 
+def waist_gap_turn(cycle: bool = True) -> str:
+    """Decisions E354 / E361 / E364 / E365 (review s53r1 F4): how the streamed trackers (the live ``Tracker``, ``track
+    --streaming``) turn across the waist gyroscope's own gap inside L91's bridge (every unit silent), a clause that
+    follows "across its own gap": ``cycle`` (``bridge_cycle``, the default) the strides either side's mean rates,
+    re-anchored to the waist compass; False: E299's straight line between its samples around it."""
+    if not cycle:
+        return "a straight line between its samples around it, so a turn inside the gap is not measured (W389)"
+    return ("the mean rates of the strides either side (decisions E354, E364), re-anchored to the waist compass where "
+            "it reads the Earth's field (E361, E362): a turn on the spot inside the gap is lost")
+
+
 #: decision W389: a waist gyroscope interval of dropped samples at least this long (s) gets :data:`GAP_TURN`
 #: (W389's measurement of W34's line: 0.3 s intervals moved no heading, 0.5-0.9 s ones up to 25 deg)
 GAP_TURN_S = 0.4

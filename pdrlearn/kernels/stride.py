@@ -681,24 +681,32 @@ def stride_mean_rate(stream: Callable[[str], tuple[np.ndarray, np.ndarray]], s0:
 
 class CycleGapLine:
     """Decision E354: the turn across the waist gyroscope's own gap inside L91's bridge as the straight line between
-    the gait-cycle mean rates either side (:func:`stride_mean_rate` of the last full stride before and of the first
-    stride measured after), ``0.5 * (before + after) * D`` (``D``: :func:`waist_gap_s`). :meth:`hold` at a bridged
-    stride or pause (whose own bridge then counts the gap 0, ``gap_line=False``), :meth:`take` at the next measured
-    stride (its turn gets the gap's). The live ``Tracker`` and ``track --streaming`` share it."""
+    the gait-cycle mean rates either side (:func:`stride_mean_rate` of the last stride measured before and of the
+    first stride measured after), ``0.5 * (before + after) * D`` (``D``: :func:`waist_gap_s`). :meth:`note` at each
+    measured stride (decision E365: its rate recorded as it is placed, never read back from a trimmed buffer),
+    :meth:`hold` at a bridged stride or pause (whose own bridge then counts the gap 0, ``gap_line=False``), :meth:`take`
+    at the next measured stride (its turn gets the gap's). ``limit_after`` (decision E364): the rate after enters the
+    line limited to the size of the rate before (a turn seen only after the gap is not drawn back into it). The live
+    ``Tracker`` and ``track --streaming`` share it."""
 
-    def __init__(self) -> None:
+    def __init__(self, *, limit_after: bool = True) -> None:
+        self.limit_after = bool(limit_after)  # decision E364
         self.gap_s, self.before = 0.0, None  # the gaps held (s), the mean rate before the first of them (rad/s)
+        self.last: float | None = None  # decision E365: the mean rate of the last stride measured (rad/s)
         #: decision E361: after :meth:`take`, the line's spread (rad) when it took a gap (half the difference of the
         #: mean rates either side times the gaps' length), else None
         self.spread: float | None = None
 
-    def hold(self, stream: Callable[[str], tuple[np.ndarray, np.ndarray]], t0: float, t1: float,
-             before: tuple[float, float] | None) -> None:
-        """The bridged span ``[t0, t1]`` (s); ``before``: the stride before it (start, end) s, or None."""
+    def note(self, stream: Callable[[str], tuple[np.ndarray, np.ndarray]], t0: float, t1: float) -> None:
+        """Decision E365: the stride ``[t0, t1]`` (s) is measured: record its mean rate (the rate before a next gap)."""
+        self.last = stride_mean_rate(stream, t0, t1)
+
+    def hold(self, stream: Callable[[str], tuple[np.ndarray, np.ndarray]], t0: float, t1: float) -> None:
+        """The bridged span ``[t0, t1]`` (s); the rate before it: the last :meth:`note`'s (None before any)."""
         d = waist_gap_s(stream, t0, t1)
         if d > 0:
-            if not self.gap_s and before is not None:
-                self.before = stride_mean_rate(stream, *before)
+            if not self.gap_s:
+                self.before = self.last
             self.gap_s += d
 
     def take(self, stream: Callable[[str], tuple[np.ndarray, np.ndarray]], t0: float, t1: float) -> float:
@@ -708,7 +716,9 @@ class CycleGapLine:
             return 0.0
         after = stride_mean_rate(stream, t0, t1)
         before = after if self.before is None else self.before
-        turn = 0.5 * (before + after) * self.gap_s
+        # decision E364: a rate seen only after the gap is measured from its first stride on, not drawn into the gap
+        line_after = min(max(after, -abs(before)), abs(before)) if self.limit_after else after
+        turn = 0.5 * (before + line_after) * self.gap_s
         self.spread = 0.5 * abs(before - after) * self.gap_s  # decision E361
         self.gap_s, self.before = 0.0, None
         return turn

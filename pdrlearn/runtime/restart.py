@@ -43,10 +43,10 @@ def restart_state(tracker) -> dict:
     E272's waist gyroscope bias read at the last stop (``{"rps", "n_stops"}``, None without the waist unit; E281) and
     the last L611 rows judged (``pedal_history``, E280) and L621's live foot rest reading (``foot_rest``: ``{"readings",
     "n_still"}``, review R1 F3) and E338's held end-phase yaw (``cycle_phase``, rad, or None). Decision E356: and
-    E354's held waist gap (``bridge_cycle``: ``{"gap_s", "before"}``), the last strides' contacts (``contacts``), E46's
-    gap row not emitted yet (``gap_row``, ``row_gaps``), the ``altitude`` tracked and E339's fused altitude (``fused``:
-    the barometer held, L154's filter, the rows waiting for the barometer; None for ``"foot"``). Strides held for their
-    L611 verdict (E280) are not in it:
+    E354's held waist gap (``bridge_cycle``: ``{"gap_s", "before", "last"}``, E365: the last stride's rate), the last
+    strides' contacts (``contacts``), E46's gap row not emitted yet (``gap_row``, ``row_gaps``), the ``altitude``
+    tracked and E339's fused altitude (``fused``: the barometer held, L154's filter, the rows waiting for the
+    barometer; None for ``"foot"``). Strides held for their L611 verdict (E280) are not in it:
     ``last_end_s`` and the bias are those before the first held one, which the new tracker measures again. A
     tracker that resamples (``resample=True``, E22) is refused in one line (decision L140): its buffer holds
     resampled samples, and its low-pass filter holds the last raw ones (its delay, 0.84 s from 50 to 20 Hz), which
@@ -79,7 +79,8 @@ def restart_state(tracker) -> dict:
         "foot_rest": {"readings": [float(v) for v in rest[0]], "n_still": int(rest[1])},  # review R1 F3 (L621)
         "cycle_phase": None if phase is None else float(phase),  # decision E338: the held end-phase yaw (rad)
         # decision E356: E354's held waist gap, E46's pending gap row and E339's fused altitude
-        "bridge_cycle": {"gap_s": float(cycle[0]), "before": None if cycle[1] is None else float(cycle[1])},
+        "bridge_cycle": {"gap_s": float(cycle[0]), "before": None if cycle[1] is None else float(cycle[1]),
+                         "last": None if cycle[2] is None else float(cycle[2])},  # decision E365: the last rate
         "gap_row": None if tracker._gap_row is None else [float(v) for v in tracker._gap_row],
         "row_gaps": [[float(a), float(b)] for a, b in tracker._row_gaps],
         # the last strides' (start, contact) (steps decision 87): E354's stride before a bridged span is read from them
@@ -137,8 +138,8 @@ def resume(tracker, state: dict) -> list:
         phase = state.get("cycle_phase")  # decision E338: absent (an older state) or None = no straight stride yet
         phase = None if phase is None else float(phase)
         cycle = state.get("bridge_cycle")  # decision E356: absent (a state saved before E356) = no gap held
-        cycle = (0.0, None) if cycle is None else (float(cycle["gap_s"]),
-                                                    None if cycle["before"] is None else float(cycle["before"]))
+        cycle = (0.0, None, None) if cycle is None else (  # decision E365: "last" absent (before E365) = none
+            float(cycle["gap_s"]), *(None if cycle.get(k) is None else float(cycle[k]) for k in ("before", "last")))
         gap_row = state.get("gap_row")  # decision E356 (E46): absent or None = no gap row pending
         gap_row = None if gap_row is None else [float(gap_row[0]), float(gap_row[1])]
         row_gaps = [(float(a), float(b)) for a, b in state.get("row_gaps") or []]
@@ -179,7 +180,7 @@ def resume(tracker, state: dict) -> list:
     if rest is not None:  # review R1 F3: L621's reading before the first held stride, which is measured again
         tracker._foot_rest.readings, tracker._foot_rest.n_still = rest[0], int(rest[1])
     tracker._loops.history, tracker._loops.seen = history, len(history)  # decision E280
-    tracker._cycle.gap_s, tracker._cycle.before = cycle  # decision E356: E354's gap turn, taken by the next stride
+    tracker._cycle.gap_s, tracker._cycle.before, tracker._cycle.last = cycle  # decisions E356, E365: E354's gap turn
     tracker._gap_row, tracker._row_gaps = gap_row, row_gaps  # decision E356: E46's gap row, emitted before it
     tracker._contacts = contacts  # decision E356: steps decision 87's contacts (E354's stride before a gap)
     _resume_fused(tracker, state, where)  # decision E356: E339's barometer, filter and rows not returned yet

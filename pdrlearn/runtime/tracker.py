@@ -55,7 +55,7 @@ from pdrlearn.kernels.frames import DIRECTIONS
 from pdrlearn.kernels.gait_range import running_stride, streamed_slow_line
 from pdrlearn.kernels.gait_values import cadence_speed
 from pdrlearn.kernels.gap_compass import GapCompass
-from pdrlearn.kernels.gaps import MIN_GAP_S, drop_stride_disp, streamed_drops_line
+from pdrlearn.kernels.gaps import MIN_GAP_S, drop_stride_disp, streamed_drops_line, waist_gap_turn
 from pdrlearn.kernels.order import first_out_of_order, reorder_hint, repeated, repeats_dropped_line
 from pdrlearn.kernels.stride import (
     DEFAULT_DOWN_MODE,
@@ -374,17 +374,26 @@ def calibration_record(displacement: dict) -> dict | None:
 #: decision L91's clause of a long foot gap's line (the waist heads the strides), and E299's when the waist gyroscope
 #: has its own gap there (a later wGyroscope gap rewrites the first into the second: review R3 F5)
 _L91_TURN = "turns with the waist gyroscope (L91)"
-_E299_TURN = ("turns by a straight line across the waist gyroscope's own gap, a turn inside it not measured: every "
-              "later stride's heading may be off by that turn (decision E299)")
 
 
-def heading_gap_line(a: float, b: float) -> str:
+def _e299_turn(cycle: bool = True) -> str:
+    """Decision E299 (E365, review s53r1: one wording with ``track --streaming``'s,
+    :func:`~pdrlearn.kernels.gaps.waist_gap_turn`): what a foot gap's line says of the turn when the waist gyroscope
+    was silent too (``cycle``: E354's ``bridge_cycle``)."""
+    return (f"turns with the waist gyroscope where it recorded, across its own gap by {waist_gap_turn(cycle)}: "
+            "every later stride's heading may be off by that turn (decision E299)")
+
+
+def heading_gap_line(a: float, b: float, cycle: bool = False) -> str:
     """Decision E299: the line for a gap of ``a``-``b`` s (over B11's 1 s) in the waist gyroscope that heads the
-    strides: the turn inside it is not measured."""
+    strides: the turn inside it is not measured. ``cycle`` (decision E365): the gap lies inside a foot gap that E354's
+    line bridges (:func:`~pdrlearn.kernels.gaps.waist_gap_turn`)."""
+    how = ("carried across it by " + waist_gap_turn(True) if cycle else
+           "carried across it on a straight line between its samples around it, so a turn inside the gap is not "
+           "measured")
     return (f"wGyroscope: no samples for {b - a:.2f} s ({a:.2f}-{b:.2f} s) while it heads the strides: the heading "
-            "is carried across it on a straight line between its samples around it, so a turn inside the gap is "
-            "not measured and every later stride's heading may be off by that turn (trial T2: 18-60 deg after "
-            "1.6-4 s gaps in a turn; decision E299)")
+            f"is {how} and every later stride's heading may be off by that turn (trial T2: 18-60 deg after 1.6-4 s "
+            "gaps in a turn; decision E299)")
 
 
 def _no_samples(tv) -> bool:
@@ -1716,7 +1725,8 @@ class Tracker(OwnGuard, FixInput):
                 new.append([a, b, long, [name]])
         for a, b, long, names in new:
             self._gap_marks.append([a, b, long])
-            turn = ((_L91_TURN if not any(x < b and y > a for x, y in self._heading_gaps) else _E299_TURN)
+            turn = ((_L91_TURN if not any(x < b and y > a for x, y in self._heading_gaps)
+                     else _e299_turn(self.bridge_cycle))
                     if self._bridged() else
                     "keeps the heading: the turn inside the gap is unknown, the heading after it is uncertain (L90)"
                     ) if _FOOT_IMU.intersection(names) else "keeps the heading"  # decision L92
@@ -1743,10 +1753,11 @@ class Tracker(OwnGuard, FixInput):
         clause (the foot's gap pushed first, the usual order when the waist's packets lag); else E299's line."""
         for x, y, at in self._l91_lines:
             if x < b and y > a and _L91_TURN in self.warnings[at]:
-                self.warnings[at] = self.warnings[at].replace(_L91_TURN, _E299_TURN)
+                self.warnings[at] = self.warnings[at].replace(_L91_TURN, _e299_turn(self.bridge_cycle))
                 log.warning("bundle %s: %s", self.bundle.path, self.warnings[at])
                 return
-        self._warn(heading_gap_line(a, b))
+        self._warn(heading_gap_line(a, b, self.bridge_cycle and any(  # decision E365: inside E354's bridge
+            long and imu and x < b and y > a for x, y, long, imu in self._foot_gaps)))
 
     def _waist_gap_foot_heads(self, names) -> bool:
         """Decision B231: whether the gap of the streams ``names`` (waist streams only) holds a waist accelerometer /
@@ -1955,10 +1966,10 @@ class Tracker(OwnGuard, FixInput):
         taken while strides are held (L611's verdict pending) restarts from the first held one's. Review R1 F3: and
         L621's live foot rest reading (its readings and still-sample count), which measuring the stride adds to.
         Decision E356: and E354's held waist gap (its seconds and the mean rate before it), which measuring a bridged
-        stride holds and the stride after it takes."""
+        stride holds and the stride after it takes; decision E365: and the last measured stride's mean rate."""
         stop, rest, cycle = self._stop_bias, self._foot_rest, self._cycle
         return (self._prev_end, None if stop is None else (stop.rps, stop.n_stops), (list(rest.readings), rest.n_still),
-                (cycle.gap_s, cycle.before))  # decision E356: E354's waist gap held for the stride after it
+                (cycle.gap_s, cycle.before, cycle.last))  # decision E356: E354's waist gap held (E365: the last rate)
 
     @property
     def _restart_from(self) -> tuple:
@@ -2391,7 +2402,7 @@ class Tracker(OwnGuard, FixInput):
                     lo = min(t0, t0 if prev is None else prev)
                     bridge = waist_bridge_yaw(self._stream, lo, t1, gap_line=not self.bridge_cycle)
                     if self.bridge_cycle:  # decision E354: the waist gap's turn waits for the stride after it
-                        self._cycle.hold(self._stream, lo, t1, self._stride_before(before, prev))
+                        self._cycle.hold(self._stream, lo, t1)
                 self._prev_end = t1  # no L31 pivot across it either: the foot's turn inside the gap is unknown
                 if self._compassed():  # decision E361: the row's turn in the compass's heading
                     self._compass.row(bridge)
@@ -2434,7 +2445,7 @@ class Tracker(OwnGuard, FixInput):
             if self._bridged():
                 dyaw += waist_bridge_yaw(self._stream, prev, t0, gap_line=not self.bridge_cycle)
                 if self.bridge_cycle:  # decision E354 (taken below by this stride)
-                    self._cycle.hold(self._stream, prev, t0, self._stride_before(before, prev))
+                    self._cycle.hold(self._stream, prev, t0)
             elif not headed_by_foot(lev, self.heading_source):  # L61's waist look-back is measured, kept
                 dyaw += stride_gap_yaw(lev, self.heading_source, self._stream, prev, t0, foot=False,
                                        waist=self.waist_gap_yaw)
@@ -2461,6 +2472,8 @@ class Tracker(OwnGuard, FixInput):
         turn = _sideways.own_turn(lev, self.heading_source, turn)  # decision L699: the foot's own turn, as offline's
         if self.bridge_cycle:  # decision E354: a held waist gap's turn (0 without one)
             dyaw += self._cycle.take(self._stream, t0, t1)
+            if self._bridged():  # decision E365: the rate before a next gap, recorded as the stride is measured
+                self._cycle.note(self._stream, t0, t1)
         if self._compassed():  # decision E361 (track --streaming's call)
             if headed_by_foot(lev, self.heading_source):
                 self._compass.row(dyaw)
@@ -2478,12 +2491,6 @@ class Tracker(OwnGuard, FixInput):
         if self._toe_off is not None and (t0, t1) not in self._toe_offs:  # decision E326 (once per stride)
             self._toe_offs[(t0, t1)] = self._stride_toe_off(t0, t1, event_s)
         return ("stride", t0, t1, row, lev, classes, proba, disp, dyaw, turn, event_s, self._clipped(t0, t1))
-
-    @staticmethod
-    def _stride_before(before: list, prev: float | None) -> tuple[float, float] | None:
-        """Decision E354: the stride before a bridged span, (start, end) s from the contacts kept (steps decision
-        87), or None."""
-        return (before[-1][0], prev) if before and prev is not None and prev > before[-1][0] else None
 
     def _apply(self, rec: tuple, pedal: bool = False) -> Step | None:
         """Decision E280: place a measured stride (:meth:`_measure`): the rules, heading, position and the Step. A

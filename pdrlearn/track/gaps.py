@@ -18,6 +18,7 @@ from pdrlearn.kernels.gaps import (  # noqa: F401  (W92; L160 / L167: the drop s
     gap_warnings,
     grouped_gaps,
     neighbour_heights,
+    waist_gap_turn,
 )
 
 #: the foot streams whose gaps lose the foot's turn (decisions L90 / L91): the gyroscope, and the accelerometer
@@ -30,13 +31,19 @@ def overlaps_any(a: float, b: float, gaps: dict[str, list[tuple[float, float]]])
     return any(g0 < b and g1 > a for g in gaps.values() for g0, g1 in g)
 
 
-def gap_heading_clause(foot_gaps: dict[str, list[tuple[float, float]]], how: str) -> str:
+def gap_heading_clause(foot_gaps: dict[str, list[tuple[float, float]]], how: str,
+                       waist_gaps: list[tuple[float, float]] = (), cycle: bool = True) -> str:
     """Decision L92: what a foot gap does to the heading, for the gap warning ("" when no foot accelerometer or
     gyroscope gap). ``how``: "bridged" (the waist gyroscope's turn, L91), "fused" (each stretch aligned to the
     waist heading on its own, L90), "waist" (the waist heading, not touched by a foot gap) or "none" (the turn
-    is unknown, taken as 0, L90)."""
+    is unknown, taken as 0, L90). Decision E365 (review s53r1 F4): "bridged" with ``waist_gaps`` (the waist
+    gyroscope's own gaps, s) overlapping a foot gap adds what is done across them (:func:`waist_gap_turn`,
+    ``cycle``: E354's ``bridge_cycle``)."""
     if not any(foot_gaps.get(n) for n in FOOT_IMU):
         return ""
+    silent = any(a < y and b > x for n in FOOT_IMU for x, y in foot_gaps.get(n, ()) for a, b in waist_gaps)
+    if how == "bridged" and silent:
+        return "; the turn inside them is the waist gyroscope's (L91), across its own gap by " + waist_gap_turn(cycle)
     return {"bridged": "; the turn inside them is the waist gyroscope's (L91)",
             "fused": "; the foot's turn inside them is unknown: the heading of each stretch between them is aligned "
                      "to the waist heading on its own (L90)",

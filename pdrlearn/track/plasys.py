@@ -2200,7 +2200,9 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     warnings: list[str] = unit_gap_warnings(session, foot_gaps,
                                             "no displacement is counted inside them (a stride across a foot gap "
                                             "moves 0 m, as the runtime, E30)"
-                                            + gap_heading_clause(foot_gaps, "bridged" if bridged else "none"),
+                                            + gap_heading_clause(foot_gaps, "bridged" if bridged else "none",  # E365
+                                                                 long_gaps(session, ("wGyroscope",)).get(
+                                                                     "wGyroscope", []), bridge_cycle),
                                             waist_how)
     warnings += [spin_line(int(spins.sum()))] if spins.any() else []  # decision L742
     if heading == "auto" and not ("waist" in forward and "waist_gyr" in available):  # as offline M2/M3 say
@@ -2275,9 +2277,6 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
     compass = (GapCompass() if gap_compass and bridge_cycle and bridged and "wMagneticField" in streams
                else None)  # decision E361 (the runtime's)
 
-    def before_stride(k: int) -> tuple[float, float] | None:  # decision E354: the stride before stride k
-        return (float(strides[k - 1, 0]), float(strides[k - 1, 1])) if k else None
-
     for i, (t0, t1) in enumerate(strides):
         prev = float(strides[i - 1, 1]) if i else None
         if in_gap[i]:  # decision L91: the waist's turn from the previous stride's end, else 0 (L90)
@@ -2285,7 +2284,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
                 lo = min(float(t0), prev if prev is not None else float(t0))
                 dyaw[i] = SK.waist_bridge_yaw(streams.__getitem__, lo, float(t1), gap_line=not bridge_cycle)
                 if bridge_cycle:  # decision E354: the waist gap's turn waits for the stride after it (the runtime's)
-                    cycle_line.hold(streams.__getitem__, lo, float(t1), before_stride(i))
+                    cycle_line.hold(streams.__getitem__, lo, float(t1))
             if compass is not None:  # decision E361: the row's turn in the compass's heading
                 compass.row(dyaw[i])
             continue
@@ -2327,7 +2326,7 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
             if bridged:  # L91: the waist's turn over the whole pause
                 dyaw[i] += SK.waist_bridge_yaw(streams.__getitem__, prev, float(t0), gap_line=not bridge_cycle)
                 if bridge_cycle:  # decision E354 (taken below by this stride)
-                    cycle_line.hold(streams.__getitem__, prev, float(t0), before_stride(i))
+                    cycle_line.hold(streams.__getitem__, prev, float(t0))
             elif not foot_headed[i]:  # L61's waist look-back is measured, kept
                 dyaw[i] += SK.stride_gap_yaw(lev, heading, streams.__getitem__, prev, float(t0), foot=False,
                                              waist=waist_gap_yaw)
@@ -2351,6 +2350,8 @@ def track_streaming(session: Session, *, method: str = "M3", model=None, start=N
         turn[i] = KSW.own_turn(lev, heading, turn[i])  # decision L699: the foot's own turn, as offline's row
         if bridge_cycle:  # decision E354: a held waist gap's turn (0 without one), the runtime's call
             dyaw[i] += cycle_line.take(streams.__getitem__, float(t0), float(t1))
+            if bridged:  # decision E365: the rate before a next gap, recorded as the stride is measured
+                cycle_line.note(streams.__getitem__, float(t0), float(t1))
         if compass is not None:  # decision E361 (the runtime's call)
             if foot_headed[i]:
                 compass.row(dyaw[i])
