@@ -14,6 +14,10 @@ Error = distance / truth - 1, truth = the sum of steps.csv's stride lengths (W61
 to one within 0.25 s), true / false positives and negatives pooled over the sessions.
 
     PYTHONPATH=. python experiments/default_bounce_s53_s127.py --users 19700-19739
+
+``--misses``: the diagnosis of S128 instead - the daily route's truth contacts the lower back misses (no detection
+within 0.25 s), tallied by ics.csv's ``kind``, and each kind's simulated peak-to-peak bounce and heel-to-heel step
+length (:func:`pdrlearn.sim.body.step_lengths`), per bounce mode.
 """
 
 from __future__ import annotations
@@ -71,6 +75,41 @@ def one_user(u: int, rate_hz: float, bounces: tuple[str, ...]) -> list[dict]:
     return rows
 
 
+def misses(u: int, rate_hz: float, bounces: tuple[str, ...]) -> list[dict]:
+    """S128's diagnosis: per truth contact of the daily route, its kind, whether the lower back found it, the step's
+    heel-to-heel length and its simulated bounce (peak to peak of the waist unit's height from this contact to the
+    next)."""
+    from pdrlearn.sim.route import parse_route
+    from pdrlearn.sim.simulate import simulate_path
+    from pdrlearn.sim.user import UserProfile
+    from pdrlearn.steps.evaluate import match_events
+    from pdrlearn.track.waist import track_waist
+    from pdrlearn.waist.params import resolve_params
+
+    user = UserProfile.from_seed(u)
+    speed = SPEEDS[u % 3]
+    rows = []
+    for bounce in bounces:
+        ses = simulate_path(parse_route(ROUTES["daily"]), user, speed=speed, seed=2, rate_hz=rate_hz, bounce=bounce)
+        ics = ses.extras["ics"].sort_values("ic_s")
+        ref = ics["ic_s"].to_numpy(float)
+        res = track_waist(ses, pipeline="waist-pendulum", params=resolve_params(ses, None)[0])
+        _, i_r = match_events(res.steps["start_s"].to_numpy(float), ref, 0.25)
+        found = np.zeros(ref.size, bool)
+        found[i_r] = True
+        tr = ses.trajectory
+        t, z = tr["t"].to_numpy(float), tr["z"].to_numpy(float)
+        xy = tr[["x", "y"]].to_numpy(float)
+        for k in range(ref.size - 1):
+            m = (t >= ref[k]) & (t <= ref[k + 1])
+            p0 = np.array([np.interp(ref[k], t, xy[:, 0]), np.interp(ref[k], t, xy[:, 1])])
+            p1 = np.array([np.interp(ref[k + 1], t, xy[:, 0]), np.interp(ref[k + 1], t, xy[:, 1])])
+            rows.append({"user": u, "bounce": bounce, "kind": ics["kind"].iloc[k], "found": bool(found[k]),
+                         "h_cm": 100 * float(np.ptp(z[m])) if m.any() else np.nan,
+                         "pelvis_m": float(np.linalg.norm(p1 - p0))})
+    return rows
+
+
 def _spread(v) -> str:
     v = np.asarray(v, float)
     v = v[np.isfinite(v)]
@@ -92,6 +131,7 @@ def main() -> None:
     ap.add_argument("--users", default="19700-19739")
     ap.add_argument("--rate", type=float, default=100.0)
     ap.add_argument("--bounce", default="constant,population")
+    ap.add_argument("--misses", action="store_true", help="S128's diagnosis: the missed contacts by kind")
     a = ap.parse_args()
     logging.getLogger("pdrlearn").setLevel(logging.ERROR)
     lo, hi = (int(v) for v in a.users.split("-"))
@@ -99,6 +139,16 @@ def main() -> None:
     import pandas as pd
 
     rows = []
+    if a.misses:
+        for u in range(lo, hi + 1):
+            rows += misses(u, a.rate, bounces)
+        df = pd.DataFrame(rows)
+        print(f"users {lo}-{hi}, {a.rate:g} Hz, daily route {ROUTES['daily']!r}: truth contacts by kind (the step "
+              "from each contact to the next)")
+        g = df.groupby(["kind", "bounce"]).agg(contacts=("found", "size"), missed=("found", lambda f: int((~f).sum())),
+                                               h_cm_median=("h_cm", "median"), pelvis_m_median=("pelvis_m", "median"))
+        print(g.to_string())
+        return
     for u in range(lo, hi + 1):
         rows += one_user(u, a.rate, bounces)
         last = [r for r in rows if r["user"] == u]
