@@ -163,13 +163,13 @@ def simulate_cmd(
         f"--speed, {STEP_TIME_RANGE_S[0]:g}-{STEP_TIME_RANGE_S[1]:g} (cadence = 60 / step time; default: the "
         "user's own; decision S30)."),
     bounce: str = typer.Option(
-        "population",
+        "constant",
         "--bounce",
-        help="population (default since decision S127): the rise that real lower backs' population K (4.587/4) "
-        "reads as each step's length (decision S74), so a longer step bounces more, as real pelvises do; "
-        "constant: the user's pelvis bounce on every step (the default before S127; a nurse trial's uncalibrated "
-        "lower-back distance -15 % with it, -1.5 / -2.8 % with population, decision S124); pendulum: scaled by the "
-        "inverted pendulum's rise for each step's length (decision S29).",
+        help="constant (default): the user's pelvis bounce on every step; pendulum: scaled by the inverted "
+        "pendulum's rise for each step's length, so short slow steps bounce less (decision S29); population: "
+        "the rise that real lower backs' population K (4.587/4) reads as the step, for checking the uncalibrated "
+        "lower back (decision S74). A lower-back (waist) study should use population (a nurse trial's "
+        "uncalibrated lower-back distance: -15 % with the default, -1.5 / -2.8 % with it; decision S124).",
     ),
     rocker: str = typer.Option(
         "hermite", "--rocker", help="The simulated heel rocker (initial contact -> foot flat): hermite (default) "
@@ -357,7 +357,7 @@ def simulate_cmd(
         pdrlearn simulate --route "stand:3, straight:16, stand:3" --step-length 0.3 --step-time 0.75 \\
             --bounce pendulum --user-seed 1 --out out/sim/tenmwt_040   # a 0.4 m/s walker: 0.3 m steps at
             # 80 steps/min; --bounce pendulum: its short steps bounce the pelvis less, as a slow walker's do (the
-            # constant bounce, the default before S127, gives them a normal step's bounce, read as long steps)
+            # default constant bounce gives them a normal step's bounce, which the lower back reads as long steps)
 
         pdrlearn simulate --route "stand:2, straight:20, stand:2" --height 0.95 --leg-length 0.45 \\
             --step-length 0.36 --step-time 0.3 --user-seed 1 --rate 100 --out out/sim/age3   # a 3-year-old

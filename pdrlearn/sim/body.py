@@ -664,7 +664,7 @@ def pelvis_pose(
     rng: np.random.Generator | None = None,
     trunk_noise: float = 1.0,
     pelvis: PelvisParams | None = None,
-    bounce_mode: str = "population",  # decision S127
+    bounce_mode: str = "constant",
     transfer_offsets: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None,
     span: tuple[float, float] | None = None,
     vibration_source: tuple[np.ndarray, np.ndarray] | None | bool = False,

@@ -111,9 +111,7 @@ KNOBS: dict[str, object] = {
     "fatigue_pct": 0.0,
     "device_errors": True,  # accelerometer scale factors per unit (the user's own), not per session (S22)
     "pelvis": "model",  # "realistic": roll toward the stance side and a smaller sway, drawn per user (S27)
-    # decision S127: "population" (S74, the default since session 53): the rise the real lower back's population K
-    # reads as the step; "constant": the user's bounce on every step (the default before S127); "pendulum": S29
-    "bounce": "population",
+    "bounce": "constant",  # "pendulum": the pelvis bounce scales with the step length (S29); "population": S74
     # decision W612: the gait oscillations' envelope over a bout - "step" (fading in and out across the edge steps) or
     # "contact" (full amplitude from the bout's first contact to its last, as the real lower back, W611)
     "bout_envelope": "step",
@@ -165,8 +163,7 @@ KNOBS: dict[str, object] = {
 #: decision S83: the units a gap may name
 GAP_UNITS = ("foot", "waist", "both")
 #: knobs meta.json records only when set (default sessions' meta.json as before they existed: S27, S29, S31, S34, S35)
-#: ("bounce" is recorded on every session since S127: a meta.json without it is a constant-bounce session from before)
-META_ONLY_WHEN_SET = ("pelvis", "waist_mount_deg", "waist_mount_end_deg", "rocker", "contact",
+META_ONLY_WHEN_SET = ("pelvis", "bounce", "waist_mount_deg", "waist_mount_end_deg", "rocker", "contact",
                       "bout_envelope",  # decision W612
                       "waist_reclip", "graded_slopes", "fatigue_pct",  # decisions S121-S123
                       "foot_sensor_pos", "foot_sensor_height_m", "foot_mount_roll_deg",
