@@ -18,6 +18,9 @@ to one within 0.25 s), true / false positives and negatives pooled over the sess
 ``--misses``: the diagnosis of S128 instead - the daily route's truth contacts the lower back misses (no detection
 within 0.25 s), tallied by ics.csv's ``kind``, and each kind's simulated peak-to-peak bounce and heel-to-heel step
 length (:func:`pdrlearn.sim.body.step_lengths`), per bounce mode.
+
+``--knob bout_envelope --bounce step,contact`` (decision W619): the same measures for another simulator option's
+values (``--bounce`` then lists that knob's values; the bounce stays the simulator's default).
 """
 
 from __future__ import annotations
@@ -36,7 +39,7 @@ CAL_ROUTE = "stand:3, straight:20, stand:3"  # the user's calibration walk of kn
 SPEEDS = ("slow", "normal", "fast")
 
 
-def one_user(u: int, rate_hz: float, bounces: tuple[str, ...]) -> list[dict]:
+def one_user(u: int, rate_hz: float, bounces: tuple[str, ...], knob: str = "bounce") -> list[dict]:
     from pdrlearn.sim.route import parse_route
     from pdrlearn.sim.simulate import simulate_path
     from pdrlearn.sim.user import UserProfile
@@ -49,19 +52,19 @@ def one_user(u: int, rate_hz: float, bounces: tuple[str, ...]) -> list[dict]:
     speed = SPEEDS[u % 3]
     rows = []
     for bounce in bounces:
-        cal = simulate_path(parse_route(CAL_ROUTE), user, speed=speed, seed=7, rate_hz=rate_hz, bounce=bounce)
+        cal = simulate_path(parse_route(CAL_ROUTE), user, speed=speed, seed=7, rate_hz=rate_hz, **{knob: bounce})
         try:
             fitted = calibrate([cal], "waist-pendulum", distances=[20.0])
         except Exception as exc:  # noqa: BLE001 - a failed calibration is a row, not a crash
             fitted = None
             print(f"u{u} {bounce}: calibrate failed: {exc}")
         for i, (name, route) in enumerate(ROUTES.items()):
-            ses = simulate_path(parse_route(route), user, speed=speed, seed=1 + i, rate_hz=rate_hz, bounce=bounce)
+            ses = simulate_path(parse_route(route), user, speed=speed, seed=1 + i, rate_hz=rate_hz, **{knob: bounce})
             truth = float(ses.steps["length_m"].abs().sum())
             p, _ = resolve_params(ses, None)
             res = track_waist(ses, pipeline="waist-pendulum", params=p)
             sc = score_steps(res.steps, ses, unit="waist") or {}
-            row = {"user": u, "speed": speed, "route": name, "bounce": bounce, "truth_m": truth,
+            row = {"user": u, "speed": speed, "route": name, knob: bounce, "truth_m": truth,
                    "err_uncal": 100 * (res.distance_m / truth - 1),
                    "tp": sc.get("true_positives", 0), "fp": sc.get("false_positives", 0),
                    "fn": sc.get("false_negatives", 0)}
@@ -75,7 +78,7 @@ def one_user(u: int, rate_hz: float, bounces: tuple[str, ...]) -> list[dict]:
     return rows
 
 
-def misses(u: int, rate_hz: float, bounces: tuple[str, ...]) -> list[dict]:
+def misses(u: int, rate_hz: float, bounces: tuple[str, ...], knob: str = "bounce") -> list[dict]:
     """S128's diagnosis: per truth contact of the daily route, its kind, whether the lower back found it, the step's
     heel-to-heel length and its simulated bounce (peak to peak of the waist unit's height from this contact to the
     next)."""
@@ -90,7 +93,8 @@ def misses(u: int, rate_hz: float, bounces: tuple[str, ...]) -> list[dict]:
     speed = SPEEDS[u % 3]
     rows = []
     for bounce in bounces:
-        ses = simulate_path(parse_route(ROUTES["daily"]), user, speed=speed, seed=2, rate_hz=rate_hz, bounce=bounce)
+        ses = simulate_path(parse_route(ROUTES["daily"]), user, speed=speed, seed=2, rate_hz=rate_hz,
+                            **{knob: bounce})
         ics = ses.extras["ics"].sort_values("ic_s")
         ref = ics["ic_s"].to_numpy(float)
         res = track_waist(ses, pipeline="waist-pendulum", params=resolve_params(ses, None)[0])
@@ -104,7 +108,7 @@ def misses(u: int, rate_hz: float, bounces: tuple[str, ...]) -> list[dict]:
             m = (t >= ref[k]) & (t <= ref[k + 1])
             p0 = np.array([np.interp(ref[k], t, xy[:, 0]), np.interp(ref[k], t, xy[:, 1])])
             p1 = np.array([np.interp(ref[k + 1], t, xy[:, 0]), np.interp(ref[k + 1], t, xy[:, 1])])
-            rows.append({"user": u, "bounce": bounce, "kind": ics["kind"].iloc[k], "found": bool(found[k]),
+            rows.append({"user": u, knob: bounce, "kind": ics["kind"].iloc[k], "found": bool(found[k]),
                          "h_cm": 100 * float(np.ptp(z[m])) if m.any() else np.nan,
                          "pelvis_m": float(np.linalg.norm(p1 - p0))})
     return rows
@@ -130,7 +134,8 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--users", default="19700-19739")
     ap.add_argument("--rate", type=float, default=100.0)
-    ap.add_argument("--bounce", default="constant,population")
+    ap.add_argument("--bounce", default="constant,population", help="the values compared (of --knob)")
+    ap.add_argument("--knob", default="bounce", help="the simulator option compared (W619: bout_envelope)")
     ap.add_argument("--misses", action="store_true", help="S128's diagnosis: the missed contacts by kind")
     a = ap.parse_args()
     logging.getLogger("pdrlearn").setLevel(logging.ERROR)
@@ -141,18 +146,18 @@ def main() -> None:
     rows = []
     if a.misses:
         for u in range(lo, hi + 1):
-            rows += misses(u, a.rate, bounces)
+            rows += misses(u, a.rate, bounces, a.knob)
         df = pd.DataFrame(rows)
         print(f"users {lo}-{hi}, {a.rate:g} Hz, daily route {ROUTES['daily']!r}: truth contacts by kind (the step "
               "from each contact to the next)")
-        g = df.groupby(["kind", "bounce"]).agg(contacts=("found", "size"), missed=("found", lambda f: int((~f).sum())),
+        g = df.groupby(["kind", a.knob]).agg(contacts=("found", "size"), missed=("found", lambda f: int((~f).sum())),
                                                h_cm_median=("h_cm", "median"), pelvis_m_median=("pelvis_m", "median"))
         print(g.to_string())
         return
     for u in range(lo, hi + 1):
-        rows += one_user(u, a.rate, bounces)
+        rows += one_user(u, a.rate, bounces, a.knob)
         last = [r for r in rows if r["user"] == u]
-        print("  ".join(f"u{u} {r['route']} {r['bounce']} uncal {r['err_uncal']:+.2f} cal {r['err_cal']:+.2f}"
+        print("  ".join(f"u{u} {r['route']} {r[a.knob]} uncal {r['err_uncal']:+.2f} cal {r['err_cal']:+.2f}"
                         for r in last), flush=True)
     df = pd.DataFrame(rows)
     with pd.option_context("display.width", 250, "display.max_columns", 40, "display.float_format", "{:.3f}".format):
@@ -162,7 +167,7 @@ def main() -> None:
                     *[(f"speed {k}", df[df.speed == k]) for k in SPEEDS]]:
         print(f"\n{sel}:")
         for bounce in bounces:
-            d = d0[d0.bounce == bounce]
+            d = d0[d0[a.knob] == bounce]
             print(f"  {bounce:10s} uncalibrated {_spread(d.err_uncal)}")
             print(f"  {bounce:10s} calibrated   {_spread(d.err_cal)}")
             print(f"  {bounce:10s} waist steps  {_f1(d)}")
