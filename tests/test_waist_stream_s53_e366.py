@@ -1,6 +1,7 @@
-"""Decision E366: the live waist trackers' ``Bridge`` puts the pushed samples on the offline uniform clock
-``t0 + k / fs`` (B33 / W34): a belt phone's jittered stamps no longer add made-up samples (trial s53t2 F3: +4 % live
-distance at 4 ms jitter, 50 Hz), a uniform stream passes unchanged, the output is the same whatever the chunking."""
+"""Decision E366 (an option, ``uniform_clock=True``; not adopted): the live waist trackers' ``Bridge`` puts the
+pushed samples on the offline uniform clock ``t0 + k / fs`` (B33 / W34): a belt phone's jittered stamps no longer add
+made-up samples (trial s53t2 F3: +4 % live distance at 4 ms jitter, 50 Hz), a uniform stream passes unchanged, the
+output is the same whatever the chunking."""
 
 from __future__ import annotations
 
@@ -35,7 +36,7 @@ def _phone(jitter_s: float, seed: int = 7, n: int = 1000):
 
 
 def _push(t, v, sizes=None):
-    b = Bridge(FS, {})
+    b = Bridge(FS, {}, uniform_clock=True)
     if sizes is None:
         return b(t, v)
     out_t, out_v, i = [], [], 0
@@ -64,6 +65,20 @@ def test_a_jittered_stream_keeps_its_sample_count_and_the_step_excursion(jitter_
     assert vertical_excursion(ref, FS, 200, 200 + n) > 0.01 and abs(np.mean(ratio) - 1.0) < 0.02
 
 
+def test_the_default_keeps_w59s_fill_and_the_trackers_take_the_option():
+    """E366 not adopted (its rule failed at 100 Hz): W59's fill stays the default; the option reaches the Bridge."""
+    t, v = _phone(0.004)
+    assert Bridge(FS, {})(t, v)[0].size > int(np.floor(t[-1] * FS)) + 20  # W59: a made-up sample per long interval
+    from pdrlearn.runtime.waist import WaistStream
+
+    st = WaistStream.__new__(WaistStream)
+    st._uniform_clock, st._proc, st._thr, st._max_step_s, st._rot, st.fs = True, None, 0.5, 1.5, None, FS
+    st.options = {"rhythm": True}
+    st._add = None
+    st._start_proc()
+    assert st._proc.bridge.uniform_clock is True
+
+
 def test_a_uniform_stream_passes_unchanged_and_chunks_do_not_matter():
     t = np.arange(600) / FS
     v = _signal(t)
@@ -75,10 +90,10 @@ def test_a_uniform_stream_passes_unchanged_and_chunks_do_not_matter():
     chunked = _push(tj, vj, sizes)
     assert np.array_equal(one[0], chunked[0]) and np.array_equal(one[1], chunked[1])
     # a dropped sample is still bridged on the clock (W59), a long gap still filled as a rest
-    g = Bridge(FS, {})
+    g = Bridge(FS, {}, uniform_clock=True)
     gt, gv = g(np.r_[t[:100], t[102:]], np.vstack([v[:100], v[102:]]))
     assert np.array_equal(gt[:100], t[:100]) and gt.size == t.size and g.filled == [(t[99], t[102])]
     gaps: dict = {}
-    g = Bridge(FS, gaps)
+    g = Bridge(FS, gaps, uniform_clock=True)
     gt, gv = g(np.r_[t[:100], t[200:]], np.vstack([v[:100], v[200:]]))
     assert gt.size == t.size and np.all(gv[100:199, 3:] == 0.0) and gaps == {"online stream": [(t[99], t[200])]}

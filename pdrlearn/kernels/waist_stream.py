@@ -47,7 +47,8 @@ def live_gap_fix() -> str:
 
 
 class Bridge:
-    """Decisions W59 and E366: the pushed samples put on the uniform clock ``t0 + k / fs`` from the first sample,
+    """Decision W59 and, with ``uniform_clock=True``, E366's option (not adopted: its rule failed at 100 Hz): the
+    pushed samples put on the uniform clock ``t0 + k / fs`` from the first sample,
     as the offline detector's input is (W34's and B33's clock: :func:`pdrlearn.waist.ahrs.body_data`,
     :meth:`pdrlearn.io.session.Stream.on_uniform_clock`), causally: each clock instant gets the linear interpolation
     of the two pushed samples either side of it (a pushed sample within ``snap_s`` of it is taken as it is, time
@@ -58,10 +59,13 @@ class Bridge:
     the second before it, zero rate); an interval over 1.5 periods is recorded in :attr:`filled` (W136's made-up
     samples), one over :data:`pdrlearn.track.gaps.MIN_GAP_S` ends the walking sequence (B11), added to ``gaps``."""
 
-    def __init__(self, fs: float, gaps: dict, *, snap_s: float = 1e-6):
+    def __init__(self, fs: float, gaps: dict, *, snap_s: float = 1e-6, uniform_clock: bool = False):
         self.fs = fs
         self.gaps = gaps
         self.snap_s = float(snap_s)
+        #: decision E366: the clock above (an option: not adopted, its rule failed at 100 Hz); False: W59's fill of
+        #: each interval over 1.5 periods with ``round(interval x fs) - 1`` samples
+        self.uniform_clock = bool(uniform_clock)
         self.t_last: float | None = None
         self.v_last: np.ndarray | None = None
         self.t0: float | None = None  # the clock's origin: the first pushed sample (E366)
@@ -72,6 +76,8 @@ class Bridge:
         self.filled: list[tuple[float, float]] = []
 
     def __call__(self, t: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        if not self.uniform_clock:
+            return self._fill(t, v)
         p = 1.0 / self.fs
         prev = self.t_last is not None
         tt = np.concatenate([[self.t_last], t]) if prev else t
@@ -111,6 +117,44 @@ class Bridge:
             out_v[rest & (i == a)] = np.concatenate([raw_v[before, :3].mean(axis=0), np.zeros(3)])
         return out_t, out_v
 
+    def _fill(self, t: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """W59 (the default): an interval over 1.5 periods gets ``round(interval x fs) - 1`` samples at the nominal
+        period, linearly interpolated (over ``LONG_GAP_S``: a rest); the other samples pass as they are."""
+        p = 1.0 / self.fs
+        prev = self.t_last is not None
+        tt = np.concatenate([[self.t_last], t]) if prev else t
+        vv = np.vstack([self.v_last, v]) if prev else v
+        raw_t, raw_v = np.concatenate([self.tail_t, t]), np.vstack([self.tail_v, v])
+        self.t_last, self.v_last = float(t[-1]), v[-1].copy()
+        keep = raw_t > raw_t[-1] - LONG_GAP_S - p
+        self.tail_t, self.tail_v = raw_t[keep], raw_v[keep]
+        d = np.diff(tt)
+        big = np.flatnonzero(d > 1.5 * p)
+        if not big.size:
+            return t, v
+        ts, vs, a = [], [], 0
+        for i in big:
+            ts.append(tt[a:i + 1])
+            vs.append(vv[a:i + 1])
+            n = int(round(d[i] * self.fs)) - 1
+            ti = tt[i] + p * np.arange(1, n + 1)
+            if d[i] > LONG_GAP_S:  # as body_data: at rest, the specific force of the last second, zero rate
+                before = (raw_t > tt[i] - LONG_GAP_S) & (raw_t <= tt[i])
+                fill = np.tile(np.concatenate([raw_v[before, :3].mean(axis=0), np.zeros(3)]), (n, 1))
+            else:
+                w = ((ti - tt[i]) / d[i])[:, None]
+                fill = (1.0 - w) * vv[i] + w * vv[i + 1]
+            ts.append(ti)
+            vs.append(fill)
+            self.filled.append((float(tt[i]), float(tt[i + 1])))
+            if d[i] > MIN_GAP_S:  # decision B11: the walking sequence ends at it
+                self.gaps.setdefault("online stream", []).append((float(tt[i]), float(tt[i + 1])))
+            a = i + 1
+        ts.append(tt[a:])
+        vs.append(vv[a:])
+        out_t, out_v = np.concatenate(ts), np.vstack(vs)
+        return (out_t[1:], out_v[1:]) if prev else (out_t, out_v)
+
 
 class RealtimeContacts:
     """Decision W31 on a stream: a streaming Madgwick AHRS, then every ``hop_s`` the offline IC detector on
@@ -128,11 +172,11 @@ class RealtimeContacts:
     def __init__(self, fs: float, offline, *, rotation=None, gaps=None, gain: float = MADGWICK_GAIN,
                  delay_s: float = K.DECISION_DELAY_S, hop_s: float = K.DECISION_HOP_S,
                  history_s: float = K.DECISION_HISTORY_S, max_step_s: float = MAX_STEP_S, on_nav=None,
-                 min_step_s: float | None = K.DECISION_MIN_STEP_S):
+                 min_step_s: float | None = K.DECISION_MIN_STEP_S, uniform_clock: bool = False):
         self.fs, self.offline, self.gain, self.max_step_s, self.on_nav = fs, offline, gain, max_step_s, on_nav
         self.rotation = None if rotation is None else np.asarray(rotation, dtype=float).reshape(3, 3)
         self.gaps = dict(gaps or {})
-        self.bridge = Bridge(fs, self.gaps)
+        self.bridge = Bridge(fs, self.gaps, uniform_clock=uniform_clock)  # E366: an option
         self.decider = K.DelayedDecider(fs, delay_s=delay_s, hop_s=hop_s, history_s=history_s, min_step_s=min_step_s)
         self.max_gap = K._max_gap(max_step_s, fs)
         self.n0 = max(1, int(round(INIT_S * fs)))  # the AHRS's initial attitude (pdrlearn.waist.ahrs.waist_imu)
