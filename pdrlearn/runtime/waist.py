@@ -441,7 +441,7 @@ class WaistStream(OwnGuard, FixInput):
                                "contact_shift": bool(self.options.get("contact_shift", True))  # E130: as replay
                                and bool(self.options.get("realtime_contact_shift", False))})
         self._proc = RealtimeContacts(self.fs, rules, rotation=self._rot, max_step_s=self._max_step_s,
-                                      on_nav=self._add, uniform_clock=self._uniform_clock)
+                                      on_nav=self._add, uniform_clock=getattr(self, "_uniform_clock", False))
 
     # -- the navigation-frame samples -------------------------------------------------------------------
     def _add(self, t: np.ndarray, acc_v: np.ndarray, w_z: np.ndarray, acc_nav: np.ndarray,
