@@ -78,14 +78,7 @@ class Bridge:
     def __call__(self, t: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         if not self.uniform_clock:
             return self._fill(t, v)
-        p = 1.0 / self.fs
-        prev = self.t_last is not None
-        tt = np.concatenate([[self.t_last], t]) if prev else t
-        vv = np.vstack([self.v_last, v]) if prev else v
-        raw_t, raw_v = np.concatenate([self.tail_t, t]), np.vstack([self.tail_v, v])
-        self.t_last, self.v_last = float(t[-1]), v[-1].copy()
-        keep = raw_t > raw_t[-1] - LONG_GAP_S - p
-        self.tail_t, self.tail_v = raw_t[keep], raw_v[keep]
+        p, prev, tt, vv, raw_t, raw_v = self._take(t, v)
         if self.t0 is None:
             self.t0 = float(tt[0])
         d = np.diff(tt)
@@ -117,9 +110,9 @@ class Bridge:
             out_v[rest & (i == a)] = np.concatenate([raw_v[before, :3].mean(axis=0), np.zeros(3)])
         return out_t, out_v
 
-    def _fill(self, t: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """W59 (the default): an interval over 1.5 periods gets ``round(interval x fs) - 1`` samples at the nominal
-        period, linearly interpolated (over ``LONG_GAP_S``: a rest); the other samples pass as they are."""
+    def _take(self, t: np.ndarray, v: np.ndarray) -> tuple:
+        """The pushed samples with the previous push's last before them (``tt``, ``vv``) and with the raw samples of
+        the last ``LONG_GAP_S`` (``raw_t``, ``raw_v``: a long gap's rest), the state moved on past them."""
         p = 1.0 / self.fs
         prev = self.t_last is not None
         tt = np.concatenate([[self.t_last], t]) if prev else t
@@ -128,6 +121,12 @@ class Bridge:
         self.t_last, self.v_last = float(t[-1]), v[-1].copy()
         keep = raw_t > raw_t[-1] - LONG_GAP_S - p
         self.tail_t, self.tail_v = raw_t[keep], raw_v[keep]
+        return p, prev, tt, vv, raw_t, raw_v
+
+    def _fill(self, t: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """W59 (the default): an interval over 1.5 periods gets ``round(interval x fs) - 1`` samples at the nominal
+        period, linearly interpolated (over ``LONG_GAP_S``: a rest); the other samples pass as they are."""
+        p, prev, tt, vv, raw_t, raw_v = self._take(t, v)
         d = np.diff(tt)
         big = np.flatnonzero(d > 1.5 * p)
         if not big.size:
