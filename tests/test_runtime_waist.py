@@ -269,7 +269,8 @@ def test_export_names_the_options_the_live_tracker_does_not_apply(sim, tmp_path,
     err = [ln for ln in capsys.readouterr().err.splitlines() if "E107" in ln]
     assert len(err) == 1 and 'stairs_climb=true, sit_veto="rhythm"' in err[0]
     assert "pause_steps" not in err[0] and "stairs_length" not in err[0]
-    assert "contact_shift=true, " in err[0]  # E130: W131's shift is not applied live without realtime_contact_shift
+    assert "contact_shift=true " in err[0]  # E130: W131's shift is not applied live without realtime_contact_shift
+    assert "(the offline default)" not in err[0]  # E368: the options given only; the defaults' line is not warned
     walk = write_session(sim["session"], tmp_path / "walk")
     assert main(["run", "--no-plot", str(tmp_path / "b"), str(walk)]) == 0
     assert sum("E107" in ln for ln in capsys.readouterr().err.splitlines()) == 1
@@ -281,11 +282,15 @@ def test_export_names_the_options_the_live_tracker_does_not_apply(sim, tmp_path,
                                                 "turn_bridge": False}}))  # W385: nor its offline default "side"
     assert main(["export", str(p), "--out", str(tmp_path / "b2"), "--frame", _frame_arg(sim["session"])]) == 0
     assert "E107" not in capsys.readouterr().err
-    # E126: without it the offline default "opposite" (W185) is named, once
+    # E126: without it the offline default "opposite" (W185) is named, once; E368: on export's summary (stdout) and
+    # in the bundle's not_applied_live, not as a warning
     p.write_text(json.dumps({**cal, "options": {"stairs_length": True}}))
     assert main(["export", str(p), "--out", str(tmp_path / "b3"), "--frame", _frame_arg(sim["session"])]) == 0
-    err = [ln for ln in capsys.readouterr().err.splitlines() if "E107" in ln]
+    out, err = capsys.readouterr()
+    assert "E107" not in err
+    err = [ln for ln in out.splitlines() if "E107" in ln]
     assert len(err) == 1 and err[0].count('sit_veto="opposite" (the offline default)') == 1
+    assert err[0].strip() == "live: " + load_waist_bundle(tmp_path / "b3").manifest["not_applied_live"]
     # W219: the offline default stand veto "walking" is not applied live (W189): named, once
     assert err[0].count('stand_veto="walking" (the offline default)') == 1
 

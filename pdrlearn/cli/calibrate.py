@@ -136,6 +136,11 @@ def register(app: typer.Typer) -> None:
             from pdrlearn.redact import path_forms, redact_json
 
             fit = {"fit": redact_json(fit["fit"], path_forms(dirs), paths=True), "paths_redacted": True}
+        from pdrlearn.export.waist import declared_frame
+
+        frame = declared_frame(sessions)
+        if frame is not None:  # decision E367: the walks' waist frame, for `export` without --frame
+            fit["frames"] = {"waist": frame}
         params.save(out, extra=fit)
         replaced(out, was)
         d = params.to_dict()

@@ -184,7 +184,9 @@ def _export_waist(cal: Path, out: Path, frame: str | None, force: bool, as_json:
                "files": sorted(b.manifest["files"]), "pipeline": b.manifest["pipeline"], "rate_hz": b.rate_hz,
                "params": {"leg_m": p.leg_m, "k": p.k, "f_m": p.f_m, "gyro_bias_rps": p.gyro_bias_rps,
                           "source": p.source},
-               "frame": b.manifest["frames"].get("waist"), "warnings": b.manifest.get("warnings", [])}
+               "frame": b.manifest["frames"].get("waist"), "frame_from": b.manifest.get("frame_from"),  # E367
+               "warnings": b.manifest.get("warnings", []),
+               "not_applied_live": b.manifest.get("not_applied_live")}  # decision E368
     if as_json:
         print_json(json_safe(summary))
         return
@@ -195,8 +197,17 @@ def _export_waist(cal: Path, out: Path, frame: str | None, force: bool, as_json:
     rate = f"calibrated at {b.rate_hz:.4g} Hz" if b.rate_hz == b.rate_hz else "no calibration rate recorded"
     fr = (",".join(f"{k}={v}" for k, v in summary["frame"].items()) if summary["frame"]
           else "no frame (pass --frame, or run takes the session's)")
+    if summary["frame"] and summary["frame_from"] not in (None, "--frame"):
+        fr += f" (from {summary['frame_from']})"  # decision E367
     typer.echo(f"waist bundle {path} ({summary['size_bytes'] / 1e3:.1f} kB, {len(summary['files'])} file(s)): "
                f"waist-pendulum, K {p.k:.4f}, leg {p.leg_m:.3f} m, {p.source}, {rate}; frame {fr}")
+    if not summary["frame"]:  # decision E367: the bundle the live WaistTracker refuses without frame=, said now
+        logging.getLogger("pdrlearn.cli").warning(
+            "%s: neither --frame nor the calibration gives the waist unit's axes: `pdrlearn run` takes each session's, "
+            "but `WaistTracker(load_waist_bundle(...))` needs frame=; re-export with --frame AXES (a phone upright in "
+            "a belt clip at the front, screen out: --frame x=left,y=up,z=forward; docs/deploying.md)", cal)
+    if summary["not_applied_live"]:  # decision E368: what the live tracker does without, said once, here
+        typer.echo(f"  live: {summary['not_applied_live']}")
 
 
 def frames_of(session, bundle, units=None) -> dict:

@@ -47,23 +47,72 @@ def live_gap_fix() -> str:
 
 
 class Bridge:
-    """Decision W59: the dropped samples of a pushed stream bridged as the offline detector's input is
-    (:func:`pdrlearn.waist.ahrs.body_data`, decision W34), so that ``online`` equals ``detect``: an interval
-    over 1.5 periods gets its missing samples at the nominal period, linearly interpolated; one over
-    ``LONG_GAP_S`` is filled as a rest (the mean of the raw samples of the second before it, zero rate); one over
-    :data:`pdrlearn.track.gaps.MIN_GAP_S` ends the walking sequence (B11), added to ``gaps``."""
+    """Decision W59 and, with ``uniform_clock=True``, E366's option (not adopted: its rule failed at 100 Hz): the
+    pushed samples put on the uniform clock ``t0 + k / fs`` from the first sample,
+    as the offline detector's input is (W34's and B33's clock: :func:`pdrlearn.waist.ahrs.body_data`,
+    :meth:`pdrlearn.io.session.Stream.on_uniform_clock`), causally: each clock instant gets the linear interpolation
+    of the two pushed samples either side of it (a pushed sample within ``snap_s`` of it is taken as it is, time
+    and values, so a uniform stream passes unchanged), once the later one is pushed; the same whatever the chunking.
+    The waist kernels count samples (``dt = 1 / fs``): a phone's jittered stamps, whose intervals over 1.5 periods
+    had each been filled with a made-up sample (no sample missing), had stretched every step by ~4 % at 4 ms jitter
+    (trial s53t2 F3). An interval over ``LONG_GAP_S`` is filled as a rest instead (the mean of the raw samples of
+    the second before it, zero rate); an interval over 1.5 periods is recorded in :attr:`filled` (W136's made-up
+    samples), one over :data:`pdrlearn.track.gaps.MIN_GAP_S` ends the walking sequence (B11), added to ``gaps``."""
 
-    def __init__(self, fs: float, gaps: dict):
+    def __init__(self, fs: float, gaps: dict, *, snap_s: float = 1e-6, uniform_clock: bool = False):
         self.fs = fs
         self.gaps = gaps
+        self.snap_s = float(snap_s)
+        #: decision E366: the clock above (an option: not adopted, its rule failed at 100 Hz); False: W59's fill of
+        #: each interval over 1.5 periods with ``round(interval x fs) - 1`` samples
+        self.uniform_clock = bool(uniform_clock)
         self.t_last: float | None = None
         self.v_last: np.ndarray | None = None
+        self.t0: float | None = None  # the clock's origin: the first pushed sample (E366)
+        self.k = 0  # the next clock instant's index
         self.tail_t = np.zeros(0)
         self.tail_v = np.zeros((0, 6))
         #: the intervals ``(t_a, t_b)`` whose samples were made up (W136 / W165: no standstill); a reader trims it
         self.filled: list[tuple[float, float]] = []
 
     def __call__(self, t: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        if not self.uniform_clock:
+            return self._fill(t, v)
+        p, prev, tt, vv, raw_t, raw_v = self._take(t, v)
+        if self.t0 is None:
+            self.t0 = float(tt[0])
+        d = np.diff(tt)
+        for i in np.flatnonzero(d > 1.5 * p):  # W136 / B11: the intervals with made-up samples
+            self.filled.append((float(tt[i]), float(tt[i + 1])))
+            if d[i] > MIN_GAP_S:  # decision B11: the walking sequence ends at it
+                self.gaps.setdefault("online stream", []).append((float(tt[i]), float(tt[i + 1])))
+        # E366: the clock instants up to the newest pushed sample (within snap_s), each once
+        k1 = int(np.floor((tt[-1] + self.snap_s - self.t0) * self.fs)) + 1
+        ks = np.arange(self.k, max(k1, self.k))
+        g = self.t0 + ks / self.fs
+        g = g[g <= tt[-1] + self.snap_s]
+        self.k += g.size
+        if not g.size:
+            return t[:0], v[:0]
+        i = np.clip(np.searchsorted(tt, g, side="right") - 1, 0, tt.size - 1)
+        j = np.minimum(i + 1, tt.size - 1)
+        span = tt[j] - tt[i]
+        w = np.where(span > 0, (g - tt[i]) / np.where(span > 0, span, 1.0), 0.0)
+        out_v = (1.0 - w)[:, None] * vv[i] + w[:, None] * vv[j]
+        out_t = g.copy()
+        at_i = np.abs(g - tt[i]) <= self.snap_s  # a pushed sample on the clock passes as it is (E366)
+        at_j = ~at_i & (np.abs(tt[j] - g) <= self.snap_s)
+        out_t[at_i], out_v[at_i] = tt[i[at_i]], vv[i[at_i]]
+        out_t[at_j], out_v[at_j] = tt[j[at_j]], vv[j[at_j]]
+        rest = ~at_i & ~at_j & (span > LONG_GAP_S)
+        for a in np.unique(i[rest]):  # as body_data: at rest, the specific force of the last second, zero rate
+            before = (raw_t > tt[a] - LONG_GAP_S) & (raw_t <= tt[a])
+            out_v[rest & (i == a)] = np.concatenate([raw_v[before, :3].mean(axis=0), np.zeros(3)])
+        return out_t, out_v
+
+    def _take(self, t: np.ndarray, v: np.ndarray) -> tuple:
+        """The pushed samples with the previous push's last before them (``tt``, ``vv``) and with the raw samples of
+        the last ``LONG_GAP_S`` (``raw_t``, ``raw_v``: a long gap's rest), the state moved on past them."""
         p = 1.0 / self.fs
         prev = self.t_last is not None
         tt = np.concatenate([[self.t_last], t]) if prev else t
@@ -72,6 +121,12 @@ class Bridge:
         self.t_last, self.v_last = float(t[-1]), v[-1].copy()
         keep = raw_t > raw_t[-1] - LONG_GAP_S - p
         self.tail_t, self.tail_v = raw_t[keep], raw_v[keep]
+        return p, prev, tt, vv, raw_t, raw_v
+
+    def _fill(self, t: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """W59 (the default): an interval over 1.5 periods gets ``round(interval x fs) - 1`` samples at the nominal
+        period, linearly interpolated (over ``LONG_GAP_S``: a rest); the other samples pass as they are."""
+        p, prev, tt, vv, raw_t, raw_v = self._take(t, v)
         d = np.diff(tt)
         big = np.flatnonzero(d > 1.5 * p)
         if not big.size:
@@ -116,11 +171,11 @@ class RealtimeContacts:
     def __init__(self, fs: float, offline, *, rotation=None, gaps=None, gain: float = MADGWICK_GAIN,
                  delay_s: float = K.DECISION_DELAY_S, hop_s: float = K.DECISION_HOP_S,
                  history_s: float = K.DECISION_HISTORY_S, max_step_s: float = MAX_STEP_S, on_nav=None,
-                 min_step_s: float | None = K.DECISION_MIN_STEP_S):
+                 min_step_s: float | None = K.DECISION_MIN_STEP_S, uniform_clock: bool = False):
         self.fs, self.offline, self.gain, self.max_step_s, self.on_nav = fs, offline, gain, max_step_s, on_nav
         self.rotation = None if rotation is None else np.asarray(rotation, dtype=float).reshape(3, 3)
         self.gaps = dict(gaps or {})
-        self.bridge = Bridge(fs, self.gaps)
+        self.bridge = Bridge(fs, self.gaps, uniform_clock=uniform_clock)  # E366: an option
         self.decider = K.DelayedDecider(fs, delay_s=delay_s, hop_s=hop_s, history_s=history_s, min_step_s=min_step_s)
         self.max_gap = K._max_gap(max_step_s, fs)
         self.n0 = max(1, int(round(INIT_S * fs)))  # the AHRS's initial attitude (pdrlearn.waist.ahrs.waist_imu)
@@ -207,7 +262,9 @@ class RealtimeContacts:
 
     # -- stream ----------------------------------------------------------------------------------
     def process(self, t: np.ndarray, v: np.ndarray) -> list:
-        t, v = self.bridge(t, v)  # W59: dropped samples bridged as detect's input (W34)
+        t, v = self.bridge(t, v)  # W59 / E366: on detect's uniform clock (W34, B33)
+        if not t.size:  # E366: no clock instant reached yet
+            return []
         if self.rotation is not None:
             v = np.column_stack([v[:, :3] @ self.rotation.T, v[:, 3:6] @ self.rotation.T])
         first = False

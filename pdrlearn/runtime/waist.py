@@ -107,7 +107,8 @@ class WaistStream(OwnGuard, FixInput):
     def __init__(self, fs: float, *, params, options: dict, walk_threshold: float, rotation, start: tuple,
                  warnings: list[str], keep_steps: int | None = None, check_input: bool = True,
                  latlon: tuple[float, float] | None = None, sides: bool = False,
-                 drop_duplicate_timestamps: bool = False):
+                 drop_duplicate_timestamps: bool = False, not_applied_live: str | None = None,
+                 uniform_clock: bool = False):
         from collections import deque
 
         from pdrlearn.kernels.waist import TurnPrior
@@ -115,6 +116,7 @@ class WaistStream(OwnGuard, FixInput):
         from pdrlearn.runtime.guard import FrozenWatch, UnitGuard
 
         self._busy = new_guard()  # decision E241: E231's guard, one thread at a time
+        self._uniform_clock = bool(uniform_clock)  # decision E366's option (kernels.waist_stream.Bridge)
         self.fs = float(fs)
         self.params = params
         self.options = options
@@ -136,6 +138,11 @@ class WaistStream(OwnGuard, FixInput):
         self.warnings: list[str] = list(warnings)
         for w in warnings:
             log.warning("live waist tracker: %s", w)
+        #: decision E368: E107's line for the offline-only options left at their offline defaults (None: none), which
+        #: the live tracker does without: nothing the caller set or can act on, so logged at DEBUG, not warned
+        self.not_applied_live = not_applied_live
+        if not_applied_live:
+            log.debug("live waist tracker: %s", not_applied_live)
         self.steps: deque[LiveStep] = deque(maxlen=keep_steps)
         self._thr = float(walk_threshold)
         self._max_step_s = MAX_STEP_S
@@ -443,7 +450,7 @@ class WaistStream(OwnGuard, FixInput):
                                "contact_shift": bool(self.options.get("contact_shift", True))  # E130: as replay
                                and bool(self.options.get("realtime_contact_shift", False))})
         self._proc = RealtimeContacts(self.fs, rules, rotation=self._rot, max_step_s=self._max_step_s,
-                                      on_nav=self._add)
+                                      on_nav=self._add, uniform_clock=getattr(self, "_uniform_clock", False))
 
     # -- the navigation-frame samples -------------------------------------------------------------------
     def _add(self, t: np.ndarray, acc_v: np.ndarray, w_z: np.ndarray, acc_nav: np.ndarray,
@@ -838,6 +845,18 @@ class WaistBundle:
         return float(r) if r is not None else math.nan
 
 
+def defaults_only_line(line: str) -> bool:
+    """Decision E368: whether ``line`` is E107's line naming only options at their offline default (``... (the offline
+    default)`` each), as a waist bundle exported before E368 holds it among its warnings."""
+    import re
+
+    m = re.match(r"the options? (.+?) (?:is|are) not applied by the live waist tracker \(decision E107\)", line)
+    if m is None:
+        return False
+    named = m.group(1)
+    return 0 < len(re.findall(r"\b[a-z_]+=", named)) == named.count("(the offline default)")
+
+
 def load_waist_bundle(path: str | Path, *, verify: bool = True) -> WaistBundle:
     """Open a waist-only bundle (``pdrlearn export CAL.json --out PATH``), checking its schema, version and
     checksums first (as :func:`pdrlearn.runtime.load_bundle`); a foot-unit bundle or another schema version is one
@@ -907,11 +926,20 @@ class WaistTracker(WaistStream):
         (decision E203: a phone app repeats samples routinely; the barometer's ``push_barometer`` too, decision
         E349); counted in ``n_dropped_duplicates``, one warning line. Off (the default): such a push is refused
         with one line naming the sample and this option
+
+    uniform_clock : decision E366's option (not adopted: its rule failed at 100 Hz): put the pushed samples on the
+        uniform clock ``t0 + k / fs`` as they arrive, as offline ``track`` puts a jittered recording (B33), instead of
+        W59's fill of each interval over 1.5 periods; a belt phone's 4 ms stamp jitter at 50 Hz had made the live
+        distance +3.5 % long with the default (-0.35 % with the option; docs/decisions/export.md E366)
+
+    Attribute ``not_applied_live``: E107's line for the offline-only options the calibration leaves at their offline
+    defaults, which the live tracker does without (None: none); logged at DEBUG only (decision E368: nothing to act
+    on; an option the calibration sets and the live tracker does not apply is still a warning)
     """
 
     def __init__(self, bundle, *, fs: float | None = None, start=(0.0, 0.0), heading_rad: float = 0.0,
                  frame=None, keep_steps: int | None = None, check_input: bool = True, start_latlon=None,
-                 sides: bool = False, drop_duplicate_timestamps: bool = False):
+                 sides: bool = False, drop_duplicate_timestamps: bool = False, uniform_clock: bool = False):
         from pdrlearn.kernels.frames import frame_rotation, mirrored_line
         from pdrlearn.kernels.geodetic import start_coordinate
         from pdrlearn.kernels.waist import rate_mismatch_line
@@ -942,6 +970,10 @@ class WaistTracker(WaistStream):
         except DataError as exc:
             raise DataError(f"WaistTracker: {exc}") from None
         warnings = list(b.manifest.get("warnings") or [])
+        quiet = b.manifest.get("not_applied_live")  # decision E368 (a bundle exported before it: in its warnings)
+        old = [w for w in warnings if defaults_only_line(w)]
+        warnings = [w for w in warnings if w not in old]
+        quiet = quiet or (old[0] if old else None)
         if b.params.source == "calibrated":  # decision W483: W479's line from the bundle's own record, so that a
             # bundle exported before W479 (no such manifest line) says it too; one exported since holds it once
             line = live_detector_line(b.params.detector)
@@ -958,4 +990,5 @@ class WaistTracker(WaistStream):
         super().__init__(fs, params=b.params, options=b.options, rotation=rot, start=(x0, y0, h0),
                          warnings=warnings, walk_threshold=thr if thr is not None else b.manifest["walk_threshold"],
                          keep_steps=keep_steps, check_input=check_input, latlon=latlon, sides=bool(sides),
-                         drop_duplicate_timestamps=bool(drop_duplicate_timestamps))
+                         drop_duplicate_timestamps=bool(drop_duplicate_timestamps), not_applied_live=quiet,
+                         uniform_clock=bool(uniform_clock))

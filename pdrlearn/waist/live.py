@@ -69,11 +69,13 @@ def _declared_frame(frame, meta: dict | None):
     return check_rotation(frame, "WaistTracker: frame="), None, "given as frame="
 
 
-def live_options(p, warnings: list[str], **given) -> dict:
+def live_options(p, warnings: list[str], quiet: list[str] | None = None, **given) -> dict:
     """The live waist-pendulum options from the parameters ``p`` and the caller's ``given`` (None = the PARAMS.json's,
     else the pipeline defaults: ``track_waist``'s :func:`~pdrlearn.track.waist.resolve_options`), with the lines
     about what the live tracker cannot do added to ``warnings``; shared by :class:`WaistTracker` and ``pdrlearn
-    export CAL.json`` (the waist bundle's options, decision E57)."""
+    export CAL.json`` (the waist bundle's options, decision E57). ``quiet``: a list, to take E107's line for the
+    options left at their offline defaults (nothing the caller set or can act on; decision E368), ``warnings`` keeping
+    the line for the options the PARAMS.json sets; None: one line for both in ``warnings``."""
     from pdrlearn.track.waist import CAUSAL_PAUSE_STEPS, CHOICE_OPTIONS, resolve_options
 
     given = {"realtime": True, "heading": "gyro", "refine_ic": None, "initial_heading": None, "resolve_signs": None,
@@ -100,9 +102,15 @@ def live_options(p, warnings: list[str], **given) -> dict:
     if p.source == "calibrated" and p.pipeline not in (None, "waist-pendulum"):
         warnings.append(f"the parameters were calibrated for {p.pipeline}: the waist-pendulum step length "
                         "keeps its defaults (run 'pdrlearn calibrate --pipeline waist-pendulum')")
-    line = unapplied_options_line(p)  # decision E107: no option of the PARAMS.json dropped without a word
-    if line:
-        warnings.append(line)
+    if quiet is None:
+        line = unapplied_options_line(p)  # decision E107: no option of the PARAMS.json dropped without a word
+        if line:
+            warnings.append(line)
+    else:  # decision E368: the options the PARAMS.json sets warned, the offline defaults' line kept aside
+        for which, into in (("given", warnings), ("defaults", quiet)):
+            line = unapplied_options_line(p, which=which)
+            if line:
+                into.append(line)
     if p.source == "calibrated" and p.pipeline in (None, "waist-pendulum"):  # decision W479: W471's line live too
         from pdrlearn.track.waist import calibrated_detector_line
 
@@ -157,11 +165,12 @@ LIVE_UNAPPLIED_OPTIONS = ("stairs_climb", "max_tilt_deg", "sit_veto", "vault_vet
 NAMED_WHEN_GIVEN = ("lying_heading", "foot_rest_veto", "gentle_rest_bias")  # W544: as lying_heading
 
 
-def unapplied_options_line(p) -> str | None:
+def unapplied_options_line(p, *, which: str = "all") -> str | None:
     """Decision E107 (E126): the line naming the options of :data:`LIVE_UNAPPLIED_OPTIONS` whose offline value (the
     PARAMS.json ``"options"`` of ``p``, else the offline default) differs from what the live tracker does
     (:func:`live_value`), else None: ``sit_veto`` ``"opposite"``, the offline default (W185), is named whether given or
-    not, ``false`` (what the live tracker does) is not."""
+    not, ``false`` (what the live tracker does) is not. ``which`` (decision E368): ``"given"`` names only the options
+    the PARAMS.json sets, ``"defaults"`` only those at their offline default, ``"all"`` both."""
     from pdrlearn.track.waist import OPTION_DEFAULTS
 
     given = p.options or {}
@@ -177,6 +186,8 @@ def unapplied_options_line(p) -> str | None:
     if given.get("pause_steps") in (True, "progression"):  # W165: live applies "standing" (W134) and false only
         unapplied.append("pause_steps")  # live_options turns these into false
         offline["pause_steps"], live["pause_steps"] = given["pause_steps"], False
+    if which != "all":  # decision E368: the options the PARAMS.json sets, or those at their offline default
+        unapplied = [k for k in unapplied if (given.get(k) is not None) == (which == "given")]
     if not unapplied:
         return None
     named = ", ".join(f"{k}={json.dumps(offline[k])}{'' if given.get(k) is not None else ' (the offline default)'}"
@@ -283,6 +294,7 @@ class WaistTracker(WaistStream):
         :data:`~pdrlearn.runtime.waist.PAUSE_LOOKAHEAD_ROWS` rows, one contact later than without it) or False (None:
         ``params.options``, else the pipeline's default); the look-ahead values True / "progression" are not applied
     keep_steps : how many reported steps :attr:`steps` keeps (None: all)
+    uniform_clock : decision E366's option (not adopted), as :class:`pdrlearn.runtime.WaistTracker`'s
     check_input : check the units of the first seconds (decision B119) -- False only for data already checked
     sides : give each step its foot (``LiveStep.side``: "left" / "right" / "" undecided) from W20's lateral velocity
         on the samples the contact was decided on (decision W138, causal). An option, not the default: on simulated
@@ -294,6 +306,8 @@ class WaistTracker(WaistStream):
     position : (x, y) m after the last reported step; heading : its heading (rad, ENU); start_altitude_m : the
     geodetic start's altitude (m; 0.0 without one); steps : reported
     :class:`LiveStep` s; warnings : what ``track`` would warn about (defaults, gaps, an inferred frame);
+    not_applied_live : E107's line for the offline-only options left at their offline defaults, which the live
+    tracker does without (None: none; decision E368: logged at DEBUG, not warned: nothing to act on);
     params : the resolved :class:`~pdrlearn.waist.params.WaistParams`; options : the resolved options
     """
 
@@ -303,7 +317,8 @@ class WaistTracker(WaistStream):
                  merge_fragments: bool | None = None, slow_turn_rps: float | None = None,
                  gentle_curves: bool | None = None, keep_steps: int | None = None, check_input: bool = True,
                  sides: bool = False,
-                 pivot_steps: bool | None = None, pause_steps: bool | str | None = None):
+                 pivot_steps: bool | None = None, pause_steps: bool | str | None = None,
+                 uniform_clock: bool = False):
         from pdrlearn.io.session import Session
         from pdrlearn.track.waist import _start
         from pdrlearn.waist.events import WALK_THRESHOLD_MPS2
@@ -318,7 +333,8 @@ class WaistTracker(WaistStream):
                 sub[key] = float(v)
         meta["subject"] = sub
         p, warnings = resolve_params(Session(name="live", meta=meta), params)
-        o = live_options(p, warnings, initial_heading=initial_heading, integrate_stops=integrate_stops,
+        quiet: list[str] = []  # decision E368: E107's line for the offline defaults, not a warning
+        o = live_options(p, warnings, quiet, initial_heading=initial_heading, integrate_stops=integrate_stops,
                          turn_factor=turn_factor, rhythm=rhythm, merge_fragments=merge_fragments,
                          slow_turn_rps=slow_turn_rps, gentle_curves=gentle_curves, pivot_steps=pivot_steps,
                          pause_steps=pause_steps)
@@ -335,7 +351,8 @@ class WaistTracker(WaistStream):
         super().__init__(fs, params=p, options=o, rotation=rot, start=(x0, y0, h0), warnings=warnings,
                          walk_threshold=p.walk_threshold_mps2 if p.walk_threshold_mps2 is not None
                          else WALK_THRESHOLD_MPS2, keep_steps=keep_steps, check_input=check_input, latlon=latlon,
-                         sides=sides)
+                         sides=sides, not_applied_live=quiet[0] if quiet else None,
+                         uniform_clock=bool(uniform_clock))  # decision E366's option
 
     # -- W65: the frame ---------------------------------------------------------------------------------
     def _hold(self, t: np.ndarray, v: np.ndarray):

@@ -133,7 +133,8 @@ class WaistParams:
         if not isinstance(d, dict):
             raise DataError(f"{where}: waist parameters must be a JSON object")
         names = {f.name for f in fields(cls)}
-        unknown = sorted(set(d) - names - {"schema", "fit", "paths_redacted", "pdrlearn_version"})  # E136; E176
+        unknown = sorted(set(d) - names - {"schema", "fit", "paths_redacted", "pdrlearn_version",  # E136; E176
+                                           "frames"})  # E367: the calibration walks' waist frame
         if unknown:
             misplaced_option_error(d, unknown, where)  # decision B472: a track option given at the top level
             more = f" and {len(unknown) - 5} more" if len(unknown) > 5 else ""
