@@ -245,6 +245,69 @@ def reclipped_imu(session, imu, *, correct: bool = True, **find):
     return out, lines
 
 
+class LiveReclipWatch:
+    """Decision W623, live: every ``check_s`` seconds the walking frame (:func:`_frame`) of the last ``span_s`` of
+    walking in the last ``keep_s`` of pushed samples (sensor frame) is compared with a reference frame, the first one
+    measured (after a re-clip: the first measured wholly after it); a rotation (:func:`frame_rotation`) of at least
+    ``min_deg`` is a re-clip: :meth:`push` returns its line once, and :meth:`extra_sigma_m` grows the position radius
+    by the distance walked since it times sin(min(angle, 90 deg)) (the heading error a turn of that angle can leave).
+    The live track is not re-framed (the contacts' frame is fixed when the stream starts)."""
+
+    def __init__(self, fs: float, *, span_s: float = 20.0, check_s: float = 10.0, keep_s: float = 60.0,
+                 min_deg: float = 25.0, min_walk_s: float = 10.0, min_ratio: float = MIN_JUDGED_POWER_RATIO):
+        self.fs = float(fs)
+        self._span, self._check, self._keep = span_s, check_s, keep_s
+        self._min_deg, self._min_walk, self._min_ratio = min_deg, min_walk_s, min_ratio
+        self._t = np.zeros(0)
+        self._a = np.zeros((0, 3))
+        self._g = np.zeros((0, 3))
+        self._ref = None
+        self._after = -np.inf
+        self._next: float | None = None
+        #: the re-clips found: ``[time_s, angle_deg, metres walked since]``
+        self.found: list[list[float]] = []
+
+    def push(self, t: np.ndarray, acc: np.ndarray, gyr: np.ndarray) -> str | None:
+        """Add sensor-frame samples; the line of a re-clip found by this push, else None."""
+        self._t = np.concatenate([self._t, t])
+        self._a = np.concatenate([self._a, acc])
+        self._g = np.concatenate([self._g, gyr])
+        if self._t[-1] - self._t[0] > self._keep:
+            i = int(np.searchsorted(self._t, self._t[-1] - self._keep))
+            self._t, self._a, self._g = self._t[i:], self._a[i:], self._g[i:]
+        now = float(self._t[-1])
+        if self._next is None:
+            self._next = now + self._check
+        if now < self._next:
+            return None
+        self._next = now + self._check
+        walk = np.flatnonzero(walking_samples(self._a, self.fs))[-int(round(self._span * self.fs)):]
+        if not len(walk) or self._t[walk[0]] < self._after:
+            return None
+        fr = _frame(self._a[walk], self._g[walk], self.fs, self._min_walk)
+        if fr is None:
+            return None
+        if self._ref is None:
+            self._ref = fr
+            return None
+        ang = rotation_angle_deg(frame_rotation(fr, self._ref, self._min_ratio))
+        if ang < self._min_deg:
+            return None
+        self._ref, self._after = None, now  # re-armed by the first frame measured wholly after this one
+        self.found.append([now, ang, 0.0])
+        return (f"the lower-back unit was re-clipped before {now:.1f} s: its walking frame turned {ang:.0f} deg on the "
+                "belt; the live track keeps its first frame, so its heading may be off from here: the position "
+                f"radius grows with the distance walked since ({decision_ref('W623')})")
+
+    def extra_sigma_m(self, length_m: float) -> float:
+        """The radius (m) the re-clips found add after a step of ``length_m`` (0 without one)."""
+        extra = 0.0
+        for r in self.found:
+            r[2] += abs(float(length_m))
+            extra += r[2] * float(np.sin(np.radians(min(r[1], 90.0))))
+        return extra
+
+
 def reclip_message(r: Reclip, corrected: bool) -> str:
     """Decision W623: the one line of a re-clip."""
     then = ("its turn is not counted as a heading turn and the data after it are tracked in the frame before it"
@@ -256,4 +319,4 @@ def reclip_message(r: Reclip, corrected: bool) -> str:
 
 
 __all__ = ["Reclip", "walking_samples", "two_vector_rotation", "frame_rotation", "rotation_angle_deg", "split_rotations", "find_reclips", "reframe",
-           "reclip_message", "reclipped_imu"]
+           "reclip_message", "reclipped_imu", "LiveReclipWatch"]
