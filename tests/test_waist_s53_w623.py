@@ -102,7 +102,8 @@ def test_live_watch_says_the_reclip_and_grows_the_radius(sessions):
     w, lines = run(sessions["z40"])
     assert len(lines) == 1 and "re-clipped before" in lines[0] and w.found[0][0] > 25.0
     k = np.sin(np.radians(w.found[0][1]))  # the radius grows by sin(angle) per metre walked since
-    assert w.found[0][1] >= 25.0 and w.extra_sigma_m(1.0) == pytest.approx(k) and w.extra_sigma_m(1.0) == pytest.approx(2 * k)
+    assert w.found[0][1] >= 25.0
+    assert w.extra_sigma_m(1.0) == pytest.approx(k) and w.extra_sigma_m(1.0) == pytest.approx(2 * k)
     w0, lines0 = run(sessions["plain"])
     assert not lines0 and w0.extra_sigma_m(1.0) == 0.0
 

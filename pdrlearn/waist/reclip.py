@@ -318,5 +318,5 @@ def reclip_message(r: Reclip, corrected: bool) -> str:
             f"{r.angle_deg:.0f} deg {where}; {then} ({decision_ref('W623')})")
 
 
-__all__ = ["Reclip", "walking_samples", "two_vector_rotation", "frame_rotation", "rotation_angle_deg", "split_rotations", "find_reclips", "reframe",
-           "reclip_message", "reclipped_imu", "LiveReclipWatch"]
+__all__ = ["Reclip", "walking_samples", "two_vector_rotation", "frame_rotation", "rotation_angle_deg",
+           "split_rotations", "find_reclips", "reframe", "reclip_message", "reclipped_imu", "LiveReclipWatch"]
