@@ -173,10 +173,11 @@ def find_reclips(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray, fs: float, *, 
                  step_s: float = 2.0, span_s: float = 20.0, guard_s: float = 1.0, near_s: float = 3.0,
                  window_s: float = 1.0, skip: np.ndarray | None = None, min_walk_s: float = 10.0,
                  min_ratio: float = MIN_JUDGED_POWER_RATIO) -> list[Reclip]:
-    """Decision W623: the re-clips of a body-frame (FLU) waist recording: each run of neighbouring splits
-    (:func:`split_rotations`) whose rotation reaches ``scan_deg``; its window (:func:`_window`, within ``near_s`` of
-    the run) and the rotation measured across it (the walking just before and after the window), a re-clip when
-    that reaches ``min_deg``."""
+    """Decision W623: the re-clips of a body-frame (FLU) waist recording, in time order: each run of neighbouring
+    splits (:func:`split_rotations`) whose rotation reaches ``scan_deg``, the largest first; its window
+    (:func:`_window`, within ``near_s`` of the run) and the rotation measured across it (the last and first
+    ``span_s`` of walking before and after the window, not across a re-clip already found), a re-clip when that
+    reaches ``min_deg``."""
     t = np.asarray(t, dtype=float)
     acc, gyr = np.asarray(acc, dtype=float), np.asarray(gyr, dtype=float)
     rots = split_rotations(t, acc, gyr, fs, step_s=step_s, span_s=span_s, guard_s=guard_s, skip=skip,
@@ -189,22 +190,27 @@ def find_reclips(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray, fs: float, *, 
             found[-1].append((c, ang, R))
         else:
             found.append([(c, ang, R)])
-    out = []
-    for run in found:
-        c, ang, R = max(run, key=lambda r: r[1])
+    walk = np.flatnonzero(walking_samples(acc, fs, skip=skip))
+    n = max(int(round(span_s * fs)), 1)
+    out: list[Reclip] = []
+    for run in sorted(found, key=lambda r: -max(x[1] for x in r)):  # the largest first
         t0, t1, gap = _window(t, gyr, fs, run[0][0] - near_s, run[-1][0] + near_s, window_s, skip)
-        walk = np.flatnonzero(walking_samples(acc, fs, skip=skip))
-        n = max(int(round(span_s * fs)), 1)
-        b, a = int(np.searchsorted(t[walk], t0, "left")), int(np.searchsorted(t[walk], t1, "right"))
-        b_sel, a_sel = walk[max(b - n, 0):b], walk[a:a + n]
+        # the walking just before and after the window, not across a re-clip already found
+        lo = max([r.t1_s for r in out if r.t1_s <= t0], default=-np.inf)
+        hi = min([r.t0_s for r in out if r.t0_s >= t1], default=np.inf)
+        if any(r.t0_s < t1 and t0 < r.t1_s for r in out):
+            continue
+        tw = t[walk]
+        b_sel = walk[(tw > lo) & (tw < t0)][-n:]
+        a_sel = walk[(tw > t1) & (tw < hi)][:n]
         before = _frame(acc[b_sel], gyr[b_sel], fs, min_walk_s)
         after = _frame(acc[a_sel], gyr[a_sel], fs, min_walk_s)
-        if before is not None and after is not None:  # the frames either side of the window itself
-            R = frame_rotation(after, before, min_ratio)
-            ang = rotation_angle_deg(R)
-        if ang >= min_deg:
-            out.append(Reclip(t0, t1, ang, R, gap))
-    return out
+        if before is None or after is None:
+            continue
+        R = frame_rotation(after, before, min_ratio)
+        if rotation_angle_deg(R) >= min_deg:
+            out.append(Reclip(t0, t1, rotation_angle_deg(R), R, gap))
+    return sorted(out, key=lambda r: r.t0_s)
 
 
 def reframe(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray, reclips: list[Reclip]
