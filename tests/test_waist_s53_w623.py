@@ -61,6 +61,13 @@ def test_a_yaw_reclip_is_said_once_and_not_counted_as_a_turn(sessions):
     assert "re-clipped at 24.5-25.5 s" in line and "turned 40 deg on the belt" in line
 
 
+def test_the_line_alone_leaves_the_track_as_without_w624(sessions):
+    off, line = _track(sessions["z40"], False), _track(sessions["z40"], "line")
+    assert line.trajectory.equals(off.trajectory)
+    (text,) = _lines(line)
+    assert "the correction is off" in text and '"reclip": true' in text
+
+
 def test_a_walk_without_reclip_is_tracked_as_before(sessions):
     off, on = _track(sessions["plain"], False), _track(sessions["plain"], True)
     assert not _lines(on)

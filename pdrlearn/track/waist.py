@@ -725,7 +725,8 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    # W577: adopted with W576's check, the quiet standing before and after moved with it ("standing")
                    "mount_drift": "standing",
                    # W623: a unit re-clipped mid-walk: its walking frames either side, the data after it turned back
-                   "reclip": True,
+                   # (true); W624: W623's rule not met (errors 0.68 / 0.77 of before, not half), the line alone
+                   "reclip": "line",
                    "side_at_contact": False,  # W235: the sequence rules' sides at the contact (offline pendulum)
                    "fast_fill": False,  # W242: a merged step's 5 Hz maximum (offline pendulum)
                    "ap_above_mean": False,  # W265: W29's IC, the last AP maximum above the AP mean (offline pendulum)
@@ -823,7 +824,7 @@ FLAG_OPTIONS = tuple(k for k, v in OPTION_DEFAULTS.items()
                                                           "parity_fill", "stand_veto", "contact_model", "fast_fill",
                                                           "cadence_law", "pll_edge_lock", "turn_bridge",
                                                           "pelvic_rhythm_veto", "mount_drift", "slow_min_step",
-                                                          "live_climbs"))
+                                                          "live_climbs", "reclip"))
 FLAG_RULES = {k: Rule("flag", ints=True) for k in FLAG_OPTIONS}  # B199: 0 / 1 pass (B206's shared check)
 #: the values of the ``sit_veto`` option: off, W104's veto, W109's veto sparing left/right step pairs, W180's
 #: sparing also an undecided contact between two same-side contacts of its sequence, W184's sparing instead an
@@ -866,6 +867,8 @@ CHOICE_OPTIONS = {"sit_veto": (SIT_VETO_VALUES, "W104, W109, W180, W184"),
                   "slow_min_step": (SLOW_MIN_STEP_VALUES, "W591"),
                   # W576: "standing", the line only when the quiet standing moved with the walking upright
                   "mount_drift": ((False, True, "standing"), "W565, W571, W576"),
+                  # W623 / W624: true, the line and the correction; "line", the line alone; false, neither
+                  "reclip": ((False, True, "line"), "W623, W624"),
                   "live_climbs": ((False, "hold"), "E358")}
 
 
@@ -1222,7 +1225,7 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
             raise
         return _no_walking(session, pipeline, p, o, warnings, float(exc.walk_s), start, initial_heading)
     if o["reclip"] and not realtime:  # decision W623: a unit re-clipped mid-walk, its turn no heading turn
-        imu, lines = _reclip.reclipped_imu(session, imu)
+        imu, lines = _reclip.reclipped_imu(session, imu, correct=o["reclip"] != "line")  # W624: "line", the line alone
         warnings += lines
     # the W4 gate's threshold and signal (offline: centred); W76's relative gate (not realtime); steps 35
     thr, sigma, gate_source = gate_threshold(imu, p.walk_threshold_mps2,
