@@ -13,7 +13,7 @@ import pytest
 from pdrlearn.io import read_session
 from pdrlearn.sim import UserProfile, simulate_path
 from pdrlearn.sim.route import parse_route
-from pdrlearn.track.waist import track_waist
+from pdrlearn.track.waist import OPTION_DEFAULTS, track_waist
 from pdrlearn.waist.ahrs import body_data, bridged_samples
 from pdrlearn.waist.params import WaistParams
 from pdrlearn.waist.reclip import (
@@ -62,6 +62,8 @@ def test_a_yaw_reclip_is_said_once_and_not_counted_as_a_turn(sessions):
 
 
 def test_the_line_alone_leaves_the_track_as_without_w624(sessions):
+    """W624: W623's rule not met, the default says the re-clip and leaves the track as it is."""
+    assert OPTION_DEFAULTS["reclip"] == "line"
     off, line = _track(sessions["z40"], False), _track(sessions["z40"], "line")
     assert line.trajectory.equals(off.trajectory)
     (text,) = _lines(line)

@@ -149,6 +149,19 @@ def split_rotations(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray, fs: float, 
     return out
 
 
+def may_reclip(acc: np.ndarray, gyr: np.ndarray, fs: float, walk: np.ndarray, *, span_s: float = 20.0,
+               min_walk_s: float = 10.0, min_ratio: float = MIN_JUDGED_POWER_RATIO, min_deg: float = 10.0) -> bool:
+    """Decision W623's cheap first pass: the walking samples ``walk`` (indices) cut into blocks of ``span_s``; whether
+    a block's frame (:func:`_frame`) turns at least ``min_deg`` onto one of the next two measured (a re-clip inside a
+    block shows between its neighbours). Each sample is read once, so a recording with no re-clip costs a tenth of
+    :func:`split_rotations`' grid."""
+    n = max(int(round(span_s * fs)), 1)
+    frames = [f for f in (_frame(acc[walk[i:i + n]], gyr[walk[i:i + n]], fs, min_walk_s)
+                          for i in range(0, len(walk), n)) if f is not None]
+    return any(rotation_angle_deg(frame_rotation(frames[j], frames[k], min_ratio)) >= min_deg
+               for k in range(len(frames)) for j in range(k + 1, min(k + 3, len(frames))))
+
+
 def _window(t: np.ndarray, gyr: np.ndarray, fs: float, lo: float, hi: float, window_s: float,
             skip: np.ndarray | None) -> tuple[float, float, bool]:
     """The re-clip's window in ``[lo, hi]`` s: the bridged gap there (``skip``), else the ``window_s`` window of the
@@ -180,6 +193,10 @@ def find_reclips(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray, fs: float, *, 
     reaches ``min_deg``."""
     t = np.asarray(t, dtype=float)
     acc, gyr = np.asarray(acc, dtype=float), np.asarray(gyr, dtype=float)
+    walk = np.flatnonzero(walking_samples(acc, fs, skip=skip))
+    if len(walk) < 2 * min_walk_s * fs or not may_reclip(acc, gyr, fs, walk, span_s=span_s, min_walk_s=min_walk_s,
+                                                          min_ratio=min_ratio, min_deg=scan_deg / 2.0):
+        return []  # too little walking for a frame either side, or no block turns (the cheap first pass)
     rots = split_rotations(t, acc, gyr, fs, step_s=step_s, span_s=span_s, guard_s=guard_s, skip=skip,
                            min_walk_s=min_walk_s, min_ratio=min_ratio)
     found: list[list] = []
@@ -190,7 +207,6 @@ def find_reclips(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray, fs: float, *, 
             found[-1].append((c, ang, R))
         else:
             found.append([(c, ang, R)])
-    walk = np.flatnonzero(walking_samples(acc, fs, skip=skip))
     n = max(int(round(span_s * fs)), 1)
     out: list[Reclip] = []
     for run in sorted(found, key=lambda r: -max(x[1] for x in r)):  # the largest first
@@ -325,4 +341,5 @@ def reclip_message(r: Reclip, corrected: bool) -> str:
 
 
 __all__ = ["Reclip", "walking_samples", "two_vector_rotation", "frame_rotation", "rotation_angle_deg",
-           "split_rotations", "find_reclips", "reframe", "reclip_message", "reclipped_imu", "LiveReclipWatch"]
+           "split_rotations", "may_reclip", "find_reclips", "reframe", "reclip_message", "reclipped_imu",
+           "LiveReclipWatch"]
