@@ -135,7 +135,7 @@ class WaistStream(OwnGuard, FixInput):
         self._frozen = FrozenWatch()
         self._reclip = None
         if options.get("reclip", True):  # decision W623: a unit re-clipped on the belt, said and its radius grown
-            from pdrlearn.waist.reclip import LiveReclipWatch
+            from pdrlearn.kernels.reclip import LiveReclipWatch
 
             self._reclip = LiveReclipWatch(self.fs)
         self.warnings: list[str] = list(warnings)
@@ -293,7 +293,7 @@ class WaistStream(OwnGuard, FixInput):
         for msg in self._frozen.push(pushed):  # decision B120: a frozen sensor, one warning per run
             self.warnings.append(msg)
             log.warning("live waist tracker: %s", msg)
-        line = None if self._reclip is None else self._reclip.push(t, acc, gyr)  # decision W623
+        line = None if self._reclip is None else self._reclip.push(t, acc)  # decision W623
         if line:
             self.warnings.append(line)
             log.warning("live waist tracker: %s", line)

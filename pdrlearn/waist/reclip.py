@@ -25,6 +25,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from pdrlearn.decision_refs import decision_ref
+from pdrlearn.kernels.reclip import (  # W623's numpy kernels, shared with the live trackers
+    rotation_angle_deg,
+    tilt_rotation,
+    two_vector_rotation,
+    walking_samples,
+)
 from pdrlearn.kernels.waist_stream import LONG_GAP_S
 from pdrlearn.signal import runs
 from pdrlearn.track.frame_inference import (
@@ -48,28 +54,6 @@ class Reclip:
     gap: bool = False
 
 
-def _unit(v: np.ndarray) -> np.ndarray:
-    n = float(np.linalg.norm(v))
-    return v / n if n > 0 else v
-
-
-def two_vector_rotation(up_from: np.ndarray, fwd_from: np.ndarray, up_to: np.ndarray,
-                        fwd_to: np.ndarray) -> np.ndarray:
-    """The rotation (3, 3) taking ``up_from`` onto ``up_to`` and the horizontal part of ``fwd_from`` onto that of
-    ``fwd_to`` (the two-vector, TRIAD alignment: up exact, forward about it)."""
-    def basis(u, f):
-        u = _unit(np.asarray(u, dtype=float))
-        f = _unit(np.asarray(f, dtype=float) - (np.asarray(f, dtype=float) @ u) * u)
-        return np.column_stack([f, np.cross(u, f), u])
-
-    return basis(up_to, fwd_to) @ basis(up_from, fwd_from).T
-
-
-def rotation_angle_deg(R: np.ndarray) -> float:
-    """The angle (deg) of a rotation matrix."""
-    return float(np.degrees(np.arccos(np.clip((np.trace(R) - 1.0) / 2.0, -1.0, 1.0))))
-
-
 def _frame(acc: np.ndarray, gyr: np.ndarray, fs: float, min_walk_s: float):
     """D8's inference with W394's open snap on at least ``min_walk_s`` of walking samples: ``(up, forward,
     power ratio)``, whatever axes they lie near; None when they do not fix it."""
@@ -89,28 +73,7 @@ def frame_rotation(after: tuple, before: tuple, min_ratio: float) -> np.ndarray:
     gait turns the measured forward, W435)."""
     if min(after[2] or 0.0, before[2] or 0.0) >= min_ratio:
         return two_vector_rotation(after[0], after[1], before[0], before[1])
-    u, v = _unit(np.asarray(after[0], float)), _unit(np.asarray(before[0], float))
-    axis = np.cross(u, v)
-    s, c = float(np.linalg.norm(axis)), float(u @ v)
-    if s < 1e-12:
-        return np.eye(3)
-    k = axis / s
-    K = np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
-    return np.eye(3) + s * K + (1.0 - c) * (K @ K)  # Rodrigues
-
-
-def walking_samples(acc: np.ndarray, fs: float, *, window_s: float = 2.0, walk_std: float = 0.5,
-                    skip: np.ndarray | None = None) -> np.ndarray:
-    """Decision W623: the samples that walk: the standard deviation of |a| over the centred ``window_s`` reaches
-    ``walk_std`` m/s^2 (W4's motion gate on the norm, which needs no axis, as D8's walking up reads it); ``skip``
-    (a sample mask: bridged samples of a gap) left out."""
-    norm = np.linalg.norm(np.asarray(acc, dtype=float), axis=1)
-    n = max(int(round(window_s * fs)), 2)
-    k = np.ones(n) / n
-    m1 = np.convolve(norm, k, "same")
-    m2 = np.convolve(norm * norm, k, "same")
-    walk = np.sqrt(np.maximum(m2 - m1 * m1, 0.0)) >= walk_std
-    return walk if skip is None else walk & ~np.asarray(skip, dtype=bool)
+    return tilt_rotation(after[0], before[0])
 
 
 def split_rotations(t: np.ndarray, acc: np.ndarray, gyr: np.ndarray, fs: float, *, step_s: float = 2.0,
@@ -267,69 +230,6 @@ def reclipped_imu(session, imu, *, correct: bool = True, **find):
     return out, lines
 
 
-class LiveReclipWatch:
-    """Decision W623, live: every ``check_s`` seconds the walking frame (:func:`_frame`) of the last ``span_s`` of
-    walking in the last ``keep_s`` of pushed samples (sensor frame) is compared with a reference frame, the first one
-    measured (after a re-clip: the first measured wholly after it); a rotation (:func:`frame_rotation`) of at least
-    ``min_deg`` is a re-clip: :meth:`push` returns its line once, and :meth:`extra_sigma_m` grows the position radius
-    by the distance walked since it times sin(min(angle, 90 deg)) (the heading error a turn of that angle can leave).
-    The live track is not re-framed (the contacts' frame is fixed when the stream starts)."""
-
-    def __init__(self, fs: float, *, span_s: float = 20.0, check_s: float = 10.0, keep_s: float = 60.0,
-                 min_deg: float = 25.0, min_walk_s: float = 10.0, min_ratio: float = MIN_JUDGED_POWER_RATIO):
-        self.fs = float(fs)
-        self._span, self._check, self._keep = span_s, check_s, keep_s
-        self._min_deg, self._min_walk, self._min_ratio = min_deg, min_walk_s, min_ratio
-        self._t = np.zeros(0)
-        self._a = np.zeros((0, 3))
-        self._g = np.zeros((0, 3))
-        self._ref = None
-        self._after = -np.inf
-        self._next: float | None = None
-        #: the re-clips found: ``[time_s, angle_deg, metres walked since]``
-        self.found: list[list[float]] = []
-
-    def push(self, t: np.ndarray, acc: np.ndarray, gyr: np.ndarray) -> str | None:
-        """Add sensor-frame samples; the line of a re-clip found by this push, else None."""
-        self._t = np.concatenate([self._t, t])
-        self._a = np.concatenate([self._a, acc])
-        self._g = np.concatenate([self._g, gyr])
-        if self._t[-1] - self._t[0] > self._keep:
-            i = int(np.searchsorted(self._t, self._t[-1] - self._keep))
-            self._t, self._a, self._g = self._t[i:], self._a[i:], self._g[i:]
-        now = float(self._t[-1])
-        if self._next is None:
-            self._next = now + self._check
-        if now < self._next:
-            return None
-        self._next = now + self._check
-        walk = np.flatnonzero(walking_samples(self._a, self.fs))[-int(round(self._span * self.fs)):]
-        if not len(walk) or self._t[walk[0]] < self._after:
-            return None
-        fr = _frame(self._a[walk], self._g[walk], self.fs, self._min_walk)
-        if fr is None:
-            return None
-        if self._ref is None:
-            self._ref = fr
-            return None
-        ang = rotation_angle_deg(frame_rotation(fr, self._ref, self._min_ratio))
-        if ang < self._min_deg:
-            return None
-        self._ref, self._after = None, now  # re-armed by the first frame measured wholly after this one
-        self.found.append([now, ang, 0.0])
-        return (f"the lower-back unit was re-clipped before {now:.1f} s: its walking frame turned {ang:.0f} deg on the "
-                "belt; the live track keeps its first frame, so its heading may be off from here: the position "
-                f"radius grows with the distance walked since ({decision_ref('W623')})")
-
-    def extra_sigma_m(self, length_m: float) -> float:
-        """The radius (m) the re-clips found add after a step of ``length_m`` (0 without one)."""
-        extra = 0.0
-        for r in self.found:
-            r[2] += abs(float(length_m))
-            extra += r[2] * float(np.sin(np.radians(min(r[1], 90.0))))
-        return extra
-
-
 def reclip_message(r: Reclip, corrected: bool) -> str:
     """Decision W623: the one line of a re-clip."""
     then = ("its turn is not counted as a heading turn and the data after it are tracked in the frame before it"
@@ -340,6 +240,5 @@ def reclip_message(r: Reclip, corrected: bool) -> str:
             f"{r.angle_deg:.0f} deg {where}; {then} ({decision_ref('W623')})")
 
 
-__all__ = ["Reclip", "walking_samples", "two_vector_rotation", "frame_rotation", "rotation_angle_deg",
-           "split_rotations", "may_reclip", "find_reclips", "reframe", "reclip_message", "reclipped_imu",
-           "LiveReclipWatch"]
+__all__ = ["Reclip", "frame_rotation", "split_rotations", "may_reclip", "find_reclips", "reframe", "reclip_message",
+           "reclipped_imu"]
