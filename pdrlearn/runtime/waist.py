@@ -135,6 +135,11 @@ class WaistStream(OwnGuard, FixInput):
         #: decision B119: the units of the first seconds (None: checked, or ``check_input=False``); B120: frozen
         self._guard = UnitGuard(WAIST_SENSORS, self._name) if check_input else None
         self._frozen = FrozenWatch()
+        self._reclip = None
+        if options.get("reclip", True):  # decision W623: a unit re-clipped on the belt, said and its radius grown
+            from pdrlearn.kernels.reclip import LiveReclipWatch
+
+            self._reclip = LiveReclipWatch(self.fs)
         self.warnings: list[str] = list(warnings)
         for w in warnings:
             log.warning("live waist tracker: %s", w)
@@ -295,6 +300,10 @@ class WaistStream(OwnGuard, FixInput):
         for msg in self._frozen.push(pushed):  # decision B120: a frozen sensor, one warning per run
             self.warnings.append(msg)
             log.warning("live waist tracker: %s", msg)
+        line = None if self._reclip is None else self._reclip.push(t, acc)  # decision W623
+        if line:
+            self.warnings.append(line)
+            log.warning("live waist tracker: %s", line)
         v = np.column_stack([acc, gyr])
         if self._proc is None or self._frame_pending():
             v_t = self._frame(t, v)
@@ -809,9 +818,11 @@ class WaistStream(OwnGuard, FixInput):
             self._ll = step_destination(*self._ll, math.hypot(dx, dy), math.atan2(dy, dx))
             lat, lon = math.degrees(self._ll[0]), math.degrees(self._ll[1])
         self._xy_reported = (float(x), float(y))
-        step = LiveStep(**part, x=float(x), y=float(y), lat=lat, lon=lon,
-                        pos_sigma_m=None if fused is not None else self._pos_sigma(part["t"], part["end_s"], length,
-                                                                                    enu))
+        sigma = None if fused is not None else self._pos_sigma(part["t"], part["end_s"], length, enu)
+        if self._reclip is not None and self._reclip.found:  # decision W623: a re-clip's heading error grows it
+            extra = self._reclip.extra_sigma_m(length)
+            sigma = None if sigma is None else sigma + extra
+        step = LiveStep(**part, x=float(x), y=float(y), lat=lat, lon=lon, pos_sigma_m=sigma)
         self.steps.append(step)
         return step
 

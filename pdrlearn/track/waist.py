@@ -66,6 +66,7 @@ from pdrlearn.track.sideways import sideways_warnings
 from pdrlearn.track.units import unit_span, with_left_out_units
 from pdrlearn.waist import _kernels as K
 from pdrlearn.waist import mount_drift as _mount_drift
+from pdrlearn.waist import reclip as _reclip
 from pdrlearn.waist.ahrs import WaistIMU, waist_imu
 from pdrlearn.waist.backward import backward_warnings
 from pdrlearn.waist.contact_model import CONTACT_MODEL_VALUES, rescore_contacts
@@ -723,6 +724,9 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    # W565 / W566: a sliding belt unit said and corrected; W571: not on the walking upright alone;
                    # W577: adopted with W576's check, the quiet standing before and after moved with it ("standing")
                    "mount_drift": "standing",
+                   # W623: a unit re-clipped mid-walk: its walking frames either side, the data after it turned back
+                   # (true); W624: W623's rule not met (errors 0.68 / 0.77 of before, not half), the line alone
+                   "reclip": "line",
                    "side_at_contact": False,  # W235: the sequence rules' sides at the contact (offline pendulum)
                    "fast_fill": False,  # W242: a merged step's 5 Hz maximum (offline pendulum)
                    "ap_above_mean": False,  # W265: W29's IC, the last AP maximum above the AP mean (offline pendulum)
@@ -773,6 +777,8 @@ SCOPED_OPTIONS = {
                           lambda pl, rt, m, det, stops: not rt),
     "mount_drift": ("the offline waist tracks (W565 / W566: the bouts' uprights are read over the whole recording)",
                     lambda pl, rt, m, det, stops: not rt),
+    "reclip": ("the offline waist tracks (W623: the walking frames before and after each time are compared)",
+               lambda pl, rt, m, det, stops: not rt),
     "pll_edge_lock": ("waist-pll with its own PLL detector (W356)",
                       lambda pl, rt, m, det, stops: pl == "waist-pll" and not det),
     "pll_slow_follow": ("the offline waist-pll with its own PLL detector (W504)",
@@ -818,7 +824,7 @@ FLAG_OPTIONS = tuple(k for k, v in OPTION_DEFAULTS.items()
                                                           "parity_fill", "stand_veto", "contact_model", "fast_fill",
                                                           "cadence_law", "pll_edge_lock", "turn_bridge",
                                                           "pelvic_rhythm_veto", "mount_drift", "slow_min_step",
-                                                          "live_climbs"))
+                                                          "live_climbs", "reclip"))
 FLAG_RULES = {k: Rule("flag", ints=True) for k in FLAG_OPTIONS}  # B199: 0 / 1 pass (B206's shared check)
 #: the values of the ``sit_veto`` option: off, W104's veto, W109's veto sparing left/right step pairs, W180's
 #: sparing also an undecided contact between two same-side contacts of its sequence, W184's sparing instead an
@@ -861,6 +867,8 @@ CHOICE_OPTIONS = {"sit_veto": (SIT_VETO_VALUES, "W104, W109, W180, W184"),
                   "slow_min_step": (SLOW_MIN_STEP_VALUES, "W591"),
                   # W576: "standing", the line only when the quiet standing moved with the walking upright
                   "mount_drift": ((False, True, "standing"), "W565, W571, W576"),
+                  # W623 / W624: true, the line and the correction; "line", the line alone; false, neither
+                  "reclip": ((False, True, "line"), "W623, W624"),
                   "live_climbs": ((False, "hold"), "E358")}
 
 
@@ -1137,6 +1145,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "rhythm_warning": None,  # W338 / W339: a PARAMS.json option only
              "trunk_rhythm_veto": None,  # W550: a PARAMS.json option only
              "mount_drift": None,  # W565 / W566 / W571: a PARAMS.json option only
+             "reclip": None,  # W623: a PARAMS.json option only
              "rest_bias": rest_bias, "step_bound": None,  # W230: a PARAMS.json option only
              "climb_veto": None,  # L330: a PARAMS.json option only
              "ride_vibration": None,  # L402 / L403: a PARAMS.json option only
@@ -1215,6 +1224,9 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
         if getattr(exc, "walk_s", None) is None:
             raise
         return _no_walking(session, pipeline, p, o, warnings, float(exc.walk_s), start, initial_heading)
+    if o["reclip"] and not realtime:  # decision W623: a unit re-clipped mid-walk, its turn no heading turn
+        imu, lines = _reclip.reclipped_imu(session, imu, correct=o["reclip"] != "line")  # W624: "line", the line alone
+        warnings += lines
     # the W4 gate's threshold and signal (offline: centred); W76's relative gate (not realtime); steps 35
     thr, sigma, gate_source = gate_threshold(imu, p.walk_threshold_mps2,
                                              relative=bool(o["relative_gate"]) and not realtime)
