@@ -70,7 +70,7 @@ def track(path: str, on: bool):
     from pdrlearn.track.waist import track_waist
 
     s = keep_units(read_session(path), ("waist",))
-    return track_waist(s, pipeline="waist-pendulum", params={"options": {"gap_bridge": "walking" if on else False}})
+    return track_waist(s, pipeline="waist-pendulum", params={"options": {"gap_bridge": on}})
 
 
 def run(u: int) -> None:
