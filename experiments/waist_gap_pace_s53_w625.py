@@ -108,6 +108,49 @@ def report(a: int, b: int) -> None:
     print(f"controls byte-identical off/on: {sum(r['c_identical'] for r in rows)} of {len(rows)}")
 
 
+def real(root: str = "/work/main/datasets/external", cut_s: float = 3.0) -> None:
+    import glob
+    import shutil
+
+    rel = []
+    for src in sorted(glob.glob(f"{root}/mobgap_*")):
+        name = os.path.basename(src)
+        st = track(src, True).steps
+        chained = st["has_next"].to_numpy(bool)
+        chained[:-1] &= np.isclose(st["end_s"].to_numpy(float)[:-1], st["start_s"].to_numpy(float)[1:])
+        best, k = (0, 0), 0  # the longest run of chained steps
+        for i in range(len(st) + 1):
+            if i == len(st) or not chained[i]:
+                best = max(best, (i - k, k))
+                k = i + 1
+        n, k0 = best
+        t_mid = 0.5 * (st["start_s"].iloc[k0] + st["end_s"].iloc[k0 + n - 1])
+        a = t_mid - cut_s / 2
+        dst = f"{OUT}/real_{name}"
+        shutil.rmtree(dst, ignore_errors=True)
+        shutil.copytree(src, dst)
+        for f in ("wAccelerometer.csv", "wGyroscope.csv"):
+            df = pd.read_csv(f"{dst}/{f}")
+            t = df["timestamp"].to_numpy(float) / 1000.0
+            df[(t < a) | (t >= a + cut_s)].to_csv(f"{dst}/{f}", index=False)
+        cut = track(dst, True).steps
+        br = cut["gap_bridged_m"].to_numpy(float) if "gap_bridged_m" in cut else np.zeros(len(cut))
+        if (br > 0).any():
+            j = int(np.flatnonzero(br > 0)[0])
+            s0, s1 = float(cut["start_s"].iloc[j]), float(cut["end_s"].iloc[j])
+            ss = st["start_s"].to_numpy(float)
+            uncut = float(np.abs(st["length_m"].to_numpy(float)[(ss >= s0 - 1e-6) & (ss < s1 - 1e-6)]).sum())
+            e = abs(br[j] - uncut) / uncut
+            print(f"{name}: longest sequence {n} steps, gap {a:.2f}-{a + cut_s:.2f} s: bridged {br[j]:.2f} m over "
+                  f"{s0:.2f}-{s1:.2f} s, uncut track {uncut:.2f} m, |diff| {100 * e:.1f} %")
+        else:
+            e = 1.0
+            print(f"{name}: longest sequence {n} steps, gap {a:.2f}-{a + cut_s:.2f} s: not bridged (counted 100 %)")
+        rel.append(e)
+    print(f"real n={len(rel)}: median |bridged - uncut| / uncut {100 * np.median(rel):.1f} %, "
+          f"bridged {sum(e < 1.0 for e in rel)} of {len(rel)}")
+
+
 if __name__ == "__main__":
     cmd = sys.argv[1]
     if cmd == "sim":
@@ -116,3 +159,5 @@ if __name__ == "__main__":
         run(int(sys.argv[2]))
     elif cmd == "report":
         report(int(sys.argv[2]), int(sys.argv[3]))
+    elif cmd == "real":
+        real()
