@@ -4,8 +4,8 @@
 ``run U`` tracks both (waist-pendulum, ``--units waist``) with the option ``gap_bridge`` off (before) and on (after)
 and writes OUT/res_U.json; ``report A B`` prints the rule's numbers over users A..B-1; ``real`` cuts an artificial gap
 into the real lower-back recordings and prints the bridged distance against the cut part's distance in the uncut track.
-Groups (by (U - 20900) % 40): 0-19 a gap inside straight walking at 15 s, 20-29 a gap centred on the 90 deg turn, 30-39 a gap
-inside a 12 s stand. D = 1 + U % 8 s (the stand group: at most the stand less 4 s).
+Groups (by (U - 20900) % 40): 0-19 a gap inside straight walking at 15 s, 20-29 a gap centred on the 90 deg turn,
+30-39 a gap inside a 12 s stand. D = 1 + U % 8 s (the stand group: at most the stand less 4 s).
 """
 from __future__ import annotations
 
