@@ -93,6 +93,8 @@ def report(a: int, b: int) -> None:
     rows = [json.load(open(f"{OUT}/res_{u}.json")) for u in range(a, b) if os.path.exists(f"{OUT}/res_{u}.json")]
     for g in ("straight", "turn", "stop"):
         rr = [r for r in rows if r["group"] == g]
+        if not rr:
+            continue
         e0 = np.array([r["g_0_dist"] - r["c_0_dist"] for r in rr])
         e1 = np.array([r["g_1_dist"] - r["c_0_dist"] for r in rr])
         br = np.array([r["g_1_bridged"] for r in rr])
@@ -104,7 +106,7 @@ def report(a: int, b: int) -> None:
     e1 = np.median([abs(r["g_1_dist"] - r["c_0_dist"]) for r in walk])
     stop = [r["g_1_dist"] - r["g_0_dist"] for r in rows if r["group"] == "stop"]
     print(f"gapped walks n={len(walk)}: median |error| before {e0:.2f} m, after {e1:.2f} m, ratio {e1 / e0:.3f}")
-    print(f"stop gaps n={len(stop)}: added by the bridge max {max(stop):.3f} m")
+    print(f"stop gaps n={len(stop)}: added by the bridge max {max(stop, default=float('nan')):.3f} m")
     print(f"controls byte-identical off/on: {sum(r['c_identical'] for r in rows)} of {len(rows)}")
 
 
@@ -116,7 +118,7 @@ def real(root: str = "/work/main/datasets/external", cut_s: float = 3.0) -> None
     for src in sorted(glob.glob(f"{root}/mobgap_*")):
         name = os.path.basename(src)
         st = track(src, True).steps
-        chained = st["has_next"].to_numpy(bool)
+        chained = st["has_next"].to_numpy(bool).copy()
         chained[:-1] &= np.isclose(st["end_s"].to_numpy(float)[:-1], st["start_s"].to_numpy(float)[1:])
         best, k = (0, 0), 0  # the longest run of chained steps
         for i in range(len(st) + 1):

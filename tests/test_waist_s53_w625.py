@@ -53,6 +53,15 @@ def test_a_bridged_row_grows_the_radius_by_its_share():
     assert held_gap_variance(steps.drop(columns="gap_bridged_m")) is None
 
 
+def test_the_live_tracker_names_the_option_it_does_not_apply():
+    from types import SimpleNamespace
+
+    from pdrlearn.waist.live import unapplied_options_line
+
+    assert "gap_bridge=true" in unapplied_options_line(SimpleNamespace(options={"gap_bridge": True}))
+    assert "gap_bridge" not in (unapplied_options_line(SimpleNamespace(options={})) or "")
+
+
 @pytest.fixture(scope="module")
 def walks():
     from pdrlearn.sim import UserProfile, simulate_path

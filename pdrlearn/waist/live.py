@@ -143,7 +143,7 @@ LIVE_UNAPPLIED_OPTIONS = ("stairs_climb", "max_tilt_deg", "sit_veto", "vault_vet
                           "climb_veto",  # L330: W108's climbs read the whole recording (L314's veto, opt-in)
                           "ride_vibration",  # L402 / L403: the live tracker tells no ride's kind (no rides.csv)
                           "walked_ride",  # W609: the live tracker tells no ride's kind (no rides.csv)
-                          "gap_bridge",  # W625: offline only this session (the next contacts are read after it)
+                          "gap_bridge",  # W625 (not adopted, opt-in): offline only
                           "lying_heading",  # W269: W222's lying is labelled on the whole recording
                           "gentle_rest_bias",  # W544: W105's first standstill may come after the step
                           # E146: W231's ride is applied live only where the PARAMS.json gives pause_ride true (E146's
@@ -155,8 +155,7 @@ LIVE_UNAPPLIED_OPTIONS = ("stairs_climb", "max_tilt_deg", "sit_veto", "vault_vet
 #: decisions W271, E151: options E107's line names only where the PARAMS.json gives them, not at their offline
 #: default: ``lying_heading`` (true offline since W271) would otherwise be named on every live track, most with no
 #: lying; ``foot_rest_veto`` (true offline since W337) acts only with a foot unit, never read live
-NAMED_WHEN_GIVEN = ("lying_heading", "foot_rest_veto", "gentle_rest_bias",  # W544: as lying_heading
-                    "gap_bridge")  # W625: an offline default is no live track's line
+NAMED_WHEN_GIVEN = ("lying_heading", "foot_rest_veto", "gentle_rest_bias")  # W544: as lying_heading
 
 
 def unapplied_options_line(p) -> str | None:
