@@ -1245,6 +1245,10 @@ WAIST_STEPS: tuple[Column, ...] = (
                                 "per-side step length - grouped by side it does not give each leg's step (not "
                                 "validated; a simulated walker stepping 0.604 / 0.749 m onto the left / right foot "
                                 "read 0.602 / 0.564 m by side; W251)"),
+    ("gap_bridged_m", "m", "number", "waist-pendulum / waist-pll offline, option gap_bridge: the metres of the "
+                                     "closing contact's row across a data gap of at most 5 s inside walking, walked "
+                                     "at the mean pace of the 3 steps either side (its end_s the next contact; W625); "
+                                     "0 elsewhere, absent when no gap is bridged"),
     ("frequency_hz", "Hz", "number", "1 / the step's duration"),
     ("dyaw_rad", "rad", "number", "vertical-gyro rotation during the step"),
     ("heading_rad", "rad", "number", "the step's heading (ENU, counter-clockwise from east)"),

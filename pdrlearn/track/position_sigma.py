@@ -55,11 +55,16 @@ EXTENT_HEADING_RAD = float(np.sqrt(2.0 ** 2 + 3.0 ** 2 * np.sqrt(np.pi) / 4.0 / 
 GAP_FALLBACK_SPEED_MPS = 1.4
 
 
-def held_gap_variance(steps) -> np.ndarray | None:
+def held_gap_variance(steps, *, bridge_error: float = 0.15) -> np.ndarray | None:
     """Decision E127: per stride, the per-axis variance (m^2) its held position adds: a row with ``gap_s`` > 0 and no
     length (the position held across a foot dropout) misses the displacement walked in the gap, up to the speed times
     the gap in any direction: radius^2 + (v g)^2, i.e. (v g)^2 / 2 per axis. v: the median |length| / duration of the
-    track's strides without a gap (E128's speed without any). None when no row is a held gap."""
+    track's strides without a gap (E128's speed without any). None when no row is a held gap. Decision W625: a row
+    a waist gap was bridged on (``gap_bridged_m`` > 0) misses ``bridge_error`` (W625's 15 % rule) of those metres."""
+    if "gap_bridged_m" in steps and len(steps):  # decision W625
+        bridged = pd.to_numeric(steps["gap_bridged_m"], errors="coerce").fillna(0.0).to_numpy(float)
+        if (bridged > 0).any():
+            return 0.5 * (bridge_error * bridged) ** 2
     if "gap_s" not in steps or not len(steps):
         return None
     gap = pd.to_numeric(steps["gap_s"], errors="coerce").fillna(0.0).to_numpy(float)

@@ -744,7 +744,9 @@ OPTION_DEFAULTS = {"realtime": False, "heading": None, "refine_ic": True, "initi
                    "walked_ride": False,  # W609: a ride shaking like walking is stairs; not met, opt-in
                    # E358: stairs_length "climbs" applied live by holding an open run's steps until it is decided
                    # ("hold"); false: the live trackers do not apply "climbs" (E107's line names it)
-                   "live_climbs": False}
+                   "live_climbs": False,
+                   # W625: a waist gap of at most 5 s inside walking bridged at the pace either side (offline)
+                   "gap_bridge": False}
 #: decision W193: options that act on one pipeline / mode only - where each applies (said when it is set and does
 #: nothing) and the test of whether it acts: ``(pipeline, realtime, heading method, detector given, integrate_stops)``
 SCOPED_OPTIONS = {
@@ -1150,6 +1152,7 @@ def track_waist(session: Session, *, pipeline: str, params=None, start=None, rea
              "climb_veto": None,  # L330: a PARAMS.json option only
              "ride_vibration": None,  # L402 / L403: a PARAMS.json option only
              "walked_ride": None,  # W609: a PARAMS.json option only
+             "gap_bridge": None,  # W625: a PARAMS.json option only
              "live_climbs": None,  # E358: a PARAMS.json option only
              "lying_heading": None,  # W269: a PARAMS.json option only
              "rest_frame": None,  # W285: a PARAMS.json option only
@@ -1593,9 +1596,38 @@ def _track_waist(session: Session, pipeline: str, params, start, given: dict, de
         line = turn_steps.stepless_turns_warning(steps["event_s"], info["yaw_turns"])
         if line:
             warnings.append(line)
+    if o["gap_bridge"] and not realtime:  # decision W625: a short gap inside walking walked at the pace either side
+        steps = _bridge_gaps(steps, gaps, warnings)
     for w in warnings:
         log.warning("%s: %s", session.where, w)
     return _result(steps, start, initial_heading, info, float(imu.t[0]), z, z_start, z_raw)
+
+
+def _bridge_gaps(steps: pd.DataFrame, gaps: dict[str, list[tuple[float, float]]], warnings: list[str]) -> pd.DataFrame:
+    """Decision W625: ``steps`` with each B11 gap inside walking that :func:`pdrlearn.kernels.gap_bridge.pace_bridge`
+    bridges walked at the pace either side (the closing contact's row: ``length_m``, ``end_s`` the next contact,
+    ``gap_bridged_m``), and one line in ``warnings`` saying so. Unchanged (no column) when none is bridged."""
+    from pdrlearn.decision_refs import decision_ref
+    from pdrlearn.kernels.gap_bridge import pace_bridge
+
+    if not gaps or not len(steps):
+        return steps
+    bridged, end = pace_bridge(steps["start_s"].to_numpy(float), steps["end_s"].to_numpy(float),
+                               steps["has_next"].to_numpy(bool), steps["length_m"].to_numpy(float), gaps)
+    on = bridged > 0
+    if not on.any():
+        return steps
+    out = steps.assign(length_m=np.where(on, bridged, steps["length_m"].to_numpy(float)),
+                       end_s=np.where(on, end, steps["end_s"].to_numpy(float)), gap_bridged_m=bridged)
+    out.attrs = dict(steps.attrs)
+    said = set(gap_warnings(gaps))  # B11's lines: each now says what the bridge did
+    told = gap_warnings(gaps, f"{int(on.sum())} of them inside walking (at most 5 s) bridged at the pace of the steps "
+                              f"either side, {bridged.sum():.1f} m in all (steps.csv gap_bridged_m; the heading held "
+                              f"across them, a turn inside one is missed; {decision_ref('W625')}); no displacement is "
+                              "counted inside the others")
+    at = next((k for k, w in enumerate(warnings) if w in said), len(warnings))
+    warnings[:] = [w for w in warnings[:at] if w not in said] + told + [w for w in warnings[at:] if w not in said]
+    return out
 
 
 def _calibrated_gain(model: StepLengthModel, spec, p: WaistParams, own_calibration: bool) -> str | None:

@@ -151,6 +151,7 @@ LIVE_UNAPPLIED_OPTIONS = ("stairs_climb", "max_tilt_deg", "sit_veto", "vault_vet
                           "climb_veto",  # L330: W108's climbs read the whole recording (L314's veto, opt-in)
                           "ride_vibration",  # L402 / L403: the live tracker tells no ride's kind (no rides.csv)
                           "walked_ride",  # W609: the live tracker tells no ride's kind (no rides.csv)
+                          "gap_bridge",  # W625 (not adopted, opt-in): offline only
                           "lying_heading",  # W269: W222's lying is labelled on the whole recording
                           "gentle_rest_bias",  # W544: W105's first standstill may come after the step
                           # E146: W231's ride is applied live only where the PARAMS.json gives pause_ride true (E146's
