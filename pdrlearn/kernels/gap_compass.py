@@ -101,6 +101,18 @@ class GapCompass:
         self.axis: int | None = None  # the body axis the compass reads, fixed at the first reading
         self.offsets: deque[tuple[float, float]] = deque()  # (stride end s, offset rad)
 
+    def state(self) -> dict:
+        """Decision E370: what a restart state carries (plain numbers, a copy): the heading, the compass's axis and the
+        offsets of the last ``window_s`` of strides."""
+        return {"heading": float(self.heading), "axis": None if self.axis is None else int(self.axis),
+                "offsets": [[float(t), float(o)] for t, o in self.offsets]}
+
+    def restore(self, state: dict) -> None:
+        """Decision E370: set to a :meth:`state` (a restart state's ``gap_compass``)."""
+        self.heading = float(state["heading"])
+        self.axis = None if state["axis"] is None else int(state["axis"])
+        self.offsets = deque((float(t), float(o)) for t, o in state["offsets"])
+
     def row(self, dyaw: float) -> None:
         """A row's turn (rad) without a compass reading of its own."""
         self.heading += float(dyaw)

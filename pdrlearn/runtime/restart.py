@@ -61,7 +61,7 @@ def restart_state(tracker) -> dict:
                         "(decision L140)")
     kept = tracker._kept
     # decision E280: strides held for L611's verdict are measured again (E356: E354's held gap as before the first)
-    prev_end, stop, rest, cycle = tracker._restart_from
+    prev_end, stop, rest, cycle, compass = tracker._restart_from
     fused = tracker._fused
     phase = None if tracker._cycle_phase is None else tracker._cycle_phase.psi  # E338: set by placed strides only
     return {
@@ -87,6 +87,7 @@ def restart_state(tracker) -> dict:
         "contacts": [[float(a), float(c)] for a, c in tracker._contacts],
         "altitude": "foot" if fused is None else "fused",
         "fused": None if fused is None else fused.state(step_record),
+        "gap_compass": compass,  # decision E370: E361's re-anchoring compass (None without it)
     }
 
 
@@ -181,6 +182,13 @@ def resume(tracker, state: dict) -> list:
         tracker._foot_rest.readings, tracker._foot_rest.n_still = rest[0], int(rest[1])
     tracker._loops.history, tracker._loops.seen = history, len(history)  # decision E280
     tracker._cycle.gap_s, tracker._cycle.before, tracker._cycle.last = cycle  # decisions E356, E365: E354's gap turn
+    compass = state.get("gap_compass")  # decision E370: absent (a state saved before E370) or None = starts afresh
+    if compass is not None and tracker._compass is not None:
+        try:
+            tracker._compass.restore(compass)
+        except (TypeError, ValueError, KeyError) as exc:
+            raise DataError(f"{where}: the state's gap_compass is malformed ({exc}); give what "
+                            "Tracker.restart_state() returned (decision E370)") from None
     tracker._gap_row, tracker._row_gaps = gap_row, row_gaps  # decision E356: E46's gap row, emitted before it
     tracker._contacts = contacts  # decision E356: steps decision 87's contacts (E354's stride before a gap)
     _resume_fused(tracker, state, where)  # decision E356: E339's barometer, filter and rows not returned yet

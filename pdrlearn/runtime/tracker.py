@@ -1969,7 +1969,8 @@ class Tracker(OwnGuard, FixInput):
         stride holds and the stride after it takes; decision E365: and the last measured stride's mean rate."""
         stop, rest, cycle = self._stop_bias, self._foot_rest, self._cycle
         return (self._prev_end, None if stop is None else (stop.rps, stop.n_stops), (list(rest.readings), rest.n_still),
-                (cycle.gap_s, cycle.before, cycle.last))  # decision E356: E354's waist gap held (E365: the last rate)
+                (cycle.gap_s, cycle.before, cycle.last),  # decision E356: E354's waist gap held (E365: the last rate)
+                None if self._compass is None else self._compass.state())  # decision E370: E361's compass
 
     @property
     def _restart_from(self) -> tuple:
