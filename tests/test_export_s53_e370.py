@@ -4,8 +4,6 @@ parity (a fused, bridged dropout split anywhere) is tests/test_export_s53_e356.p
 
 from __future__ import annotations
 
-import pytest
-
 from pdrlearn.kernels.gap_compass import GapCompass
 
 
