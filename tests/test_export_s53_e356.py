@@ -92,6 +92,8 @@ def test_a_state_saved_before_e356_restores_and_the_other_altitude_is_refused(dr
         Tracker(bundle, resume={**state, "fused": {"held": []}}, altitude="fused", **KW)
 
 
+@pytest.mark.skipif(not (Path(__file__).resolve().parents[1] / "datasets" / "external" / "gaitmap_ms_left").is_dir(),
+                    reason="needs `make external` (datasets/external)")
 def test_a_restored_tracker_keeps_the_contacts_on_a_real_recording():
     """E356's ``contacts`` (steps decision 87) on the real gaitmap_ms_left (foot only, ``contacts=True``): before E356 a
     tracker restarted after 26 s gave 7 rows another ``event_s`` / ``stride_time_s`` (positions equal)."""

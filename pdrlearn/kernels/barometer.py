@@ -94,7 +94,7 @@ def altitude_noise(t: np.ndarray, p_hpa: np.ndarray, *, first_n: int = 64) -> tu
 
 
 def noise_window_s(t: np.ndarray, p_hpa: np.ndarray, smooth_s: float = ALTITUDE_SMOOTH_S, *, sds: float = 3.0,
-                   first_n: int = 64) -> float:
+                   first_n: int = 64, max_s: float = 12.0) -> float:
     """Decision W621: the window (s) W89's centred mean averages a barometer over: ``smooth_s``, or longer where the
     barometer's noise density ``n = sigma sqrt(dt)`` (m s^0.5, :func:`altitude_noise`) would leave W91's rise (the
     change of that mean over :data:`STAIRS_RATE_WINDOW_S`, D) a noise SD over 1 / ``sds`` of its threshold
@@ -102,12 +102,15 @@ def noise_window_s(t: np.ndarray, p_hpa: np.ndarray, smooth_s: float = ALTITUDE_
     ``n sqrt(2 / W)`` (W <= D, disjoint) or ``n sqrt(2 D) / W`` (W >= D, overlapping): the least W meeting the bound.
     Its seconds follow the noise, not the sample rate: the simulator's 50 Hz barometer (W89's BMP280, n ~0.03) keeps
     1 s; a phone's 1 Hz samples of ~0.27 m (n ~0.27) are averaged over ~8 s - one sample a second read as the altitude
-    made every second level step a stair (trial s53t2)."""
+    made every second level step a stair (trial s53t2). Decision W627: at most ``max_s`` (12 s; W621's phones needed
+    4.3-9.1 s at 1 Hz): a barometer sampled every 5 s read a 17.5 s window, whose median flattened a lift ride's
+    storeys (L374's user 7222: 3 floors down read as 2).
+    """
     sigma, dt = altitude_noise(t, p_hpa, first_n=first_n)
     d = STAIRS_RATE_WINDOW_S
     x = sds * sigma * np.sqrt(dt) / (STAIRS_RATE_MPS * d)  # the rise's SD bound is STAIRS_RATE_MPS * D / sds
     need = 2.0 * x * x if 2.0 * x * x <= d else x * np.sqrt(2.0 * d)
-    return float(max(smooth_s, need))
+    return float(max(smooth_s, min(need, max_s)))  # decision W627: the cap
 
 
 def noise_smoothing(t: np.ndarray, p_hpa: np.ndarray, smooth_s: float = ALTITUDE_SMOOTH_S, *,

@@ -722,7 +722,8 @@ class AccelProcessor:
             fast_period_s=det.fast_period_s,
             fast_cutoff_hz=det.fast_event_cutoff_hz, event_cutoff_hz=det.event_cutoff_hz, event_delay_s=self.delay,
             pre_n=int(round(PRE_SWING_S * fs)), cluster_s=det.impact_cluster_s,  # steps decision 91
-            max_amp=det.short_max_amp, power=bool(det.event_power))  # steps decisions 94, 97
+            # steps decision 97: a bundle's detector settings saved before it have no event_power (off)
+            max_amp=det.short_max_amp, power=bool(getattr(det, "event_power", False)))  # steps decisions 94, 97
         self.state.need_n = self.params.max_still_n if det.quiet_frac > 0 else self.params.min_still_n
 
     def process(self, t: np.ndarray, v: np.ndarray) -> list:

@@ -62,7 +62,8 @@ ACCEL = {"cutoff_hz": 3.0, "order": 3, "threshold": 1.7, "still_window_s": 0.08,
          "gravity": 9.80665, "subsample": None,  # steps decision 89: peak_prominence
          "short_period_s": SHORT_PERIOD_S, "fast_period_s": FAST_PERIOD_S,  # steps decisions 87, 88
          "fast_event_cutoff_hz": FAST_EVENT_CUTOFF_HZ, "impact_cluster_s": IMPACT_CLUSTER_S,  # steps decision 91
-         "short_min_rate_hz": SHORT_MIN_RATE_HZ, "short_max_amp": SHORT_MAX_AMP}  # steps decisions 93, 94
+         "short_min_rate_hz": SHORT_MIN_RATE_HZ, "short_max_amp": SHORT_MAX_AMP,  # steps decisions 93, 94
+         "event_power": False}  # steps decision 97 (an option, not adopted)
 FORCE = {"cutoff_hz": 3.0, "order": 3, "threshold": FORCE_AMP, "force_on_frac": FORCE_ON_FRAC,
          "force_off_frac": FORCE_OFF_FRAC, "min_swing_s": FORCE_MIN_SWING_S, "subsample": None,
          "ref_stances": FORCE_REF_STANCES, "confirm": True}  # steps decision 54
