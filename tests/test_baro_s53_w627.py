@@ -12,7 +12,7 @@ from pdrlearn.kernels.barometer import altitude_m, noise_window_s
 def _sparse(sigma_m: float, dt: float, n: int = 200) -> tuple[np.ndarray, np.ndarray]:
     t = np.arange(n) * dt
     h = np.random.default_rng(627).normal(0.0, sigma_m, n)
-    p = np.linspace(900.0, 1100.0, 20001)  # altitude_m's inverse by interpolation (monotone: pressure falls with height)
+    p = np.linspace(900.0, 1100.0, 20001)  # altitude_m's inverse by interpolation (pressure falls with height)
     hp = altitude_m(p)
     return t, np.interp(h, hp[::-1], p[::-1])
 
