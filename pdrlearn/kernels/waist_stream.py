@@ -46,6 +46,16 @@ def live_gap_fix() -> str:
             "first contact after it (decisions W59, B11); check the heading after the longest one")
 
 
+def clock_option(value) -> bool | str:
+    """The live ``Bridge``'s clock keyword: False (W59's fill), True (E366's interpolation onto ``t0 + k / fs``) or
+    ``"nearest"`` (E371: each sample on its nearest clock instant)."""
+    if value == "nearest":
+        return "nearest"
+    if value in (False, True, None, 0, 1):
+        return bool(value)
+    raise ValueError(f"uniform_clock must be False, True or 'nearest', not {value!r}")
+
+
 class Bridge:
     """Decision W59 and, with ``uniform_clock=True``, E366's option (not adopted: its rule failed at 100 Hz): the
     pushed samples put on the uniform clock ``t0 + k / fs`` from the first sample,
@@ -59,13 +69,15 @@ class Bridge:
     the second before it, zero rate); an interval over 1.5 periods is recorded in :attr:`filled` (W136's made-up
     samples), one over :data:`pdrlearn.track.gaps.MIN_GAP_S` ends the walking sequence (B11), added to ``gaps``."""
 
-    def __init__(self, fs: float, gaps: dict, *, snap_s: float = 1e-6, uniform_clock: bool = False):
+    def __init__(self, fs: float, gaps: dict, *, snap_s: float = 1e-6, uniform_clock: bool | str = False):
         self.fs = fs
         self.gaps = gaps
         self.snap_s = float(snap_s)
         #: decision E366: the clock above (an option: not adopted, its rule failed at 100 Hz); False: W59's fill of
         #: each interval over 1.5 periods with ``round(interval x fs) - 1`` samples
-        self.uniform_clock = bool(uniform_clock)
+        #: decision E371's option ``"nearest"``: each pushed sample on its nearest clock instant, no interpolation
+        self.uniform_clock = clock_option(uniform_clock)
+        self.k_last = -1  # E371: the last clock instant a pushed sample was put on
         self.t_last: float | None = None
         self.v_last: np.ndarray | None = None
         self.t0: float | None = None  # the clock's origin: the first pushed sample (E366)
@@ -78,6 +90,10 @@ class Bridge:
     def __call__(self, t: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         if not self.uniform_clock:
             return self._fill(t, v)
+        if self.uniform_clock == "nearest":
+            t, v = self._snap(t, v)
+            if not t.size:
+                return t, v
         p, prev, tt, vv, raw_t, raw_v = self._take(t, v)
         if self.t0 is None:
             self.t0 = float(tt[0])
@@ -109,6 +125,22 @@ class Bridge:
             before = (raw_t > tt[a] - LONG_GAP_S) & (raw_t <= tt[a])
             out_v[rest & (i == a)] = np.concatenate([raw_v[before, :3].mean(axis=0), np.zeros(3)])
         return out_t, out_v
+
+    def _snap(self, t: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """E371: each pushed sample put on its nearest clock instant ``t0 + k / fs`` (within half a period), values
+        as they are; one whose instant is already taken (or earlier) is dropped, the first wins. The instants
+        without a sample are then filled by :meth:`__call__`'s interpolation between its neighbours (W59's fill)."""
+        if self.t0 is None and t.size:
+            self.t0 = float(t[0])
+        k = np.rint((t - self.t0) * self.fs).astype(np.int64)
+        keep = k > np.maximum.accumulate(np.concatenate([[self.k_last], k]))[:-1]
+        k = k[keep]
+        if k.size:
+            self.k_last = int(k[-1])
+        # a sample already on its instant keeps its stamp (a uniform stream passes bit-identical)
+        g = self.t0 + k / self.fs
+        tk = t[keep]
+        return np.where(np.abs(tk - g) <= self.snap_s, tk, g), v[keep]
 
     def _take(self, t: np.ndarray, v: np.ndarray) -> tuple:
         """The pushed samples with the previous push's last before them (``tt``, ``vv``) and with the raw samples of
@@ -171,7 +203,7 @@ class RealtimeContacts:
     def __init__(self, fs: float, offline, *, rotation=None, gaps=None, gain: float = MADGWICK_GAIN,
                  delay_s: float = K.DECISION_DELAY_S, hop_s: float = K.DECISION_HOP_S,
                  history_s: float = K.DECISION_HISTORY_S, max_step_s: float = MAX_STEP_S, on_nav=None,
-                 min_step_s: float | None = K.DECISION_MIN_STEP_S, uniform_clock: bool = False):
+                 min_step_s: float | None = K.DECISION_MIN_STEP_S, uniform_clock: bool | str = False):
         self.fs, self.offline, self.gain, self.max_step_s, self.on_nav = fs, offline, gain, max_step_s, on_nav
         self.rotation = None if rotation is None else np.asarray(rotation, dtype=float).reshape(3, 3)
         self.gaps = dict(gaps or {})

@@ -319,7 +319,7 @@ class WaistTracker(WaistStream):
                  gentle_curves: bool | None = None, keep_steps: int | None = None, check_input: bool = True,
                  sides: bool = False,
                  pivot_steps: bool | None = None, pause_steps: bool | str | None = None,
-                 uniform_clock: bool = False):
+                 uniform_clock: bool | str = False):
         from pdrlearn.io.session import Session
         from pdrlearn.track.waist import _start
         from pdrlearn.waist.events import WALK_THRESHOLD_MPS2
@@ -353,7 +353,7 @@ class WaistTracker(WaistStream):
                          walk_threshold=p.walk_threshold_mps2 if p.walk_threshold_mps2 is not None
                          else WALK_THRESHOLD_MPS2, keep_steps=keep_steps, check_input=check_input, latlon=latlon,
                          sides=sides, not_applied_live=quiet[0] if quiet else None,
-                         uniform_clock=bool(uniform_clock))  # decision E366's option
+                         uniform_clock=uniform_clock)  # decisions E366 / E371's options
 
     # -- W65: the frame ---------------------------------------------------------------------------------
     def _hold(self, t: np.ndarray, v: np.ndarray):
