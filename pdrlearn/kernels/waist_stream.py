@@ -48,9 +48,10 @@ def live_gap_fix() -> str:
 
 def clock_option(value) -> bool | str:
     """The live ``Bridge``'s clock keyword: False (W59's fill), True (E366's interpolation onto ``t0 + k / fs``) or
-    ``"nearest"`` (E371: each sample on its nearest clock instant)."""
-    if value == "nearest":
-        return "nearest"
+    ``"nearest"`` (E371: each sample on its nearest clock instant) or ``"nearest-phase"`` (E372: the same on a clock
+    whose phase follows the stamps)."""
+    if value in ("nearest", "nearest-phase"):
+        return value
     if value in (False, True, None, 0, 1):
         return bool(value)
     raise ValueError(f"uniform_clock must be False, True or 'nearest', not {value!r}")
@@ -78,6 +79,7 @@ class Bridge:
         #: decision E371's option ``"nearest"``: each pushed sample on its nearest clock instant, no interpolation
         self.uniform_clock = clock_option(uniform_clock)
         self.k_last = -1  # E371: the last clock instant a pushed sample was put on
+        self.phase = 0.0  # E372: the clock's phase (s) the stamps show, a running mean of their offsets
         self.t_last: float | None = None
         self.v_last: np.ndarray | None = None
         self.t0: float | None = None  # the clock's origin: the first pushed sample (E366)
@@ -90,7 +92,7 @@ class Bridge:
     def __call__(self, t: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         if not self.uniform_clock:
             return self._fill(t, v)
-        if self.uniform_clock == "nearest":
+        if self.uniform_clock in ("nearest", "nearest-phase"):
             t, v = self._snap(t, v)
             if not t.size:
                 return t, v
@@ -132,7 +134,10 @@ class Bridge:
         without a sample are then filled by :meth:`__call__`'s interpolation between its neighbours (W59's fill)."""
         if self.t0 is None and t.size:
             self.t0 = float(t[0])
-        k = np.rint((t - self.t0) * self.fs).astype(np.int64)
+        if self.uniform_clock == "nearest-phase":
+            k = self._phase_snap(t)
+        else:
+            k = np.rint((t - self.t0) * self.fs).astype(np.int64)
         keep = k > np.maximum.accumulate(np.concatenate([[self.k_last], k]))[:-1]
         k = k[keep]
         if k.size:
@@ -141,6 +146,25 @@ class Bridge:
         g = self.t0 + k / self.fs
         tk = t[keep]
         return np.where(np.abs(tk - g) <= self.snap_s, tk, g), v[keep]
+
+    def _phase_snap(self, t: np.ndarray, alpha: float = 0.02) -> np.ndarray:
+        """E372: the instants of E371 on a clock whose phase is the running mean (weight ``alpha`` per sample: ~1 s at
+        50 Hz, 4 ms jitter averaged to ~0.4 ms) of the stamps' offsets from it, so the first stamp's own error no
+        longer shifts every instant; a sample whose nearest instant is taken goes to the next one if its stamp is
+        within a period of it (a phone takes one sample per period: the pair was one early, one late), else -1
+        (dropped)."""
+        k = np.empty(t.size, dtype=np.int64)
+        last, ph = self.k_last, self.phase
+        for n, x in enumerate((t - self.t0) * self.fs):
+            kn = int(np.rint(x - ph))
+            if kn <= last:
+                kn = last + 1 if last + 1 - (x - ph) < 1.0 else -1
+            if kn >= 0:
+                ph += alpha * ((x - kn) - ph)
+                last = kn
+            k[n] = kn
+        self.phase = ph
+        return k
 
     def _take(self, t: np.ndarray, v: np.ndarray) -> tuple:
         """The pushed samples with the previous push's last before them (``tt``, ``vv``) and with the raw samples of
