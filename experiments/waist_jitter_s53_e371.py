@@ -10,15 +10,20 @@ jitter. Sim and prep are E366's (``waist_jitter_s53_e366``, its phoneify and bun
 from __future__ import annotations
 
 import json
+import os
 import sys
+import time
 
 import numpy as np
 import pandas as pd
+
 import waist_jitter_s53_e366 as e366
 
 e366.WALK = ("stand:5, straight:35, turn:90, straight:25, turn:90, straight:20, turn:-90, straight:25, stand:5")
 e366.JITTERS = JITTERS = (0, 2, 4, 6)
-ARMS = {"before": False, "after": "nearest"}
+#: the arms ``tag:clock`` (``ARMS=e372:nearest-phase`` for E372's); "0" is W59's fill, the default
+ARMS = {a.split(":")[0]: {"0": False}.get(a.split(":")[1], a.split(":")[1])
+        for a in os.environ.get("ARMS", "before:0,after:nearest").split(",")}
 
 
 def _read(path):
@@ -47,6 +52,8 @@ def live(folder, rate: int, clock) -> list[tuple[float, float, float, float]]:
 
 
 def run(u: int) -> None:
+    while not (e366.folder(u, e366.RATES[-1]) / "wb" / "manifest.json").exists():  # another worker's prep
+        time.sleep(10)
     for rate in e366.RATES:
         d = e366.folder(u, rate)
         for j in JITTERS:
@@ -61,19 +68,20 @@ def report(rows: list[dict]) -> None:
     df = pd.DataFrame(rows)
     for rate in e366.RATES:
         for j in JITTERS[1:]:
-            for tag in ARMS:
+            for tag in sorted(set(df.tag)):
                 x = df[(df.rate == rate) & (df.tag == tag)].pivot(index="u", columns="jit", values="live_m").dropna()
                 r = 100 * (x[j] / x[0] - 1)
                 print(f"{rate} Hz {tag:6s} live {j} ms / 0 ms - 1: mean {r.mean():+.3f} %, median |.| "
                       f"{r.abs().median():.3f} %, mean |.| {r.abs().mean():.3f} %, max |.| {r.abs().max():.3f} % "
                       f"(n={r.size})")
-    worst, same = 0.0, True
-    for p in sorted(e366.OUT.glob("r*/*/live_j0_after.npy")):
-        a, b = np.load(p), np.load(p.with_name("live_j0_before.npy"))
-        same &= a.shape == b.shape
-        if a.shape == b.shape:
-            worst = max(worst, float(np.max(np.abs(a[:, :3] - b[:, :3]))))
-    print(f"0 ms live before / after: same step counts {same}, max |diff| end_s/x/y {worst:.3g}")
+    for tag in sorted(set(df.tag) - {"before"}):
+        worst, same = 0.0, True
+        for p in sorted(e366.OUT.glob(f"r*/*/live_j0_{tag}.npy")):
+            a, b = np.load(p), np.load(p.with_name("live_j0_before.npy"))
+            same &= a.shape == b.shape
+            if a.shape == b.shape:
+                worst = max(worst, float(np.max(np.abs(a[:, :3] - b[:, :3]))))
+        print(f"0 ms live before / {tag}: same step counts {same}, max |diff| end_s/x/y {worst:.3g}")
 
 
 if __name__ == "__main__":
