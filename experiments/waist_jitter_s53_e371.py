@@ -77,6 +77,8 @@ def report(rows: list[dict]) -> None:
     for tag in sorted(set(df.tag) - {"before"}):
         worst, same = 0.0, True
         for p in sorted(e366.OUT.glob(f"r*/*/live_j0_{tag}.npy")):
+            if not p.with_name("live_j0_before.npy").exists():
+                continue
             a, b = np.load(p), np.load(p.with_name("live_j0_before.npy"))
             same &= a.shape == b.shape
             if a.shape == b.shape:

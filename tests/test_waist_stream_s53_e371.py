@@ -64,3 +64,20 @@ def test_the_keyword_values():
     assert clock_option("nearest") == "nearest" and clock_option(True) is True and clock_option(False) is False
     with pytest.raises(ValueError, match="nearest"):
         clock_option("closest")
+
+
+def test_e372_the_clock_follows_the_stamps_phase_not_the_first_stamp():
+    """E372: the first stamp 4 ms late (0.4 of a 100 Hz period), the others within 1 ms: E371's clock, anchored at
+    it, puts many samples on a neighbour's instant; E372's follows the stamps' phase and puts each on its own."""
+    fs = 100.0
+    rng = np.random.default_rng(3)
+    t = np.arange(400) / fs + np.round(rng.normal(0.0, 0.001, 400), 3)
+    t[0] += 0.004
+    v = np.column_stack([np.arange(400.0)] * 6)  # each sample's true index
+    wrong = {}
+    for clock in ("nearest", "nearest-phase"):
+        b = Bridge(fs, {}, uniform_clock=clock)
+        bt, bv = b(t, v)
+        k = np.rint((bt - bt[0]) * fs)
+        wrong[clock] = int(np.sum(bv[50:, 0] != k[50:]))  # after E372's phase has settled (~1 s at 50 Hz)
+    assert wrong["nearest-phase"] == 0 and wrong["nearest"] > 20
