@@ -944,7 +944,9 @@ class WaistTracker(WaistStream):
     uniform_clock : decision E366's option (not adopted: its rule failed at 100 Hz): put the pushed samples on the
         uniform clock ``t0 + k / fs`` as they arrive, as offline ``track`` puts a jittered recording (B33), instead of
         W59's fill of each interval over 1.5 periods; a belt phone's 4 ms stamp jitter at 50 Hz had made the live
-        distance +3.5 % long with the default (-0.35 % with the option; docs/decisions/export.md E366)
+        distance +3.5 % long with the default (-0.35 % with the option; docs/decisions/export.md E366); ``"nearest"``
+        (E371) / ``"nearest-phase"`` (E372): each pushed sample on its nearest clock instant, values unchanged (options,
+        not adopted)
 
     Attribute ``not_applied_live``: E107's line for the offline-only options the calibration leaves at their offline
     defaults, which the live tracker does without (None: none); logged at DEBUG only (decision E368: nothing to act

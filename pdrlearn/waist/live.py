@@ -295,7 +295,7 @@ class WaistTracker(WaistStream):
         :data:`~pdrlearn.runtime.waist.PAUSE_LOOKAHEAD_ROWS` rows, one contact later than without it) or False (None:
         ``params.options``, else the pipeline's default); the look-ahead values True / "progression" are not applied
     keep_steps : how many reported steps :attr:`steps` keeps (None: all)
-    uniform_clock : decision E366's option (not adopted), as :class:`pdrlearn.runtime.WaistTracker`'s
+    uniform_clock : decisions E366 / E371 / E372's options (not adopted), as :class:`pdrlearn.runtime.WaistTracker`'s
     check_input : check the units of the first seconds (decision B119) -- False only for data already checked
     sides : give each step its foot (``LiveStep.side``: "left" / "right" / "" undecided) from W20's lateral velocity
         on the samples the contact was decided on (decision W138, causal). An option, not the default: on simulated
