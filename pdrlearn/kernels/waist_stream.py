@@ -46,6 +46,17 @@ def live_gap_fix() -> str:
             "first contact after it (decisions W59, B11); check the heading after the longest one")
 
 
+def clock_option(value) -> bool | str:
+    """The live ``Bridge``'s clock keyword: False (W59's fill), True (E366's interpolation onto ``t0 + k / fs``) or
+    ``"nearest"`` (E371: each sample on its nearest clock instant) or ``"nearest-phase"`` (E372: the same on a clock
+    whose phase follows the stamps)."""
+    if value in ("nearest", "nearest-phase"):
+        return value
+    if value in (False, True, None, 0, 1):
+        return bool(value)
+    raise ValueError(f"uniform_clock must be False, True or 'nearest', not {value!r}")
+
+
 class Bridge:
     """Decision W59 and, with ``uniform_clock=True``, E366's option (not adopted: its rule failed at 100 Hz): the
     pushed samples put on the uniform clock ``t0 + k / fs`` from the first sample,
@@ -57,15 +68,21 @@ class Bridge:
     had each been filled with a made-up sample (no sample missing), had stretched every step by ~4 % at 4 ms jitter
     (trial s53t2 F3). An interval over ``LONG_GAP_S`` is filled as a rest instead (the mean of the raw samples of
     the second before it, zero rate); an interval over 1.5 periods is recorded in :attr:`filled` (W136's made-up
-    samples), one over :data:`pdrlearn.track.gaps.MIN_GAP_S` ends the walking sequence (B11), added to ``gaps``."""
+    samples), one over :data:`pdrlearn.track.gaps.MIN_GAP_S` ends the walking sequence (B11), added to ``gaps``.
+    ``uniform_clock="nearest"`` (E371) puts each pushed sample, values as they are, on its nearest clock instant and
+    fills only the instants left without one; ``"nearest-phase"`` (E372) does so on a clock whose phase follows the
+    stamps. Both options, not adopted (docs/decisions/export.md: ~1 % long at 100 Hz with 4 ms jitter)."""
 
-    def __init__(self, fs: float, gaps: dict, *, snap_s: float = 1e-6, uniform_clock: bool = False):
+    def __init__(self, fs: float, gaps: dict, *, snap_s: float = 1e-6, uniform_clock: bool | str = False):
         self.fs = fs
         self.gaps = gaps
         self.snap_s = float(snap_s)
         #: decision E366: the clock above (an option: not adopted, its rule failed at 100 Hz); False: W59's fill of
         #: each interval over 1.5 periods with ``round(interval x fs) - 1`` samples
-        self.uniform_clock = bool(uniform_clock)
+        #: decision E371's option ``"nearest"``: each pushed sample on its nearest clock instant, no interpolation
+        self.uniform_clock = clock_option(uniform_clock)
+        self.k_last = -1  # E371: the last clock instant a pushed sample was put on
+        self.phase = 0.0  # E372: the clock's phase (s) the stamps show, a running mean of their offsets
         self.t_last: float | None = None
         self.v_last: np.ndarray | None = None
         self.t0: float | None = None  # the clock's origin: the first pushed sample (E366)
@@ -78,6 +95,10 @@ class Bridge:
     def __call__(self, t: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         if not self.uniform_clock:
             return self._fill(t, v)
+        if self.uniform_clock in ("nearest", "nearest-phase"):
+            t, v = self._snap(t, v)
+            if not t.size:
+                return t, v
         p, prev, tt, vv, raw_t, raw_v = self._take(t, v)
         if self.t0 is None:
             self.t0 = float(tt[0])
@@ -109,6 +130,44 @@ class Bridge:
             before = (raw_t > tt[a] - LONG_GAP_S) & (raw_t <= tt[a])
             out_v[rest & (i == a)] = np.concatenate([raw_v[before, :3].mean(axis=0), np.zeros(3)])
         return out_t, out_v
+
+    def _snap(self, t: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """E371: each pushed sample put on its nearest clock instant ``t0 + k / fs`` (within half a period), values
+        as they are; one whose instant is already taken (or earlier) is dropped, the first wins. The instants
+        without a sample are then filled by :meth:`__call__`'s interpolation between its neighbours (W59's fill)."""
+        if self.t0 is None and t.size:
+            self.t0 = float(t[0])
+        if self.uniform_clock == "nearest-phase":
+            k = self._phase_snap(t)
+        else:
+            k = np.rint((t - self.t0) * self.fs).astype(np.int64)
+        keep = k > np.maximum.accumulate(np.concatenate([[self.k_last], k]))[:-1]
+        k = k[keep]
+        if k.size:
+            self.k_last = int(k[-1])
+        # a sample already on its instant keeps its stamp (a uniform stream passes bit-identical)
+        g = self.t0 + k / self.fs
+        tk = t[keep]
+        return np.where(np.abs(tk - g) <= self.snap_s, tk, g), v[keep]
+
+    def _phase_snap(self, t: np.ndarray, alpha: float = 0.02) -> np.ndarray:
+        """E372: the instants of E371 on a clock whose phase is the running mean (weight ``alpha`` per sample: ~1 s at
+        50 Hz, 4 ms jitter averaged to ~0.4 ms) of the stamps' offsets from it, so the first stamp's own error no
+        longer shifts every instant; a sample whose nearest instant is taken goes to the next one if its stamp is
+        within a period of it (a phone takes one sample per period: the pair was one early, one late), else -1
+        (dropped)."""
+        k = np.empty(t.size, dtype=np.int64)
+        last, ph = self.k_last, self.phase
+        for n, x in enumerate((t - self.t0) * self.fs):
+            kn = int(np.rint(x - ph))
+            if kn <= last:
+                kn = last + 1 if last + 1 - (x - ph) < 1.0 else -1
+            if kn >= 0:
+                ph += alpha * ((x - kn) - ph)
+                last = kn
+            k[n] = kn
+        self.phase = ph
+        return k
 
     def _take(self, t: np.ndarray, v: np.ndarray) -> tuple:
         """The pushed samples with the previous push's last before them (``tt``, ``vv``) and with the raw samples of
@@ -171,7 +230,7 @@ class RealtimeContacts:
     def __init__(self, fs: float, offline, *, rotation=None, gaps=None, gain: float = MADGWICK_GAIN,
                  delay_s: float = K.DECISION_DELAY_S, hop_s: float = K.DECISION_HOP_S,
                  history_s: float = K.DECISION_HISTORY_S, max_step_s: float = MAX_STEP_S, on_nav=None,
-                 min_step_s: float | None = K.DECISION_MIN_STEP_S, uniform_clock: bool = False):
+                 min_step_s: float | None = K.DECISION_MIN_STEP_S, uniform_clock: bool | str = False):
         self.fs, self.offline, self.gain, self.max_step_s, self.on_nav = fs, offline, gain, max_step_s, on_nav
         self.rotation = None if rotation is None else np.asarray(rotation, dtype=float).reshape(3, 3)
         self.gaps = dict(gaps or {})

@@ -108,7 +108,7 @@ class WaistStream(OwnGuard, FixInput):
                  warnings: list[str], keep_steps: int | None = None, check_input: bool = True,
                  latlon: tuple[float, float] | None = None, sides: bool = False,
                  drop_duplicate_timestamps: bool = False, not_applied_live: str | None = None,
-                 uniform_clock: bool = False):
+                 uniform_clock: bool | str = False):
         from collections import deque
 
         from pdrlearn.kernels.waist import TurnPrior
@@ -116,7 +116,10 @@ class WaistStream(OwnGuard, FixInput):
         from pdrlearn.runtime.guard import FrozenWatch, UnitGuard
 
         self._busy = new_guard()  # decision E241: E231's guard, one thread at a time
-        self._uniform_clock = bool(uniform_clock)  # decision E366's option (kernels.waist_stream.Bridge)
+        from pdrlearn.kernels.waist_stream import clock_option
+
+        # decisions E366 / E371's options (kernels.waist_stream.Bridge)
+        self._uniform_clock = clock_option(uniform_clock)
         self.fs = float(fs)
         self.params = params
         self.options = options
@@ -941,7 +944,9 @@ class WaistTracker(WaistStream):
     uniform_clock : decision E366's option (not adopted: its rule failed at 100 Hz): put the pushed samples on the
         uniform clock ``t0 + k / fs`` as they arrive, as offline ``track`` puts a jittered recording (B33), instead of
         W59's fill of each interval over 1.5 periods; a belt phone's 4 ms stamp jitter at 50 Hz had made the live
-        distance +3.5 % long with the default (-0.35 % with the option; docs/decisions/export.md E366)
+        distance +3.5 % long with the default (-0.35 % with the option; docs/decisions/export.md E366); ``"nearest"``
+        (E371) / ``"nearest-phase"`` (E372): each pushed sample on its nearest clock instant, values unchanged (options,
+        not adopted)
 
     Attribute ``not_applied_live``: E107's line for the offline-only options the calibration leaves at their offline
     defaults, which the live tracker does without (None: none); logged at DEBUG only (decision E368: nothing to act
@@ -950,7 +955,7 @@ class WaistTracker(WaistStream):
 
     def __init__(self, bundle, *, fs: float | None = None, start=(0.0, 0.0), heading_rad: float = 0.0,
                  frame=None, keep_steps: int | None = None, check_input: bool = True, start_latlon=None,
-                 sides: bool = False, drop_duplicate_timestamps: bool = False, uniform_clock: bool = False):
+                 sides: bool = False, drop_duplicate_timestamps: bool = False, uniform_clock: bool | str = False):
         from pdrlearn.kernels.frames import frame_rotation, mirrored_line
         from pdrlearn.kernels.geodetic import start_coordinate
         from pdrlearn.kernels.waist import rate_mismatch_line
@@ -1002,4 +1007,4 @@ class WaistTracker(WaistStream):
                          warnings=warnings, walk_threshold=thr if thr is not None else b.manifest["walk_threshold"],
                          keep_steps=keep_steps, check_input=check_input, latlon=latlon, sides=bool(sides),
                          drop_duplicate_timestamps=bool(drop_duplicate_timestamps), not_applied_live=quiet,
-                         uniform_clock=bool(uniform_clock))
+                         uniform_clock=uniform_clock)

@@ -295,7 +295,7 @@ class WaistTracker(WaistStream):
         :data:`~pdrlearn.runtime.waist.PAUSE_LOOKAHEAD_ROWS` rows, one contact later than without it) or False (None:
         ``params.options``, else the pipeline's default); the look-ahead values True / "progression" are not applied
     keep_steps : how many reported steps :attr:`steps` keeps (None: all)
-    uniform_clock : decision E366's option (not adopted), as :class:`pdrlearn.runtime.WaistTracker`'s
+    uniform_clock : decisions E366 / E371 / E372's options (not adopted), as :class:`pdrlearn.runtime.WaistTracker`'s
     check_input : check the units of the first seconds (decision B119) -- False only for data already checked
     sides : give each step its foot (``LiveStep.side``: "left" / "right" / "" undecided) from W20's lateral velocity
         on the samples the contact was decided on (decision W138, causal). An option, not the default: on simulated
@@ -319,7 +319,7 @@ class WaistTracker(WaistStream):
                  gentle_curves: bool | None = None, keep_steps: int | None = None, check_input: bool = True,
                  sides: bool = False,
                  pivot_steps: bool | None = None, pause_steps: bool | str | None = None,
-                 uniform_clock: bool = False):
+                 uniform_clock: bool | str = False):
         from pdrlearn.io.session import Session
         from pdrlearn.track.waist import _start
         from pdrlearn.waist.events import WALK_THRESHOLD_MPS2
@@ -353,7 +353,7 @@ class WaistTracker(WaistStream):
                          walk_threshold=p.walk_threshold_mps2 if p.walk_threshold_mps2 is not None
                          else WALK_THRESHOLD_MPS2, keep_steps=keep_steps, check_input=check_input, latlon=latlon,
                          sides=sides, not_applied_live=quiet[0] if quiet else None,
-                         uniform_clock=bool(uniform_clock))  # decision E366's option
+                         uniform_clock=uniform_clock)  # decisions E366 / E371's options
 
     # -- W65: the frame ---------------------------------------------------------------------------------
     def _hold(self, t: np.ndarray, v: np.ndarray):
