@@ -54,7 +54,7 @@ def clock_option(value) -> bool | str:
         return value
     if value in (False, True, None, 0, 1):
         return bool(value)
-    raise ValueError(f"uniform_clock must be False, True or 'nearest', not {value!r}")
+    raise ValueError(f"uniform_clock must be False, True, 'nearest' or 'nearest-phase', not {value!r}")
 
 
 class Bridge:
